@@ -1,0 +1,16 @@
+#version 450
+// Exercise 5, DISPLACEMENT SHADER: vertex shader.
+#include "transform.glsl"
+#include "displacement_params.glsl"
+#include "noise.glsl"
+
+layout(location = 0) out float noise;  // value for the fragment shader
+
+const float speed = 1.0;  // animation speed
+const float scale = 2.0;  // noise scale
+
+void main() {
+    noise = snoise(normalize(vertex_position) * scale + (time * speed));
+    vec3 pos = vertex_position + vertex_normal * noise * vec3(clamp(displacement, 0.0, 1.0));
+    gl_Position = mvp * vec4(pos, 1.0);
+}

@@ -1,0 +1,70 @@
+//! The crate's error type: one enum for every layer, so callers can match on what went wrong.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in shaderlab's library code.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// No GPU adapter (not even a software one) was found.
+    #[error(
+        "no GPU adapter found ({0}). On Debian/Ubuntu install the Vulkan CPU driver lavapipe: \
+         `sudo apt-get install -y mesa-vulkan-drivers`"
+    )]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("could not create a GPU device: {0}")]
+    Device(String),
+    /// A shader failed to parse or validate. `message` is already formatted as
+    /// `path:line:column: message` plus the offending line and a caret.
+    #[error("{message}")]
+    Shader {
+        /// The file the error is in (after resolving snippets spliced in by the loader).
+        file: String,
+        /// 1-based line number in `file`.
+        line: u32,
+        /// 1-based column number.
+        column: u32,
+        /// The formatted diagnostic.
+        message: String,
+    },
+    /// A shader file could not be found.
+    #[error("shader file {0} not found")]
+    ShaderNotFound(String),
+    /// A Rust uniform struct does not match the GLSL block it feeds.
+    #[error("uniform layout mismatch: {0}")]
+    Layout(String),
+    /// A parameter name or value is not valid for an effect.
+    #[error("{0}")]
+    Param(String),
+    /// wgpu reported an error (validation, out of memory, device lost).
+    #[error("wgpu error in {context}: {message}")]
+    Wgpu {
+        /// What we were doing.
+        context: String,
+        /// wgpu's message.
+        message: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Encoding or decoding an image failed.
+    #[error("{path}: {source}")]
+    Image {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: image::ImageError,
+    },
+    /// A window surface could not be created or configured.
+    #[error("surface error: {0}")]
+    Surface(String),
+}
+
+/// Shorthand for results with [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,132 @@
+//! Offscreen rendering: a colour and depth target, readback to an RGBA image, PNG export.
+//!
+//! The colour format is `Rgba8Unorm`, not an sRGB one: GL's default framebuffer does no sRGB
+//! encoding, so this is what matches the original's pixels. Readback gives the top row first
+//! (glReadPixels gives the bottom row first; the reference PNGs are stored top row first too).
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+use crate::gpu::Gpu;
+
+/// Colour format of every render target (offscreen and, as Bgra8Unorm, windows).
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// Depth format of every render target.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// A depth texture matching a colour target's size.
+pub fn depth_texture(device: &wgpu::Device, width: u32, height: u32) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("shaderlab.depth"),
+            size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// An offscreen colour + depth target that can be read back.
+pub struct Offscreen {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    texture: wgpu::Texture,
+    /// View of the colour texture.
+    pub color: wgpu::TextureView,
+    /// View of the depth texture.
+    pub depth: wgpu::TextureView,
+    readback: wgpu::Buffer,
+    padded_row: u32,
+}
+
+impl Offscreen {
+    /// A target of `width` x `height` (each at least 1).
+    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
+        let (width, height) = (width.max(1), height.max(1));
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shaderlab.offscreen.color"),
+            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: COLOR_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let depth = depth_texture(&gpu.device, width, height);
+        // Buffer copies need rows padded to 256 bytes.
+        let padded_row = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shaderlab.offscreen.readback"),
+            size: padded_row as u64 * height as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Offscreen { width, height, texture, color, depth, readback, padded_row }
+    }
+
+    /// Copies the colour target to the CPU (top row first).
+    pub fn read(&self, gpu: &Gpu) -> Result<image::RgbaImage> {
+        let mut encoder =
+            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("shaderlab.offscreen.copy") });
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_row),
+                    rows_per_image: Some(self.height),
+                },
+            },
+            wgpu::Extent3d { width: self.width, height: self.height, depth_or_array_layers: 1 },
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let slice = self.readback.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        gpu.wait()?;
+        rx.recv()
+            .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?
+            .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?;
+        let mut pixels = Vec::with_capacity((4 * self.width * self.height) as usize);
+        {
+            let data = slice
+                .get_mapped_range()
+                .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?;
+            for row in data.chunks(self.padded_row as usize).take(self.height as usize) {
+                pixels.extend_from_slice(&row[..(4 * self.width) as usize]);
+            }
+        }
+        self.readback.unmap();
+        image::RgbaImage::from_raw(self.width, self.height, pixels)
+            .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() })
+    }
+}
+
+/// Drops alpha: the original's window is RGB, and so are the reference images.
+pub fn to_rgb(image: &image::RgbaImage) -> image::RgbImage {
+    image::DynamicImage::ImageRgba8(image.clone()).to_rgb8()
+}
+
+/// Writes an RGB PNG.
+pub fn save_png(image: &image::RgbaImage, path: &Path) -> Result<()> {
+    to_rgb(image).save(path).map_err(|source| match source {
+        image::ImageError::IoError(source) => Error::Io { path: path.to_owned(), source },
+        source => Error::Image { path: path.to_owned(), source },
+    })
+}
