@@ -589,7 +589,7 @@ impl<E: Effect> Lab<E> {
 
     /// Renders one frame offscreen at `width` x `height` and reads it back.
     pub fn screenshot(&mut self, gpu: &Gpu, width: u32, height: u32) -> Result<image::RgbaImage> {
-        let target = Offscreen::new(gpu, width, height);
+        let target = Offscreen::with_format(gpu, width, height, self.format);
         gpu.checked(&format!("{}.render", E::NAME), || self.render(gpu, &target.color, &target.depth, target.width, target.height))?;
         target.read(gpu)
     }

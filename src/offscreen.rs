@@ -43,11 +43,18 @@ pub struct Offscreen {
     pub depth: wgpu::TextureView,
     readback: wgpu::Buffer,
     padded_row: u32,
+    format: wgpu::TextureFormat,
 }
 
 impl Offscreen {
-    /// A target of `width` x `height` (each at least 1).
+    /// A target of `width` x `height` (each at least 1) in [`COLOR_FORMAT`].
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
+        Self::with_format(gpu, width, height, COLOR_FORMAT)
+    }
+
+    /// A target in `format`: `Rgba8Unorm` or `Bgra8Unorm` (a window's format, for screenshots
+    /// drawn by the window's pipelines); readback always gives RGBA.
+    pub fn with_format(gpu: &Gpu, width: u32, height: u32, format: wgpu::TextureFormat) -> Self {
         let (width, height) = (width.max(1), height.max(1));
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shaderlab.offscreen.color"),
@@ -55,7 +62,7 @@ impl Offscreen {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: COLOR_FORMAT,
+            format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         });
@@ -69,7 +76,7 @@ impl Offscreen {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        Offscreen { width, height, texture, color, depth, readback, padded_row }
+        Offscreen { width, height, texture, color, depth, readback, padded_row, format }
     }
 
     /// Copies the colour target to the CPU (top row first).
@@ -113,6 +120,9 @@ impl Offscreen {
             }
         }
         self.readback.unmap();
+        if matches!(self.format, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb) {
+            pixels.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
+        }
         image::RgbaImage::from_raw(self.width, self.height, pixels)
             .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() })
     }

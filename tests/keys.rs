@@ -1,0 +1,103 @@
+//! The original's keyboard and mouse handlers: what each key does, the clamps, the mouse rules.
+
+mod common;
+
+use glam::Vec3;
+use shaderlab::effects::*;
+use shaderlab::Object;
+
+#[test]
+fn object_keys() {
+    let mut lab = common::lab::<PositionRgb>();
+    assert_eq!(lab.scene.object, Object::Teapot, "the teapot is the default");
+    for (key, object) in [('1', Object::Cube), ('2', Object::Sphere), ('3', Object::Torus), ('4', Object::Teapot)] {
+        assert!(lab.key(key));
+        assert_eq!(lab.scene.object, object);
+    }
+    assert!(!lab.key('q'), "unbound keys do nothing");
+}
+
+#[test]
+fn phong_keys_and_clamps() {
+    let mut lab = common::lab::<Phong>();
+    let get = |lab: &shaderlab::Lab<Phong>, n: &str| lab.get(n).expect("param");
+    lab.key('X');
+    lab.key('Y');
+    lab.key('z');
+    let l = get(&lab, "lightPosition");
+    assert!((l[0] - 0.1).abs() < 1e-6 && (l[1] - 1.1).abs() < 1e-6 && (l[2] - 0.9).abs() < 1e-6, "{l:?}");
+    // W moves the camera forward and the eye-space light back, so it stays put in the world.
+    lab.key('w');
+    assert!((get(&lab, "camera")[2] - 4.9).abs() < 1e-6);
+    assert!((get(&lab, "lightPosition")[2] - 1.0).abs() < 1e-6);
+    lab.key('A');
+    assert!((get(&lab, "camera")[0] + 0.1).abs() < 1e-6);
+    assert!((get(&lab, "lightPosition")[0] - 0.2).abs() < 1e-6);
+    // Coefficients clamp to [0, 1], shininess to [6, 200].
+    for _ in 0..100 {
+        lab.key('<');
+        lab.key(']');
+        lab.key('{');
+        lab.key('h');
+        lab.key('R');
+        lab.key('b');
+    }
+    assert_eq!(get(&lab, "Ka"), vec![0.0]);
+    assert_eq!(get(&lab, "Kd"), vec![1.0]);
+    assert_eq!(get(&lab, "Ks"), vec![0.0]);
+    assert_eq!(get(&lab, "shininess"), vec![6.0]);
+    assert_eq!(get(&lab, "diffuseColor")[0], 1.0);
+    assert_eq!(get(&lab, "diffuseColor")[2], 0.0);
+    for _ in 0..300 {
+        lab.key('H');
+    }
+    assert_eq!(get(&lab, "shininess"), vec![200.0]);
+    lab.key('>');
+    assert!((get(&lab, "Ka")[0] - 0.05).abs() < 1e-6);
+}
+
+#[test]
+fn noise_and_displacement_keys() {
+    let mut noise = common::lab::<Noise>();
+    noise.key('r');
+    assert!((noise.get("shade").expect("shade")[0] - 0.95).abs() < 1e-6);
+    for _ in 0..50 {
+        noise.key('g');
+    }
+    assert_eq!(noise.get("shade").expect("shade")[1], 0.0);
+    let mut disp = common::lab::<Displacement>();
+    disp.key(']');
+    assert!((disp.get("displacement").expect("d")[0] - 0.51).abs() < 1e-6);
+    for _ in 0..200 {
+        disp.key('[');
+    }
+    assert_eq!(disp.get("displacement").expect("d"), vec![0.0]);
+    disp.key('B');
+    assert_eq!(disp.get("shade").expect("shade")[2], 1.0);
+}
+
+#[test]
+fn mouse_drag_rotates_like_glut() {
+    let mut lab = common::lab::<Noise>();
+    lab.mouse_press(100, 100);
+    lab.mouse_motion(110, 100); // right: yAngle += 2
+    lab.mouse_motion(120, 95); // right and up: yAngle += 2, xAngle -= 1
+    lab.mouse_motion(120, 95); // no movement: nothing
+    assert_eq!(lab.scene.angles, Vec3::new(359.0, 4.0, 0.0));
+    // The original tests `if (xMotion)`: a press at x = 0 does not rotate around y.
+    let mut edge = common::lab::<Noise>();
+    edge.mouse_press(0, 50);
+    edge.mouse_motion(30, 60);
+    assert_eq!(edge.scene.angles, Vec3::new(1.0, 0.0, 0.0));
+}
+
+#[test]
+fn set_rejects_bad_values() {
+    let mut lab = common::lab::<Phong>();
+    assert!(lab.set("Ka", &[f32::NAN]).is_err());
+    assert!(lab.set("lightPosition", &[1.0]).is_err());
+    assert!(lab.set("camera", &[0.0, 0.0, 3.0]).is_ok());
+    let mut p1 = common::lab::<PositionRgb>();
+    let err = p1.set("camera", &[0.0, 0.0, 3.0]).expect_err("no camera in exercise 1");
+    assert!(err.to_string().contains("valid"), "{err}");
+}
