@@ -212,8 +212,7 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
     let module = frontend
         .parse(&naga::front::glsl::Options::from(stage), &source.text)
         .map_err(|errors| {
-            let spans: Vec<(naga::Span, String)> =
-                errors.errors.iter().map(|e| (e.meta, e.kind.to_string())).collect();
+            let spans: Vec<(naga::Span, String)> = errors.errors.iter().map(|e| parse_error_span(&source.text, e)).collect();
             shader_error(&source, &spans)
         })?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
@@ -226,10 +225,40 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
                 message.push_str(&next.to_string());
                 source_err = next;
             }
-            let span = err.spans().next().map(|(s, _)| *s).unwrap_or_default();
+            // naga lists the outermost span first (the whole function) and the offending
+            // expression last: point at the innermost one.
+            let span = err.spans().last().map(|(s, _)| *s).unwrap_or_default();
             shader_error(&source, &[(span, message)])
         })?;
     Ok(CompiledShader { path: path.to_owned(), stage, source, module, info })
+}
+
+/// naga reports a missing `;` at the next token, often on the next line; point at the end of
+/// the line that lacks it instead, as C compilers do.
+fn parse_error_span(text: &str, error: &naga::front::glsl::Error) -> (naga::Span, String) {
+    use naga::front::glsl::{ErrorKind, ExpectedToken, TokenValue};
+    let message = error.kind.to_string();
+    let wants_semicolon = matches!(&error.kind, ErrorKind::InvalidToken(_, expected)
+        if expected.contains(&ExpectedToken::Token(TokenValue::Semicolon)));
+    let start = error.meta.to_range().map(|r| r.start).filter(|&s| s <= text.len());
+    if let (true, Some(start)) = (wants_semicolon, start) {
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        if text[line_start..start].trim().is_empty() {
+            // The offending token starts its line: find the end of the previous code line.
+            let mut end = line_start;
+            while end > 0 {
+                let prev_start = text[..end - 1].rfind('\n').map_or(0, |i| i + 1);
+                let line = &text[prev_start..end - 1];
+                let code = line.split("//").next().unwrap_or("").trim_end();
+                if !code.trim().is_empty() {
+                    let at = (prev_start + code.len()) as u32;
+                    return (naga::Span::new(at, at), format!("missing `;` at the end of this line? ({message})"));
+                }
+                end = prev_start;
+            }
+        }
+    }
+    (error.meta, message)
 }
 
 fn shader_error(source: &Spliced, spans: &[(naga::Span, String)]) -> Error {

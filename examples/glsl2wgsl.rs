@@ -1,0 +1,92 @@
+//! `cargo run --release --example glsl2wgsl -- FILE`: translates a GLSL 450 shader to WGSL with naga.
+//!
+//! The stage comes from the extension (`.vert`, `.frag`, `.comp`). `#include "x.glsl"` resolves
+//! relative to the file's directory, then to the snippets built into shaderlab.
+//!
+//! ```text
+//! glsl2wgsl FILE              # WGSL on stdout
+//! glsl2wgsl FILE -o OUT.wgsl  # WGSL into a file
+//! glsl2wgsl --all DIR OUTDIR  # every .vert/.frag/.comp of DIR to OUTDIR/NAME.EXT.wgsl
+//! ```
+//!
+//! Shader errors print as `path:line:column: message` with the line and a caret, and exit 1.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{bail, Context};
+use clap::Parser;
+use shaderlab::shader::{compile_text, embedded_source, stage_of};
+
+/// Translate GLSL 450 shaders to WGSL with naga.
+#[derive(Parser, Debug)]
+#[command(name = "glsl2wgsl", arg_required_else_help = true)]
+struct Args {
+    /// A .vert, .frag or .comp file.
+    #[arg(required_unless_present = "all", conflicts_with = "all")]
+    file: Option<PathBuf>,
+    /// Write the WGSL here instead of stdout.
+    #[arg(short, long, value_name = "OUT", conflicts_with = "all")]
+    output: Option<PathBuf>,
+    /// Translate every .vert/.frag/.comp of DIR into OUTDIR as NAME.EXT.wgsl.
+    #[arg(long, num_args = 2, value_names = ["DIR", "OUTDIR"])]
+    all: Option<Vec<PathBuf>>,
+}
+
+/// Reads, splices, validates and translates one file.
+fn translate(path: &Path) -> anyhow::Result<String> {
+    let name = path.to_string_lossy();
+    let stage = stage_of(&name)?;
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let resolve = |include: &str| -> shaderlab::Result<(String, String)> {
+        let local = dir.join(include);
+        match std::fs::read_to_string(&local) {
+            Ok(t) => Ok((local.display().to_string(), t)),
+            Err(_) => embedded_source(include)
+                .map(|t| (format!("shaders_glsl/{include}"), t.to_owned()))
+                .ok_or_else(|| shaderlab::Error::ShaderNotFound(local.display().to_string())),
+        }
+    };
+    Ok(compile_text(&name, &text, stage, &resolve)?.to_wgsl()?)
+}
+
+fn run(args: &Args) -> anyhow::Result<()> {
+    if let Some([dir, out_dir]) = args.all.as_deref() {
+        std::fs::create_dir_all(out_dir).with_context(|| format!("cannot create {}", out_dir.display()))?;
+        let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+            .with_context(|| format!("cannot read directory {}", dir.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.is_file() && matches!(p.extension().and_then(|e| e.to_str()), Some("vert" | "frag" | "comp")))
+            .collect();
+        files.sort();
+        if files.is_empty() {
+            bail!("no .vert, .frag or .comp files in {}", dir.display());
+        }
+        for file in files {
+            let wgsl = translate(&file)?;
+            let out = out_dir.join(format!("{}.wgsl", file.file_name().unwrap_or_default().to_string_lossy()));
+            std::fs::write(&out, wgsl).with_context(|| format!("cannot write {}", out.display()))?;
+            eprintln!("{} -> {}", file.display(), out.display());
+        }
+        return Ok(());
+    }
+    let file = args.file.as_deref().context("no input file")?;
+    let wgsl = translate(file)?;
+    match &args.output {
+        Some(out) => std::fs::write(out, wgsl).with_context(|| format!("cannot write {}", out.display()))?,
+        None => print!("{wgsl}"),
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("glsl2wgsl: error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
