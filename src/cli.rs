@@ -9,7 +9,7 @@ use std::time::Instant;
 use clap::{CommandFactory, FromArgMatches, Parser};
 use glam::Vec3;
 
-use crate::effect::{Effect, Lab, Object};
+use crate::effect::{Effect, Lab, Object, Shading, Tess};
 use crate::error::Error;
 use crate::gpu::Gpu;
 use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
@@ -43,6 +43,28 @@ pub struct LabArgs {
     /// Read shaders from this directory instead of the built-in copies (same file names as shaders_glsl/).
     #[arg(long, value_name = "DIR")]
     pub shaders: Option<PathBuf>,
+    /// Shading model of the phong example: flat, gouraud, phong (the original) or blinn.
+    #[arg(long, value_parser = parse_shading)]
+    pub shading: Option<Shading>,
+    /// Tessellation of sphere, torus and teapot: a level (slices = stacks, sides = rings, teapot
+    /// grid; 3 to 512) or `auto` (smallest level with silhouette error under half a pixel).
+    /// Default: GLUT's (24, 24, teapot 8), as the original.
+    #[arg(long, value_name = "N|auto", value_parser = parse_tess)]
+    pub tess: Option<Tess>,
+}
+
+fn parse_shading(s: &str) -> Result<Shading, String> {
+    Shading::from_name(s).ok_or_else(|| format!("unknown shading `{s}`; valid: flat, gouraud, phong, blinn"))
+}
+
+fn parse_tess(s: &str) -> Result<Tess, String> {
+    if s == "auto" {
+        return Ok(Tess::Auto { budget_px: crate::tess::DEFAULT_BUDGET_PX });
+    }
+    match s.parse::<u32>() {
+        Ok(n) if (crate::tess::MIN_LEVEL..=crate::tess::MAX_LEVEL).contains(&n) => Ok(Tess::Level(n)),
+        _ => Err(format!("`{s}`: expected `auto` or a level from 3 to 512")),
+    }
 }
 
 fn parse_object(s: &str) -> Result<Object, String> {
@@ -104,6 +126,15 @@ impl LabArgs {
         lab.scene.object = self.object;
         lab.scene.angles = self.rotate;
         lab.scene.time = self.time.unwrap_or(0.0);
+        if let Some(shading) = self.shading {
+            if !E::SHADING_MODELS && shading != Shading::Phong {
+                return Err(Error::Param(format!("{} has no shading models; --shading applies to phong", E::NAME)));
+            }
+            lab.options.shading = shading;
+        }
+        if let Some(tess) = self.tess {
+            lab.options.tess = tess;
+        }
         for (name, values) in &self.set {
             lab.set(name, values)?;
         }
@@ -155,6 +186,8 @@ pub fn run_offscreen<E: Effect>(args: &LabArgs) -> Result<(), Failure> {
     let gpu = Gpu::headless()?;
     let mut lab = Lab::<E>::new(&gpu, args.shader_source()?, COLOR_FORMAT)?;
     args.apply(&mut lab)?;
+    // Build the chosen shading model now, so that a broken shader file is reported before rendering.
+    lab.set_shading(&gpu, lab.options.shading)?;
     let (width, height) = args.size;
     if let Some(frames) = args.bench {
         let result = bench(&gpu, &mut lab, frames, width, height)?;

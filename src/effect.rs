@@ -3,7 +3,9 @@
 //! effect's pipeline, the GLUT meshes and the uniform buffers and draws a frame into any view.
 //! Effects never see winit: the window code calls [`Lab::key`], [`Lab::mouse_press`] and friends.
 
-use glam::{Mat4, Vec3};
+use std::collections::HashMap;
+
+use glam::{Mat3, Mat4, Vec3};
 
 use crate::camera;
 use crate::error::{Error, Result};
@@ -11,6 +13,7 @@ use crate::gpu::Gpu;
 use crate::mesh::{Mesh, Vertex};
 use crate::offscreen::{Offscreen, DEPTH_FORMAT};
 use crate::shader::{self, BlockLayout, ShaderSource, UniformBlock};
+use crate::tess;
 
 /// The four objects of keys `1`..`4`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -70,6 +73,94 @@ pub struct Scene {
     pub motion: (i32, i32),
 }
 
+/// Shading models of the Phong exercise (`--shading`, key `m`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shading {
+    /// Per polygon: the triangle's own normal (`phong_flat.frag`).
+    Flat,
+    /// Per vertex: the formula at the vertices, colours interpolated (`phong_gouraud.*`).
+    Gouraud,
+    /// Per pixel: the original (`phong.frag`).
+    Phong,
+    /// Per pixel with the halfway vector (`phong_blinn.frag`).
+    Blinn,
+}
+
+impl Shading {
+    /// All models, in the order key `m` cycles through them.
+    pub const ALL: [Shading; 4] = [Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::Blinn];
+
+    /// Command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Shading::Flat => "flat",
+            Shading::Gouraud => "gouraud",
+            Shading::Phong => "phong",
+            Shading::Blinn => "blinn",
+        }
+    }
+
+    /// Parses a command-line name.
+    pub fn from_name(name: &str) -> Option<Shading> {
+        Shading::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// The next model (key `m`).
+    pub fn next(self) -> Shading {
+        let i = Shading::ALL.iter().position(|s| *s == self).unwrap_or(0);
+        Shading::ALL[(i + 1) % Shading::ALL.len()]
+    }
+}
+
+/// How finely the sphere, torus and teapot are tessellated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tess {
+    /// GLUT's own levels (24 for sphere and torus, the teapot's 8): the original's meshes.
+    Glut,
+    /// A fixed level: slices = stacks, sides = rings, or teapot grid.
+    Level(u32),
+    /// The smallest level whose silhouette error stays within a budget in pixels, per frame.
+    Auto {
+        /// Error budget in pixels.
+        budget_px: f64,
+    },
+}
+
+/// Port-only rendering options (the original has none of these; defaults reproduce it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Shading model (effects with [`Effect::SHADING_MODELS`]).
+    pub shading: Shading,
+    /// Tessellation.
+    pub tess: Tess,
+    /// Weld vertices that share a position and average their normals (crack-free displacement).
+    pub smooth: bool,
+    /// `glScalef` after the rotations (1,1,1 in the labs; for the normal-matrix study).
+    pub scale: Vec3,
+    /// Use the modelview's upper 3x3 instead of its inverse transpose for normals (wrong under
+    /// non-uniform scale; for the "where methods fail" study).
+    pub naive_normal_matrix: bool,
+    /// Wrap the time uniform by the noise's period (144.5 s) so f32 never loses precision.
+    pub wrap_time: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            shading: Shading::Phong,
+            tess: Tess::Glut,
+            smooth: false,
+            scale: Vec3::ONE,
+            naive_normal_matrix: false,
+            wrap_time: true,
+        }
+    }
+}
+
+/// The simplex noise is periodic in `time` along (1,1,1): its lattice repeats every 289 skewed
+/// units, and a shift of t along (1,1,1) moves the skewed coordinates by 2t, so t = 289/2.
+pub const NOISE_PERIOD: f64 = 144.5;
+
 /// One lab exercise: its shaders, its uniform block, its defaults and its keys.
 pub trait Effect: 'static {
     /// The `#[repr(C)]` struct that feeds the effect's parameter block (binding 1).
@@ -88,6 +179,14 @@ pub trait Effect: 'static {
     const LIGHT_MARKER: bool = false;
     /// Whether the effect has a `camera` parameter (W/A/S/D in exercise 3).
     const MOVABLE_CAMERA: bool = false;
+    /// Whether the effect offers shading models (`--shading`, key `m`).
+    const SHADING_MODELS: bool = false;
+    /// Whether the effect offers welded, crack-free normals (`--set smooth=1`).
+    const SMOOTH_OPTION: bool = false;
+    /// Vertex and fragment shader files for a shading model.
+    fn shader_files(_shading: Shading) -> (String, String) {
+        (format!("{}.vert", Self::NAME), format!("{}.frag", Self::NAME))
+    }
     /// The original's defaults.
     fn defaults() -> Self::Uniforms;
     /// The original's keyboard handler for the effect's own keys (not 1-4 or Esc). Values are
@@ -183,11 +282,22 @@ pub struct EffectShaders {
 
 /// Compiles `NAME.vert` and `NAME.frag` and checks both uniform structs against their blocks.
 pub fn compile_effect<U: UniformBlock>(source: &ShaderSource, name: &str, rust_name: &str) -> Result<EffectShaders> {
-    let vertex = source.compile(&format!("{name}.vert"))?;
-    let fragment = source.compile(&format!("{name}.frag"))?;
+    compile_effect_files::<U>(source, &format!("{name}.vert"), &format!("{name}.frag"), rust_name)
+}
+
+/// Compiles a vertex and a fragment file and checks both uniform structs against their blocks.
+pub fn compile_effect_files<U: UniformBlock>(
+    source: &ShaderSource,
+    vert: &str,
+    frag: &str,
+    rust_name: &str,
+) -> Result<EffectShaders> {
+    let name = vert.trim_end_matches(".vert");
+    let vertex = source.compile(vert)?;
+    let fragment = source.compile(frag)?;
     let find = |block: &str| vertex.uniform_block(block).or_else(|| fragment.uniform_block(block));
     let transform = find(TransformUniforms::BLOCK).ok_or_else(|| {
-        Error::Layout(format!("{name}.vert declares no uniform block {}", TransformUniforms::BLOCK))
+        Error::Layout(format!("{vert} declares no uniform block {}", TransformUniforms::BLOCK))
     })?;
     shader::check_layout::<TransformUniforms>("TransformUniforms", &transform)?;
     let params = match find(U::BLOCK) {
@@ -203,11 +313,12 @@ pub fn compile_effect<U: UniformBlock>(source: &ShaderSource, name: &str, rust_n
         },
         None => {
             return Err(Error::Layout(format!(
-                "struct {rust_name} feeds GLSL block {}, but neither {name}.vert nor {name}.frag declares it",
+                "struct {rust_name} feeds GLSL block {}, but neither {vert} nor {frag} declares it",
                 U::BLOCK
             )))
         }
     };
+    let _ = name;
     Ok(EffectShaders { vertex, fragment, params })
 }
 
@@ -217,14 +328,18 @@ pub struct Lab<E: Effect> {
     pub scene: Scene,
     /// The effect's parameters.
     pub uniforms: E::Uniforms,
+    /// Port-only options (shading model, tessellation, smooth normals...).
+    pub options: Options,
     params: BlockLayout,
+    built_shading: Shading,
+    pending_error: Option<Error>,
     source: ShaderSource,
     format: wgpu::TextureFormat,
     layout: wgpu::PipelineLayout,
     bind_group_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
     marker_pipeline: Option<wgpu::RenderPipeline>,
-    meshes: Vec<(Object, GpuMesh)>,
+    meshes: HashMap<(Object, u32, bool), GpuMesh>,
     marker_mesh: GpuMesh,
     transform_buffer: wgpu::Buffer,
     params_buffer: wgpu::Buffer,
@@ -304,7 +419,9 @@ impl<E: Effect> Lab<E> {
     /// Compiles the effect's shaders from `source` and builds everything for targets of `format`.
     pub fn new(gpu: &Gpu, source: ShaderSource, format: wgpu::TextureFormat) -> Result<Self> {
         let device = &gpu.device;
-        let shaders = compile_effect::<E::Uniforms>(&source, E::NAME, std::any::type_name::<E::Uniforms>())?;
+        let options = Options::default();
+        let (vert, frag) = E::shader_files(options.shading);
+        let shaders = compile_effect_files::<E::Uniforms>(&source, &vert, &frag, std::any::type_name::<E::Uniforms>())?;
         let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{}.bind_group_layout", E::NAME)),
             entries: &[uniform_entry(0), uniform_entry(1)],
@@ -331,7 +448,7 @@ impl<E: Effect> Lab<E> {
         };
         let meshes = Object::ALL
             .into_iter()
-            .map(|o| (o, GpuMesh::new(device, &o.mesh(), &format!("mesh.{}", o.name()))))
+            .map(|o| ((o, tess::glut_level(o), false), GpuMesh::new(device, &o.mesh(), &format!("mesh.{}", o.name()))))
             .collect();
         let marker_mesh = GpuMesh::new(device, &Mesh::sphere(0.05, 4, 4), "mesh.light_marker");
         let transform_buffer = uniform_buffer(device, &format!("{}.transform", E::NAME), std::mem::size_of::<TransformUniforms>());
@@ -352,7 +469,10 @@ impl<E: Effect> Lab<E> {
         Ok(Lab {
             scene: Scene { object: Object::Teapot, angles: Vec3::ZERO, camera: E::CAMERA, time: 0.0, motion: (0, 0) },
             uniforms: E::defaults(),
+            options,
             params: shaders.params,
+            built_shading: options.shading,
+            pending_error: None,
             source,
             format,
             layout,
@@ -375,17 +495,59 @@ impl<E: Effect> Lab<E> {
         shaders: &EffectShaders,
         format: wgpu::TextureFormat,
     ) -> Result<wgpu::RenderPipeline> {
-        let vs = shaders.vertex.create_module(&gpu.device, &format!("{}.vert", E::NAME));
-        let fs = shaders.fragment.create_module(&gpu.device, &format!("{}.frag", E::NAME));
+        let vs = shaders.vertex.create_module(&gpu.device, &shaders.vertex.path);
+        let fs = shaders.fragment.create_module(&gpu.device, &shaders.fragment.path);
         build_pipeline(gpu, &format!("{}.pipeline", E::NAME), layout, &vs, &fs, format)
     }
 
-    /// Recompiles the effect's shaders from its source. On failure the last good pipeline stays.
+    /// Recompiles the effect's shaders (for the current shading model) from its source.
+    /// On failure the last good pipeline stays.
     pub fn reload(&mut self, gpu: &Gpu) -> Result<()> {
-        let shaders = compile_effect::<E::Uniforms>(&self.source, E::NAME, std::any::type_name::<E::Uniforms>())?;
+        let shading = self.options.shading;
+        let (vert, frag) = E::shader_files(shading);
+        let shaders = compile_effect_files::<E::Uniforms>(&self.source, &vert, &frag, std::any::type_name::<E::Uniforms>())?;
         self.pipeline = Self::pipeline_from(gpu, &self.layout, &shaders, self.format)?;
         self.params = shaders.params;
+        self.built_shading = shading;
         Ok(())
+    }
+
+    /// Switches the shading model (effects with [`Effect::SHADING_MODELS`]) and rebuilds the pipeline.
+    pub fn set_shading(&mut self, gpu: &Gpu, shading: Shading) -> Result<()> {
+        if !E::SHADING_MODELS && shading != Shading::Phong {
+            return Err(Error::Param(format!("{} has no shading models; --shading applies to phong", E::NAME)));
+        }
+        let previous = self.options.shading;
+        self.options.shading = shading;
+        self.reload(gpu).inspect_err(|_| self.options.shading = previous)
+    }
+
+    /// An error from a deferred rebuild (e.g. key `m` switching to a broken shader file), once.
+    pub fn take_error(&mut self) -> Option<Error> {
+        self.pending_error.take()
+    }
+
+    /// The tessellation level drawn for the current object in a viewport `height` rows high.
+    pub fn level(&self, height: u32) -> u32 {
+        let object = self.scene.object;
+        match self.options.tess {
+            _ if object == Object::Cube => 0,
+            Tess::Glut => tess::glut_level(object),
+            Tess::Level(n) => n.clamp(tess::MIN_LEVEL, tess::MAX_LEVEL),
+            Tess::Auto { budget_px } => {
+                let distance = self.scene.camera.length() as f64;
+                tess::choose_level(object, distance, height, budget_px)
+            }
+        }
+    }
+
+    fn ensure_mesh(&mut self, gpu: &Gpu, key: (Object, u32, bool)) {
+        self.meshes.entry(key).or_insert_with(|| {
+            let (object, level, smooth) = key;
+            let mesh = tess::mesh(object, level);
+            let mesh = if smooth { mesh.welded() } else { mesh };
+            GpuMesh::new(&gpu.device, &mesh, &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }))
+        });
     }
 
     /// Builds a pipeline from WGSL text for both stages (the WGSL path of the GLSL-to-WGSL check).
@@ -420,6 +582,9 @@ impl<E: Effect> Lab<E> {
         if E::MOVABLE_CAMERA {
             names.push("camera".into());
         }
+        if E::SMOOTH_OPTION {
+            names.push("smooth".into());
+        }
         names
     }
 
@@ -437,6 +602,13 @@ impl<E: Effect> Lab<E> {
             self.scene.camera = Vec3::new(values[0], 0.0, values[2]);
             return Ok(());
         }
+        if name == "smooth" && E::SMOOTH_OPTION {
+            match values {
+                [v] if *v == 0.0 || *v == 1.0 => self.options.smooth = *v == 1.0,
+                _ => return Err(Error::Param("parameter `smooth` takes 0 or 1".into())),
+            }
+            return Ok(());
+        }
         shader::set_member(&mut self.uniforms, &self.params, name, values).map_err(|e| match e {
             Error::Param(msg) if msg.starts_with("unknown") => Error::Param(format!(
                 "unknown parameter `{name}` for {}; valid: {}",
@@ -451,6 +623,9 @@ impl<E: Effect> Lab<E> {
     pub fn get(&self, name: &str) -> Option<Vec<f32>> {
         if name == "camera" && E::MOVABLE_CAMERA {
             return Some(self.scene.camera.to_array().to_vec());
+        }
+        if name == "smooth" && E::SMOOTH_OPTION {
+            return Some(vec![if self.options.smooth { 1.0 } else { 0.0 }]);
         }
         shader::get_member(&self.uniforms, &self.params, name)
     }
@@ -467,6 +642,11 @@ impl<E: Effect> Lab<E> {
         };
         if let Some(object) = object {
             self.scene.object = object;
+            return true;
+        }
+        if key == 'm' && E::SHADING_MODELS {
+            // Rebuilt before the next frame is drawn (this method has no GPU at hand).
+            self.options.shading = self.options.shading.next();
             return true;
         }
         E::key(key, &mut self.uniforms, &mut self.scene)
@@ -508,23 +688,44 @@ impl<E: Effect> Lab<E> {
 
     /// Window title: the original's, the exercise and the current values.
     pub fn title(&self) -> String {
-        format!("{} {} | {} | {}", E::TITLE, E::LABEL, self.scene.object.name(), E::summary(&self.uniforms))
+        let mut title = format!("{} {} | {} | {}", E::TITLE, E::LABEL, self.scene.object.name(), E::summary(&self.uniforms));
+        if E::SHADING_MODELS {
+            title.push_str(&format!(" | shading {} (m)", self.options.shading.name()));
+        }
+        match self.options.tess {
+            Tess::Glut => {}
+            Tess::Level(n) => title.push_str(&format!(" | tess {n}")),
+            Tess::Auto { .. } => title.push_str(" | tess auto"),
+        }
+        if self.options.smooth {
+            title.push_str(" | smooth");
+        }
+        title
     }
 
     /// The modelview of the object for the current state.
     pub fn modelview(&self) -> Mat4 {
         let eye = self.scene.camera;
-        camera::glu_look_at(eye, eye - Vec3::Z, Vec3::Y) * camera::lab_rotation(self.scene.angles)
+        let model = camera::lab_rotation(self.scene.angles) * Mat4::from_scale(self.options.scale);
+        camera::glu_look_at(eye, eye - Vec3::Z, Vec3::Y) * model
     }
 
     /// Writes the uniforms for a `width` x `height` viewport.
     fn upload(&mut self, gpu: &Gpu, width: u32, height: u32) {
         let projection = camera::lab_projection(width, height);
         if self.params.member("time").is_some() {
-            let t = self.scene.time;
-            let _ = shader::set_member(&mut self.uniforms, &self.params, "time", &[t]);
+            let t = self.scene.time as f64;
+            let t = if self.options.wrap_time { t.rem_euclid(NOISE_PERIOD) } else { t };
+            let _ = shader::set_member(&mut self.uniforms, &self.params, "time", &[t as f32]);
         }
-        gpu.queue.write_buffer(&self.transform_buffer, 0, bytemuck::bytes_of(&TransformUniforms::new(self.modelview(), projection)));
+        let modelview = self.modelview();
+        let mut transform = TransformUniforms::new(modelview, projection);
+        if self.options.naive_normal_matrix {
+            let m = Mat3::from_mat4(modelview);
+            let col = |v: Vec3| [v.x, v.y, v.z, 0.0];
+            transform.normal_matrix = [col(m.x_axis), col(m.y_axis), col(m.z_axis)];
+        }
+        gpu.queue.write_buffer(&self.transform_buffer, 0, bytemuck::bytes_of(&transform));
         gpu.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.uniforms));
         if let Some(light) = E::light_position(&self.uniforms) {
             // Drawn with the modelview reset: glLoadIdentity(); glTranslatef(light).
@@ -544,6 +745,14 @@ impl<E: Effect> Lab<E> {
         height: u32,
         timestamps: Option<wgpu::RenderPassTimestampWrites>,
     ) {
+        if self.built_shading != self.options.shading {
+            if let Err(e) = self.reload(gpu) {
+                self.options.shading = self.built_shading;
+                self.pending_error = Some(e);
+            }
+        }
+        let key = (self.scene.object, self.level(height), self.options.smooth);
+        self.ensure_mesh(gpu, key);
         self.upload(gpu, width, height);
         let [r, g, b] = E::CLEAR;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -573,7 +782,7 @@ impl<E: Effect> Lab<E> {
         }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
-        if let Some((_, mesh)) = self.meshes.iter().find(|(o, _)| *o == self.scene.object) {
+        if let Some(mesh) = self.meshes.get(&key) {
             draw(&mut pass, mesh);
         }
     }

@@ -17,11 +17,13 @@ pub mod cli;
 pub mod effect;
 pub mod effects;
 pub mod error;
+pub mod exact;
 pub mod gpu;
 pub mod mesh;
 pub mod metrics;
 pub mod offscreen;
 pub mod shader;
+pub mod tess;
 
 pub use effect::{Effect, Lab, Object, Scene};
 pub use error::{Error, Result};

@@ -2,7 +2,8 @@
 //! of its direction (`snoise(normalize(v)*2 + time)`) times `clamp(displacement, 0, 1)`, and is
 //! coloured `shade * clamp(noise, 0, 1)`. On GLUT's meshes the shapes look jagged, and the cube
 //! and teapot crack open where vertices share a position but not a normal — as in the original.
-//! Keys: `[`/`]` displacement ∓0.01 (clamped to [0, 1]), `R/r G/g B/b` ±0.05 on the shade,
+//! `--set smooth=1` (a port addition) welds shared vertices and averages their normals, which
+//! closes the cracks. Keys: `[`/`]` displacement ∓0.01 (clamped to [0, 1]), `R/r G/g B/b` ±0.05 on the shade,
 //! `1`-`4` objects, mouse drag rotates.
 
 use super::{shade_key, step};
@@ -36,6 +37,7 @@ impl Effect for Displacement {
     const TITLE: &'static str = "Lab05-5";
     const LABEL: &'static str = "displacement";
     const CLEAR: [f64; 3] = [0.0, 0.0, 0.0];
+    const SMOOTH_OPTION: bool = true;
 
     fn defaults() -> DisplacementUniforms {
         DisplacementUniforms { shade: [1.0, 1.0, 1.0], time: 0.0, displacement: 0.5, _pad: [0.0; 3] }

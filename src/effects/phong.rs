@@ -6,13 +6,14 @@
 //! Keys: `W/A/S/D` move the camera by 0.1 (and the eye-space light the opposite way, so it stays
 //! put in the world); `X/Y/Z` +0.1 and `x/y/z` -0.1 on the light; `<`/`>` Ka ∓0.05; `[`/`]` Kd
 //! ∓0.05; `{`/`}` Ks ∓0.05; `H`/`h` shininess ±1 within [6, 200]; `R/G/B` +0.01 and `r/g/b`
-//! -0.01 on the diffuse colour. Coefficients and colours clamp to [0, 1]; the light and camera
+//! -0.01 on the diffuse colour; `m` cycles the shading model (flat, Gouraud, Phong, Blinn-Phong;
+//! a port addition, the original has Phong only). Coefficients and colours clamp to [0, 1]; the light and camera
 //! coordinates to [-50, 50].
 
 use glam::Vec3;
 
 use super::step;
-use crate::effect::{Effect, Scene};
+use crate::effect::{Effect, Scene, Shading};
 
 /// Exercise 3.
 pub struct Phong;
@@ -76,6 +77,17 @@ impl Effect for Phong {
     const CAMERA: Vec3 = Vec3::new(0.0, 0.0, 5.0);
     const LIGHT_MARKER: bool = true;
     const MOVABLE_CAMERA: bool = true;
+    const SHADING_MODELS: bool = true;
+
+    fn shader_files(shading: Shading) -> (String, String) {
+        let (vert, frag) = match shading {
+            Shading::Flat => ("phong.vert", "phong_flat.frag"),
+            Shading::Gouraud => ("phong_gouraud.vert", "phong_gouraud.frag"),
+            Shading::Phong => ("phong.vert", "phong.frag"),
+            Shading::Blinn => ("phong.vert", "phong_blinn.frag"),
+        };
+        (vert.into(), frag.into())
+    }
 
     fn defaults() -> PhongUniforms {
         PhongUniforms::default()
