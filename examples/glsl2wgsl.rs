@@ -65,7 +65,10 @@ fn run(args: &Args) -> anyhow::Result<()> {
         }
         for file in files {
             let wgsl = translate(&file)?;
-            let out = out_dir.join(format!("{}.wgsl", file.file_name().unwrap_or_default().to_string_lossy()));
+            let out = out_dir.join(format!(
+                "{}.wgsl",
+                file.file_name().unwrap_or_default().to_string_lossy()
+            ));
             std::fs::write(&out, wgsl).with_context(|| format!("cannot write {}", out.display()))?;
             eprintln!("{} -> {}", file.display(), out.display());
         }

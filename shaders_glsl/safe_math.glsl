@@ -7,8 +7,9 @@ vec3 safe_normalize(vec3 v) {
     return dot(v, v) > 0.0 ? normalize(v) : vec3(0.0);
 }
 
-// pow(x, y) for x >= 0 with 0^0 = 1 (as C's pow) and negative exponents treated as 0.
+// pow(x, y) for x >= 0: 0 where x is 0 (no reflection towards the eye; llvmpipe's pow gives the
+// same, GLSL leaves pow(0, y <= 0) undefined) and negative exponents treated as 0 (the original
+// would blow up towards infinity near the terminator).
 float safe_pow(float x, float y) {
-    float e = max(y, 0.0);
-    return x > 0.0 ? pow(x, e) : (e > 0.0 ? 0.0 : 1.0);
+    return x > 0.0 ? pow(x, max(y, 0.0)) : 0.0;
 }

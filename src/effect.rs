@@ -803,6 +803,14 @@ impl<E: Effect> Lab<E> {
         target.read(gpu)
     }
 
+    /// Renders one frame into an `Rgba32Float` target (the lab must have been built for that
+    /// format) and returns the raw shader outputs, top row first.
+    pub fn render_f32(&mut self, gpu: &Gpu, width: u32, height: u32) -> Result<Vec<[f32; 4]>> {
+        let target = Offscreen::with_format(gpu, width, height, self.format);
+        gpu.checked(&format!("{}.render", E::NAME), || self.render(gpu, &target.color, &target.depth, target.width, target.height))?;
+        target.read_f32(gpu)
+    }
+
     /// The bind group layout (for tools that build extra pipelines against it).
     pub fn bind_group_layout(&self) -> &wgpu::BindGroupLayout {
         &self.bind_group_layout

@@ -21,6 +21,7 @@ pub mod exact;
 pub mod gpu;
 pub mod mesh;
 pub mod metrics;
+pub mod noise;
 pub mod offscreen;
 pub mod shader;
 pub mod tess;

@@ -69,7 +69,8 @@ impl Offscreen {
         let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
         let depth = depth_texture(&gpu.device, width, height);
         // Buffer copies need rows padded to 256 bytes.
-        let padded_row = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let bytes_per_pixel = format.block_copy_size(None).unwrap_or(4);
+        let padded_row = (bytes_per_pixel * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shaderlab.offscreen.readback"),
             size: padded_row as u64 * height as u64,
@@ -79,8 +80,33 @@ impl Offscreen {
         Offscreen { width, height, texture, color, depth, readback, padded_row, format }
     }
 
-    /// Copies the colour target to the CPU (top row first).
+    /// Copies the colour target to the CPU (top row first) as 8-bit RGBA.
     pub fn read(&self, gpu: &Gpu) -> Result<image::RgbaImage> {
+        if self.format == wgpu::TextureFormat::Rgba32Float {
+            let pixels = self.read_f32(gpu)?;
+            let bytes = pixels.iter().flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)).collect();
+            return image::RgbaImage::from_raw(self.width, self.height, bytes)
+                .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() });
+        }
+        let mut pixels = self.read_rows(gpu, 4)?;
+        if matches!(self.format, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb) {
+            pixels.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
+        }
+        image::RgbaImage::from_raw(self.width, self.height, pixels)
+            .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() })
+    }
+
+    /// Copies an `Rgba32Float` target to the CPU: the shader's outputs before any 8-bit rounding
+    /// or clamping, so NaN and infinity can be seen.
+    pub fn read_f32(&self, gpu: &Gpu) -> Result<Vec<[f32; 4]>> {
+        if self.format != wgpu::TextureFormat::Rgba32Float {
+            return Err(Error::Param(format!("read_f32 needs an Rgba32Float target, not {:?}", self.format)));
+        }
+        let bytes = self.read_rows(gpu, 16)?;
+        Ok(bytes.chunks_exact(16).map(|p| std::array::from_fn(|c| f32::from_ne_bytes([p[4 * c], p[4 * c + 1], p[4 * c + 2], p[4 * c + 3]]))).collect())
+    }
+
+    fn read_rows(&self, gpu: &Gpu, bytes_per_pixel: u32) -> Result<Vec<u8>> {
         let mut encoder =
             gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("shaderlab.offscreen.copy") });
         encoder.copy_texture_to_buffer(
@@ -110,21 +136,18 @@ impl Offscreen {
         rx.recv()
             .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?
             .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?;
-        let mut pixels = Vec::with_capacity((4 * self.width * self.height) as usize);
+        let row_bytes = (bytes_per_pixel * self.width) as usize;
+        let mut pixels = Vec::with_capacity(row_bytes * self.height as usize);
         {
             let data = slice
                 .get_mapped_range()
                 .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?;
             for row in data.chunks(self.padded_row as usize).take(self.height as usize) {
-                pixels.extend_from_slice(&row[..(4 * self.width) as usize]);
+                pixels.extend_from_slice(&row[..row_bytes]);
             }
         }
         self.readback.unmap();
-        if matches!(self.format, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb) {
-            pixels.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
-        }
-        image::RgbaImage::from_raw(self.width, self.height, pixels)
-            .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() })
+        Ok(pixels)
     }
 }
 

@@ -27,10 +27,7 @@ pub fn embedded_names() -> impl Iterator<Item = &'static str> {
 
 /// The text of a shader built into the binary.
 pub fn embedded_source(name: &str) -> Option<&'static str> {
-    embedded::EMBEDDED
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, s)| *s)
+    embedded::EMBEDDED.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
 }
 
 /// Where shader files come from.
@@ -93,7 +90,9 @@ impl ShaderSource {
         let stage = stage_of(name)?;
         let text = self.read(name)?;
         let path = self.display_path(name);
-        compile_text(&path, &text, stage, &|include: &str| self.read(include).map(|t| (self.display_path(include), t)))
+        compile_text(&path, &text, stage, &|include: &str| {
+            self.read(include).map(|t| (self.display_path(include), t))
+        })
     }
 }
 
@@ -133,7 +132,10 @@ pub type IncludeResolver<'a> = dyn Fn(&str) -> Result<(String, String)> + 'a;
 
 /// Splices `#include "file"` lines (recursively, each file once).
 pub fn splice(path: &str, text: &str, resolve: &IncludeResolver) -> Result<Spliced> {
-    let mut out = Spliced { text: String::new(), line_map: Vec::new() };
+    let mut out = Spliced {
+        text: String::new(),
+        line_map: Vec::new(),
+    };
     let mut seen = HashSet::new();
     splice_into(&mut out, path, text, resolve, &mut seen, 0)?;
     Ok(out)
@@ -212,7 +214,11 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
     let module = frontend
         .parse(&naga::front::glsl::Options::from(stage), &source.text)
         .map_err(|errors| {
-            let spans: Vec<(naga::Span, String)> = errors.errors.iter().map(|e| parse_error_span(&source.text, e)).collect();
+            let spans: Vec<(naga::Span, String)> = errors
+                .errors
+                .iter()
+                .map(|e| parse_error_span(&source.text, e))
+                .collect();
             shader_error(&source, &spans)
         })?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
@@ -230,7 +236,13 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
             let span = err.spans().last().map(|(s, _)| *s).unwrap_or_default();
             shader_error(&source, &[(span, message)])
         })?;
-    Ok(CompiledShader { path: path.to_owned(), stage, source, module, info })
+    Ok(CompiledShader {
+        path: path.to_owned(),
+        stage,
+        source,
+        module,
+        info,
+    })
 }
 
 /// naga reports a missing `;` at the next token, often on the next line; point at the end of
@@ -252,7 +264,9 @@ fn parse_error_span(text: &str, error: &naga::front::glsl::Error) -> (naga::Span
                 let code = line.split("//").next().unwrap_or("").trim_end();
                 if !code.trim().is_empty() {
                     let at = (prev_start + code.len()) as u32;
-                    return (naga::Span::new(at, at), format!("missing `;` at the end of this line? ({message})"));
+                    let next = error.meta.to_range().and_then(|r| text.get(r)).unwrap_or("").trim();
+                    let message = format!("expected `;` at the end of this line, before `{next}`");
+                    return (naga::Span::new(at, at), message);
                 }
                 end = prev_start;
             }
@@ -265,20 +279,31 @@ fn shader_error(source: &Spliced, spans: &[(naga::Span, String)]) -> Error {
     let mut messages = Vec::new();
     let mut first = None;
     for (span, msg) in spans {
-        let (file, line, column, src_line, len) = if span.is_defined() && span.to_range().is_some_and(|r| r.start <= source.text.len()) {
-            let loc = span.location(&source.text);
-            let (file, line) = source.origin(loc.line_number);
-            let src_line = source.text.lines().nth(loc.line_number as usize - 1).unwrap_or("").to_owned();
-            (file, line, loc.line_position, src_line, loc.length as usize)
-        } else {
-            let (file, _) = source.origin(1);
-            (file, 1, 1, String::new(), 1)
-        };
+        let (file, line, column, src_line, len) =
+            if span.is_defined() && span.to_range().is_some_and(|r| r.start <= source.text.len()) {
+                let loc = span.location(&source.text);
+                let (file, line) = source.origin(loc.line_number);
+                let src_line = source
+                    .text
+                    .lines()
+                    .nth(loc.line_number as usize - 1)
+                    .unwrap_or("")
+                    .to_owned();
+                (file, line, loc.line_position, src_line, loc.length as usize)
+            } else {
+                let (file, _) = source.origin(1);
+                (file, 1, 1, String::new(), 1)
+            };
         first.get_or_insert((file.clone(), line, column));
         messages.push(format_diagnostic(&file, line, column, msg, &src_line, len));
     }
     let (file, line, column) = first.unwrap_or_default();
-    Error::Shader { file, line, column, message: messages.join("\n") }
+    Error::Shader {
+        file,
+        line,
+        column,
+        message: messages.join("\n"),
+    }
 }
 
 impl CompiledShader {
@@ -450,5 +475,10 @@ pub fn get_member<T: UniformBlock>(value: &T, block: &BlockLayout, name: &str) -
     let member = block.member(name)?;
     let bytes = bytemuck::bytes_of(value);
     let slice = bytes.get(member.offset..member.offset + 4 * member.components)?;
-    Some(slice.chunks_exact(4).map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect())
+    Some(
+        slice
+            .chunks_exact(4)
+            .map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]))
+            .collect(),
+    )
 }

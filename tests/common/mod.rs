@@ -30,7 +30,14 @@ pub fn render<E: Effect>(object: Object, angles: [f32; 3], time: f32, set: &[(&s
 }
 
 /// As [`render`] at any size.
-pub fn render_sized<E: Effect>(object: Object, angles: [f32; 3], time: f32, set: &[(&str, &[f32])], w: u32, h: u32) -> RgbImage {
+pub fn render_sized<E: Effect>(
+    object: Object,
+    angles: [f32; 3],
+    time: f32,
+    set: &[(&str, &[f32])],
+    w: u32,
+    h: u32,
+) -> RgbImage {
     let mut lab = lab::<E>();
     lab.scene.object = object;
     lab.scene.angles = Vec3::from_array(angles);
