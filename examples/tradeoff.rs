@@ -1,0 +1,203 @@
+//! `cargo run --release --example tradeoff -- --out DIR`: speed against accuracy for the Phong
+//! exercise. Sweeps shading model (flat, Gouraud, Phong, Blinn-Phong) x tessellation level for the
+//! sphere and the torus, measures frame time (GPU timestamps where available, else wall time) and
+//! the error against the exact f64 ray-cast reference (RMSE, maximum per-pixel error, silhouette
+//! error), and writes `tradeoff.csv` and `tradeoff.svg` (error against time, Pareto front marked).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Parser;
+use plotters::prelude::*;
+use shaderlab::effect::{Shading, Tess};
+use shaderlab::effects::Phong;
+use shaderlab::exact::{image_error, silhouette_error, ExactScene, Shape, Specular};
+use shaderlab::metrics::mask;
+use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
+use shaderlab::shader::ShaderSource;
+use shaderlab::{Gpu, Lab, Object};
+
+#[derive(Parser)]
+#[command(about = "Chart speed against accuracy: shading model x tessellation, against an exact reference")]
+struct Args {
+    /// Output directory for tradeoff.csv and tradeoff.svg.
+    #[arg(long, default_value = "tradeoff")]
+    out: PathBuf,
+    /// Frames timed per configuration.
+    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    frames: u32,
+    /// Fewer levels (for a quick look).
+    #[arg(long)]
+    quick: bool,
+}
+
+#[derive(Clone, Debug)]
+struct Row {
+    shape: &'static str,
+    shading: Shading,
+    level: u32,
+    triangles: usize,
+    ms: f64,
+    rmse: f64,
+    max: u8,
+    silhouette_px: f64,
+    pareto: bool,
+}
+
+const W: u32 = 640;
+const H: u32 = 360;
+
+fn main() -> anyhow::Result<()> {
+    let args = Args::parse();
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let gpu = Gpu::headless()?;
+    let levels: &[u32] = if args.quick { &[4, 8, 16, 32, 64] } else { &[4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192] };
+    let shapes = [(Object::Sphere, Shape::Sphere), (Object::Torus, Shape::Torus)];
+    let total = shapes.len() * Shading::ALL.len() * levels.len();
+    eprintln!("adapter: {}; {total} configurations, {} frames each, {W}x{H}", gpu.describe(), args.frames);
+    let mut lab = Lab::<Phong>::new(&gpu, ShaderSource::Embedded, COLOR_FORMAT)?;
+    let mut rows = Vec::new();
+    let mut done = 0;
+    for (object, shape) in shapes {
+        lab.scene.object = object;
+        let exact_phong = ExactScene { shape, ..Default::default() };
+        let exact_blinn = ExactScene { shape, specular: Specular::Blinn, ..Default::default() };
+        let (phong_img, blinn_img) = (exact_phong.render(W, H), exact_blinn.render(W, H));
+        for shading in Shading::ALL {
+            lab.set_shading(&gpu, shading)?;
+            let (exact, exact_img) =
+                if shading == Shading::Blinn { (&exact_blinn, &blinn_img) } else { (&exact_phong, &phong_img) };
+            for &level in levels {
+                lab.options.tess = Tess::Level(level);
+                let timing = shaderlab::cli::bench(&gpu, &mut lab, args.frames, W, H)?;
+                let image = to_rgb(&lab.screenshot(&gpu, W, H)?);
+                let err = image_error(exact_img, &image);
+                let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H);
+                let triangles = shaderlab::tess::mesh(object, level).triangle_count();
+                let ms = timing.gpu_ms.unwrap_or(timing.ms_per_frame);
+                done += 1;
+                eprintln!(
+                    "[{done:>3}/{total}] {:<6} {:<7} level {level:>3} ({triangles:>6} triangles): {ms:.3} ms, RMSE {:.2}, max {}, silhouette {:.2} px",
+                    object.name(),
+                    shading.name(),
+                    err.rmse,
+                    err.max,
+                    sil.max_px
+                );
+                rows.push(Row {
+                    shape: object.name(),
+                    shading,
+                    level,
+                    triangles,
+                    ms,
+                    rmse: err.rmse,
+                    max: err.max,
+                    silhouette_px: sil.max_px,
+                    pareto: false,
+                });
+            }
+        }
+    }
+    mark_pareto(&mut rows);
+    let csv = args.out.join("tradeoff.csv");
+    write_csv(&rows, &csv)?;
+    let svg = args.out.join("tradeoff.svg");
+    chart(&rows, &svg)?;
+    println!("wrote {} and {}", csv.display(), svg.display());
+    for shape in ["sphere", "torus"] {
+        let front: Vec<String> = rows
+            .iter()
+            .filter(|r| r.shape == shape && r.pareto)
+            .map(|r| format!("{} {} ({:.2} ms, RMSE {:.2})", r.shading.name(), r.level, r.ms, r.rmse))
+            .collect();
+        println!("{shape} Pareto front: {}", front.join("; "));
+    }
+    Ok(())
+}
+
+/// A configuration is on the Pareto front when no other one of the same shape is both faster
+/// and more accurate (RMSE).
+fn mark_pareto(rows: &mut [Row]) {
+    let snapshot = rows.to_vec();
+    for r in rows.iter_mut() {
+        r.pareto = !snapshot.iter().any(|o| {
+            o.shape == r.shape && o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse)
+        });
+    }
+}
+
+fn write_csv(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
+    let mut f = std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
+    writeln!(f, "shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto")?;
+    for r in rows {
+        writeln!(
+            f,
+            "{},{},{},{},{:.4},{:.4},{},{:.4},{}",
+            r.shape,
+            r.shading.name(),
+            r.level,
+            r.triangles,
+            r.ms,
+            r.rmse,
+            r.max,
+            r.silhouette_px,
+            r.pareto
+        )?;
+    }
+    Ok(())
+}
+
+fn color(shading: Shading) -> RGBColor {
+    match shading {
+        Shading::Flat => RGBColor(120, 120, 120),
+        Shading::Gouraud => RGBColor(214, 39, 40),
+        Shading::Phong => RGBColor(31, 119, 180),
+        Shading::Blinn => RGBColor(44, 160, 44),
+    }
+}
+
+fn chart(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
+    let root = SVGBackend::new(path, (1200, 520)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let panels = root.split_evenly((1, 2));
+    for (panel, shape) in panels.iter().zip(["sphere", "torus"]) {
+        let mine: Vec<&Row> = rows.iter().filter(|r| r.shape == shape).collect();
+        let max_ms = mine.iter().map(|r| r.ms).fold(0.0, f64::max) * 1.1;
+        let min_ms = mine.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.9;
+        let max_rmse = mine.iter().map(|r| r.rmse).fold(0.0, f64::max) * 1.5;
+        let min_rmse = mine.iter().map(|r| r.rmse).fold(f64::INFINITY, f64::min).max(0.01) * 0.7;
+        let mut c = ChartBuilder::on(panel)
+            .caption(format!("Phong exercise, {shape}: error against frame time"), ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d((min_ms..max_ms).log_scale(), (min_rmse..max_rmse).log_scale())?;
+        c.configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(RGBColor(225, 225, 225))
+            .x_labels(6)
+            .y_labels(6)
+            .x_desc("ms per frame (GPU timestamps, lavapipe)")
+            .y_desc("RMSE vs exact ray-cast (8-bit levels)")
+            .draw()?;
+        for shading in Shading::ALL {
+            let col = color(shading);
+            let pts: Vec<(f64, f64)> =
+                mine.iter().filter(|r| r.shading == shading).map(|r| (r.ms, r.rmse.max(min_rmse))).collect();
+            c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, col.filled())))?
+                .label(shading.name())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 4, col.filled()));
+        }
+        let mut front: Vec<(f64, f64)> =
+            mine.iter().filter(|r| r.pareto).map(|r| (r.ms, r.rmse.max(min_rmse))).collect();
+        front.sort_by(|a, b| a.0.total_cmp(&b.0));
+        c.draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))?
+            .label("Pareto front")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        c.draw_series(front.iter().map(|&p| Circle::new(p, 7, BLACK.stroke_width(1))))?;
+        c.configure_series_labels().border_style(BLACK).background_style(WHITE.mix(0.9)).draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
