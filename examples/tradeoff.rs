@@ -196,7 +196,7 @@ fn chart(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
             .label("Pareto front")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
         c.draw_series(front.iter().map(|&p| Circle::new(p, 7, BLACK.stroke_width(1))))?;
-        c.configure_series_labels().border_style(BLACK).background_style(WHITE.mix(0.9)).draw()?;
+        c.configure_series_labels().position(SeriesLabelPosition::UpperRight).border_style(BLACK).background_style(WHITE.mix(0.9)).draw()?;
     }
     root.present()?;
     Ok(())
