@@ -53,7 +53,11 @@ fn run<E: Effect>(gpu: &Gpu, exercise: usize, frames: u32, ratios: &mut Vec<f64>
 fn main() -> anyhow::Result<()> {
     let args = Args::parse();
     let gpu = Gpu::headless()?;
-    println!("adapter: {}; {} frames per case at 640x360, rotated 30,45,0", gpu.describe(), args.frames);
+    println!(
+        "adapter: {}; {} frames per case at 640x360, rotated 30,45,0",
+        gpu.describe(),
+        args.frames
+    );
     println!("| exercise        | object | ms/frame |   gpu ms | original | ratio |");
     println!("|---|---|---|---|---|---|");
     let mut ratios = Vec::new();

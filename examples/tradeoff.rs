@@ -52,22 +52,40 @@ fn main() -> anyhow::Result<()> {
     let args = Args::parse();
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let gpu = Gpu::headless()?;
-    let levels: &[u32] = if args.quick { &[4, 8, 16, 32, 64] } else { &[4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192] };
+    let levels: &[u32] = if args.quick {
+        &[4, 8, 16, 32, 64]
+    } else {
+        &[4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192]
+    };
     let shapes = [(Object::Sphere, Shape::Sphere), (Object::Torus, Shape::Torus)];
     let total = shapes.len() * Shading::ALL.len() * levels.len();
-    eprintln!("adapter: {}; {total} configurations, {} frames each, {W}x{H}", gpu.describe(), args.frames);
+    eprintln!(
+        "adapter: {}; {total} configurations, {} frames each, {W}x{H}",
+        gpu.describe(),
+        args.frames
+    );
     let mut lab = Lab::<Phong>::new(&gpu, ShaderSource::Embedded, COLOR_FORMAT)?;
     let mut rows = Vec::new();
     let mut done = 0;
     for (object, shape) in shapes {
         lab.scene.object = object;
-        let exact_phong = ExactScene { shape, ..Default::default() };
-        let exact_blinn = ExactScene { shape, specular: Specular::Blinn, ..Default::default() };
+        let exact_phong = ExactScene {
+            shape,
+            ..Default::default()
+        };
+        let exact_blinn = ExactScene {
+            shape,
+            specular: Specular::Blinn,
+            ..Default::default()
+        };
         let (phong_img, blinn_img) = (exact_phong.render(W, H), exact_blinn.render(W, H));
         for shading in Shading::ALL {
             lab.set_shading(&gpu, shading)?;
-            let (exact, exact_img) =
-                if shading == Shading::Blinn { (&exact_blinn, &blinn_img) } else { (&exact_phong, &phong_img) };
+            let (exact, exact_img) = if shading == Shading::Blinn {
+                (&exact_blinn, &blinn_img)
+            } else {
+                (&exact_phong, &phong_img)
+            };
             for &level in levels {
                 lab.options.tess = Tess::Level(level);
                 let timing = shaderlab::cli::bench(&gpu, &mut lab, args.frames, W, H)?;
@@ -121,15 +139,18 @@ fn main() -> anyhow::Result<()> {
 fn mark_pareto(rows: &mut [Row]) {
     let snapshot = rows.to_vec();
     for r in rows.iter_mut() {
-        r.pareto = !snapshot.iter().any(|o| {
-            o.shape == r.shape && o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse)
-        });
+        r.pareto = !snapshot
+            .iter()
+            .any(|o| o.shape == r.shape && o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse));
     }
 }
 
 fn write_csv(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
     let mut f = std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
-    writeln!(f, "shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto")?;
+    writeln!(
+        f,
+        "shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto"
+    )?;
     for r in rows {
         writeln!(
             f,
@@ -168,7 +189,10 @@ fn chart(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
         let max_rmse = mine.iter().map(|r| r.rmse).fold(0.0, f64::max) * 1.5;
         let min_rmse = mine.iter().map(|r| r.rmse).fold(f64::INFINITY, f64::min).max(0.01) * 0.7;
         let mut c = ChartBuilder::on(panel)
-            .caption(format!("Phong exercise, {shape}: error against frame time"), ("sans-serif", 18))
+            .caption(
+                format!("Phong exercise, {shape}: error against frame time"),
+                ("sans-serif", 18),
+            )
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(55)
@@ -183,20 +207,30 @@ fn chart(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
             .draw()?;
         for shading in Shading::ALL {
             let col = color(shading);
-            let pts: Vec<(f64, f64)> =
-                mine.iter().filter(|r| r.shading == shading).map(|r| (r.ms, r.rmse.max(min_rmse))).collect();
+            let pts: Vec<(f64, f64)> = mine
+                .iter()
+                .filter(|r| r.shading == shading)
+                .map(|r| (r.ms, r.rmse.max(min_rmse)))
+                .collect();
             c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, col.filled())))?
                 .label(shading.name())
                 .legend(move |(x, y)| Circle::new((x + 10, y), 4, col.filled()));
         }
-        let mut front: Vec<(f64, f64)> =
-            mine.iter().filter(|r| r.pareto).map(|r| (r.ms, r.rmse.max(min_rmse))).collect();
+        let mut front: Vec<(f64, f64)> = mine
+            .iter()
+            .filter(|r| r.pareto)
+            .map(|r| (r.ms, r.rmse.max(min_rmse)))
+            .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         c.draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))?
             .label("Pareto front")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
         c.draw_series(front.iter().map(|&p| Circle::new(p, 7, BLACK.stroke_width(1))))?;
-        c.configure_series_labels().position(SeriesLabelPosition::UpperRight).border_style(BLACK).background_style(WHITE.mix(0.9)).draw()?;
+        c.configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.9))
+            .draw()?;
     }
     root.present()?;
     Ok(())

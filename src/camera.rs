@@ -53,15 +53,15 @@ pub fn gl_rotate(angle_degrees: f32, axis: Vec3) -> Mat4 {
     let (s, c) = radians.sin_cos();
     // Mesa's axis-aligned fast paths give exactly these matrices.
     let mut m = Mat4::IDENTITY;
-        if axis == Vec3::X {
-            m.y_axis = Vec4::new(0.0, c, s, 0.0);
-            m.z_axis = Vec4::new(0.0, -s, c, 0.0);
-        } else if axis == Vec3::Y {
-            m.x_axis = Vec4::new(c, 0.0, -s, 0.0);
-            m.z_axis = Vec4::new(s, 0.0, c, 0.0);
-        } else if axis == Vec3::Z {
-            m.x_axis = Vec4::new(c, s, 0.0, 0.0);
-            m.y_axis = Vec4::new(-s, c, 0.0, 0.0);
+    if axis == Vec3::X {
+        m.y_axis = Vec4::new(0.0, c, s, 0.0);
+        m.z_axis = Vec4::new(0.0, -s, c, 0.0);
+    } else if axis == Vec3::Y {
+        m.x_axis = Vec4::new(c, 0.0, -s, 0.0);
+        m.z_axis = Vec4::new(s, 0.0, c, 0.0);
+    } else if axis == Vec3::Z {
+        m.x_axis = Vec4::new(c, s, 0.0, 0.0);
+        m.y_axis = Vec4::new(-s, c, 0.0, 0.0);
     } else {
         m = Mat4::from_axis_angle(axis.normalize_or_zero(), radians);
     }
@@ -132,9 +132,13 @@ mod tests {
         assert!((y - Vec4::new(0.0, 0.0, -1.0, 0.0)).length() < 1e-6);
         let x = gl_rotate(90.0, Vec3::X) * Vec4::new(0.0, 1.0, 0.0, 0.0);
         assert!((x - Vec4::new(0.0, 0.0, 1.0, 0.0)).length() < 1e-6);
-        // X is applied last to the vertex (outermost), as in glRotatef X; Y; Z.
+        // Z is applied to the vertex first and X last, as glRotatef X; Y; Z composes them:
+        // +x -> (Y 90) -z -> (X 90) +y.
         let r = lab_rotation(Vec3::new(90.0, 90.0, 0.0)) * Vec4::new(1.0, 0.0, 0.0, 0.0);
-        assert!((r - Vec4::new(0.0, -1.0, 0.0, 0.0)).length() < 1e-6);
+        assert!((r - Vec4::new(0.0, 1.0, 0.0, 0.0)).length() < 1e-6, "{r}");
+        // And not the other order: Ry(90) Rx(90) would send +x to -z.
+        let swapped = gl_rotate(90.0, Vec3::Y) * gl_rotate(90.0, Vec3::X) * Vec4::new(1.0, 0.0, 0.0, 0.0);
+        assert!((swapped - r).length() > 1.0);
     }
 
     #[test]

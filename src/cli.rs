@@ -59,7 +59,9 @@ fn parse_shading(s: &str) -> Result<Shading, String> {
 
 fn parse_tess(s: &str) -> Result<Tess, String> {
     if s == "auto" {
-        return Ok(Tess::Auto { budget_px: crate::tess::DEFAULT_BUDGET_PX });
+        return Ok(Tess::Auto {
+            budget_px: crate::tess::DEFAULT_BUDGET_PX,
+        });
     }
     match s.parse::<u32>() {
         Ok(n) if (crate::tess::MIN_LEVEL..=crate::tess::MAX_LEVEL).contains(&n) => Ok(Tess::Level(n)),
@@ -93,7 +95,10 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{s}`: expected WxH with each side between 1 and 8192, e.g. 640x360");
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let (w, h) = (w.trim().parse::<u32>().map_err(|_| bad())?, h.trim().parse::<u32>().map_err(|_| bad())?);
+    let (w, h) = (
+        w.trim().parse::<u32>().map_err(|_| bad())?,
+        h.trim().parse::<u32>().map_err(|_| bad())?,
+    );
     if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
         return Err(bad());
     }
@@ -101,14 +106,19 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 fn parse_set(s: &str) -> Result<(String, Vec<f32>), String> {
-    let (name, value) = s.split_once('=').ok_or_else(|| format!("`{s}`: expected NAME=VALUE, e.g. Ka=0.2"))?;
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| format!("`{s}`: expected NAME=VALUE, e.g. Ka=0.2"))?;
     Ok((name.trim().to_owned(), parse_numbers(value)?))
 }
 
 impl LabArgs {
     /// Parses the process arguments for effect `E`; prints usage and exits 2 on a bad flag.
     pub fn parse_for<E: Effect>() -> Self {
-        let command = LabArgs::command().name(E::NAME).about(format!("{} {}: {}", E::TITLE, E::LABEL, "CMP211 Lab05 on wgpu"));
+        let command =
+            LabArgs::command()
+                .name(E::NAME)
+                .about(format!("{} {}: {}", E::TITLE, E::LABEL, "CMP211 Lab05 on wgpu"));
         let matches = command.get_matches();
         LabArgs::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
     }
@@ -128,7 +138,10 @@ impl LabArgs {
         lab.scene.time = self.time.unwrap_or(0.0);
         if let Some(shading) = self.shading {
             if !E::SHADING_MODELS && shading != Shading::Phong {
-                return Err(Error::Param(format!("{} has no shading models; --shading applies to phong", E::NAME)));
+                return Err(Error::Param(format!(
+                    "{} has no shading models; --shading applies to phong",
+                    E::NAME
+                )));
             }
             lab.options.shading = shading;
         }
@@ -166,8 +179,15 @@ pub fn main<E: Effect>() -> ExitCode {
     } else if !crate::app::has_display() {
         // No display: still do something useful.
         let path = PathBuf::from(format!("{}.png", E::NAME));
-        eprintln!("{}: no display found (DISPLAY/WAYLAND_DISPLAY unset); writing a screenshot to {} instead", E::NAME, path.display());
-        let args = LabArgs { screenshot: Some(path), ..args };
+        eprintln!(
+            "{}: no display found (DISPLAY/WAYLAND_DISPLAY unset); writing a screenshot to {} instead",
+            E::NAME,
+            path.display()
+        );
+        let args = LabArgs {
+            screenshot: Some(path),
+            ..args
+        };
         run_offscreen::<E>(&args)
     } else {
         crate::app::run_window::<E>(&args).map_err(Failure::from)
@@ -224,7 +244,13 @@ impl BenchResult {
 }
 
 /// Renders `frames` frames offscreen, waiting for each, like the original's swap + glFinish.
-pub fn bench<E: Effect>(gpu: &Gpu, lab: &mut Lab<E>, frames: u32, width: u32, height: u32) -> Result<BenchResult, Error> {
+pub fn bench<E: Effect>(
+    gpu: &Gpu,
+    lab: &mut Lab<E>,
+    frames: u32,
+    width: u32,
+    height: u32,
+) -> Result<BenchResult, Error> {
     let target = Offscreen::new(gpu, width, height);
     // Warm up: the first frames compile shaders in the driver.
     for _ in 0..3 {
@@ -253,13 +279,21 @@ pub fn bench<E: Effect>(gpu: &Gpu, lab: &mut Lab<E>, frames: u32, width: u32, he
     });
     let start = Instant::now();
     for frame in 0..frames {
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench.encoder") });
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("bench.encoder"),
+        });
         let writes = queries.as_ref().map(|(set, _, _)| wgpu::RenderPassTimestampWrites {
             query_set: set,
             beginning_of_pass_write_index: Some(0),
             end_of_pass_write_index: Some(1),
         });
-        lab.encode(gpu, &mut encoder, &target.color, &target.depth, width, height, writes);
+        let view = crate::effect::FrameTarget {
+            color: &target.color,
+            depth: &target.depth,
+            width,
+            height,
+        };
+        lab.encode(gpu, &mut encoder, view, writes);
         if let Some((set, resolve, read)) = &queries {
             encoder.resolve_query_set(set, 0..2, resolve, 0);
             encoder.copy_buffer_to_buffer(resolve, 0, read, 16 * frame as u64, 16);
@@ -274,14 +308,18 @@ pub fn bench<E: Effect>(gpu: &Gpu, lab: &mut Lab<E>, frames: u32, width: u32, he
             slice.map_async(wgpu::MapMode::Read, |_| {});
             gpu.wait()?;
             let ticks: Vec<u64> = {
-                let view = slice
-                    .get_mapped_range()
-                    .map_err(|e| Error::Wgpu { context: "reading timestamps".into(), message: e.to_string() })?;
+                let view = slice.get_mapped_range().map_err(|e| Error::Wgpu {
+                    context: "reading timestamps".into(),
+                    message: e.to_string(),
+                })?;
                 bytemuck::cast_slice(&view).to_vec()
             };
             read.unmap();
             let period = gpu.queue.get_timestamp_period() as f64;
-            let total: f64 = ticks.chunks_exact(2).map(|t| t[1].saturating_sub(t[0]) as f64 * period).sum();
+            let total: f64 = ticks
+                .chunks_exact(2)
+                .map(|t| t[1].saturating_sub(t[0]) as f64 * period)
+                .sum();
             Some(total / 1e6 / frames as f64)
         }
         None => None,

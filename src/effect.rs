@@ -296,9 +296,8 @@ pub fn compile_effect_files<U: UniformBlock>(
     let vertex = source.compile(vert)?;
     let fragment = source.compile(frag)?;
     let find = |block: &str| vertex.uniform_block(block).or_else(|| fragment.uniform_block(block));
-    let transform = find(TransformUniforms::BLOCK).ok_or_else(|| {
-        Error::Layout(format!("{vert} declares no uniform block {}", TransformUniforms::BLOCK))
-    })?;
+    let transform = find(TransformUniforms::BLOCK)
+        .ok_or_else(|| Error::Layout(format!("{vert} declares no uniform block {}", TransformUniforms::BLOCK)))?;
     shader::check_layout::<TransformUniforms>("TransformUniforms", &transform)?;
     let params = match find(U::BLOCK) {
         Some(block) => {
@@ -319,7 +318,24 @@ pub fn compile_effect_files<U: UniformBlock>(
         }
     };
     let _ = name;
-    Ok(EffectShaders { vertex, fragment, params })
+    Ok(EffectShaders {
+        vertex,
+        fragment,
+        params,
+    })
+}
+
+/// Where a frame is drawn: a colour and a depth view of one size.
+#[derive(Clone, Copy)]
+pub struct FrameTarget<'a> {
+    /// Colour attachment.
+    pub color: &'a wgpu::TextureView,
+    /// Depth attachment.
+    pub depth: &'a wgpu::TextureView,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
 }
 
 /// One lab exercise ready to draw: pipeline, meshes, uniforms and state.
@@ -400,7 +416,10 @@ pub fn build_pipeline(
                 })],
             }),
             // GL draws both faces unless GL_CULL_FACE is on, and the labs never turn it on.
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
                 depth_write_enabled: Some(true),
@@ -448,26 +467,55 @@ impl<E: Effect> Lab<E> {
         };
         let meshes = Object::ALL
             .into_iter()
-            .map(|o| ((o, tess::glut_level(o), false), GpuMesh::new(device, &o.mesh(), &format!("mesh.{}", o.name()))))
+            .map(|o| {
+                (
+                    (o, tess::glut_level(o), false),
+                    GpuMesh::new(device, &o.mesh(), &format!("mesh.{}", o.name())),
+                )
+            })
             .collect();
         let marker_mesh = GpuMesh::new(device, &Mesh::sphere(0.05, 4, 4), "mesh.light_marker");
-        let transform_buffer = uniform_buffer(device, &format!("{}.transform", E::NAME), std::mem::size_of::<TransformUniforms>());
-        let params_buffer = uniform_buffer(device, &format!("{}.params", E::NAME), std::mem::size_of::<E::Uniforms>());
-        let marker_transform_buffer = uniform_buffer(device, "light_marker.transform", std::mem::size_of::<TransformUniforms>());
+        let transform_buffer = uniform_buffer(
+            device,
+            &format!("{}.transform", E::NAME),
+            std::mem::size_of::<TransformUniforms>(),
+        );
+        let params_buffer = uniform_buffer(
+            device,
+            &format!("{}.params", E::NAME),
+            std::mem::size_of::<E::Uniforms>(),
+        );
+        let marker_transform_buffer = uniform_buffer(
+            device,
+            "light_marker.transform",
+            std::mem::size_of::<TransformUniforms>(),
+        );
         let bind = |label: &str, transform: &wgpu::Buffer| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
                 layout: &bind_group_layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: transform.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: params_buffer.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: transform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: params_buffer.as_entire_binding(),
+                    },
                 ],
             })
         };
         let bind_group = bind(&format!("{}.bind_group", E::NAME), &transform_buffer);
         let marker_bind_group = bind("light_marker.bind_group", &marker_transform_buffer);
         Ok(Lab {
-            scene: Scene { object: Object::Teapot, angles: Vec3::ZERO, camera: E::CAMERA, time: 0.0, motion: (0, 0) },
+            scene: Scene {
+                object: Object::Teapot,
+                angles: Vec3::ZERO,
+                camera: E::CAMERA,
+                time: 0.0,
+                motion: (0, 0),
+            },
             uniforms: E::defaults(),
             options,
             params: shaders.params,
@@ -505,7 +553,8 @@ impl<E: Effect> Lab<E> {
     pub fn reload(&mut self, gpu: &Gpu) -> Result<()> {
         let shading = self.options.shading;
         let (vert, frag) = E::shader_files(shading);
-        let shaders = compile_effect_files::<E::Uniforms>(&self.source, &vert, &frag, std::any::type_name::<E::Uniforms>())?;
+        let shaders =
+            compile_effect_files::<E::Uniforms>(&self.source, &vert, &frag, std::any::type_name::<E::Uniforms>())?;
         self.pipeline = Self::pipeline_from(gpu, &self.layout, &shaders, self.format)?;
         self.params = shaders.params;
         self.built_shading = shading;
@@ -515,7 +564,10 @@ impl<E: Effect> Lab<E> {
     /// Switches the shading model (effects with [`Effect::SHADING_MODELS`]) and rebuilds the pipeline.
     pub fn set_shading(&mut self, gpu: &Gpu, shading: Shading) -> Result<()> {
         if !E::SHADING_MODELS && shading != Shading::Phong {
-            return Err(Error::Param(format!("{} has no shading models; --shading applies to phong", E::NAME)));
+            return Err(Error::Param(format!(
+                "{} has no shading models; --shading applies to phong",
+                E::NAME
+            )));
         }
         let previous = self.options.shading;
         self.options.shading = shading;
@@ -546,7 +598,11 @@ impl<E: Effect> Lab<E> {
             let (object, level, smooth) = key;
             let mesh = tess::mesh(object, level);
             let mesh = if smooth { mesh.welded() } else { mesh };
-            GpuMesh::new(&gpu.device, &mesh, &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }))
+            GpuMesh::new(
+                &gpu.device,
+                &mesh,
+                &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }),
+            )
         });
     }
 
@@ -562,7 +618,14 @@ impl<E: Effect> Lab<E> {
         };
         let vs = module(format!("{}.vert.wgsl", E::NAME), vertex_wgsl)?;
         let fs = module(format!("{}.frag.wgsl", E::NAME), fragment_wgsl)?;
-        self.pipeline = build_pipeline(gpu, &format!("{}.wgsl_pipeline", E::NAME), &self.layout, &vs, &fs, self.format)?;
+        self.pipeline = build_pipeline(
+            gpu,
+            &format!("{}.wgsl_pipeline", E::NAME),
+            &self.layout,
+            &vs,
+            &fs,
+            self.format,
+        )?;
         Ok(())
     }
 
@@ -592,11 +655,16 @@ impl<E: Effect> Lab<E> {
     /// Values must be finite; an unknown name lists the valid ones.
     pub fn set(&mut self, name: &str, values: &[f32]) -> Result<()> {
         if let Some(bad) = values.iter().find(|v| !v.is_finite()) {
-            return Err(Error::Param(format!("parameter `{name}`: {bad} is not a finite number")));
+            return Err(Error::Param(format!(
+                "parameter `{name}`: {bad} is not a finite number"
+            )));
         }
         if name == "camera" && E::MOVABLE_CAMERA {
             if values.len() != 3 {
-                return Err(Error::Param(format!("parameter `camera` takes 3 numbers, got {}", values.len())));
+                return Err(Error::Param(format!(
+                    "parameter `camera` takes 3 numbers, got {}",
+                    values.len()
+                )));
             }
             // The original's gluLookAt uses camera.x and camera.z only.
             self.scene.camera = Vec3::new(values[0], 0.0, values[2]);
@@ -613,7 +681,11 @@ impl<E: Effect> Lab<E> {
             Error::Param(msg) if msg.starts_with("unknown") => Error::Param(format!(
                 "unknown parameter `{name}` for {}; valid: {}",
                 E::NAME,
-                if self.param_names().is_empty() { "(none)".to_string() } else { self.param_names().join(", ") }
+                if self.param_names().is_empty() {
+                    "(none)".to_string()
+                } else {
+                    self.param_names().join(", ")
+                }
             )),
             e => e,
         })
@@ -688,7 +760,13 @@ impl<E: Effect> Lab<E> {
 
     /// Window title: the original's, the exercise and the current values.
     pub fn title(&self) -> String {
-        let mut title = format!("{} {} | {} | {}", E::TITLE, E::LABEL, self.scene.object.name(), E::summary(&self.uniforms));
+        let mut title = format!(
+            "{} {} | {} | {}",
+            E::TITLE,
+            E::LABEL,
+            self.scene.object.name(),
+            E::summary(&self.uniforms)
+        );
         if E::SHADING_MODELS {
             title.push_str(&format!(" | shading {} (m)", self.options.shading.name()));
         }
@@ -715,7 +793,11 @@ impl<E: Effect> Lab<E> {
         let projection = camera::lab_projection(width, height);
         if self.params.member("time").is_some() {
             let t = self.scene.time as f64;
-            let t = if self.options.wrap_time { t.rem_euclid(NOISE_PERIOD) } else { t };
+            let t = if self.options.wrap_time {
+                t.rem_euclid(NOISE_PERIOD)
+            } else {
+                t
+            };
             let _ = shader::set_member(&mut self.uniforms, &self.params, "time", &[t as f32]);
         }
         let modelview = self.modelview();
@@ -725,26 +807,32 @@ impl<E: Effect> Lab<E> {
             let col = |v: Vec3| [v.x, v.y, v.z, 0.0];
             transform.normal_matrix = [col(m.x_axis), col(m.y_axis), col(m.z_axis)];
         }
-        gpu.queue.write_buffer(&self.transform_buffer, 0, bytemuck::bytes_of(&transform));
-        gpu.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.uniforms));
+        gpu.queue
+            .write_buffer(&self.transform_buffer, 0, bytemuck::bytes_of(&transform));
+        gpu.queue
+            .write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.uniforms));
         if let Some(light) = E::light_position(&self.uniforms) {
             // Drawn with the modelview reset: glLoadIdentity(); glTranslatef(light).
             let t = TransformUniforms::new(Mat4::from_translation(light), projection);
-            gpu.queue.write_buffer(&self.marker_transform_buffer, 0, bytemuck::bytes_of(&t));
+            gpu.queue
+                .write_buffer(&self.marker_transform_buffer, 0, bytemuck::bytes_of(&t));
         }
     }
 
-    /// Records one frame into `view` (colour) and `depth`, both `width` x `height`.
+    /// Records one frame into `target`, with optional timestamp writes around the pass.
     pub fn encode(
         &mut self,
         gpu: &Gpu,
         encoder: &mut wgpu::CommandEncoder,
-        view: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
-        width: u32,
-        height: u32,
+        target: FrameTarget<'_>,
         timestamps: Option<wgpu::RenderPassTimestampWrites>,
     ) {
+        let FrameTarget {
+            color: view,
+            depth,
+            width,
+            height,
+        } = target;
         if self.built_shading != self.options.shading {
             if let Err(e) = self.reload(gpu) {
                 self.options.shading = self.built_shading;
@@ -768,7 +856,10 @@ impl<E: Effect> Lab<E> {
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: depth,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
                 stencil_ops: None,
             }),
             timestamp_writes: timestamps,
@@ -792,14 +883,26 @@ impl<E: Effect> Lab<E> {
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&format!("{}.encoder", E::NAME)),
         });
-        self.encode(gpu, &mut encoder, view, depth, width, height, None);
+        self.encode(
+            gpu,
+            &mut encoder,
+            FrameTarget {
+                color: view,
+                depth,
+                width,
+                height,
+            },
+            None,
+        );
         gpu.queue.submit([encoder.finish()]);
     }
 
     /// Renders one frame offscreen at `width` x `height` and reads it back.
     pub fn screenshot(&mut self, gpu: &Gpu, width: u32, height: u32) -> Result<image::RgbaImage> {
         let target = Offscreen::with_format(gpu, width, height, self.format);
-        gpu.checked(&format!("{}.render", E::NAME), || self.render(gpu, &target.color, &target.depth, target.width, target.height))?;
+        gpu.checked(&format!("{}.render", E::NAME), || {
+            self.render(gpu, &target.color, &target.depth, target.width, target.height)
+        })?;
         target.read(gpu)
     }
 
@@ -807,7 +910,9 @@ impl<E: Effect> Lab<E> {
     /// format) and returns the raw shader outputs, top row first.
     pub fn render_f32(&mut self, gpu: &Gpu, width: u32, height: u32) -> Result<Vec<[f32; 4]>> {
         let target = Offscreen::with_format(gpu, width, height, self.format);
-        gpu.checked(&format!("{}.render", E::NAME), || self.render(gpu, &target.color, &target.depth, target.width, target.height))?;
+        gpu.checked(&format!("{}.render", E::NAME), || {
+            self.render(gpu, &target.color, &target.depth, target.width, target.height)
+        })?;
         target.read_f32(gpu)
     }
 

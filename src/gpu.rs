@@ -49,7 +49,13 @@ impl Gpu {
             })
             .await
             .map_err(|e| Error::Device(e.to_string()))?;
-        Ok(Gpu { instance, adapter, device, queue, timestamps: features.contains(wgpu::Features::TIMESTAMP_QUERY) })
+        Ok(Gpu {
+            instance,
+            adapter,
+            device,
+            queue,
+            timestamps: features.contains(wgpu::Features::TIMESTAMP_QUERY),
+        })
     }
 
     /// One line naming the adapter and backend, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu)`.
@@ -63,7 +69,10 @@ impl Gpu {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = f();
         match pollster::block_on(scope.pop()) {
-            Some(err) => Err(Error::Wgpu { context: context.to_owned(), message: err.to_string() }),
+            Some(err) => Err(Error::Wgpu {
+                context: context.to_owned(),
+                message: err.to_string(),
+            }),
             None => Ok(value),
         }
     }
@@ -73,6 +82,9 @@ impl Gpu {
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())
-            .map_err(|e| Error::Wgpu { context: "waiting for the GPU".into(), message: e.to_string() })
+            .map_err(|e| Error::Wgpu {
+                context: "waiting for the GPU".into(),
+                message: e.to_string(),
+            })
     }
 }

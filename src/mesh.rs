@@ -266,11 +266,7 @@ impl Mesh {
         // Keep within u32 indices comfortably (32 * grid^2 vertices).
         let n = grid.clamp(2, 1024) as usize;
         let (bern_0, bern_1) = pregen_bernstein(n);
-        let normal_size = if size != 0.0 && size.is_finite() {
-            size
-        } else {
-            1.0
-        };
+        let normal_size = if size != 0.0 && size.is_finite() { size } else { 1.0 };
 
         let n_patches = 6 * 4 + 4 * 2;
         let per_patch = n * n;
@@ -449,11 +445,7 @@ impl Mesh {
         for (v, s) in vertices.iter_mut().zip(&sums) {
             let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
             if len.is_finite() && len > 1e-12 {
-                v.normal = [
-                    (s[0] / len) as f32,
-                    (s[1] / len) as f32,
-                    (s[2] / len) as f32,
-                ];
+                v.normal = [(s[0] / len) as f32, (s[1] / len) as f32, (s[2] / len) as f32];
             }
         }
         let indices = self
@@ -594,11 +586,7 @@ fn teapot_control_points(p: usize, scale: f32) -> [[[f32; 3]; 4]; 4] {
     let mut cp = [[[0.0f32; 3]; 4]; 4];
     for (i, &k) in TEAPOT_PATCHES[p].iter().enumerate() {
         let d = TEAPOT_CP[k];
-        cp[i / 4][i % 4] = [
-            d[0] * scale / 2.0,
-            (d[2] - Z_OFFSET) * scale / 2.0,
-            -d[1] * scale / 2.0,
-        ];
+        cp[i / 4][i % 4] = [d[0] * scale / 2.0, (d[2] - Z_OFFSET) * scale / 2.0, -d[1] * scale / 2.0];
     }
     cp
 }
@@ -659,27 +647,13 @@ fn eval_bezier_with_norm(
 /// handle (2), spout (2): mirrored across the x-z plane of the data.
 const TEAPOT_PATCHES: [[usize; 16]; 10] = [
     [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15], // rim
-    [
-        12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27,
-    ], // body
-    [
-        24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39,
-    ],
-    [
-        40, 41, 42, 40, 43, 44, 45, 46, 47, 47, 47, 47, 48, 49, 50, 51,
-    ], // lid
-    [
-        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63,
-    ],
-    [
-        64, 64, 64, 64, 65, 66, 67, 68, 69, 70, 71, 72, 39, 38, 37, 36,
-    ], // bottom
-    [
-        73, 74, 75, 76, 77, 78, 79, 80, 81, 82, 83, 84, 85, 86, 87, 88,
-    ], // handle
-    [
-        85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95, 96, 97, 98, 99, 100,
-    ],
+    [12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27], // body
+    [24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39],
+    [40, 41, 42, 40, 43, 44, 45, 46, 47, 47, 47, 47, 48, 49, 50, 51], // lid
+    [48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63],
+    [64, 64, 64, 64, 65, 66, 67, 68, 69, 70, 71, 72, 39, 38, 37, 36], // bottom
+    [73, 74, 75, 76, 77, 78, 79, 80, 81, 82, 83, 84, 85, 86, 87, 88], // handle
+    [85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95, 96, 97, 98, 99, 100],
     [
         101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111, 112, 113, 114, 115, 116,
     ], // spout
@@ -1190,10 +1164,7 @@ mod tests {
             check_indices(&p);
         }
         let z = Mesh::teapot(0.0, 8);
-        assert!(z
-            .vertices
-            .iter()
-            .all(|v| v.normal.iter().all(|c| c.is_finite())));
+        assert!(z.vertices.iter().all(|v| v.normal.iter().all(|c| c.is_finite())));
         assert_eq!(Mesh::default().bounds(), ([0.0; 3], [0.0; 3]));
     }
 }

@@ -8,7 +8,11 @@ use image::{Rgb, RgbImage};
 /// Images of different sizes give `None`.
 pub fn psnr(a: &RgbImage, b: &RgbImage) -> Option<f64> {
     let mse = mse(a, b)?;
-    Some(if mse == 0.0 { f64::INFINITY } else { 10.0 * (255.0f64 * 255.0 / mse).log10() })
+    Some(if mse == 0.0 {
+        f64::INFINITY
+    } else {
+        10.0 * (255.0f64 * 255.0 / mse).log10()
+    })
 }
 
 /// Mean squared error over the RGB channels (8-bit units).
@@ -30,7 +34,14 @@ pub fn mse(a: &RgbImage, b: &RgbImage) -> Option<f64> {
 
 /// Largest absolute channel difference.
 pub fn max_abs_diff(a: &RgbImage, b: &RgbImage) -> Option<u8> {
-    (a.dimensions() == b.dimensions()).then(|| a.as_raw().iter().zip(b.as_raw()).map(|(&x, &y)| x.abs_diff(y)).max().unwrap_or(0))
+    (a.dimensions() == b.dimensions()).then(|| {
+        a.as_raw()
+            .iter()
+            .zip(b.as_raw())
+            .map(|(&x, &y)| x.abs_diff(y))
+            .max()
+            .unwrap_or(0)
+    })
 }
 
 /// A picture of where two images differ: the absolute difference, amplified 4x.
@@ -45,7 +56,10 @@ pub fn diff_image(a: &RgbImage, b: &RgbImage) -> Option<RgbImage> {
 
 /// Pixels whose colour differs from `background` by more than `tolerance` in any channel.
 pub fn mask(image: &RgbImage, background: [u8; 3], tolerance: u8) -> Vec<bool> {
-    image.pixels().map(|p| (0..3).any(|c| p[c].abs_diff(background[c]) > tolerance)).collect()
+    image
+        .pixels()
+        .map(|p| (0..3).any(|c| p[c].abs_diff(background[c]) > tolerance))
+        .collect()
 }
 
 /// Fraction of pixels that are not background.

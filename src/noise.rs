@@ -94,7 +94,11 @@ pub fn max_crack(mesh: &crate::mesh::Mesh, time: f32, displacement: f32) -> f32 
     }
     by_position
         .values()
-        .flat_map(|copies| copies.iter().flat_map(move |a| copies.iter().map(move |b| a.distance(*b))))
+        .flat_map(|copies| {
+            copies
+                .iter()
+                .flat_map(move |a| copies.iter().map(move |b| a.distance(*b)))
+        })
         .fold(0.0, f32::max)
 }
 
@@ -104,7 +108,9 @@ mod tests {
 
     #[test]
     fn noise_is_bounded_and_varies() {
-        let values: Vec<f32> = (0..1000).map(|i| snoise(Vec3::new(i as f32 * 0.173, i as f32 * 0.071, 0.3))).collect();
+        let values: Vec<f32> = (0..1000)
+            .map(|i| snoise(Vec3::new(i as f32 * 0.173, i as f32 * 0.071, 0.3)))
+            .collect();
         assert!(values.iter().all(|v| v.abs() <= 1.0));
         let mean = values.iter().sum::<f32>() / values.len() as f32;
         assert!(mean.abs() < 0.1);

@@ -19,7 +19,11 @@ pub fn depth_texture(device: &wgpu::Device, width: u32, height: u32) -> wgpu::Te
     device
         .create_texture(&wgpu::TextureDescriptor {
             label: Some("shaderlab.depth"),
-            size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: width.max(1),
+                height: height.max(1),
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -58,7 +62,11 @@ impl Offscreen {
         let (width, height) = (width.max(1), height.max(1));
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shaderlab.offscreen.color"),
-            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -70,45 +78,72 @@ impl Offscreen {
         let depth = depth_texture(&gpu.device, width, height);
         // Buffer copies need rows padded to 256 bytes.
         let bytes_per_pixel = format.block_copy_size(None).unwrap_or(4);
-        let padded_row = (bytes_per_pixel * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded_row =
+            (bytes_per_pixel * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shaderlab.offscreen.readback"),
             size: padded_row as u64 * height as u64,
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        Offscreen { width, height, texture, color, depth, readback, padded_row, format }
+        Offscreen {
+            width,
+            height,
+            texture,
+            color,
+            depth,
+            readback,
+            padded_row,
+            format,
+        }
     }
 
     /// Copies the colour target to the CPU (top row first) as 8-bit RGBA.
     pub fn read(&self, gpu: &Gpu) -> Result<image::RgbaImage> {
         if self.format == wgpu::TextureFormat::Rgba32Float {
             let pixels = self.read_f32(gpu)?;
-            let bytes = pixels.iter().flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)).collect();
-            return image::RgbaImage::from_raw(self.width, self.height, bytes)
-                .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() });
+            let bytes = pixels
+                .iter()
+                .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
+                .collect();
+            return image::RgbaImage::from_raw(self.width, self.height, bytes).ok_or_else(|| Error::Wgpu {
+                context: "reading back the image".into(),
+                message: "short buffer".into(),
+            });
         }
         let mut pixels = self.read_rows(gpu, 4)?;
-        if matches!(self.format, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb) {
+        if matches!(
+            self.format,
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        ) {
             pixels.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
         }
-        image::RgbaImage::from_raw(self.width, self.height, pixels)
-            .ok_or_else(|| Error::Wgpu { context: "reading back the image".into(), message: "short buffer".into() })
+        image::RgbaImage::from_raw(self.width, self.height, pixels).ok_or_else(|| Error::Wgpu {
+            context: "reading back the image".into(),
+            message: "short buffer".into(),
+        })
     }
 
     /// Copies an `Rgba32Float` target to the CPU: the shader's outputs before any 8-bit rounding
     /// or clamping, so NaN and infinity can be seen.
     pub fn read_f32(&self, gpu: &Gpu) -> Result<Vec<[f32; 4]>> {
         if self.format != wgpu::TextureFormat::Rgba32Float {
-            return Err(Error::Param(format!("read_f32 needs an Rgba32Float target, not {:?}", self.format)));
+            return Err(Error::Param(format!(
+                "read_f32 needs an Rgba32Float target, not {:?}",
+                self.format
+            )));
         }
         let bytes = self.read_rows(gpu, 16)?;
-        Ok(bytes.chunks_exact(16).map(|p| std::array::from_fn(|c| f32::from_ne_bytes([p[4 * c], p[4 * c + 1], p[4 * c + 2], p[4 * c + 3]]))).collect())
+        Ok(bytes
+            .chunks_exact(16)
+            .map(|p| std::array::from_fn(|c| f32::from_ne_bytes([p[4 * c], p[4 * c + 1], p[4 * c + 2], p[4 * c + 3]])))
+            .collect())
     }
 
     fn read_rows(&self, gpu: &Gpu, bytes_per_pixel: u32) -> Result<Vec<u8>> {
-        let mut encoder =
-            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("shaderlab.offscreen.copy") });
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("shaderlab.offscreen.copy"),
+        });
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.texture,
@@ -124,7 +159,11 @@ impl Offscreen {
                     rows_per_image: Some(self.height),
                 },
             },
-            wgpu::Extent3d { width: self.width, height: self.height, depth_or_array_layers: 1 },
+            wgpu::Extent3d {
+                width: self.width,
+                height: self.height,
+                depth_or_array_layers: 1,
+            },
         );
         gpu.queue.submit([encoder.finish()]);
         let slice = self.readback.slice(..);
@@ -134,14 +173,21 @@ impl Offscreen {
         });
         gpu.wait()?;
         rx.recv()
-            .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?
-            .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?;
+            .map_err(|e| Error::Wgpu {
+                context: "reading back the image".into(),
+                message: e.to_string(),
+            })?
+            .map_err(|e| Error::Wgpu {
+                context: "reading back the image".into(),
+                message: e.to_string(),
+            })?;
         let row_bytes = (bytes_per_pixel * self.width) as usize;
         let mut pixels = Vec::with_capacity(row_bytes * self.height as usize);
         {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| Error::Wgpu { context: "reading back the image".into(), message: e.to_string() })?;
+            let data = slice.get_mapped_range().map_err(|e| Error::Wgpu {
+                context: "reading back the image".into(),
+                message: e.to_string(),
+            })?;
             for row in data.chunks(self.padded_row as usize).take(self.height as usize) {
                 pixels.extend_from_slice(&row[..row_bytes]);
             }
@@ -159,7 +205,13 @@ pub fn to_rgb(image: &image::RgbaImage) -> image::RgbImage {
 /// Writes an RGB PNG.
 pub fn save_png(image: &image::RgbaImage, path: &Path) -> Result<()> {
     to_rgb(image).save(path).map_err(|source| match source {
-        image::ImageError::IoError(source) => Error::Io { path: path.to_owned(), source },
-        source => Error::Image { path: path.to_owned(), source },
+        image::ImageError::IoError(source) => Error::Io {
+            path: path.to_owned(),
+            source,
+        },
+        source => Error::Image {
+            path: path.to_owned(),
+            source,
+        },
     })
 }

@@ -199,7 +199,10 @@ mod tests {
         for (object, d) in [(Object::Sphere, 5.0), (Object::Torus, 6.0), (Object::Teapot, 4.0)] {
             let level = choose_level(object, d, 360, 0.5);
             assert!(silhouette_error_px(object, level, d, 360) <= 0.5);
-            assert!(silhouette_error_px(object, level - 1, d, 360) > 0.5, "{object:?} {level}");
+            assert!(
+                silhouette_error_px(object, level - 1, d, 360) > 0.5,
+                "{object:?} {level}"
+            );
         }
     }
 }

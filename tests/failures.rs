@@ -48,7 +48,10 @@ fn noise_time_precision_and_period() {
     assert_eq!(psnr(&a, &b), Some(f64::INFINITY), "t and t + 3 periods must match");
     // ... and (the period is real) the original, unwrapped, agrees at a small multiple.
     let c = noise_at(10.25 + 144.5, false);
-    assert!(psnr(&a, &c).expect("size") > 30.0, "the pattern repeats after 144.5 s in the original too");
+    assert!(
+        psnr(&a, &c).expect("size") > 30.0,
+        "the pattern repeats after 144.5 s in the original too"
+    );
     let base_block = blockiness(&a);
     println!("noise time precision (sphere, 640x360): blockiness at t=10.25: {base_block:.3}");
     println!("| t | original: PSNR vs exact pattern | original blockiness | port: PSNR | port blockiness |");
@@ -59,7 +62,11 @@ fn noise_time_precision_and_period() {
         // The exact pattern at t is the pattern at t mod 144.5, which the port computes in f64.
         let truth = port.clone();
         let p = psnr(&original, &truth).expect("size");
-        println!("| {t:e} | {p:.1} dB | {:.3} | inf dB | {:.3} |", blockiness(&original), blockiness(&port));
+        println!(
+            "| {t:e} | {p:.1} dB | {:.3} | inf dB | {:.3} |",
+            blockiness(&original),
+            blockiness(&port)
+        );
         original_psnr.push(p);
         // The port never degrades: same statistics as at small t.
         assert!((blockiness(&port) - base_block).abs() < 0.1, "port blockiness at t={t}");
@@ -68,9 +75,18 @@ fn noise_time_precision_and_period() {
     }
     // The original drifts from the exact pattern as t grows (f32 spacing at 1e5 is 0.008, at 1e6
     // 0.06 object units): measured 72 dB at 1e3, 46 dB at 1e5, 27 dB and blocky at 1e6.
-    assert!(original_psnr[0] > original_psnr[1] && original_psnr[1] > original_psnr[2], "original PSNR: {original_psnr:?}");
-    assert!(original_psnr[1] < 60.0 && original_psnr[2] < 35.0, "original PSNR: {original_psnr:?}");
-    assert!(blockiness(&noise_at(1e6, false)) > base_block + 0.2, "the original turns blocky at t = 1e6");
+    assert!(
+        original_psnr[0] > original_psnr[1] && original_psnr[1] > original_psnr[2],
+        "original PSNR: {original_psnr:?}"
+    );
+    assert!(
+        original_psnr[1] < 60.0 && original_psnr[2] < 35.0,
+        "original PSNR: {original_psnr:?}"
+    );
+    assert!(
+        blockiness(&noise_at(1e6, false)) > base_block + 0.2,
+        "the original turns blocky at t = 1e6"
+    );
 }
 
 fn phong_sphere(shading: Shading, level: u32) -> RgbImage {
@@ -87,14 +103,27 @@ fn peak(image: &RgbImage) -> u8 {
 
 #[test]
 fn gouraud_loses_the_highlight_on_coarse_meshes() {
-    let exact = ExactScene { shape: Shape::Sphere, ..Default::default() }.render(640, 360);
-    println!("| level | Gouraud RMSE | Gouraud peak blue | Phong RMSE | Phong peak blue | exact peak blue {} |", peak(&exact));
+    let exact = ExactScene {
+        shape: Shape::Sphere,
+        ..Default::default()
+    }
+    .render(640, 360);
+    println!(
+        "| level | Gouraud RMSE | Gouraud peak blue | Phong RMSE | Phong peak blue | exact peak blue {} |",
+        peak(&exact)
+    );
     let mut rows = Vec::new();
     for level in [6u32, 12, 24, 48, 96] {
         let g = phong_sphere(Shading::Gouraud, level);
         let p = phong_sphere(Shading::Phong, level);
         let (eg, ep) = (image_error(&exact, &g), image_error(&exact, &p));
-        println!("| {level} | {:.2} | {} | {:.2} | {} |", eg.rmse, peak(&g), ep.rmse, peak(&p));
+        println!(
+            "| {level} | {:.2} | {} | {:.2} | {} |",
+            eg.rmse,
+            peak(&g),
+            ep.rmse,
+            peak(&p)
+        );
         rows.push((level, eg.rmse, peak(&g), ep.rmse, peak(&p)));
     }
     // Per-pixel Phong keeps the highlight at every level; Gouraud loses it on coarse meshes
@@ -103,7 +132,10 @@ fn gouraud_loses_the_highlight_on_coarse_meshes() {
         assert!(pp >= peak(&exact) - 10, "Phong keeps the highlight at level {level}");
         assert!(eg > ep, "Gouraud is less accurate than Phong at level {level}");
         if level <= 12 {
-            assert!(pg + 40 < peak(&exact), "Gouraud loses the highlight at level {level}: {pg}");
+            assert!(
+                pg + 40 < peak(&exact),
+                "Gouraud loses the highlight at level {level}: {pg}"
+            );
         }
     }
     assert!(rows[0].1 > 2.0 * rows[4].1, "Gouraud error must fall with tessellation");
@@ -137,7 +169,12 @@ fn normal_matrix_under_non_uniform_scale() {
     };
     let (right, naive) = (render(false), render(true));
     let green = |img: &RgbImage| shaderlab::metrics::mean_color(img, (300, 145, 340, 165), None)[1];
-    println!("mean green just above the centre: inverse transpose {:.0}, modelview {:.0}; PSNR between them {:.1} dB", green(&right), green(&naive), psnr(&right, &naive).expect("size"));
+    println!(
+        "mean green just above the centre: inverse transpose {:.0}, modelview {:.0}; PSNR between them {:.1} dB",
+        green(&right),
+        green(&naive),
+        psnr(&right, &naive).expect("size")
+    );
     assert!(green(&right) > green(&naive) + 30.0);
     // Uniform transforms (the labs' rotations) are unaffected: the port uses the inverse transpose anyway.
     let r = shaderlab::camera::lab_rotation(Vec3::new(30.0, 45.0, 10.0));
@@ -162,6 +199,9 @@ void main() {
 }
 "#;
 
+/// `--set`-style parameters: (uniform name, values).
+type Settings<'a> = &'a [(&'a str, &'a [f32])];
+
 fn non_finite(pixels: &[[f32; 4]]) -> usize {
     pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count()
 }
@@ -175,16 +215,22 @@ fn degenerate_inputs_never_reach_the_image_as_nan() {
         std::fs::write(dir.join(name), text).expect("write");
     }
     std::fs::write(dir.join("phong.frag"), ORIGINAL_PHONG_FRAG).expect("write");
-    let cases: &[(&str, &[(&str, &[f32])])] = &[
+    let cases: &[(&str, Settings)] = &[
         ("shininess 0 (pow(0, 0))", &[("shininess", &[0.0])]),
         ("shininess 0.5", &[("shininess", &[0.5])]),
         ("shininess -1 (pow(0, -1))", &[("shininess", &[-1.0])]),
         ("light on the surface (L = 0)", &[("lightPosition", &[0.0, 0.0, -4.0])]),
-        ("coefficients outside [0,1]", &[("Ka", &[-2.0]), ("Kd", &[7.5]), ("Ks", &[-1.0])]),
+        (
+            "coefficients outside [0,1]",
+            &[("Ka", &[-2.0]), ("Kd", &[7.5]), ("Ks", &[-1.0])],
+        ),
         ("huge coefficients", &[("Kd", &[3.0e38]), ("Ks", &[3.0e38])]),
     ];
     for (what, set) in cases {
-        for (label, source) in [("original", ShaderSource::Dir(dir.clone())), ("port", ShaderSource::Embedded)] {
+        for (label, source) in [
+            ("original", ShaderSource::Dir(dir.clone())),
+            ("port", ShaderSource::Embedded),
+        ] {
             let mut lab = Lab::<Phong>::new(gpu(), source, wgpu::TextureFormat::Rgba32Float).expect("lab");
             lab.scene.object = Object::Sphere;
             for (n, v) in *set {

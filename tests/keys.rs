@@ -10,7 +10,12 @@ use shaderlab::Object;
 fn object_keys() {
     let mut lab = common::lab::<PositionRgb>();
     assert_eq!(lab.scene.object, Object::Teapot, "the teapot is the default");
-    for (key, object) in [('1', Object::Cube), ('2', Object::Sphere), ('3', Object::Torus), ('4', Object::Teapot)] {
+    for (key, object) in [
+        ('1', Object::Cube),
+        ('2', Object::Sphere),
+        ('3', Object::Torus),
+        ('4', Object::Teapot),
+    ] {
         assert!(lab.key(key));
         assert_eq!(lab.scene.object, object);
     }
@@ -25,7 +30,10 @@ fn phong_keys_and_clamps() {
     lab.key('Y');
     lab.key('z');
     let l = get(&lab, "lightPosition");
-    assert!((l[0] - 0.1).abs() < 1e-6 && (l[1] - 1.1).abs() < 1e-6 && (l[2] - 0.9).abs() < 1e-6, "{l:?}");
+    assert!(
+        (l[0] - 0.1).abs() < 1e-6 && (l[1] - 1.1).abs() < 1e-6 && (l[2] - 0.9).abs() < 1e-6,
+        "{l:?}"
+    );
     // W moves the camera forward and the eye-space light back, so it stays put in the world.
     lab.key('w');
     assert!((get(&lab, "camera")[2] - 4.9).abs() < 1e-6);

@@ -32,9 +32,18 @@ fn position_rgb_maps_z_y_x_to_red_green_blue() {
     let right = mean_color(&cube, (340, 150, 390, 210), Some(BLACK));
     let top = mean_color(&cube, (295, 110, 345, 160), Some(BLACK));
     let bottom = mean_color(&cube, (295, 200, 345, 250), Some(BLACK));
-    assert!(right[2] > left[2] + 40.0, "blue must follow x: left {left:?} right {right:?}");
-    assert!(top[1] > bottom[1] + 40.0, "green must follow y: top {top:?} bottom {bottom:?}");
-    assert!(left[0] > 200.0 && right[0] > 200.0, "red must be high on the z = +0.75 face: {left:?} {right:?}");
+    assert!(
+        right[2] > left[2] + 40.0,
+        "blue must follow x: left {left:?} right {right:?}"
+    );
+    assert!(
+        top[1] > bottom[1] + 40.0,
+        "green must follow y: top {top:?} bottom {bottom:?}"
+    );
+    assert!(
+        left[0] > 200.0 && right[0] > 200.0,
+        "red must be high on the z = +0.75 face: {left:?} {right:?}"
+    );
     // Turned around (yAngle 180) the visible face is z = -0.75: red drops.
     let back = render::<PositionRgb>(Object::Cube, [0.0, 180.0, 0.0], 0.0, &[]);
     let back_mid = mean_color(&back, (300, 160, 340, 200), Some(BLACK));
@@ -42,8 +51,16 @@ fn position_rgb_maps_z_y_x_to_red_green_blue() {
     // The cube, seen face on, is a square: glutSolidCube(1.5) at distance 4 - 0.75.
     let (x0, y0, x1, y1) = bounding_box(&cube, BLACK).expect("cube visible");
     let side = 0.75 / 3.25 * 180.0 / (22.5f64).to_radians().tan() * 2.0;
-    assert!(((x1 - x0 + 1) as f64 - side).abs() <= 2.0, "cube width {} vs {side:.1}", x1 - x0 + 1);
-    assert!(((y1 - y0 + 1) as f64 - side).abs() <= 2.0, "cube height {} vs {side:.1}", y1 - y0 + 1);
+    assert!(
+        ((x1 - x0 + 1) as f64 - side).abs() <= 2.0,
+        "cube width {} vs {side:.1}",
+        x1 - x0 + 1
+    );
+    assert!(
+        ((y1 - y0 + 1) as f64 - side).abs() <= 2.0,
+        "cube height {} vs {side:.1}",
+        y1 - y0 + 1
+    );
 }
 
 #[test]
@@ -54,9 +71,15 @@ fn normal_rgb_shows_eye_space_normals() {
     let left = mean_color(&sphere, (320 - r + 5, 170, 320 - r + 20, 190), None);
     let top = mean_color(&sphere, (310, 180 - r + 5, 330, 180 - r + 20), None);
     let centre = mean_color(&sphere, (315, 175, 325, 185), None);
-    assert!(right[0] > 180.0 && left[0] < 5.0, "red = +x normals: left {left:?} right {right:?}");
+    assert!(
+        right[0] > 180.0 && left[0] < 5.0,
+        "red = +x normals: left {left:?} right {right:?}"
+    );
     assert!(top[1] > 180.0 && top[0] < 10.0, "green = +y normals: {top:?}");
-    assert!(centre[2] > 245.0 && centre[0] < 15.0 && centre[1] < 15.0, "blue = towards the eye: {centre:?}");
+    assert!(
+        centre[2] > 245.0 && centre[0] < 15.0 && centre[1] < 15.0,
+        "blue = towards the eye: {centre:?}"
+    );
     // Rotating the sphere must not change a sphere's normal image much (eye-space normals).
     let turned = render::<NormalRgb>(Object::Sphere, [0.0, 90.0, 0.0], 0.0, &[]);
     assert!(psnr(&sphere, &turned).expect("size") > 25.0);
@@ -69,12 +92,21 @@ fn phong_sphere_highlight_follows_the_light() {
     let r = sphere_radius_px(5.0);
     let expected = std::f64::consts::PI * r * r / (640.0 * 360.0);
     let cov = coverage(&base, PHONG_BG);
-    assert!((cov - expected).abs() < 0.01 * expected + 0.002, "coverage {cov:.4} vs {expected:.4}");
+    assert!(
+        (cov - expected).abs() < 0.01 * expected + 0.002,
+        "coverage {cov:.4} vs {expected:.4}"
+    );
     // With the light at (0,1,1) the highlight sits above the centre, on the vertical axis.
     let (hx, hy) = highlight(&base, 2.0);
-    assert!((hx - 319.5).abs() < 3.0 && hy < 175.0 && hy > 180.0 - r, "highlight at ({hx:.1}, {hy:.1})");
+    assert!(
+        (hx - 319.5).abs() < 3.0 && hy < 175.0 && hy > 180.0 - r,
+        "highlight at ({hx:.1}, {hy:.1})"
+    );
     // The scene is left-right symmetric.
-    assert!(psnr(&base, &mirrored(&base)).expect("size") > 35.0, "sphere must be mirror-symmetric");
+    assert!(
+        psnr(&base, &mirrored(&base)).expect("size") > 35.0,
+        "sphere must be mirror-symmetric"
+    );
     // Moving the light right moves the highlight right; up moves it up.
     let right = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[2.0, 1.0, 1.0])]);
     let (rx, _) = highlight(&right, 2.0);
@@ -92,7 +124,10 @@ fn phong_coefficients_move_the_image() {
     let white_area = |img: &RgbImage| img.pixels().filter(|p| p[2] > 200).count();
     let base = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[]);
     let sharp = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("shininess", &[128.0])]);
-    assert!(white_area(&sharp) * 2 < white_area(&base), "higher shininess must shrink the highlight");
+    assert!(
+        white_area(&sharp) * 2 < white_area(&base),
+        "higher shininess must shrink the highlight"
+    );
     let no_spec = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("Ks", &[0.0])]);
     assert_eq!(white_area(&no_spec), 0, "Ks = 0 removes the white highlight");
     let dim = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("Kd", &[0.5])]);
@@ -100,13 +135,21 @@ fn phong_coefficients_move_the_image() {
     assert!(mean_color(&dim, side, Some(PHONG_BG))[0] < mean_color(&base, side, Some(PHONG_BG))[0] - 20.0);
     let green = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("diffuseColor", &[0.0, 1.0, 0.0])]);
     let g = mean_color(&green, side, Some(PHONG_BG));
-    assert!(g[1] > g[0] + 50.0, "a green diffuse colour must turn the sphere green: {g:?}");
+    assert!(
+        g[1] > g[0] + 50.0,
+        "a green diffuse colour must turn the sphere green: {g:?}"
+    );
     // Ambient only: a flat colour Ka * ambientColor (0.1 * 0.1 -> 3/255) on the dark side.
     let flat = render::<Phong>(
         Object::Sphere,
         [0.0; 3],
         0.0,
-        &[("Kd", &[0.0]), ("Ks", &[0.0]), ("Ka", &[1.0]), ("ambientColor", &[0.5, 0.5, 0.5])],
+        &[
+            ("Kd", &[0.0]),
+            ("Ks", &[0.0]),
+            ("Ka", &[1.0]),
+            ("ambientColor", &[0.5, 0.5, 0.5]),
+        ],
     );
     let c = mean_color(&flat, (300, 160, 340, 200), None);
     assert!(c.iter().all(|v| (v - 127.5).abs() < 1.5), "ambient only: {c:?}");
@@ -120,7 +163,10 @@ fn phong_light_marker_appears_in_front_of_the_camera() {
     assert_eq!(base.get_pixel(528, 41).0, PHONG_BG);
     let moved = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[1.2, 0.8, -2.5])]);
     assert_eq!(moved.get_pixel(528, 41).0, [255, 255, 255], "white marker at the light");
-    let white = moved.enumerate_pixels().filter(|(x, y, p)| *x > 500 && *y < 80 && p.0 == [255, 255, 255]).count();
+    let white = moved
+        .enumerate_pixels()
+        .filter(|(x, y, p)| *x > 500 && *y < 80 && p.0 == [255, 255, 255])
+        .count();
     assert!((60..400).contains(&white), "marker size {white} pixels");
 }
 
@@ -128,7 +174,10 @@ fn phong_light_marker_appears_in_front_of_the_camera() {
 fn phong_camera_moves_the_view() {
     let base = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[]);
     let closer = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("camera", &[0.0, 0.0, 3.0])]);
-    assert!(coverage(&closer, PHONG_BG) > 2.0 * coverage(&base, PHONG_BG), "a closer camera makes the sphere bigger");
+    assert!(
+        coverage(&closer, PHONG_BG) > 2.0 * coverage(&base, PHONG_BG),
+        "a closer camera makes the sphere bigger"
+    );
     let left = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("camera", &[-1.0, 0.0, 5.0])]);
     let (x0, _, x1, _) = bounding_box(&left, PHONG_BG).expect("visible");
     assert!((x0 + x1) / 2 > 330, "moving the camera left moves the sphere right");
@@ -140,7 +189,10 @@ fn noise_statistics_and_time() {
     let m = mask(&t0, BLACK, 0);
     let (mean, var) = luma_stats(&t0, &m);
     // |snoise| over a surface: mean around 0.2-0.35, clearly varying.
-    assert!((0.1..0.45).contains(&mean) && var > 0.01, "noise mean {mean:.3} variance {var:.4}");
+    assert!(
+        (0.1..0.45).contains(&mean) && var > 0.01,
+        "noise mean {mean:.3} variance {var:.4}"
+    );
     // Grey: shade (1,1,1) gives r = g = b.
     assert!(t0.pixels().all(|p| p[0] == p[1] && p[1] == p[2]));
     // Time moves the pattern but keeps its statistics.
@@ -156,7 +208,12 @@ fn noise_statistics_and_time() {
 
 #[test]
 fn displacement_grows_the_silhouette() {
-    let flat = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[0.0]), ("shade", &[1.0, 1.0, 1.0])]);
+    let flat = render::<Displacement>(
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("displacement", &[0.0]), ("shade", &[1.0, 1.0, 1.0])],
+    );
     let full = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[1.0])]);
     // With no displacement the silhouette is the sphere's; its pixels are drawn even where
     // the noise is dark, so measure shape from depth-independent coverage: any non-black pixel
@@ -167,14 +224,22 @@ fn displacement_grows_the_silhouette() {
     assert!(((fx1 - fx0) as f64) < 2.0 * r + 2.0 && ((fy1 - fy0) as f64) < 2.0 * r + 2.0);
     let (gx0, gy0, gx1, gy1) = bbox(&full);
     let grown = (gx1 - gx0) + (gy1 - gy0);
-    assert!(grown as f64 > 4.0 * r * 1.1, "displacement 1 must push the silhouette out: {grown} vs {:.0}", 4.0 * r);
+    assert!(
+        grown as f64 > 4.0 * r * 1.1,
+        "displacement 1 must push the silhouette out: {grown} vs {:.0}",
+        4.0 * r
+    );
     // The default (0.5) lies in between, and the value clamps at 1.
     let half = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[]);
     let (hx0, hy0, hx1, hy1) = bbox(&half);
     let half_size = (hx1 - hx0) + (hy1 - hy0);
     assert!(half_size > (fx1 - fx0) + (fy1 - fy0) && half_size < grown);
     let over = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[3.0])]);
-    assert_eq!(psnr(&over, &full), Some(f64::INFINITY), "displacement is clamped to [0, 1] by the shader");
+    assert_eq!(
+        psnr(&over, &full),
+        Some(f64::INFINITY),
+        "displacement is clamped to [0, 1] by the shader"
+    );
 }
 
 #[test]
@@ -183,7 +248,10 @@ fn rotation_turns_the_teapot() {
     let side = render::<NormalRgb>(Object::Teapot, [0.0, 90.0, 0.0], 0.0, &[]);
     let (x0, _, x1, _) = bounding_box(&front, BLACK).expect("visible");
     let (s0, _, s1, _) = bounding_box(&side, BLACK).expect("visible");
-    assert!((s1 - s0) * 10 < (x1 - x0) * 8, "seen from the side (spout towards the eye) the teapot is narrower");
+    assert!(
+        (s1 - s0) * 10 < (x1 - x0) * 8,
+        "seen from the side (spout towards the eye) the teapot is narrower"
+    );
     // The spout points to +x at rest: the right half holds more pixels than the body alone would.
     let (_, y0, _, y1) = bounding_box(&front, BLACK).expect("visible");
     assert!(x1 - x0 > y1 - y0, "the teapot is wider than tall");

@@ -48,8 +48,14 @@ fn views(level: u32) -> Vec<[f32; 3]> {
 }
 
 fn worst(object: Object, shape: Shape, level: u32, camera: [f32; 3]) -> (f64, f64) {
-    let errors: Vec<f64> = views(level).into_iter().map(|a| measured_error(object, shape, level, a, camera)).collect();
-    (errors.iter().cloned().fold(0.0, f64::max), errors.iter().cloned().fold(f64::INFINITY, f64::min))
+    let errors: Vec<f64> = views(level)
+        .into_iter()
+        .map(|a| measured_error(object, shape, level, a, camera))
+        .collect();
+    (
+        errors.iter().cloned().fold(0.0, f64::max),
+        errors.iter().cloned().fold(f64::INFINITY, f64::min),
+    )
 }
 
 /// Distances are chosen where the level step is clear of the budget on both sides (predicted
@@ -73,8 +79,15 @@ fn check(object: Object, shape: Shape, camera: [f32; 3]) {
         level - 1,
         shaderlab::tess::silhouette_error_px(object, level - 1, distance, 360),
     );
-    assert!(chosen <= 0.5, "{object:?}: chosen level {level} has error {chosen:.3} px > 0.5");
-    assert!(coarser > 0.5, "{object:?}: level {} meets the budget in every view ({coarser:.3} px)", level - 1);
+    assert!(
+        chosen <= 0.5,
+        "{object:?}: chosen level {level} has error {chosen:.3} px > 0.5"
+    );
+    assert!(
+        coarser > 0.5,
+        "{object:?}: level {} meets the budget in every view ({coarser:.3} px)",
+        level - 1
+    );
 }
 
 #[test]
@@ -101,4 +114,3 @@ fn auto_level_follows_the_view() {
     lab.options.tess = Tess::Glut;
     assert_eq!(lab.level(360), 24);
 }
-

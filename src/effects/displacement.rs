@@ -40,7 +40,12 @@ impl Effect for Displacement {
     const SMOOTH_OPTION: bool = true;
 
     fn defaults() -> DisplacementUniforms {
-        DisplacementUniforms { shade: [1.0, 1.0, 1.0], time: 0.0, displacement: 0.5, _pad: [0.0; 3] }
+        DisplacementUniforms {
+            shade: [1.0, 1.0, 1.0],
+            time: 0.0,
+            displacement: 0.5,
+            _pad: [0.0; 3],
+        }
     }
 
     fn key(key: char, u: &mut DisplacementUniforms, _scene: &mut Scene) -> bool {
@@ -54,6 +59,9 @@ impl Effect for Displacement {
 
     fn summary(u: &DisplacementUniforms) -> String {
         let [r, g, b] = u.shade;
-        format!("displacement {:.2} shade ({r:.2},{g:.2},{b:.2}) time {:.1}", u.displacement, u.time)
+        format!(
+            "displacement {:.2} shade ({r:.2},{g:.2},{b:.2}) time {:.1}",
+            u.displacement, u.time
+        )
     }
 }

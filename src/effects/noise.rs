@@ -28,7 +28,10 @@ impl Effect for Noise {
     const CLEAR: [f64; 3] = [0.0, 0.0, 0.0];
 
     fn defaults() -> NoiseUniforms {
-        NoiseUniforms { shade: [1.0, 1.0, 1.0], time: 0.0 }
+        NoiseUniforms {
+            shade: [1.0, 1.0, 1.0],
+            time: 0.0,
+        }
     }
 
     fn key(key: char, u: &mut NoiseUniforms, _scene: &mut Scene) -> bool {
