@@ -190,8 +190,10 @@ pub trait Effect: 'static {
     /// The original's defaults.
     fn defaults() -> Self::Uniforms;
     /// The original's keyboard handler for the effect's own keys (not 1-4 or Esc). Values are
-    /// clamped to sensible ranges. Returns whether the key did anything.
-    fn key(key: char, uniforms: &mut Self::Uniforms, scene: &mut Scene) -> bool;
+    /// clamped to sensible ranges. Returns whether the key did anything. Default: no keys.
+    fn key(_key: char, _uniforms: &mut Self::Uniforms, _scene: &mut Scene) -> bool {
+        false
+    }
     /// The light position in eye space, for the marker.
     fn light_position(_uniforms: &Self::Uniforms) -> Option<Vec3> {
         None

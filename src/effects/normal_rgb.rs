@@ -2,7 +2,7 @@
 //! gl_Normal)` as colour; negative components clamp to 0, so faces turned right are red, up
 //! green, towards the viewer blue. Keys: `1`-`4` objects, mouse drag rotates.
 
-use crate::effect::{Effect, NoUniforms, Scene};
+use crate::effect::{Effect, NoUniforms};
 
 /// Exercise 2.
 pub struct NormalRgb;
@@ -16,10 +16,6 @@ impl Effect for NormalRgb {
 
     fn defaults() -> NoUniforms {
         NoUniforms::default()
-    }
-
-    fn key(_key: char, _uniforms: &mut NoUniforms, _scene: &mut Scene) -> bool {
-        false
     }
 
     fn summary(_uniforms: &NoUniforms) -> String {

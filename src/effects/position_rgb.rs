@@ -2,7 +2,7 @@
 //! + 0.5` — a 4-component normalize with w = 1 — so the object shows its position as colour,
 //! z as red, y as green, x as blue; values above 1 clamp. Keys: `1`-`4` objects, mouse drag rotates.
 
-use crate::effect::{Effect, NoUniforms, Scene};
+use crate::effect::{Effect, NoUniforms};
 
 /// Exercise 1.
 pub struct PositionRgb;
@@ -16,10 +16,6 @@ impl Effect for PositionRgb {
 
     fn defaults() -> NoUniforms {
         NoUniforms::default()
-    }
-
-    fn key(_key: char, _uniforms: &mut NoUniforms, _scene: &mut Scene) -> bool {
-        false
     }
 
     fn summary(_uniforms: &NoUniforms) -> String {
