@@ -1,10 +1,19 @@
 //! The window: winit events mapped to the original's GLUT callbacks, a surface that follows
 //! resizes (height 0 is treated as 1, minimising pauses drawing), F12 screenshots and live
 //! shader reload. Effects never see winit; this module calls [`Lab`]'s plain methods.
+//!
+//! Failure handling: a surface that is `Outdated` is reconfigured and a `Lost` one is created
+//! again, then drawing goes on; a lost GPU device (or a GPU out of memory) ends the event loop
+//! with one clear message and exit status 1, never a panic. While the window has no area
+//! (zero-sized or minimised) or is fully covered, nothing is drawn and the loop sleeps until
+//! the next window event instead of spinning, and frames are paced near the monitor's refresh
+//! rate ([`frame_interval`]) for drivers whose FIFO presentation does not wait for vertical sync.
+//!
+//! Test hook: `SHADERLAB_TEST_LOSE_DEVICE=SECONDS` destroys the GPU device that many seconds
+//! after the window opens, so the tests can check what a lost device looks like.
 
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{mpsc, Arc};
+use std::sync::{mpsc, Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use winit::application::ApplicationHandler;
@@ -21,10 +30,36 @@ use crate::gpu::Gpu;
 use crate::offscreen::{depth_texture, save_png};
 use crate::shader::ShaderSource;
 
+/// Frames per second when the monitor does not say its refresh rate.
+const DEFAULT_REFRESH_HZ: f64 = 60.0;
+
+/// How many frames in a row may fail with `Lost`/`Outdated` (each one followed by a fresh
+/// surface) or a validation error before the window gives up with an error instead of
+/// retrying for ever.
+const MAX_SURFACE_RETRIES: u32 = 120;
+
+/// The time between frames for a monitor refresh rate (mHz, if known): 10% shorter than the
+/// refresh period, so a driver that really waits for vertical sync (FIFO) still sets the pace,
+/// while one that does not (a software driver presenting with PutImage, as lavapipe under X11
+/// does) is held near the refresh rate instead of drawing as fast as the CPU allows.
+pub fn frame_interval(refresh_millihertz: Option<u32>) -> Duration {
+    let hz = refresh_millihertz
+        .map(|mhz| f64::from(mhz) / 1000.0)
+        .filter(|hz| (20.0..=1000.0).contains(hz))
+        .unwrap_or(DEFAULT_REFRESH_HZ);
+    Duration::from_secs_f64(1.0 / (hz * 1.1))
+}
+
 /// Whether a window can be opened (an X11 or Wayland display is named in the environment).
 pub fn has_display() -> bool {
     std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty())
         || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| !d.is_empty())
+}
+
+/// The surface size for a window size, or `None` when the window has no area (zero width or
+/// height, as when minimised on some platforms): then nothing is drawn until it grows again.
+pub fn surface_size(size: PhysicalSize<u32>) -> Option<(u32, u32)> {
+    (size.width > 0 && size.height > 0).then_some((size.width, size.height))
 }
 
 /// Opens the lab in a window and runs until Esc or close.
@@ -36,7 +71,12 @@ pub fn run_window<E: Effect>(args: &LabArgs) -> Result<()> {
         ShaderSource::Embedded => ShaderSource::source_tree().unwrap_or(ShaderSource::Embedded),
         dir => dir,
     };
-    let mut app = App::<E> { args: args.clone(), source, state: None, error: None };
+    let mut app = App::<E> {
+        args: args.clone(),
+        source,
+        state: None,
+        error: None,
+    };
     event_loop
         .run_app(&mut app)
         .map_err(|e| Error::Surface(format!("event loop failed: {e}")))?;
@@ -53,6 +93,15 @@ struct App<E: Effect> {
     error: Option<Error>,
 }
 
+/// Why the device can no longer be used, set from wgpu's callbacks (other threads).
+type Fatal = Arc<Mutex<Option<String>>>;
+
+fn set_fatal(fatal: &Fatal, message: String) {
+    if let Ok(mut slot) = fatal.lock() {
+        slot.get_or_insert(message);
+    }
+}
+
 struct WindowState<E: Effect> {
     window: Arc<Window>,
     surface: wgpu::Surface<'static>,
@@ -65,9 +114,18 @@ struct WindowState<E: Effect> {
     time_offset: f32,
     cursor: (i32, i32),
     buttons: u32,
+    /// The window has no area: nothing to draw.
     minimised: bool,
+    /// The window is fully covered (X11 visibility): nothing to draw.
+    occluded: bool,
+    /// Frames in a row that found the surface `Lost` or `Outdated`.
+    surface_retries: u32,
+    /// Shortest time between two frames, and when the next one is due.
+    frame_interval: Duration,
+    next_frame: Instant,
     shader_error: bool,
-    device_lost: Arc<AtomicBool>,
+    fatal: Fatal,
+    lose_device_at: Option<Instant>,
     reload: Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)>,
     screenshots: u32,
 }
@@ -84,10 +142,39 @@ impl<E: Effect> App<E> {
                 .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
         );
         let instance = Gpu::new_instance();
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| Error::Surface(e.to_string()))?;
+        let surface = match instance.create_surface(window.clone()) {
+            Ok(surface) => surface,
+            // With no usable driver at all wgpu only says "Failed to create surface for any
+            // enabled backend": say what is really missing, as the offscreen path does.
+            Err(e) => {
+                return Err(
+                    match pollster::block_on(instance.request_adapter(&Default::default())) {
+                        Err(no_adapter) => Error::NoAdapter(no_adapter.to_string()),
+                        Ok(_) => Error::Surface(format!("cannot create a surface for the window: {e}")),
+                    },
+                )
+            }
+        };
         let gpu = pollster::block_on(Gpu::new(instance, Some(&surface)))?;
+        // Before anything can fail on the device: wgpu panics on errors nobody handles.
+        let fatal: Fatal = Arc::new(Mutex::new(None));
+        let lost = fatal.clone();
+        gpu.device.set_device_lost_callback(move |reason, message| {
+            let why = match reason {
+                wgpu::DeviceLostReason::Destroyed => "destroyed".to_string(),
+                _ if message.is_empty() => "driver error".to_string(),
+                _ => message,
+            };
+            set_fatal(&lost, format!("the GPU device was lost ({why})"));
+        });
+        let oom = fatal.clone();
+        gpu.device.on_uncaptured_error(Arc::new(move |e| {
+            if let wgpu::Error::OutOfMemory { .. } = e {
+                set_fatal(&oom, "the GPU ran out of memory".into());
+            } else {
+                eprintln!("wgpu error: {e}");
+            }
+        }));
         let caps = surface.get_capabilities(&gpu.adapter);
         // GL's default framebuffer does no sRGB encoding: prefer a plain UNORM format.
         let format = [wgpu::TextureFormat::Bgra8Unorm, wgpu::TextureFormat::Rgba8Unorm]
@@ -104,14 +191,17 @@ impl<E: Effect> App<E> {
             height: size.height.max(1),
             desired_maximum_frame_latency: 2,
             present_mode: wgpu::PresentMode::Fifo,
-            alpha_mode: caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto),
+            alpha_mode: caps
+                .alpha_modes
+                .first()
+                .copied()
+                .unwrap_or(wgpu::CompositeAlphaMode::Auto),
             view_formats: vec![],
         };
-        surface.configure(&gpu.device, &config);
-        let device_lost = Arc::new(AtomicBool::new(false));
-        let lost = device_lost.clone();
-        gpu.device.set_device_lost_callback(move |_, _| lost.store(true, Ordering::SeqCst));
-        gpu.device.on_uncaptured_error(Arc::new(|e| eprintln!("wgpu error: {e}")));
+        // A surface that was never configured makes wgpu panic on the first frame: check it.
+        gpu.checked("configuring the window surface", || {
+            surface.configure(&gpu.device, &config)
+        })?;
         let depth = depth_texture(&gpu.device, config.width, config.height);
         let mut lab = Lab::<E>::new(&gpu, self.source.clone(), format)?;
         self.args.apply(&mut lab)?;
@@ -119,13 +209,20 @@ impl<E: Effect> App<E> {
             ShaderSource::Dir(dir) => watch(dir),
             ShaderSource::Embedded => None,
         };
-        let clock_scale = std::env::var("SHADERLAB_CLOCK_SCALE")
-            .ok()
-            .and_then(|s| s.parse::<f64>().ok())
-            .filter(|s| s.is_finite() && *s > 0.0)
-            .unwrap_or(1.0);
+        let env_seconds = |name: &str| {
+            std::env::var(name)
+                .ok()
+                .and_then(|s| s.trim().parse::<f64>().ok())
+                .filter(|s| s.is_finite() && *s >= 0.0)
+        };
+        let clock_scale = env_seconds("SHADERLAB_CLOCK_SCALE").filter(|s| *s > 0.0).unwrap_or(1.0);
+        let lose_device_at = env_seconds("SHADERLAB_TEST_LOSE_DEVICE")
+            .and_then(|s| Duration::try_from_secs_f64(s).ok())
+            .map(|d| Instant::now() + d);
+        let refresh_millihertz = window.current_monitor().and_then(|m| m.refresh_rate_millihertz());
         window.set_title(&lab.title());
         Ok(WindowState {
+            minimised: surface_size(size).is_none(),
             window,
             surface,
             config,
@@ -137,9 +234,13 @@ impl<E: Effect> App<E> {
             time_offset: self.args.time.unwrap_or(0.0),
             cursor: (0, 0),
             buttons: 0,
-            minimised: false,
+            occluded: false,
+            surface_retries: 0,
+            frame_interval: frame_interval(refresh_millihertz),
+            next_frame: Instant::now(),
             shader_error: false,
-            device_lost,
+            fatal,
+            lose_device_at,
             reload,
             screenshots: 0,
         })
@@ -174,17 +275,44 @@ impl<E: Effect> WindowState<E> {
         self.window.set_title(&title);
     }
 
+    /// Whether drawing is paused (nothing visible to draw into).
+    fn paused(&self) -> bool {
+        self.minimised || self.occluded
+    }
+
+    /// The error that ends the window, if the device became unusable.
+    fn fatal_error(&self) -> Option<Error> {
+        let message = self.fatal.lock().ok()?.clone()?;
+        Some(Error::Wgpu {
+            context: format!("the {} window", E::NAME),
+            message,
+        })
+    }
+
     fn resize(&mut self, size: PhysicalSize<u32>) {
         // The original treats height 0 as 1; a surface cannot be 0 pixels, so a zero-sized
         // (minimised) window is simply not drawn until it has a size again.
-        self.minimised = size.width == 0 || size.height == 0;
-        if self.minimised {
+        let Some((width, height)) = surface_size(size) else {
+            self.minimised = true;
             return;
-        }
-        self.config.width = size.width;
-        self.config.height = size.height;
+        };
+        self.minimised = false;
+        self.config.width = width;
+        self.config.height = height;
         self.surface.configure(&self.gpu.device, &self.config);
-        self.depth = depth_texture(&self.gpu.device, size.width, size.height);
+        self.depth = depth_texture(&self.gpu.device, width, height);
+    }
+
+    /// A `Lost` surface must be created again from the window, then configured.
+    fn recreate_surface(&mut self) -> Result<()> {
+        self.surface = self
+            .gpu
+            .instance
+            .create_surface(self.window.clone())
+            .map_err(|e| Error::Surface(format!("cannot create the window surface again: {e}")))?;
+        let size = self.window.inner_size();
+        self.resize(size);
+        Ok(())
     }
 
     fn check_reload(&mut self) {
@@ -220,19 +348,35 @@ impl<E: Effect> WindowState<E> {
             .unwrap_or(0);
         let path = PathBuf::from(format!("{}-{stamp}-{}.png", E::NAME, self.screenshots));
         let (w, h) = (self.config.width, self.config.height);
-        match self.lab.screenshot(&self.gpu, w, h).and_then(|image| save_png(&image, &path)) {
+        match self
+            .lab
+            .screenshot(&self.gpu, w, h)
+            .and_then(|image| save_png(&image, &path))
+        {
             Ok(()) => println!("screenshot: {}", std::fs::canonicalize(&path).unwrap_or(path).display()),
             Err(e) => eprintln!("{}: screenshot failed: {e}", E::NAME),
         }
     }
 
     fn redraw(&mut self) -> Result<()> {
-        if self.device_lost.load(Ordering::SeqCst) {
-            return Err(Error::Device("the GPU device was lost".into()));
+        if let Some(at) = self.lose_device_at {
+            if Instant::now() >= at {
+                self.lose_device_at = None;
+                eprintln!("{}: SHADERLAB_TEST_LOSE_DEVICE: destroying the GPU device", E::NAME);
+                self.gpu.device.destroy();
+                // The device-lost callback runs when the device is next maintained.
+                let _ = self.gpu.device.poll(wgpu::PollType::Poll);
+            }
         }
-        if self.minimised {
+        if let Some(e) = self.fatal_error() {
+            return Err(e);
+        }
+        if self.paused() {
             return Ok(());
         }
+        // Pace from the previous deadline (no drift), but never plan a burst to catch up.
+        let now = Instant::now();
+        self.next_frame = (self.next_frame + self.frame_interval).max(now);
         if self.args_time_is_clock() {
             let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
             self.lab.scene.time = self.time_offset + elapsed as f32;
@@ -240,19 +384,49 @@ impl<E: Effect> WindowState<E> {
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                let size = self.window.inner_size();
-                self.resize(size);
+            status @ (wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost) => {
+                self.surface_retries += 1;
+                if self.surface_retries > MAX_SURFACE_RETRIES {
+                    return Err(Error::Surface(format!(
+                        "the window surface stays unusable ({status:?} {MAX_SURFACE_RETRIES} frames in a row)"
+                    )));
+                }
+                if matches!(status, wgpu::CurrentSurfaceTexture::Lost) {
+                    self.recreate_surface()?;
+                } else {
+                    let size = self.window.inner_size();
+                    self.resize(size);
+                }
                 return Ok(());
             }
-            other => return Err(Error::Surface(format!("cannot get a frame: {other:?}"))),
+            wgpu::CurrentSurfaceTexture::Validation => {
+                // The uncaptured-error handler printed why; a lost device ends here, and an error
+                // that repeats every frame ends the window instead of flooding the terminal.
+                self.surface_retries += 1;
+                if self.surface_retries > MAX_SURFACE_RETRIES {
+                    return Err(Error::Surface(format!(
+                        "cannot get a frame from the window surface ({MAX_SURFACE_RETRIES} frames in a row)"
+                    )));
+                }
+                return self.fatal_error().map_or(Ok(()), Err);
+            }
         };
+        self.surface_retries = 0;
         let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
             label: Some("window.frame"),
             ..Default::default()
         });
         let (w, h) = (self.config.width, self.config.height);
         self.lab.render(&self.gpu, &view, &self.depth, w, h);
+        // Key `m` switches the shading model; the pipeline is rebuilt while drawing, and a
+        // broken shader file leaves the previous model in place.
+        if let Some(e) = self.lab.take_error() {
+            eprintln!(
+                "{}: cannot switch the shading model (keeping the previous one):\n{e}",
+                E::NAME
+            );
+            self.update_title();
+        }
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
         Ok(())
@@ -301,10 +475,22 @@ impl<E: Effect> ApplicationHandler for App<E> {
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         let Some(state) = self.state.as_mut() else { return };
+        if let Some(e) = state.fatal_error() {
+            self.error = Some(e);
+            event_loop.exit();
+            return;
+        }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => state.resize(size),
-            WindowEvent::KeyboardInput { event, .. } => state.key(&event, event_loop),
+            WindowEvent::Occluded(occluded) => state.occluded = occluded,
+            // winit invents ("synthetic") presses for keys already held when the window gets the
+            // focus; GLUT never saw those, and acting on them doubles the key that focused it.
+            WindowEvent::KeyboardInput {
+                event,
+                is_synthetic: false,
+                ..
+            } => state.key(&event, event_loop),
             WindowEvent::CursorMoved { position, .. } => {
                 state.cursor = (position.x as i32, position.y as i32);
                 if state.buttons != 0 {
@@ -312,7 +498,11 @@ impl<E: Effect> ApplicationHandler for App<E> {
                     state.lab.mouse_motion(state.cursor.0, state.cursor.1);
                 }
             }
-            WindowEvent::MouseInput { state: button_state, button, .. } => {
+            WindowEvent::MouseInput {
+                state: button_state,
+                button,
+                ..
+            } => {
                 let bit = match button {
                     MouseButton::Left => 1,
                     MouseButton::Right => 2,
@@ -339,9 +529,51 @@ impl<E: Effect> ApplicationHandler for App<E> {
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
-        if let Some(state) = &self.state {
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(state) = &self.state else { return };
+        let now = Instant::now();
+        if state.paused() {
+            // Nothing to draw: sleep until a window event (resize, map, uncover, key) wakes the
+            // loop, instead of spinning at 100% CPU. The test hook still needs its deadline.
+            match state.lose_device_at {
+                Some(at) if now >= at => state.window.request_redraw(),
+                Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
+                None => event_loop.set_control_flow(ControlFlow::Wait),
+            }
+        } else if now >= state.next_frame {
+            event_loop.set_control_flow(ControlFlow::Poll);
             state.window.request_redraw();
+        } else {
+            // Input still wakes the loop at once; only drawing waits for its turn.
+            event_loop.set_control_flow(ControlFlow::WaitUntil(state.next_frame));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zero_sized_windows_are_not_drawn() {
+        assert_eq!(surface_size(PhysicalSize::new(640, 360)), Some((640, 360)));
+        assert_eq!(surface_size(PhysicalSize::new(50, 1)), Some((50, 1)));
+        assert_eq!(surface_size(PhysicalSize::new(200, 0)), None);
+        assert_eq!(surface_size(PhysicalSize::new(0, 200)), None);
+        assert_eq!(surface_size(PhysicalSize::new(0, 0)), None);
+    }
+
+    #[test]
+    fn frames_are_paced_a_little_faster_than_the_monitor() {
+        let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+        assert!((ms(frame_interval(Some(60_000))) - 1000.0 / 66.0).abs() < 0.01);
+        assert!((ms(frame_interval(Some(144_000))) - 1000.0 / 158.4).abs() < 0.01);
+        // Unknown or absurd rates: 60 Hz.
+        for unknown in [None, Some(0), Some(5_000), Some(10_000_000)] {
+            assert!(
+                (ms(frame_interval(unknown)) - 1000.0 / 66.0).abs() < 0.01,
+                "{unknown:?}"
+            );
         }
     }
 }

@@ -1,0 +1,1376 @@
+//! End-to-end tests in a real window: each test starts its own virtual X server (Xvfb), runs a
+//! lab example from `target/<profile>/examples/`, drives it with `xdotool` (keys through XTEST,
+//! mouse drags, window resizes), captures the screen with ImageMagick's `import` and checks the
+//! pictures with `shaderlab::metrics` and the window title.
+//!
+//! Run alone with `cargo test --release --test e2e_window`. The examples are built first (one
+//! nested `cargo build --examples` per test binary, so they are never stale). Needs `Xvfb`,
+//! `xdotool` and `import`: `apt-get install -y xvfb xdotool imagemagick`. Missing tools are a
+//! failure, never a skip. Pictures are written to `target/tmp/e2e/<test>/` for people to look at.
+//!
+//! Every child process (Xvfb, the lab) sits in a guard that kills it on drop, even when a test
+//! fails. Tests use separate X servers, so they can run in parallel.
+
+use std::collections::HashSet;
+use std::io::{BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdout, Command, ExitStatus, Stdio};
+use std::sync::{mpsc, Arc, Mutex, OnceLock};
+use std::thread;
+use std::time::{Duration, Instant};
+
+use image::RgbImage;
+use shaderlab::effects::phong::PhongUniforms;
+use shaderlab::effects::Phong;
+use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
+use shaderlab::{Effect, Object, Scene};
+
+const INSTALL: &str = "apt-get install -y xvfb xdotool imagemagick";
+
+// ---------------------------------------------------------------------------------------------
+// Tools, binaries and directories
+// ---------------------------------------------------------------------------------------------
+
+fn on_path(tool: &str) -> bool {
+    std::env::var_os("PATH")
+        .map(|paths| std::env::split_paths(&paths).any(|dir| dir.join(tool).is_file()))
+        .unwrap_or(false)
+}
+
+/// Fails (never skips) when a tool is missing.
+fn require_tools() {
+    let missing: Vec<&str> = ["Xvfb", "xdotool", "import"]
+        .into_iter()
+        .filter(|t| !on_path(t))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "the end-to-end window tests need {missing:?} on PATH; install them with `{INSTALL}`"
+    );
+}
+
+/// `target/<profile>/examples/NAME`, built once per test binary with the test's own profile.
+fn example(name: &str) -> PathBuf {
+    static BUILT: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    let dir = BUILT.get_or_init(|| {
+        // target/<profile>/deps/e2e_window-HASH -> target/<profile>/examples
+        let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+        let profile_dir = exe
+            .parent()
+            .and_then(Path::parent)
+            .ok_or_else(|| format!("cannot find the target directory from {}", exe.display()))?;
+        if let Some(cargo) = std::env::var_os("CARGO") {
+            let mut build = Command::new(cargo);
+            build
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .args(["build", "--examples", "--quiet"]);
+            if profile_dir.file_name().is_some_and(|n| n == "release") {
+                build.arg("--release");
+            }
+            let status = build.status().map_err(|e| format!("cannot run cargo: {e}"))?;
+            if !status.success() {
+                return Err(format!("`cargo build --examples` failed ({status})"));
+            }
+        }
+        Ok(profile_dir.join("examples"))
+    });
+    let path = match dir {
+        Ok(dir) => dir.join(name),
+        Err(e) => panic!("cannot build the examples: {e}"),
+    };
+    assert!(
+        path.is_file(),
+        "{} is missing: run `cargo build --release --examples`",
+        path.display()
+    );
+    path
+}
+
+/// A fresh directory for one test's files: `target/tmp/e2e/<test>/`.
+fn test_dir(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("e2e").join(test);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create the test directory");
+    dir
+}
+
+/// Reads a pipe into a shared string on a thread (so the child never blocks on a full pipe).
+fn collect(pipe: impl Read + Send + 'static) -> Arc<Mutex<String>> {
+    let text = Arc::new(Mutex::new(String::new()));
+    let sink = text.clone();
+    thread::spawn(move || {
+        for line in BufReader::new(pipe).lines() {
+            let Ok(line) = line else { break };
+            let mut s = sink.lock().unwrap();
+            s.push_str(&line);
+            s.push('\n');
+        }
+    });
+    text
+}
+
+/// Polls `f` every 50 ms until it gives `Some` or `timeout` passes.
+fn poll<T>(timeout: Duration, mut f: impl FnMut() -> Option<T>) -> Option<T> {
+    let end = Instant::now() + timeout;
+    loop {
+        if let Some(v) = f() {
+            return Some(v);
+        }
+        if Instant::now() >= end {
+            return None;
+        }
+        thread::sleep(Duration::from_millis(50));
+    }
+}
+
+fn sleep_ms(ms: u64) {
+    thread::sleep(Duration::from_millis(ms));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The X server
+// ---------------------------------------------------------------------------------------------
+
+/// A private Xvfb on a display number it picks itself (`-displayfd`); killed on drop.
+struct Xvfb {
+    child: Child,
+    display: String,
+    dir: PathBuf,
+    _stdout: ChildStdout,
+}
+
+impl Xvfb {
+    fn start(test: &str) -> Xvfb {
+        require_tools();
+        let dir = test_dir(test);
+        let mut child = Command::new("Xvfb")
+            // -noreset: without it the server resets whenever its last client (say, xdotool) leaves,
+            // and a lab connecting during the reset fails with "Failed to open connection".
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+                "-noreset",
+            ])
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap_or_else(|e| panic!("cannot start Xvfb ({e}); install it with `{INSTALL}`"));
+        let stdout = child.stdout.take().expect("Xvfb stdout");
+        let (tx, rx) = mpsc::channel();
+        let reader = thread::spawn(move || {
+            let mut reader = BufReader::new(stdout);
+            let mut line = String::new();
+            let _ = reader.read_line(&mut line);
+            let _ = tx.send(line);
+            reader.into_inner()
+        });
+        let line = rx.recv_timeout(Duration::from_secs(15));
+        let number = match line {
+            Ok(line) if !line.trim().is_empty() => line.trim().to_string(),
+            _ => {
+                let _ = child.kill();
+                let _ = child.wait();
+                panic!("Xvfb did not report a display number within 15 s");
+            }
+        };
+        let stdout = reader.join().expect("Xvfb reader");
+        let xvfb = Xvfb {
+            child,
+            display: format!(":{number}"),
+            dir,
+            _stdout: stdout,
+        };
+        // The display answers once xdotool can query it.
+        let ready = poll(Duration::from_secs(10), || {
+            xvfb.xdotool_output(&["getdisplaygeometry"]).ok()
+        });
+        assert!(ready.is_some(), "Xvfb {} does not answer", xvfb.display);
+        xvfb
+    }
+
+    fn command(&self, program: &str) -> Command {
+        let mut c = Command::new(program);
+        c.env("DISPLAY", &self.display).env_remove("WAYLAND_DISPLAY");
+        c
+    }
+
+    /// Runs xdotool and returns its stdout; an error carries its stderr.
+    fn xdotool_output(&self, args: &[&str]) -> Result<String, String> {
+        let out = self
+            .command("xdotool")
+            .args(args)
+            .stdin(Stdio::null())
+            .output()
+            .map_err(|e| format!("cannot run xdotool ({e}); install it with `{INSTALL}`"))?;
+        if out.status.success() {
+            Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+        } else {
+            Err(format!(
+                "xdotool {:?}: {} {}",
+                args.first(),
+                out.status,
+                String::from_utf8_lossy(&out.stderr)
+            ))
+        }
+    }
+
+    fn xdotool(&self, args: &[&str]) -> String {
+        self.xdotool_output(args).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The whole screen.
+    fn capture_root(&self) -> RgbImage {
+        let out = self
+            .command("import")
+            .args(["-window", "root", "png:-"])
+            .stdin(Stdio::null())
+            .output()
+            .unwrap_or_else(|e| panic!("cannot run import ({e}); install it with `{INSTALL}`"));
+        assert!(
+            out.status.success(),
+            "import failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        image::load_from_memory(&out.stdout)
+            .expect("import writes a PNG")
+            .to_rgb8()
+    }
+
+    /// Windows named Lab05 on this display (all labs' titles start with it).
+    fn windows(&self) -> HashSet<String> {
+        self.xdotool_output(&["search", "--name", "^Lab05"])
+            .map(|s| s.lines().map(str::to_owned).collect())
+            .unwrap_or_default()
+    }
+
+    /// Starts an example with a window on this display, in this test's directory, and waits
+    /// for its window.
+    fn launch(&self, name: &str, args: &[&str], env: &[(&str, &str)]) -> App<'_> {
+        let runtime = self.dir.join("xdg");
+        let _ = std::fs::create_dir_all(&runtime);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let _ = std::fs::set_permissions(&runtime, std::fs::Permissions::from_mode(0o700));
+        }
+        let mut command = self.command(example(name).to_str().expect("utf-8 path"));
+        command
+            .args(args)
+            .current_dir(&self.dir)
+            .env("XDG_RUNTIME_DIR", &runtime)
+            .env_remove("RUST_BACKTRACE")
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped());
+        for (k, v) in env {
+            command.env(k, v);
+        }
+        let known = self.windows();
+        let started = Instant::now();
+        let mut child = command.spawn().unwrap_or_else(|e| panic!("cannot start {name}: {e}"));
+        let stdout = collect(child.stdout.take().expect("stdout"));
+        let stderr = collect(child.stderr.take().expect("stderr"));
+        let mut lab = App {
+            x: self,
+            name: name.to_string(),
+            child,
+            window: String::new(),
+            stdout,
+            stderr,
+            started,
+        };
+        let window = poll(Duration::from_secs(10), || {
+            if let Ok(Some(status)) = lab.child.try_wait() {
+                panic!(
+                    "{name} exited ({status}) before opening a window; stderr:\n{}",
+                    lab.stderr()
+                );
+            }
+            self.windows().into_iter().find(|w| !known.contains(w))
+        });
+        lab.window =
+            window.unwrap_or_else(|| panic!("{name}: no window named Lab05 within 10 s; stderr:\n{}", lab.stderr()));
+        lab
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        // SIGTERM first, so that Xvfb removes its lock file and socket; SIGKILL if it lingers.
+        let _ = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status();
+        let child = &mut self.child;
+        if poll(Duration::from_secs(3), || child.try_wait().ok().flatten()).is_none() {
+            let _ = self.child.kill();
+        }
+        let _ = self.child.wait();
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// A running lab
+// ---------------------------------------------------------------------------------------------
+
+/// A lab example running in a window on an [`Xvfb`]; killed on drop if still running.
+struct App<'x> {
+    x: &'x Xvfb,
+    name: String,
+    child: Child,
+    window: String,
+    stdout: Arc<Mutex<String>>,
+    stderr: Arc<Mutex<String>>,
+    started: Instant,
+}
+
+impl Drop for App<'_> {
+    fn drop(&mut self) {
+        if let Ok(None) = self.child.try_wait() {
+            let _ = self.child.kill();
+        }
+        let _ = self.child.wait();
+    }
+}
+
+impl App<'_> {
+    fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
+    fn stdout(&self) -> String {
+        self.stdout.lock().unwrap().clone()
+    }
+
+    fn stderr(&self) -> String {
+        self.stderr.lock().unwrap().clone()
+    }
+
+    fn assert_alive(&mut self) {
+        if let Ok(Some(status)) = self.child.try_wait() {
+            panic!("{} died ({status}); stderr:\n{}", self.name, self.stderr());
+        }
+    }
+
+    /// No panic and no wgpu error on stderr so far.
+    fn assert_clean(&self) {
+        let err = self.stderr();
+        for bad in ["panicked", "RUST_BACKTRACE", "wgpu error"] {
+            assert!(!err.contains(bad), "{} printed `{bad}`:\n{err}", self.name);
+        }
+    }
+
+    fn title(&self) -> String {
+        self.x.xdotool(&["getwindowname", &self.window]).trim_end().to_string()
+    }
+
+    /// Waits until the title satisfies `want` (5 s).
+    fn wait_title(&self, what: &str, want: impl Fn(&str) -> bool) -> String {
+        let mut last = String::new();
+        poll(Duration::from_secs(5), || {
+            last = self.title();
+            want(&last).then(|| last.clone())
+        })
+        .unwrap_or_else(|| panic!("{}: title never showed {what}; last title: {last}", self.name))
+    }
+
+    fn wait_title_contains(&self, part: &str) -> String {
+        self.wait_title(&format!("`{part}`"), |t| t.contains(part))
+    }
+
+    /// Presses keys (xdotool key names) in the window, `delay_ms` apart.
+    fn keys_with_delay(&self, keys: &[&str], delay_ms: u32) {
+        let delay = delay_ms.to_string();
+        let mut args = vec!["windowfocus", "--sync", &self.window, "key", "--delay", &delay];
+        args.extend_from_slice(keys);
+        self.x.xdotool(&args);
+    }
+
+    fn keys(&self, keys: &[&str]) {
+        self.keys_with_delay(keys, 5);
+    }
+
+    /// Presses a key `n` times.
+    fn key_n(&self, key: &str, n: usize) {
+        self.keys(&vec![key; n]);
+    }
+
+    /// A left-button drag through `points` (window coordinates).
+    fn drag(&self, points: &[(i32, i32)]) {
+        let coords: Vec<String> = points
+            .iter()
+            .flat_map(|(x, y)| [x.to_string(), y.to_string()])
+            .collect();
+        let mut args = vec!["mousemove", &coords[0], &coords[1], "mousedown", "1"];
+        for pair in coords.chunks(2).skip(1) {
+            args.extend(["mousemove", &pair[0], &pair[1]]);
+        }
+        args.extend(["mouseup", "1"]);
+        self.x.xdotool(&args);
+    }
+
+    /// (x, y, width, height) of the window on the screen.
+    fn geometry(&self) -> (u32, u32, u32, u32) {
+        let out = self.x.xdotool(&["getwindowgeometry", "--shell", &self.window]);
+        let get = |key: &str| -> u32 {
+            out.lines()
+                .find_map(|l| l.strip_prefix(key).and_then(|v| v.strip_prefix('=')))
+                .and_then(|v| v.trim().parse::<i64>().ok())
+                .map(|v| v.max(0) as u32)
+                .unwrap_or_else(|| panic!("no {key} in xdotool getwindowgeometry: {out}"))
+        };
+        (get("X"), get("Y"), get("WIDTH"), get("HEIGHT"))
+    }
+
+    fn resize(&self, width: u32, height: u32) -> Result<String, String> {
+        self.x
+            .xdotool_output(&["windowsize", &self.window, &width.to_string(), &height.to_string()])
+    }
+
+    /// What the window shows now (the screen cropped to the window).
+    fn capture(&self) -> RgbImage {
+        let (x, y, w, h) = self.geometry();
+        let screen = self.x.capture_root();
+        assert!(
+            x + w <= screen.width() && y + h <= screen.height(),
+            "window {w}x{h}+{x}+{y} is off the screen"
+        );
+        image::imageops::crop_imm(&screen, x, y, w, h).to_image()
+    }
+
+    /// A capture once the picture has stopped changing (two captures in a row agree), for the
+    /// labs that do not animate.
+    fn settled(&self) -> RgbImage {
+        let mut previous = self.capture();
+        for _ in 0..25 {
+            sleep_ms(100);
+            let current = self.capture();
+            if current == previous {
+                return current;
+            }
+            previous = current;
+        }
+        panic!("{}: the picture never settled", self.name);
+    }
+
+    /// Waits for the first frame: something other than the background (10 s).
+    fn first_frame(&self) -> (RgbImage, Duration) {
+        let mut last = None;
+        let frame = poll(Duration::from_secs(10), || {
+            let image = self.capture();
+            let ok = coverage(&image, background(&image)) > 0.01;
+            last = Some(image.clone());
+            ok.then_some(image)
+        });
+        match frame {
+            Some(image) => (image, self.started.elapsed()),
+            None => {
+                if let Some(image) = last {
+                    let _ = image.save(self.x.dir.join("no_first_frame.png"));
+                }
+                panic!("{}: no picture within 10 s; stderr:\n{}", self.name, self.stderr())
+            }
+        }
+    }
+
+    fn save(&self, image: &RgbImage, name: &str) {
+        let _ = image.save(self.x.dir.join(format!("{name}.png")));
+    }
+
+    /// Waits for the process to end (`timeout`).
+    fn wait_exit(&mut self, timeout: Duration) -> ExitStatus {
+        let child = &mut self.child;
+        let status = poll(timeout, || child.try_wait().ok().flatten());
+        status.unwrap_or_else(|| panic!("{} still runs {timeout:?} later; stderr:\n{}", self.name, self.stderr()))
+    }
+
+    /// Resident memory in kB, from /proc.
+    fn rss_kb(&self) -> u64 {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.pid())).expect("/proc/PID/status");
+        status
+            .lines()
+            .find_map(|l| l.strip_prefix("VmRSS:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+            .expect("VmRSS")
+    }
+
+    /// CPU time used so far (user + system) in clock ticks, from /proc.
+    fn cpu_ticks(&self) -> u64 {
+        let stat = std::fs::read_to_string(format!("/proc/{}/stat", self.pid())).expect("/proc/PID/stat");
+        let fields: Vec<&str> = stat
+            .rsplit_once(')')
+            .map(|(_, rest)| rest)
+            .unwrap_or("")
+            .split_whitespace()
+            .collect();
+        // After "pid (comm)": state is field 0, utime field 11, stime field 12.
+        fields[11].parse::<u64>().unwrap_or(0) + fields[12].parse::<u64>().unwrap_or(0)
+    }
+
+    /// Share of one core used over `ms`.
+    fn cpu_share(&self, ms: u64) -> f64 {
+        let ticks_per_s = 100.0; // USER_HZ on Linux
+        let a = self.cpu_ticks();
+        sleep_ms(ms);
+        let b = self.cpu_ticks();
+        (b - a) as f64 / ticks_per_s / (ms as f64 / 1000.0)
+    }
+
+    /// Esc ends the lab with status 0, quickly and cleanly.
+    fn escape(&mut self) {
+        self.keys(&["Escape"]);
+        let status = self.wait_exit(Duration::from_secs(5));
+        assert!(
+            status.success(),
+            "{} exited with {status} on Esc; stderr:\n{}",
+            self.name,
+            self.stderr()
+        );
+        self.assert_clean();
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Picture statistics
+// ---------------------------------------------------------------------------------------------
+
+/// The clear colour: the top-left pixel, which no object reaches.
+fn background(image: &RgbImage) -> [u8; 3] {
+    image.get_pixel(0, 0).0
+}
+
+fn object_mask(image: &RgbImage) -> Vec<bool> {
+    mask(image, background(image), 2)
+}
+
+/// (width, height, fill) of the object: its bounding box and the share of the box it covers.
+fn shape(image: &RgbImage) -> (f64, f64, f64) {
+    let bg = background(image);
+    let (x0, y0, x1, y1) = bounding_box(image, bg).expect("an object on the screen");
+    let (w, h) = ((x1 - x0 + 1) as f64, (y1 - y0 + 1) as f64);
+    let covered = coverage(image, bg) * (image.width() * image.height()) as f64;
+    (w, h, covered / (w * h))
+}
+
+/// Mean colour of the object's pixels.
+fn object_mean(image: &RgbImage) -> [f64; 3] {
+    mean_color(image, (0, 0, image.width(), image.height()), Some(background(image)))
+}
+
+fn luma([r, g, b]: [f64; 3]) -> f64 {
+    0.299 * r + 0.587 * g + 0.114 * b
+}
+
+/// Pixels at least as bright as `level` (0..255 luma): the size of the highlight.
+fn bright_pixels(image: &RgbImage, level: f64) -> usize {
+    image
+        .pixels()
+        .filter(|p| luma([p[0] as f64, p[1] as f64, p[2] as f64]) >= level)
+        .count()
+}
+
+/// Share of horizontally adjacent object pixels with exactly the same colour: near 0 for smooth
+/// noise, high when the noise turns blocky or flat.
+fn flat_share(image: &RgbImage) -> f64 {
+    let m = object_mask(image);
+    let w = image.width() as usize;
+    let (mut same, mut pairs) = (0usize, 0usize);
+    for (i, p) in image.pixels().enumerate() {
+        if i % w + 1 < w && m[i] && m[i + 1] {
+            pairs += 1;
+            let (x, y) = (((i + 1) % w) as u32, ((i + 1) / w) as u32);
+            same += (image.get_pixel(x, y) == p) as usize;
+        }
+    }
+    same as f64 / pairs.max(1) as f64
+}
+
+// ---------------------------------------------------------------------------------------------
+// The Phong title
+// ---------------------------------------------------------------------------------------------
+
+/// The values the Phong title shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PhongTitle {
+    light: [f64; 3],
+    ka: f64,
+    kd: f64,
+    ks: f64,
+    shininess: f64,
+    diffuse: [f64; 3],
+}
+
+fn parse_phong_title(title: &str) -> PhongTitle {
+    let bad = || -> ! { panic!("cannot read the Phong values in the title `{title}`") };
+    let triple = |key: &str| -> [f64; 3] {
+        let start = title.find(key).unwrap_or_else(|| bad()) + key.len();
+        let rest = &title[start..];
+        let inner = rest.trim_start().strip_prefix('(').unwrap_or_else(|| bad());
+        let inner = &inner[..inner.find(')').unwrap_or_else(|| bad())];
+        let v: Vec<f64> = inner
+            .split(',')
+            .map(|s| s.trim().parse::<f64>().unwrap_or(f64::NAN))
+            .collect();
+        if v.len() != 3 {
+            bad();
+        }
+        [v[0], v[1], v[2]]
+    };
+    let number = |key: &str| -> f64 {
+        let at = title.find(&format!(" {key} ")).unwrap_or_else(|| bad()) + key.len() + 2;
+        title[at..]
+            .split_whitespace()
+            .next()
+            .and_then(|s| s.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    PhongTitle {
+        light: triple("light"),
+        ka: number("Ka"),
+        kd: number("Kd"),
+        ks: number("Ks"),
+        shininess: number("shininess"),
+        diffuse: triple("diffuse"),
+    }
+}
+
+/// The keysym xdotool needs for a character.
+fn keysym(c: char) -> String {
+    match c {
+        '[' => "bracketleft".into(),
+        ']' => "bracketright".into(),
+        '{' => "braceleft".into(),
+        '}' => "braceright".into(),
+        '<' => "less".into(),
+        '>' => "greater".into(),
+        c => c.to_string(),
+    }
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-6
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every lab starts, draws and quits
+// ---------------------------------------------------------------------------------------------
+
+fn starts_draws_and_quits(name: &str, title: &str) {
+    let x = Xvfb::start(&format!("start_{name}"));
+    let mut lab = x.launch(name, &[], &[]);
+    let (frame, after) = lab.first_frame();
+    lab.save(&frame, "first_frame");
+    println!("{name}: first frame after {after:.2?}");
+    assert!(after < Duration::from_secs(8), "{name}: first frame took {after:?}");
+    assert_eq!(
+        frame.dimensions(),
+        (640, 360),
+        "the window is 640x360 as in the original"
+    );
+    assert!(lab.title().starts_with(title), "{name}: title `{}`", lab.title());
+    assert!(
+        lab.title().contains("| teapot |"),
+        "{name} starts on the teapot: `{}`",
+        lab.title()
+    );
+    lab.escape();
+}
+
+#[test]
+fn position_rgb_starts_draws_and_quits_on_esc() {
+    starts_draws_and_quits("position_rgb", "Lab05-1");
+}
+
+#[test]
+fn normal_rgb_starts_draws_and_quits_on_esc() {
+    starts_draws_and_quits("normal_rgb", "Lab05-2");
+}
+
+#[test]
+fn phong_starts_draws_and_quits_on_esc() {
+    starts_draws_and_quits("phong", "Lab05-3");
+}
+
+#[test]
+fn noise_starts_draws_and_quits_on_esc() {
+    starts_draws_and_quits("noise", "Lab05-4");
+}
+
+#[test]
+fn displacement_starts_draws_and_quits_on_esc() {
+    starts_draws_and_quits("displacement", "Lab05-5");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Objects and the mouse
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn keys_1_to_4_change_the_object_and_a_drag_rotates_it() {
+    let x = Xvfb::start("objects_and_drag");
+    let mut lab = x.launch("position_rgb", &[], &[]);
+    lab.first_frame();
+    let mut shapes = Vec::new();
+    for (key, object) in [("1", "cube"), ("2", "sphere"), ("3", "torus"), ("4", "teapot")] {
+        lab.keys(&[key]);
+        lab.wait_title_contains(&format!("| {object} |"));
+        let image = lab.settled();
+        lab.save(&image, object);
+        let (w, h, fill) = shape(&image);
+        println!("{object}: box {w}x{h}, fill {fill:.3}");
+        shapes.push((object, image, w, h, fill));
+    }
+    let get = |name: &str| shapes.iter().find(|s| s.0 == name).expect("shape");
+    // Cube, face on: a filled square.
+    let (_, _, w, h, fill) = get("cube");
+    assert!(
+        (w / h - 1.0).abs() < 0.08 && *fill > 0.95,
+        "cube: box {w}x{h}, fill {fill:.3}: not a filled square"
+    );
+    // Sphere: a disc fills pi/4 of its square box.
+    let (_, _, w, h, fill) = get("sphere");
+    assert!((w / h - 1.0).abs() < 0.08, "sphere: box {w}x{h} is not square");
+    assert!(
+        (fill - std::f64::consts::FRAC_PI_4).abs() < 0.05,
+        "sphere: fill {fill:.3} is not a disc's"
+    );
+    // Torus, seen along its axis: a ring with a hole in the middle.
+    let (_, image, w, h, _) = get("torus");
+    assert!((w / h - 1.0).abs() < 0.08, "torus: box {w}x{h} is not square");
+    let bg = background(image);
+    let (x0, y0, x1, y1) = bounding_box(image, bg).expect("torus");
+    let (cx, cy) = ((x0 + x1) / 2, (y0 + y1) / 2);
+    assert_eq!(image.get_pixel(cx, cy).0, bg, "torus: no hole at the centre");
+    let ring = (x1 - cx) * 2 / 3; // radius 1 of 1.5: the middle of the tube
+    assert_ne!(image.get_pixel(cx + ring, cy).0, bg, "torus: no tube right of the hole");
+    // Teapot: wider than tall.
+    let (_, _, w, h, _) = get("teapot");
+    assert!(w / h > 1.3, "teapot: box {w}x{h} is not wider than tall");
+    // Every object looks different.
+    for (i, a) in shapes.iter().enumerate() {
+        for b in &shapes[i + 1..] {
+            assert!(mse(&a.1, &b.1).unwrap() > 10.0, "{} and {} look the same", a.0, b.0);
+        }
+    }
+
+    // A drag to the right and down turns the teapot (yAngle +2 and xAngle +1 per motion event).
+    let before = lab.settled();
+    let points: Vec<(i32, i32)> = (0..=30).map(|i| (200 + 5 * i, 150 + 2 * i)).collect();
+    lab.drag(&points);
+    sleep_ms(200);
+    let after = lab.settled();
+    lab.save(&after, "teapot_dragged");
+    let db = psnr(&before, &after).unwrap();
+    assert!(
+        db < 25.0,
+        "a drag did not rotate the teapot (PSNR {db:.1} dB against before)"
+    );
+    let (w2, h2, _) = shape(&after);
+    assert!(
+        (w2 - w).abs() > 5.0 || (h2 - h).abs() > 5.0,
+        "the teapot's box did not change: {w}x{h} -> {w2}x{h2}"
+    );
+    // Moving without a button does nothing.
+    let still = lab.settled();
+    lab.x.xdotool(&["mousemove", "100", "100", "mousemove", "400", "300"]);
+    sleep_ms(300);
+    assert_eq!(
+        lab.settled(),
+        still,
+        "moving the mouse without a button rotated the object"
+    );
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Phong keys
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn phong_keys_move_the_light_and_change_the_material() {
+    let x = Xvfb::start("phong_keys");
+    let mut lab = x.launch("phong", &["--object", "sphere"], &[]);
+    lab.first_frame();
+    let start = lab.settled();
+    lab.save(&start, "start");
+    let t0 = parse_phong_title(&lab.title());
+    assert_eq!(t0.light, [0.0, 1.0, 1.0], "default light");
+    assert!(
+        close(t0.ka, 0.1) && close(t0.kd, 1.0) && close(t0.ks, 1.0) && t0.shininess == 32.0,
+        "defaults: {t0:?}"
+    );
+
+    // X: the light moves right, and so does the highlight.
+    let (hx0, _) = highlight(&start, 8.0);
+    lab.key_n("X", 20);
+    let t = parse_phong_title(&lab.wait_title_contains("light (2.0,1.0,1.0)"));
+    assert_eq!(t.light, [2.0, 1.0, 1.0]);
+    let moved = lab.settled();
+    lab.save(&moved, "light_right");
+    let (hx1, _) = highlight(&moved, 8.0);
+    println!("highlight x: {hx0:.1} -> {hx1:.1}");
+    assert!(
+        hx1 > hx0 + 10.0,
+        "X moved the light right but the highlight went from x={hx0:.1} to x={hx1:.1}"
+    );
+    lab.key_n("x", 20);
+    // (20 steps of 0.1 up and down in f32 may leave -0.0000001: compare numbers, not text.)
+    lab.wait_title("light back at x=0", |t| parse_phong_title(t).light[0].abs() < 0.05);
+    let db = psnr(&lab.settled(), &start).unwrap();
+    assert!(db >= 40.0, "x undid X, but the picture differs: {db:.1} dB");
+
+    // [ dims (Kd down), ] brightens again.
+    lab.key_n("bracketleft", 6);
+    let t = parse_phong_title(&lab.wait_title_contains("Kd 0.70"));
+    assert!(close(t.kd, 0.7));
+    let dim = luma(object_mean(&lab.settled()));
+    lab.key_n("bracketright", 4);
+    lab.wait_title_contains("Kd 0.90");
+    let brighter = luma(object_mean(&lab.settled()));
+    println!("object luma: Kd 0.70 {dim:.1}, Kd 0.90 {brighter:.1}");
+    assert!(
+        brighter > dim + 3.0,
+        "] did not brighten: luma {dim:.1} -> {brighter:.1}"
+    );
+    lab.key_n("bracketright", 2);
+    lab.wait_title_contains("Kd 1.00");
+
+    // r lowers the red of the diffuse colour, and of the picture.
+    let red0 = object_mean(&lab.settled())[0];
+    lab.key_n("r", 30);
+    let t = parse_phong_title(&lab.wait_title_contains("diffuse (0.70,0.50,0.00)"));
+    assert_eq!(t.diffuse, [0.7, 0.5, 0.0]);
+    let red1 = object_mean(&lab.settled())[0];
+    println!("object red: {red0:.1} -> {red1:.1}");
+    assert!(red1 < red0 - 10.0, "r did not lower the red: {red0:.1} -> {red1:.1}");
+    lab.key_n("R", 30);
+    lab.wait_title_contains("diffuse (1.00,0.50,0.00)");
+
+    // h widens the highlight (lower shininess), H narrows it.
+    let spot32 = bright_pixels(&lab.settled(), 235.0);
+    lab.key_n("h", 20);
+    lab.wait_title_contains("shininess 12");
+    let spot12 = bright_pixels(&lab.settled(), 235.0);
+    lab.key_n("H", 68);
+    lab.wait_title_contains("shininess 80");
+    let spot80 = bright_pixels(&lab.settled(), 235.0);
+    println!("highlight pixels: shininess 12 {spot12}, 32 {spot32}, 80 {spot80}");
+    assert!(
+        spot12 > spot32 && spot32 > spot80,
+        "highlight size does not follow shininess: 12 {spot12}, 32 {spot32}, 80 {spot80}"
+    );
+    lab.key_n("h", 300);
+    lab.wait_title_contains("shininess 6 ");
+    lab.key_n("H", 300);
+    lab.wait_title_contains("shininess 200 ");
+    lab.key_n("h", 168);
+    lab.wait_title_contains("shininess 32 ");
+
+    // > raises the ambient term (seen in blue, which the orange diffuse colour has none of), < lowers it.
+    let blue = |lab: &App| object_mean(&lab.settled())[2];
+    let blue_ka010 = blue(&lab);
+    lab.key_n("greater", 6);
+    let t = parse_phong_title(&lab.wait_title_contains("Ka 0.40"));
+    assert!(close(t.ka, 0.4));
+    let blue_ka040 = blue(&lab);
+    lab.key_n("less", 12);
+    lab.wait_title_contains("Ka 0.00");
+    let blue_ka000 = blue(&lab);
+    println!("object blue: Ka 0 {blue_ka000:.2}, 0.1 {blue_ka010:.2}, 0.4 {blue_ka040:.2}");
+    assert!(
+        blue_ka040 > blue_ka010 + 3.0 && blue_ka010 > blue_ka000 + 0.5,
+        "ambient does not follow Ka"
+    );
+
+    // { and } on Ks: the specular highlight disappears at Ks 0.
+    lab.key_n("braceleft", 25);
+    lab.wait_title_contains("Ks 0.00");
+    let no_spec = lab.settled();
+    assert!(
+        bright_pixels(&no_spec, 235.0) == 0,
+        "Ks 0 still shows a white highlight"
+    );
+    lab.key_n("braceright", 25);
+    lab.wait_title_contains("Ks 1.00");
+    lab.assert_clean();
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Animation
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn noise_animates_and_displacement_keys_change_the_silhouette() {
+    let x = Xvfb::start("noise_and_displacement");
+    {
+        let mut noise = x.launch("noise", &[], &[]);
+        let (a, _) = noise.first_frame();
+        sleep_ms(500);
+        let b = noise.capture();
+        noise.save(&a, "noise_a");
+        noise.save(&b, "noise_b");
+        let db = psnr(&a, &b).unwrap();
+        assert!(
+            db < 30.0,
+            "noise does not animate: two captures 0.5 s apart are {db:.1} dB apart"
+        );
+        noise.escape();
+    }
+
+    let mut lab = x.launch("displacement", &[], &[]);
+    let (a, _) = lab.first_frame();
+    sleep_ms(500);
+    let b = lab.capture();
+    assert!(psnr(&a, &b).unwrap() < 30.0, "displacement does not animate");
+    assert!(
+        lab.title().contains("displacement 0.50"),
+        "default displacement: {}",
+        lab.title()
+    );
+    // The object's extent over a few frames (noise < 0 is drawn black, like the background).
+    let extent = |lab: &App, tag: &str| -> f64 {
+        let mut area: f64 = 0.0;
+        for i in 0..4 {
+            let image = lab.capture();
+            lab.save(&image, &format!("{tag}_{i}"));
+            let (w, h, _) = shape(&image);
+            area = area.max(w * h);
+            sleep_ms(150);
+        }
+        area
+    };
+    lab.key_n("bracketleft", 60);
+    lab.wait_title_contains("displacement 0.00");
+    let flat = extent(&lab, "displacement_0");
+    lab.key_n("bracketright", 60);
+    lab.wait_title_contains("displacement 0.60");
+    lab.key_n("bracketright", 60);
+    lab.wait_title_contains("displacement 1.00");
+    let full = extent(&lab, "displacement_1");
+    println!("object box area: displacement 0 {flat:.0}, 1 {full:.0}");
+    assert!(
+        full > flat * 1.25,
+        "displacement 1 does not push the silhouette out: {flat:.0} -> {full:.0}"
+    );
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// F12
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn f12_writes_what_the_window_shows() {
+    let x = Xvfb::start("f12");
+    let mut lab = x.launch("phong", &[], &[]);
+    lab.first_frame();
+    let mut seen = 0;
+    let mut check = |lab: &App, tag: &str| {
+        let shown = lab.settled();
+        lab.keys(&["F12"]);
+        seen += 1;
+        let line = poll(Duration::from_secs(10), || {
+            let out = lab.stdout();
+            let lines: Vec<String> = out
+                .lines()
+                .filter(|l| l.starts_with("screenshot: "))
+                .map(str::to_owned)
+                .collect();
+            (lines.len() >= seen).then(|| lines[seen - 1].clone())
+        })
+        .unwrap_or_else(|| {
+            panic!(
+                "F12 printed no `screenshot:` line; stdout:\n{}\nstderr:\n{}",
+                lab.stdout(),
+                lab.stderr()
+            )
+        });
+        let path = PathBuf::from(line.trim_start_matches("screenshot: ").trim());
+        assert!(
+            path.is_absolute(),
+            "the screenshot path is not absolute: {}",
+            path.display()
+        );
+        assert!(
+            path.starts_with(&lab.x.dir),
+            "F12 did not write into the current directory: {}",
+            path.display()
+        );
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        assert!(
+            name.starts_with("phong-") && name.ends_with(&format!("-{seen}.png")),
+            "screenshot name {name}"
+        );
+        let written = image::open(&path).expect("F12 writes a PNG").to_rgb8();
+        lab.save(&shown, &format!("{tag}_window"));
+        assert_eq!(
+            written.dimensions(),
+            shown.dimensions(),
+            "{tag}: F12 image size differs from the window's"
+        );
+        let db = psnr(&written, &shown).unwrap();
+        println!("{tag}: F12 against the window: {db:.1} dB");
+        assert!(db >= 40.0, "{tag}: F12 image differs from the window: {db:.1} dB");
+    };
+    check(&lab, "default");
+    lab.keys(&["2", "X", "X", "X", "Y", "r", "r", "h"]);
+    lab.wait_title_contains("| sphere |");
+    lab.wait_title_contains("shininess 31");
+    check(&lab, "changed");
+    lab.resize(400, 300).expect("resize");
+    poll(Duration::from_secs(5), || (lab.geometry().2 == 400).then_some(())).expect("window resized");
+    check(&lab, "resized");
+    lab.assert_clean();
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Resizing, hiding, covering
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn tiny_zero_hidden_and_covered_windows_keep_rendering_correctly() {
+    let x = Xvfb::start("resize");
+    let mut lab = x.launch("phong", &[], &[]);
+    lab.first_frame();
+    let reference = lab.settled();
+    lab.save(&reference, "reference");
+    let sizes = |lab: &App, w: u32, h: u32| {
+        poll(Duration::from_secs(5), || {
+            let g = lab.geometry();
+            (g.2 == w && g.3 == h).then_some(())
+        })
+        .unwrap_or_else(|| panic!("the window never became {w}x{h}: {:?}", lab.geometry()))
+    };
+
+    // Tiny.
+    lab.resize(50, 1).expect("resize to 50x1");
+    sizes(&lab, 50, 1);
+    sleep_ms(500);
+    lab.assert_alive();
+    let strip = lab.capture();
+    assert_eq!(strip.dimensions(), (50, 1));
+    // Zero height: X has no zero-sized windows (BadValue), and xdotool keeps the old height
+    // for a 0. Record what happens; the lab must go on either way.
+    let _ = lab.resize(200, 0);
+    sleep_ms(500);
+    let (_, _, w, h) = lab.geometry();
+    println!("windowsize 200 0 gave {w}x{h}");
+    assert!(h >= 1, "X made a zero-height window");
+    lab.assert_alive();
+    let _ = lab.resize(1, 0);
+    sleep_ms(300);
+    lab.assert_alive();
+    lab.resize(640, 360).expect("resize back");
+    sizes(&lab, 640, 360);
+    let back = lab.settled();
+    lab.save(&back, "back_to_640x360");
+    let db = psnr(&back, &reference).unwrap();
+    assert!(
+        db >= 40.0,
+        "after resizing back the picture differs from the first one: {db:.1} dB"
+    );
+
+    // Hidden (unmapped, as a window manager does on minimise): no busy drawing, and the right
+    // picture when it comes back.
+    let visible = lab.cpu_share(1500);
+    lab.x.xdotool(&["windowunmap", "--sync", &lab.window]);
+    sleep_ms(300);
+    let hidden = lab.cpu_share(1500);
+    lab.x.xdotool(&["windowmap", "--sync", &lab.window]);
+    let shown = lab.settled();
+    println!("CPU: visible {visible:.2} core, unmapped {hidden:.2} core");
+    assert!(hidden < 0.3, "an unmapped window still uses {hidden:.2} of a core");
+    let db = psnr(&shown, &reference).unwrap();
+    assert!(
+        db >= 40.0,
+        "after unmapping and mapping again the picture differs: {db:.1} dB"
+    );
+
+    // Covered by another window: drawing pauses (WindowEvent::Occluded) and resumes after.
+    {
+        let cover = lab.x.launch("position_rgb", &[], &[]);
+        cover.first_frame();
+        sleep_ms(300);
+        let covered = lab.cpu_share(1500);
+        println!("CPU: fully covered {covered:.2} core");
+        assert!(
+            covered < 0.3,
+            "a fully covered window still uses {covered:.2} of a core"
+        );
+    }
+    lab.assert_alive();
+    let uncovered = lab.settled();
+    let db = psnr(&uncovered, &reference).unwrap();
+    assert!(db >= 40.0, "after being uncovered the picture differs: {db:.1} dB");
+    lab.keys(&["X"]);
+    lab.wait_title_contains("light (0.1,");
+    lab.assert_clean();
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reliability
+// ---------------------------------------------------------------------------------------------
+
+/// "An hour of animation in a minute": the noise clock at 60x for ~24 s (24 minutes of lab
+/// time). Memory must stay flat and the noise must keep its look.
+#[test]
+fn noise_runs_at_60x_clock_with_flat_memory_and_steady_noise() {
+    let x = Xvfb::start("long_run");
+    let mut lab = x.launch("noise", &["--object", "sphere"], &[("SHADERLAB_CLOCK_SCALE", "60")]);
+    lab.first_frame();
+    sleep_ms(2500);
+    let early = lab.capture();
+    lab.save(&early, "early");
+    let (_, var_early) = luma_stats(&early, &object_mask(&early));
+    let flat_early = flat_share(&early);
+    let mut rss = Vec::new();
+    let run = Instant::now();
+    while run.elapsed() < Duration::from_secs(21) {
+        lab.assert_alive();
+        rss.push(lab.rss_kb());
+        sleep_ms(3000);
+    }
+    lab.assert_alive();
+    let late = lab.capture();
+    lab.save(&late, "late");
+    let (_, var_late) = luma_stats(&late, &object_mask(&late));
+    let flat_late = flat_share(&late);
+    let cov = (coverage(&early, [0; 3]), coverage(&late, [0; 3]));
+    println!("RSS samples (kB): {rss:?}");
+    println!("luma variance {var_early:.4} -> {var_late:.4}; equal neighbours {flat_early:.3} -> {flat_late:.3}; coverage {cov:?}");
+    let growth = rss.iter().max().unwrap() - rss[0];
+    assert!(growth < 20 * 1024, "memory grew by {} kB over the run: {rss:?}", growth);
+    assert!(
+        var_late > var_early * 0.4 && var_late < var_early * 2.5,
+        "the noise changed character: variance {var_early:.4} -> {var_late:.4}"
+    );
+    assert!(
+        flat_late < flat_early + 0.15,
+        "the noise turned blocky: equal neighbours {flat_early:.3} -> {flat_late:.3}"
+    );
+    assert!((cov.0 - cov.1).abs() < 0.05, "the object's coverage changed: {cov:?}");
+    // The clock really runs at 60x: a key refreshes the title, which shows the time. (The
+    // time uniform may wrap by the noise's period, 144.5 s: compare modulo that.)
+    let lab_time = |lab: &App, key: &str, shade: &str| -> (Instant, f64) {
+        lab.keys(&[key]);
+        let title = lab.wait_title_contains(&format!("shade ({shade},"));
+        let seen = Instant::now();
+        let time: f64 = title
+            .rsplit_once("time ")
+            .and_then(|(_, t)| t.split_whitespace().next())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("no time in the title `{title}`"));
+        assert!(time.is_finite(), "time is not finite: {title}");
+        (seen, time)
+    };
+    let (wall0, time0) = lab_time(&lab, "r", "0.95");
+    sleep_ms(1500);
+    let (wall1, time1) = lab_time(&lab, "R", "1.00");
+    let rate = (time1 - time0).rem_euclid(144.5) / (wall1 - wall0).as_secs_f64();
+    println!("lab time {time0:.1} -> {time1:.1}: {rate:.1} lab seconds per second");
+    assert!(
+        (45.0..=75.0).contains(&rate),
+        "SHADERLAB_CLOCK_SCALE=60 runs the clock at {rate:.1}x"
+    );
+    lab.assert_clean();
+    lab.escape();
+}
+
+/// A deterministic mix of the Phong keys.
+fn phong_storm(n: usize) -> Vec<char> {
+    let keys: Vec<char> = "XxYyZz[]{}<>HhRrGgBbWASDwasd".chars().collect();
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    (0..n)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            keys[(state >> 33) as usize % keys.len()]
+        })
+        .collect()
+}
+
+#[test]
+fn input_storm_keeps_values_in_range_and_the_window_responsive() {
+    let x = Xvfb::start("storm");
+    let mut lab = x.launch("phong", &[], &[]);
+    lab.first_frame();
+    // 1400 random keys, then runs that hit the bounds.
+    let mut storm = phong_storm(1400);
+    storm.extend(std::iter::repeat_n('H', 250));
+    storm.extend(std::iter::repeat_n('>', 30));
+    storm.extend(std::iter::repeat_n('X', 170));
+    storm.extend(std::iter::repeat_n('{', 30));
+    storm.extend(std::iter::repeat_n('r', 120));
+    assert_eq!(storm.len(), 2000);
+    // What the lab must end with: the same keys through the effect's own handler.
+    let mut expected = PhongUniforms::default();
+    let mut scene = Scene {
+        object: Object::Teapot,
+        angles: Default::default(),
+        camera: Phong::CAMERA,
+        time: 0.0,
+        motion: (0, 0),
+    };
+    for &c in &storm {
+        Phong::key(c, &mut expected, &mut scene);
+    }
+    let expected_summary = Phong::summary(&expected);
+
+    let names: Vec<String> = storm.iter().map(|&c| keysym(c)).collect();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    let sent = Instant::now();
+    lab.keys_with_delay(&names, 0);
+    println!("2000 keys sent in {:.2?}", sent.elapsed());
+    // A long drag: 1500 motion events in circles.
+    let points: Vec<(i32, i32)> = (0..1500)
+        .map(|i| {
+            let a = i as f64 * 0.05;
+            ((320.0 + 150.0 * a.cos()) as i32, (180.0 + 100.0 * a.sin()) as i32)
+        })
+        .collect();
+    lab.drag(&points);
+    println!("keys and drag sent in {:.2?}", sent.elapsed());
+
+    let mut last = String::new();
+    let done = poll(Duration::from_secs(20), || {
+        last = lab.title();
+        last.contains(&format!("| {expected_summary}")).then_some(())
+    });
+    println!("title after the storm: {last}");
+    let t = parse_phong_title(&last);
+    let in01 = |v: f64| (0.0..=1.0).contains(&v);
+    assert!(
+        !last.contains("NaN") && !last.contains("inf"),
+        "a value is not finite: {last}"
+    );
+    assert!(
+        in01(t.ka) && in01(t.kd) && in01(t.ks),
+        "a coefficient is out of [0,1]: {t:?}"
+    );
+    assert!(
+        t.diffuse.iter().all(|&v| in01(v)),
+        "the diffuse colour is out of [0,1]: {t:?}"
+    );
+    assert!((6.0..=200.0).contains(&t.shininess), "shininess out of [6,200]: {t:?}");
+    assert!(
+        t.light.iter().all(|&v| (-50.0..=50.0).contains(&v)),
+        "the light left [-50,50]: {t:?}"
+    );
+    assert!(
+        done.is_some(),
+        "the lab did not end in the state the 2000 keys lead to\n  expected: …{expected_summary}\n  title:    {last}"
+    );
+    assert_eq!(t.shininess, 200.0, "250 H end at the bound 200");
+
+    // Still responsive: one more key changes the title within a second.
+    lab.assert_alive();
+    let before = lab.title();
+    lab.keys(&["h"]);
+    let answered = poll(Duration::from_secs(1), || (lab.title() != before).then_some(()));
+    assert!(answered.is_some(), "the window no longer answers keys");
+    assert!(
+        lab.title().contains("shininess 199 "),
+        "h after the storm: {}",
+        lab.title()
+    );
+    let image = lab.settled();
+    lab.save(&image, "after_storm");
+    assert!(
+        coverage(&image, background(&image)) > 0.01,
+        "nothing drawn after the storm"
+    );
+    lab.assert_clean();
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Failures in a window
+// ---------------------------------------------------------------------------------------------
+
+/// Runs an example on the display and returns its exit status and stderr (it must end by itself).
+fn run_to_end(x: &Xvfb, name: &str, args: &[&str], env: &[(&str, &str)]) -> (ExitStatus, String) {
+    let mut command = x.command(example(name).to_str().unwrap());
+    command
+        .args(args)
+        .current_dir(&x.dir)
+        .env("XDG_RUNTIME_DIR", x.dir.join("xdg"))
+        .stdin(Stdio::null());
+    let _ = std::fs::create_dir_all(x.dir.join("xdg"));
+    for (k, v) in env {
+        command.env(k, v);
+    }
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let stdout = collect(child.stdout.take().unwrap());
+    let stderr = collect(child.stderr.take().unwrap());
+    struct Kill(Child);
+    impl Drop for Kill {
+        fn drop(&mut self) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+    let mut child = Kill(child);
+    let status = poll(Duration::from_secs(20), || child.0.try_wait().ok().flatten())
+        .unwrap_or_else(|| panic!("{name} {args:?} did not end within 20 s"));
+    sleep_ms(100); // let the reader threads finish
+    let text = format!("{}{}", stdout.lock().unwrap(), stderr.lock().unwrap());
+    for bad in ["panicked", "RUST_BACKTRACE"] {
+        assert!(!text.contains(bad), "{name} {args:?} printed `{bad}`:\n{text}");
+    }
+    (status, text)
+}
+
+#[test]
+fn window_mode_failures_are_one_clear_message() {
+    let x = Xvfb::start("window_failures");
+    // A broken shader: the diagnostic with file:line:column, exit 1, no window left open.
+    let shaders = x.dir.join("shaders");
+    std::fs::create_dir_all(&shaders).unwrap();
+    for entry in std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl")).unwrap() {
+        let entry = entry.unwrap();
+        std::fs::copy(entry.path(), shaders.join(entry.file_name())).unwrap();
+    }
+    let frag = shaders.join("phong.frag");
+    let text = std::fs::read_to_string(&frag).unwrap();
+    std::fs::write(&frag, text.replacen("void main", "void main oops", 1)).unwrap();
+    let (status, out) = run_to_end(&x, "phong", &["--shaders", shaders.to_str().unwrap()], &[]);
+    println!("broken shader:\n{out}");
+    assert_eq!(status.code(), Some(1), "broken shader: {out}");
+    assert!(
+        out.contains("phong.frag:") && out.contains("oops"),
+        "broken shader message: {out}"
+    );
+
+    // No adapter (lavapipe hidden): the install hint, exit 1.
+    let (status, out) = run_to_end(
+        &x,
+        "phong",
+        &[],
+        &[("VK_ICD_FILENAMES", "/nonexistent"), ("WGPU_BACKEND", "vulkan")],
+    );
+    println!("no adapter:\n{out}");
+    assert_eq!(status.code(), Some(1), "no adapter: {out}");
+    assert!(
+        out.contains("no GPU adapter found") && out.contains("mesa-vulkan-drivers"),
+        "no adapter message: {out}"
+    );
+
+    // A lost device (test hook): a clear message and exit 1, not a panic or a hang.
+    let (status, out) = run_to_end(&x, "noise", &[], &[("SHADERLAB_TEST_LOSE_DEVICE", "1")]);
+    println!("device lost:\n{out}");
+    assert_eq!(status.code(), Some(1), "device lost: {out}");
+    assert!(out.contains("the GPU device was lost"), "device lost message: {out}");
+}
