@@ -8,45 +8,12 @@
 //! Run alone with `cargo test --release --test bad_input`. The examples are built first (one
 //! nested `cargo build --examples` per test binary).
 
+mod common;
+
+use common::example;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::OnceLock;
 
-/// `target/<profile>/examples/NAME`, built once per test binary with the test's own profile.
-fn example(name: &str) -> PathBuf {
-    static BUILT: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    let dir = BUILT.get_or_init(|| {
-        let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-        let profile_dir = exe
-            .parent()
-            .and_then(Path::parent)
-            .ok_or_else(|| format!("cannot find the target directory from {}", exe.display()))?;
-        if let Some(cargo) = std::env::var_os("CARGO") {
-            let mut build = Command::new(cargo);
-            build
-                .current_dir(env!("CARGO_MANIFEST_DIR"))
-                .args(["build", "--examples", "--quiet"]);
-            if profile_dir.file_name().is_some_and(|n| n == "release") {
-                build.arg("--release");
-            }
-            let status = build.status().map_err(|e| format!("cannot run cargo: {e}"))?;
-            if !status.success() {
-                return Err(format!("`cargo build --examples` failed ({status})"));
-            }
-        }
-        Ok(profile_dir.join("examples"))
-    });
-    let path = match dir {
-        Ok(dir) => dir.join(name),
-        Err(e) => panic!("cannot build the examples: {e}"),
-    };
-    assert!(
-        path.is_file(),
-        "{} is missing: run `cargo build --release --examples`",
-        path.display()
-    );
-    path
-}
 
 /// A fresh directory for one test: `target/tmp/bad_input/<test>/`.
 fn test_dir(test: &str) -> PathBuf {
@@ -276,4 +243,39 @@ fn help_and_version_exit_zero() {
         "{}",
         run.stdout
     );
+}
+
+#[test]
+fn port_options_reject_bad_values() {
+    expect_failure(
+        "shading_unknown",
+        &["--shading", "toon"],
+        &[],
+        2,
+        &["unknown shading `toon`; valid: flat, gouraud, phong, blinn"],
+    );
+    expect_failure("tess_too_small", &["--tess", "2"], &[], 2, &["expected `auto` or a level from 3 to 512"]);
+    let dir = test_dir("port_options_elsewhere");
+    let run = run_in(&dir, "position_rgb", &["--shading", "flat", "--screenshot", "x.png"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stderr.contains("--shading applies to phong"), "{}", run.stderr);
+    let run = run_in(&dir, "displacement", &["--set", "smooth=2", "--screenshot", "x.png"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stderr.contains("`smooth` takes 0 or 1"), "{}", run.stderr);
+    assert!(!dir.join("x.png").exists());
+}
+
+#[test]
+fn port_options_work_from_the_command_line() {
+    let dir = test_dir("port_options_ok");
+    let run = run_in(
+        &dir,
+        "phong",
+        &["--object", "torus", "--shading", "gouraud", "--tess", "auto", "--screenshot", "g.png"],
+        &[],
+    );
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let run = run_in(&dir, "displacement", &["--object", "cube", "--set", "smooth=1", "--screenshot", "s.png"], &[]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(dir.join("g.png").is_file() && dir.join("s.png").is_file());
 }

@@ -15,7 +15,7 @@ use std::collections::HashSet;
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdout, Command, ExitStatus, Stdio};
-use std::sync::{mpsc, Arc, Mutex, OnceLock};
+use std::sync::{mpsc, Arc, Mutex};
 use std::thread;
 use std::time::{Duration, Instant};
 
@@ -24,6 +24,10 @@ use shaderlab::effects::phong::PhongUniforms;
 use shaderlab::effects::Phong;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
 use shaderlab::{Effect, Object, Scene};
+
+mod common;
+
+use common::example;
 
 const INSTALL: &str = "apt-get install -y xvfb xdotool imagemagick";
 
@@ -49,42 +53,6 @@ fn require_tools() {
     );
 }
 
-/// `target/<profile>/examples/NAME`, built once per test binary with the test's own profile.
-fn example(name: &str) -> PathBuf {
-    static BUILT: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    let dir = BUILT.get_or_init(|| {
-        // target/<profile>/deps/e2e_window-HASH -> target/<profile>/examples
-        let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-        let profile_dir = exe
-            .parent()
-            .and_then(Path::parent)
-            .ok_or_else(|| format!("cannot find the target directory from {}", exe.display()))?;
-        if let Some(cargo) = std::env::var_os("CARGO") {
-            let mut build = Command::new(cargo);
-            build
-                .current_dir(env!("CARGO_MANIFEST_DIR"))
-                .args(["build", "--examples", "--quiet"]);
-            if profile_dir.file_name().is_some_and(|n| n == "release") {
-                build.arg("--release");
-            }
-            let status = build.status().map_err(|e| format!("cannot run cargo: {e}"))?;
-            if !status.success() {
-                return Err(format!("`cargo build --examples` failed ({status})"));
-            }
-        }
-        Ok(profile_dir.join("examples"))
-    });
-    let path = match dir {
-        Ok(dir) => dir.join(name),
-        Err(e) => panic!("cannot build the examples: {e}"),
-    };
-    assert!(
-        path.is_file(),
-        "{} is missing: run `cargo build --release --examples`",
-        path.display()
-    );
-    path
-}
 
 /// A fresh directory for one test's files: `target/tmp/e2e/<test>/`.
 fn test_dir(test: &str) -> PathBuf {
@@ -1373,4 +1341,67 @@ fn window_mode_failures_are_one_clear_message() {
     println!("device lost:\n{out}");
     assert_eq!(status.code(), Some(1), "device lost: {out}");
     assert!(out.contains("the GPU device was lost"), "device lost message: {out}");
+}
+
+/// Live reload (the shader toolchain's promise): in a window, saving a shader under `--shaders`
+/// recompiles it within about a second; a broken save keeps the last good pipeline running and
+/// puts SHADER ERROR in the title, with `file:line:column` on stderr; fixing it recovers.
+#[test]
+fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
+    let x = Xvfb::start("live_reload");
+    let shaders = x.dir.join("shaders");
+    std::fs::create_dir_all(&shaders).expect("shader dir");
+    for name in shaderlab::shader::embedded_names() {
+        std::fs::write(shaders.join(name), shaderlab::shader::embedded_source(name).expect("embedded")).expect("copy");
+    }
+    let frag = shaders.join("phong.frag");
+    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let lab = x.launch("phong", &["--shaders", shaders.to_str().expect("utf-8 path"), "--object", "sphere"], &[]);
+    lab.first_frame();
+    let before = lab.settled();
+    let green = |image: &RgbImage| {
+        let m = object_mean(image);
+        m[1] > 240.0 && m[0] < 10.0 && m[2] < 10.0
+    };
+    assert!(!green(&before));
+
+    // 1. A good edit shows up within about a second.
+    let output = "frag_color = clamp(Ka * Iamb + Kd * Idiff + Ks * Ispec, 0.0, 1.0);";
+    assert!(original.contains(output), "phong.frag changed: update this test");
+    std::fs::write(&frag, original.replace(output, "frag_color = vec4(0.0, 1.0, 0.0, 1.0);")).expect("edit");
+    let edited = Instant::now();
+    let shown = poll(Duration::from_secs(5), || {
+        let image = lab.capture();
+        green(&image).then_some(image)
+    })
+    .unwrap_or_else(|| panic!("the edit never showed; stderr:\n{}", lab.stderr()));
+    let latency = edited.elapsed();
+    println!("live reload: the edit showed after {latency:?}");
+    assert!(latency < Duration::from_millis(1500), "reload took {latency:?}");
+    lab.save(&shown, "green");
+
+    // 2. A broken save: error with the file and line, title flag, last good pipeline kept.
+    let line = original.lines().position(|l| l.contains("void main")).expect("main") + 2;
+    std::fs::write(&frag, original.replace("void main() {", "void main() {\n    oops = 1.0;")).expect("break");
+    let title = lab.wait_title_contains("SHADER ERROR");
+    assert!(title.starts_with("Lab05-3"), "{title}");
+    let needle = format!("phong.frag:{line}:");
+    poll(Duration::from_secs(5), || lab.stderr().contains(&needle).then_some(()))
+        .unwrap_or_else(|| panic!("no `{needle}` on stderr:\n{}", lab.stderr()));
+    sleep_ms(300);
+    assert!(green(&lab.capture()), "the last good pipeline must keep running");
+
+    // 3. Fixed: the original picture and a clean title come back.
+    std::fs::write(&frag, &original).expect("fix");
+    lab.wait_title(
+        "a title without SHADER ERROR",
+        |t| !t.contains("SHADER ERROR") && t.starts_with("Lab05-3"),
+    );
+    let after = poll(Duration::from_secs(5), || {
+        let image = lab.capture();
+        (!green(&image)).then_some(image)
+    })
+    .expect("the original shader must come back");
+    let p = psnr(&before, &after).expect("same size");
+    assert!(p > 40.0, "after the fix the picture is the original again: {p:.1} dB");
 }

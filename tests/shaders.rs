@@ -9,9 +9,10 @@
 
 mod common;
 
+use common::example;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::OnceLock;
 
 use common::{gpu, output_dir};
 use glam::Vec3;
@@ -152,42 +153,6 @@ fn assert_shader_error(err: Error, file: &Path, line: u32, column: u32) -> Strin
     }
 }
 
-/// The example binaries, built once per test run (cargo test --test shaders does not build them).
-fn example(name: &str) -> PathBuf {
-    static BUILT: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    let dir = BUILT.get_or_init(|| {
-        // current_exe is TARGET/PROFILE/deps/shaders-HASH; examples live in TARGET/PROFILE/examples.
-        let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-        let profile_dir = exe
-            .parent()
-            .and_then(Path::parent)
-            .ok_or("odd test executable path")?
-            .to_path_buf();
-        let target_dir = profile_dir.parent().ok_or("odd test executable path")?;
-        let mut cargo = Command::new(env!("CARGO"));
-        cargo
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .arg("build")
-            .arg("--examples")
-            .arg("--target-dir")
-            .arg(target_dir);
-        if profile_dir.file_name().is_some_and(|n| n == "release") {
-            cargo.arg("--release");
-        }
-        let out = cargo.output().map_err(|e| format!("cannot run cargo: {e}"))?;
-        if !out.status.success() {
-            return Err(format!(
-                "cargo build --examples failed:\n{}",
-                String::from_utf8_lossy(&out.stderr)
-            ));
-        }
-        Ok(profile_dir.join("examples"))
-    });
-    let dir = dir.as_ref().unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
-    assert!(path.is_file(), "example binary {} missing", path.display());
-    path
-}
 
 fn run_example(name: &str, args: &[&str]) -> Output {
     let mut cmd = Command::new(example(name));

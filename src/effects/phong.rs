@@ -136,7 +136,8 @@ impl Effect for Phong {
     }
 
     fn summary(u: &PhongUniforms) -> String {
-        let [lx, ly, lz] = u.light_position;
+        // Keys step in f32, so +0.1 then -0.1 can leave -0.00000001: show it as 0.0, not -0.0.
+        let [lx, ly, lz] = u.light_position.map(|c| if c.abs() < 0.05 { 0.0 } else { c });
         let [r, g, b] = u.diffuse_color;
         format!(
             "light ({lx:.1},{ly:.1},{lz:.1}) Ka {:.2} Kd {:.2} Ks {:.2} shininess {:.0} diffuse ({r:.2},{g:.2},{b:.2})",

@@ -2,7 +2,8 @@
 //! state, and reference images.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::Command;
 use std::sync::OnceLock;
 
 use glam::Vec3;
@@ -66,4 +67,43 @@ pub fn output_dir() -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/test-output");
     let _ = std::fs::create_dir_all(&dir);
     dir
+}
+
+/// `target/<profile>/examples/NAME`, built once per test binary with the test's own profile
+/// (`cargo test --test X` alone does not build the examples, so a nested build makes sure they
+/// are there and never stale; cargo releases its build lock while tests run).
+pub fn example(name: &str) -> PathBuf {
+    static BUILT: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    let dir = BUILT.get_or_init(|| {
+        // target/<profile>/deps/e2e_window-HASH -> target/<profile>/examples
+        let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+        let profile_dir = exe
+            .parent()
+            .and_then(Path::parent)
+            .ok_or_else(|| format!("cannot find the target directory from {}", exe.display()))?;
+        if let Some(cargo) = std::env::var_os("CARGO") {
+            let mut build = Command::new(cargo);
+            build
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .args(["build", "--examples", "--quiet"]);
+            if profile_dir.file_name().is_some_and(|n| n == "release") {
+                build.arg("--release");
+            }
+            let status = build.status().map_err(|e| format!("cannot run cargo: {e}"))?;
+            if !status.success() {
+                return Err(format!("`cargo build --examples` failed ({status})"));
+            }
+        }
+        Ok(profile_dir.join("examples"))
+    });
+    let path = match dir {
+        Ok(dir) => dir.join(name),
+        Err(e) => panic!("cannot build the examples: {e}"),
+    };
+    assert!(
+        path.is_file(),
+        "{} is missing: run `cargo build --release --examples`",
+        path.display()
+    );
+    path
 }
