@@ -90,8 +90,8 @@ fn main() -> anyhow::Result<()> {
                 lab.options.tess = Tess::Level(level);
                 let timing = shaderlab::cli::bench(&gpu, &mut lab, args.frames, W, H)?;
                 let image = to_rgb(&lab.screenshot(&gpu, W, H)?);
-                let err = image_error(exact_img, &image);
-                let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H);
+                let err = image_error(exact_img, &image)?;
+                let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H)?;
                 let triangles = shaderlab::tess::mesh(object, level).triangle_count();
                 let ms = timing.gpu_ms.unwrap_or(timing.ms_per_frame);
                 done += 1;

@@ -48,7 +48,8 @@ pub struct LabArgs {
     pub shading: Option<Shading>,
     /// Tessellation of sphere, torus and teapot: a level (slices = stacks, sides = rings, teapot
     /// grid; 3 to 512) or `auto` (smallest level with silhouette error under half a pixel).
-    /// Default: GLUT's (24, 24, teapot 8), as the original.
+    /// Default: GLUT's (24, 24, teapot 8), as the original; `auto` with a port-only mode
+    /// (`--shading` other than phong, `--set smooth=1`).
     #[arg(long, value_name = "N|auto", value_parser = parse_tess)]
     pub tess: Option<Tess>,
 }
@@ -145,12 +146,20 @@ impl LabArgs {
             }
             lab.options.shading = shading;
         }
-        if let Some(tess) = self.tess {
-            lab.options.tess = tess;
-        }
         for (name, values) in &self.set {
             lab.set(name, values)?;
         }
+        // GLUT's meshes by default, as the original; once a port-only mode is asked for (another
+        // shading model, welded normals) faithfulness is not the point, and the default becomes
+        // the smallest tessellation that keeps the silhouette within half a pixel.
+        let faithful = lab.options.shading == Shading::Phong && !lab.options.smooth;
+        lab.options.tess = match self.tess {
+            Some(tess) => tess,
+            None if faithful => Tess::Glut,
+            None => Tess::Auto {
+                budget_px: crate::tess::DEFAULT_BUDGET_PX,
+            },
+        };
         Ok(())
     }
 }

@@ -221,11 +221,20 @@ pub struct SilhouetteError {
 /// quarter pixel and more (at most 1/16 pixel right at the curve). Features thinner than an
 /// eighth of a pixel that fall between samples are not seen.
 ///
-/// # Panics
-/// If `rendered_mask.len() != width * height`.
-pub fn silhouette_error(exact: &ExactScene, rendered_mask: &[bool], width: u32, height: u32) -> SilhouetteError {
+/// A mask that is not `width * height` long is an [`Error::Param`](crate::Error::Param).
+pub fn silhouette_error(
+    exact: &ExactScene,
+    rendered_mask: &[bool],
+    width: u32,
+    height: u32,
+) -> crate::Result<SilhouetteError> {
     let (w, h) = (width as usize, height as usize);
-    assert_eq!(rendered_mask.len(), w * h, "the mask must have width * height entries");
+    if rendered_mask.len() != w * h {
+        return Err(crate::Error::Param(format!(
+            "the mask has {} entries, not {width} x {height}",
+            rendered_mask.len()
+        )));
+    }
     let tracer = Tracer::new(exact, width, height);
 
     // Exact coverage at the pixel centres and one ring around: grid (gi, gj) is the centre of
@@ -244,11 +253,11 @@ pub fn silhouette_error(exact: &ExactScene, rendered_mask: &[bool], width: u32, 
         .filter(|&(x, y)| exact_at(x, y) != rendered_mask[y * w + x])
         .collect();
     if differing.is_empty() {
-        return SilhouetteError {
+        return Ok(SilhouetteError {
             max_px: 0.0,
             mean_px: 0.0,
             differing: 0,
-        };
+        });
     }
 
     // Cells of the centre lattice whose corners disagree hold the silhouette.
@@ -265,11 +274,11 @@ pub fn silhouette_error(exact: &ExactScene, rendered_mask: &[bool], width: u32, 
     })
     .concat();
     if points.is_empty() {
-        return SilhouetteError {
+        return Ok(SilhouetteError {
             max_px: f64::INFINITY,
             mean_px: f64::INFINITY,
             differing: differing.len(),
-        };
+        });
     }
     kd_build(&mut points, 0);
 
@@ -282,11 +291,11 @@ pub fn silhouette_error(exact: &ExactScene, rendered_mask: &[bool], width: u32, 
     });
     let max_px = distances.iter().copied().fold(0.0, f64::max);
     let mean_px = distances.iter().sum::<f64>() / distances.len() as f64;
-    SilhouetteError {
+    Ok(SilhouetteError {
         max_px,
         mean_px,
         differing: differing.len(),
-    }
+    })
 }
 
 /// Sub-samples per pixel, per axis, when locating the silhouette.
@@ -384,17 +393,21 @@ pub struct ImageError {
 
 /// Accuracy of `rendered` against `exact`: RMSE (0..255 units over RGB), the maximum per-pixel
 /// error (max over channels) and PSNR, as [`crate::metrics`] computes them.
-///
-/// # Panics
-/// If the images differ in size.
-pub fn image_error(exact: &RgbImage, rendered: &RgbImage) -> ImageError {
-    assert_eq!(exact.dimensions(), rendered.dimensions(), "images of different sizes");
-    let mse = crate::metrics::mse(exact, rendered).expect("same size");
-    ImageError {
+/// Images of different sizes are an [`Error::Param`](crate::Error::Param).
+pub fn image_error(exact: &RgbImage, rendered: &RgbImage) -> crate::Result<ImageError> {
+    let size_error = || {
+        crate::Error::Param(format!(
+            "cannot compare a {:?} image with a {:?} one",
+            exact.dimensions(),
+            rendered.dimensions()
+        ))
+    };
+    let mse = crate::metrics::mse(exact, rendered).ok_or_else(size_error)?;
+    Ok(ImageError {
         rmse: mse.sqrt(),
-        max: crate::metrics::max_abs_diff(exact, rendered).expect("same size"),
-        psnr: crate::metrics::psnr(exact, rendered).expect("same size"),
-    }
+        max: crate::metrics::max_abs_diff(exact, rendered).ok_or_else(size_error)?,
+        psnr: crate::metrics::psnr(exact, rendered).ok_or_else(size_error)?,
+    })
 }
 
 /// The exact silhouette radius in pixels of a sphere of radius `radius` whose centre lies on
@@ -1060,7 +1073,7 @@ mod tests {
     fn silhouette_error_of_exact_and_dilated_masks() {
         for scene in [ExactScene::default(), torus()] {
             let exact = scene.coverage_mask(W, H);
-            let zero = silhouette_error(&scene, &exact, W, H);
+            let zero = silhouette_error(&scene, &exact, W, H).expect("sizes match");
             assert_eq!(
                 zero,
                 SilhouetteError {
@@ -1080,7 +1093,7 @@ mod tests {
                 })
                 .collect();
             let added = count(&dilated) - count(&exact);
-            let e = silhouette_error(&scene, &dilated, W, H);
+            let e = silhouette_error(&scene, &dilated, W, H).expect("sizes match");
             assert_eq!(e.differing, added);
             assert!(e.max_px <= 1.0 + 1e-3 && e.max_px > 0.8, "{e:?}");
             assert!(e.mean_px > 0.3 && e.mean_px < 0.7, "{e:?}");
@@ -1092,7 +1105,7 @@ mod tests {
                     at(x, y) && at(x - 1, y) && at(x + 1, y) && at(x, y - 1) && at(x, y + 1)
                 })
                 .collect();
-            let e = silhouette_error(&scene, &eroded, W, H);
+            let e = silhouette_error(&scene, &eroded, W, H).expect("sizes match");
             assert_eq!(e.differing, count(&exact) - count(&eroded));
             assert!(e.max_px <= 1.0 + 1e-3 && e.mean_px > 0.3 && e.mean_px < 0.7, "{e:?}");
         }
@@ -1106,11 +1119,11 @@ mod tests {
         let shifted: Vec<bool> = (0..(W * H) as usize)
             .map(|k| k % W as usize >= 10 && exact[k - 10])
             .collect();
-        let e = silhouette_error(&scene, &shifted, W, H);
+        let e = silhouette_error(&scene, &shifted, W, H).expect("sizes match");
         assert!(e.max_px > 9.0 && e.max_px <= 10.01, "{e:?}");
         // An empty mask: the deepest pixel is the centre, one radius in.
         let empty = vec![false; (W * H) as usize];
-        let e = silhouette_error(&scene, &empty, W, H);
+        let e = silhouette_error(&scene, &empty, W, H).expect("sizes match");
         assert_eq!(e.differing, count(&exact));
         let r = projected_sphere_radius_px(1.0, 5.0, H);
         assert!((e.max_px - r).abs() < 1.0, "{e:?} vs {r}");
@@ -1119,13 +1132,13 @@ mod tests {
     #[test]
     fn image_error_measures() {
         let image = ExactScene::default().render(64, 36);
-        let same = image_error(&image, &image);
+        let same = image_error(&image, &image).expect("sizes match");
         assert_eq!(same.rmse, 0.0);
         assert_eq!(same.max, 0);
         assert!(same.psnr.is_infinite() && same.psnr > 0.0);
         let mut other = image.clone();
         other.get_pixel_mut(3, 4)[1] = other.get_pixel(3, 4)[1].wrapping_add(30);
-        let e = image_error(&image, &other);
+        let e = image_error(&image, &other).expect("sizes match");
         assert_eq!(e.max, 30);
         let rmse = (900.0f64 / (64.0 * 36.0 * 3.0)).sqrt();
         assert!((e.rmse - rmse).abs() < 1e-12);
@@ -1166,7 +1179,7 @@ mod tests {
                 shape,
                 ..ExactScene::default()
             };
-            let phong = image_error(&scene.render(W, H), &original);
+            let phong = image_error(&scene.render(W, H), &original).expect("sizes match");
             let blinn = image_error(
                 &ExactScene {
                     specular: Specular::Blinn,
@@ -1174,7 +1187,8 @@ mod tests {
                 }
                 .render(W, H),
                 &original,
-            );
+            )
+            .expect("sizes match");
             assert!(phong.psnr >= min_psnr, "{name}: {phong:?}");
             assert!(
                 blinn.psnr < phong.psnr - 5.0,
@@ -1183,7 +1197,7 @@ mod tests {
             let background = *original.get_pixel(0, 0);
             assert_eq!(background.0, CLEAR.map(quantise));
             let mask = crate::metrics::mask(&original, background.0, 0);
-            let e = silhouette_error(&scene, &mask, W, H);
+            let e = silhouette_error(&scene, &mask, W, H).expect("sizes match");
             assert!(e.max_px <= max_px && e.mean_px < 0.6, "{name}: {e:?}");
         }
     }
@@ -1202,7 +1216,7 @@ mod tests {
                 .map(|k| mask[k] || (k % W as usize > 0 && mask[k - 1]))
                 .collect();
             let start = std::time::Instant::now();
-            let e = silhouette_error(&scene, &wide, W, H);
+            let e = silhouette_error(&scene, &wide, W, H).expect("sizes match");
             let silhouette = start.elapsed();
             eprintln!(
                 "{:?}: render {render:?}, silhouette_error {silhouette:?} ({e:?})",

@@ -14,7 +14,6 @@ use common::example;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-
 /// A fresh directory for one test: `target/tmp/bad_input/<test>/`.
 fn test_dir(test: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bad_input").join(test);
@@ -254,12 +253,28 @@ fn port_options_reject_bad_values() {
         2,
         &["unknown shading `toon`; valid: flat, gouraud, phong, blinn"],
     );
-    expect_failure("tess_too_small", &["--tess", "2"], &[], 2, &["expected `auto` or a level from 3 to 512"]);
+    expect_failure(
+        "tess_too_small",
+        &["--tess", "2"],
+        &[],
+        2,
+        &["expected `auto` or a level from 3 to 512"],
+    );
     let dir = test_dir("port_options_elsewhere");
-    let run = run_in(&dir, "position_rgb", &["--shading", "flat", "--screenshot", "x.png"], &[]);
+    let run = run_in(
+        &dir,
+        "position_rgb",
+        &["--shading", "flat", "--screenshot", "x.png"],
+        &[],
+    );
     assert_eq!(run.code, Some(2), "{}", run.stderr);
     assert!(run.stderr.contains("--shading applies to phong"), "{}", run.stderr);
-    let run = run_in(&dir, "displacement", &["--set", "smooth=2", "--screenshot", "x.png"], &[]);
+    let run = run_in(
+        &dir,
+        "displacement",
+        &["--set", "smooth=2", "--screenshot", "x.png"],
+        &[],
+    );
     assert_eq!(run.code, Some(2), "{}", run.stderr);
     assert!(run.stderr.contains("`smooth` takes 0 or 1"), "{}", run.stderr);
     assert!(!dir.join("x.png").exists());
@@ -271,11 +286,25 @@ fn port_options_work_from_the_command_line() {
     let run = run_in(
         &dir,
         "phong",
-        &["--object", "torus", "--shading", "gouraud", "--tess", "auto", "--screenshot", "g.png"],
+        &[
+            "--object",
+            "torus",
+            "--shading",
+            "gouraud",
+            "--tess",
+            "auto",
+            "--screenshot",
+            "g.png",
+        ],
         &[],
     );
     assert_eq!(run.code, Some(0), "{}", run.stderr);
-    let run = run_in(&dir, "displacement", &["--object", "cube", "--set", "smooth=1", "--screenshot", "s.png"], &[]);
+    let run = run_in(
+        &dir,
+        "displacement",
+        &["--object", "cube", "--set", "smooth=1", "--screenshot", "s.png"],
+        &[],
+    );
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     assert!(dir.join("g.png").is_file() && dir.join("s.png").is_file());
 }

@@ -53,7 +53,6 @@ fn require_tools() {
     );
 }
 
-
 /// A fresh directory for one test's files: `target/tmp/e2e/<test>/`.
 fn test_dir(test: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("e2e").join(test);
@@ -1352,11 +1351,19 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     let shaders = x.dir.join("shaders");
     std::fs::create_dir_all(&shaders).expect("shader dir");
     for name in shaderlab::shader::embedded_names() {
-        std::fs::write(shaders.join(name), shaderlab::shader::embedded_source(name).expect("embedded")).expect("copy");
+        std::fs::write(
+            shaders.join(name),
+            shaderlab::shader::embedded_source(name).expect("embedded"),
+        )
+        .expect("copy");
     }
     let frag = shaders.join("phong.frag");
     let original = std::fs::read_to_string(&frag).expect("read phong.frag");
-    let lab = x.launch("phong", &["--shaders", shaders.to_str().expect("utf-8 path"), "--object", "sphere"], &[]);
+    let lab = x.launch(
+        "phong",
+        &["--shaders", shaders.to_str().expect("utf-8 path"), "--object", "sphere"],
+        &[],
+    );
     lab.first_frame();
     let before = lab.settled();
     let green = |image: &RgbImage| {
@@ -1368,7 +1375,11 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     // 1. A good edit shows up within about a second.
     let output = "frag_color = clamp(Ka * Iamb + Kd * Idiff + Ks * Ispec, 0.0, 1.0);";
     assert!(original.contains(output), "phong.frag changed: update this test");
-    std::fs::write(&frag, original.replace(output, "frag_color = vec4(0.0, 1.0, 0.0, 1.0);")).expect("edit");
+    std::fs::write(
+        &frag,
+        original.replace(output, "frag_color = vec4(0.0, 1.0, 0.0, 1.0);"),
+    )
+    .expect("edit");
     let edited = Instant::now();
     let shown = poll(Duration::from_secs(5), || {
         let image = lab.capture();
@@ -1382,7 +1393,11 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
 
     // 2. A broken save: error with the file and line, title flag, last good pipeline kept.
     let line = original.lines().position(|l| l.contains("void main")).expect("main") + 2;
-    std::fs::write(&frag, original.replace("void main() {", "void main() {\n    oops = 1.0;")).expect("break");
+    std::fs::write(
+        &frag,
+        original.replace("void main() {", "void main() {\n    oops = 1.0;"),
+    )
+    .expect("break");
     let title = lab.wait_title_contains("SHADER ERROR");
     assert!(title.starts_with("Lab05-3"), "{title}");
     let needle = format!("phong.frag:{line}:");
@@ -1393,10 +1408,9 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
 
     // 3. Fixed: the original picture and a clean title come back.
     std::fs::write(&frag, &original).expect("fix");
-    lab.wait_title(
-        "a title without SHADER ERROR",
-        |t| !t.contains("SHADER ERROR") && t.starts_with("Lab05-3"),
-    );
+    lab.wait_title("a title without SHADER ERROR", |t| {
+        !t.contains("SHADER ERROR") && t.starts_with("Lab05-3")
+    });
     let after = poll(Duration::from_secs(5), || {
         let image = lab.capture();
         (!green(&image)).then_some(image)

@@ -116,7 +116,10 @@ fn gouraud_loses_the_highlight_on_coarse_meshes() {
     for level in [6u32, 12, 24, 48, 96] {
         let g = phong_sphere(Shading::Gouraud, level);
         let p = phong_sphere(Shading::Phong, level);
-        let (eg, ep) = (image_error(&exact, &g), image_error(&exact, &p));
+        let (eg, ep) = (
+            image_error(&exact, &g).expect("sizes match"),
+            image_error(&exact, &p).expect("sizes match"),
+        );
         println!(
             "| {level} | {:.2} | {} | {:.2} | {} |",
             eg.rmse,

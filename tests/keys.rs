@@ -109,3 +109,26 @@ fn set_rejects_bad_values() {
     let err = p1.set("camera", &[0.0, 0.0, 3.0]).expect_err("no camera in exercise 1");
     assert!(err.to_string().contains("valid"), "{err}");
 }
+
+#[test]
+fn key_m_cycles_shading_models_and_rebuilds_the_pipeline() {
+    use shaderlab::effect::Shading;
+    use shaderlab::offscreen::to_rgb;
+    let mut lab = common::lab::<Phong>();
+    lab.scene.object = Object::Sphere;
+    let phong = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
+    assert!(lab.key('m'));
+    assert_eq!(lab.options.shading, Shading::Blinn);
+    let blinn = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
+    assert!(lab.take_error().is_none());
+    assert_ne!(phong, blinn, "the Blinn-Phong pipeline must be in use after m");
+    for expected in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+        lab.key('m');
+        assert_eq!(lab.options.shading, expected);
+    }
+    let again = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
+    assert_eq!(phong, again, "back to the original after a full cycle");
+    // Effects without shading models ignore m.
+    let mut noise = common::lab::<Noise>();
+    assert!(!noise.key('m'));
+}

@@ -153,7 +153,6 @@ fn assert_shader_error(err: Error, file: &Path, line: u32, column: u32) -> Strin
     }
 }
 
-
 fn run_example(name: &str, args: &[&str]) -> Output {
     let mut cmd = Command::new(example(name));
     cmd.args(args);

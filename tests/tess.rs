@@ -30,7 +30,7 @@ fn measured_error(object: Object, shape: Shape, level: u32, angles: [f32; 3], ca
         camera: camera.map(f64::from),
         ..Default::default()
     };
-    silhouette_error(&exact, &rendered, w, h).max_px / SS as f64
+    silhouette_error(&exact, &rendered, w, h).expect("sizes match").max_px / SS as f64
 }
 
 /// The views of the sweep: the predicted error bounds the silhouette error over all views, and
