@@ -49,12 +49,7 @@ impl Object {
 
     /// The mesh the original draws for this object.
     pub fn mesh(self) -> Mesh {
-        match self {
-            Object::Cube => Mesh::cube(1.5),
-            Object::Sphere => Mesh::sphere(1.0, 24, 24),
-            Object::Torus => Mesh::torus(0.5, 1.0, 24, 24),
-            Object::Teapot => Mesh::teapot(1.0, Mesh::TEAPOT_DEFAULT_GRID),
-        }
+        tess::mesh(self, tess::glut_level(self))
     }
 }
 
@@ -354,7 +349,6 @@ pub struct Lab<E: Effect> {
     source: ShaderSource,
     format: wgpu::TextureFormat,
     layout: wgpu::PipelineLayout,
-    bind_group_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
     marker_pipeline: Option<wgpu::RenderPipeline>,
     meshes: HashMap<(Object, u32, bool), GpuMesh>,
@@ -526,7 +520,6 @@ impl<E: Effect> Lab<E> {
             source,
             format,
             layout,
-            bind_group_layout,
             pipeline,
             marker_pipeline,
             meshes,
@@ -916,11 +909,6 @@ impl<E: Effect> Lab<E> {
             self.render(gpu, &target.color, &target.depth, target.width, target.height)
         })?;
         target.read_f32(gpu)
-    }
-
-    /// The bind group layout (for tools that build extra pipelines against it).
-    pub fn bind_group_layout(&self) -> &wgpu::BindGroupLayout {
-        &self.bind_group_layout
     }
 }
 
