@@ -87,7 +87,9 @@ pub fn normal_matrix(modelview: Mat4) -> Mat3 {
 /// already in wgpu's depth convention.
 pub fn lab_projection(width: u32, height: u32) -> Mat4 {
     let height = height.max(1);
-    gl_to_wgpu_depth(glu_perspective(45.0, width as f64 / height as f64, 1.0, 100.0))
+    // The original passes `(float) width / height`: a float division, then promoted to double.
+    let aspect = (width as f32 / height as f32) as f64;
+    gl_to_wgpu_depth(glu_perspective(45.0, aspect, 1.0, 100.0))
 }
 
 #[cfg(test)]

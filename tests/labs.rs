@@ -267,3 +267,36 @@ fn sizes_and_aspect() {
     let tiny = render_sized::<Phong>(Object::Teapot, [0.0; 3], 0.0, &[], 64, 1);
     assert_eq!(tiny.dimensions(), (64, 1));
 }
+
+#[test]
+fn rotated_states_agree_with_the_exact_reference() {
+    // The reference images are all at rotation 0; the exact ray caster (its own f64 rotation
+    // code) checks other states. The torus has no rotational symmetry that would hide a wrong
+    // order or sign of the glRotatef calls; a wrong one costs far more than the 24x24 facets do.
+    use shaderlab::exact::{image_error, ExactScene, Shape};
+    for angles in [
+        [30.0f32, 45.0, 0.0],
+        [60.0, 0.0, 20.0],
+        [10.0, 80.0, 40.0],
+        [-35.0, 120.0, -70.0],
+    ] {
+        let port = render::<Phong>(Object::Torus, angles, 0.0, &[]);
+        let exact = ExactScene {
+            shape: Shape::Torus,
+            angles: angles.map(f64::from),
+            ..Default::default()
+        };
+        let right = image_error(&exact.render(640, 360), &port).expect("same size").psnr;
+        let swapped = ExactScene {
+            angles: [angles[2], angles[1], angles[0]].map(f64::from),
+            ..exact.clone()
+        };
+        let wrong = image_error(&swapped.render(640, 360), &port).expect("same size").psnr;
+        println!("torus at {angles:?}: {right:.1} dB against the exact torus (swapped X/Z angles: {wrong:.1} dB)");
+        assert!(right > 33.0, "rotation {angles:?}: {right:.1} dB");
+        assert!(
+            wrong < right - 5.0,
+            "the test must be able to tell rotations apart at {angles:?}"
+        );
+    }
+}
