@@ -100,11 +100,7 @@ fn expect_failure(test: &str, args: &[&str], env: &[(&str, &str)], code: i32, ph
 fn broken_shader_names_file_line_and_column() {
     let dir = test_dir("broken_shader_files");
     let shaders = dir.join("shaders");
-    std::fs::create_dir_all(&shaders).unwrap();
-    for entry in std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl")).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), shaders.join(entry.file_name())).unwrap();
-    }
+    common::copy_shaders(&shaders);
     let frag = shaders.join("phong.frag");
     let text = std::fs::read_to_string(&frag).unwrap();
     let line = text

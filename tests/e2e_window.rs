@@ -1305,11 +1305,7 @@ fn window_mode_failures_are_one_clear_message() {
     let x = Xvfb::start("window_failures");
     // A broken shader: the diagnostic with file:line:column, exit 1, no window left open.
     let shaders = x.dir.join("shaders");
-    std::fs::create_dir_all(&shaders).unwrap();
-    for entry in std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl")).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), shaders.join(entry.file_name())).unwrap();
-    }
+    common::copy_shaders(&shaders);
     let frag = shaders.join("phong.frag");
     let text = std::fs::read_to_string(&frag).unwrap();
     std::fs::write(&frag, text.replacen("void main", "void main oops", 1)).unwrap();
@@ -1349,14 +1345,7 @@ fn window_mode_failures_are_one_clear_message() {
 fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     let x = Xvfb::start("live_reload");
     let shaders = x.dir.join("shaders");
-    std::fs::create_dir_all(&shaders).expect("shader dir");
-    for name in shaderlab::shader::embedded_names() {
-        std::fs::write(
-            shaders.join(name),
-            shaderlab::shader::embedded_source(name).expect("embedded"),
-        )
-        .expect("copy");
-    }
+    common::copy_shaders(&shaders);
     let frag = shaders.join("phong.frag");
     let original = std::fs::read_to_string(&frag).expect("read phong.frag");
     let lab = x.launch(

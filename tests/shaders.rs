@@ -36,10 +36,7 @@ impl ShaderCopy {
     fn new(tag: &str) -> Self {
         let dir = output_dir().join(format!("shaders-{tag}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create shader copy");
-        for name in embedded_names() {
-            std::fs::write(dir.join(name), embedded_source(name).unwrap()).expect("write shader copy");
-        }
+        common::copy_shaders(&dir);
         ShaderCopy { dir }
     }
 

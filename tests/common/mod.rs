@@ -107,3 +107,13 @@ pub fn example(name: &str) -> PathBuf {
     );
     path
 }
+
+/// Writes a copy of every built-in shader (the contents of `shaders_glsl/`) into `dir`, creating
+/// it, for tests that edit or break a shader and load it with `--shaders DIR`.
+pub fn copy_shaders(dir: &Path) {
+    std::fs::create_dir_all(dir).expect("create the shader directory");
+    for name in shaderlab::shader::embedded_names() {
+        let text = shaderlab::shader::embedded_source(name).expect("an embedded shader");
+        std::fs::write(dir.join(name), text).expect("write a shader copy");
+    }
+}
