@@ -377,9 +377,9 @@ impl<E: Effect> WindowState<E> {
         // Pace from the previous deadline (no drift), but never plan a burst to catch up.
         let now = Instant::now();
         self.next_frame = (self.next_frame + self.frame_interval).max(now);
-        if self.args_time_is_clock() {
+        if self.animated() {
             let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
-            self.lab.scene.time = self.time_offset + elapsed as f32;
+            self.lab.scene.time = f64::from(self.time_offset) + elapsed;
         }
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
@@ -432,7 +432,8 @@ impl<E: Effect> WindowState<E> {
         Ok(())
     }
 
-    fn args_time_is_clock(&self) -> bool {
+    /// Whether the effect has a `time` uniform that the window's clock drives.
+    fn animated(&self) -> bool {
         self.lab.params_layout().member("time").is_some()
     }
 

@@ -136,7 +136,7 @@ impl LabArgs {
     pub fn apply<E: Effect>(&self, lab: &mut Lab<E>) -> Result<(), Error> {
         lab.scene.object = self.object;
         lab.scene.angles = self.rotate;
-        lab.scene.time = self.time.unwrap_or(0.0);
+        lab.scene.time = f64::from(self.time.unwrap_or(0.0));
         if let Some(shading) = self.shading {
             if !E::SHADING_MODELS && shading != Shading::Phong {
                 return Err(Error::Param(format!(

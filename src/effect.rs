@@ -62,8 +62,9 @@ pub struct Scene {
     pub angles: Vec3,
     /// The eye position (`camera` in exercise 3; (0,0,4) elsewhere). The view looks down -z.
     pub camera: Vec3,
-    /// The time uniform in seconds.
-    pub time: f32,
+    /// The time uniform in seconds. Kept in f64 so that a long-running clock reaches the
+    /// wrap by the noise period ([`NOISE_PERIOD`]) unrounded; the shader gets f32.
+    pub time: f64,
     /// Mouse position remembered at the last left press (`xMotion`, `yMotion`).
     pub motion: (i32, i32),
 }
@@ -217,14 +218,17 @@ crate::uniform_block!(TransformUniforms, "Transform", {
 impl TransformUniforms {
     /// From a modelview and a (wgpu-depth) projection.
     pub fn new(modelview: Mat4, projection: Mat4) -> Self {
-        let n = camera::normal_matrix(modelview);
-        let col = |v: Vec3| [v.x, v.y, v.z, 0.0];
         TransformUniforms {
             modelview: modelview.to_cols_array_2d(),
             mvp: (projection * modelview).to_cols_array_2d(),
-            normal_matrix: [col(n.x_axis), col(n.y_axis), col(n.z_axis)],
+            normal_matrix: std140_mat3(camera::normal_matrix(modelview)),
         }
     }
+}
+
+/// A mat3 as std140 stores it: three columns, each padded to a vec4.
+fn std140_mat3(m: Mat3) -> [[f32; 4]; 3] {
+    [m.x_axis, m.y_axis, m.z_axis].map(|c| [c.x, c.y, c.z, 0.0])
 }
 
 /// A parameter block for effects that have none (exercises 1 and 2): 16 unused bytes.
@@ -566,6 +570,9 @@ impl<E: Effect> Lab<E> {
         }
         let previous = self.options.shading;
         self.options.shading = shading;
+        if shading == self.built_shading {
+            return Ok(()); // already built: no second compile
+        }
         self.reload(gpu).inspect_err(|_| self.options.shading = previous)
     }
 
@@ -588,7 +595,14 @@ impl<E: Effect> Lab<E> {
         }
     }
 
+    /// The mesh for `key`, built on first use. GLUT's levels stay cached; of the other levels
+    /// only the one in use does, so `--tess auto` in a long session does not pile up meshes.
     fn ensure_mesh(&mut self, gpu: &Gpu, key: (Object, u32, bool)) {
+        let (object, level, _) = key;
+        if !self.meshes.contains_key(&key) && level != tess::glut_level(object) {
+            self.meshes
+                .retain(|&(o, l, _), _| o != object || l == tess::glut_level(o));
+        }
         self.meshes.entry(key).or_insert_with(|| {
             let (object, level, smooth) = key;
             let mesh = tess::mesh(object, level);
@@ -787,7 +801,7 @@ impl<E: Effect> Lab<E> {
     fn upload(&mut self, gpu: &Gpu, width: u32, height: u32) {
         let projection = camera::lab_projection(width, height);
         if self.params.member("time").is_some() {
-            let t = self.scene.time as f64;
+            let t = self.scene.time;
             let t = if self.options.wrap_time {
                 t.rem_euclid(NOISE_PERIOD)
             } else {
@@ -798,9 +812,7 @@ impl<E: Effect> Lab<E> {
         let modelview = self.modelview();
         let mut transform = TransformUniforms::new(modelview, projection);
         if self.options.naive_normal_matrix {
-            let m = Mat3::from_mat4(modelview);
-            let col = |v: Vec3| [v.x, v.y, v.z, 0.0];
-            transform.normal_matrix = [col(m.x_axis), col(m.y_axis), col(m.z_axis)];
+            transform.normal_matrix = std140_mat3(Mat3::from_mat4(modelview));
         }
         gpu.queue
             .write_buffer(&self.transform_buffer, 0, bytemuck::bytes_of(&transform));

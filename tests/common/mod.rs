@@ -42,7 +42,7 @@ pub fn render_sized<E: Effect>(
     let mut lab = lab::<E>();
     lab.scene.object = object;
     lab.scene.angles = Vec3::from_array(angles);
-    lab.scene.time = time;
+    lab.scene.time = f64::from(time);
     for (name, values) in set {
         lab.set(name, values).expect("parameter");
     }
