@@ -34,6 +34,9 @@ pub enum Error {
     /// A Rust uniform struct does not match the GLSL block it feeds.
     #[error("uniform layout mismatch: {0}")]
     Layout(String),
+    /// A program's bindings or vertex inputs do not match what the lab provides.
+    #[error("binding mismatch: {0}")]
+    Binding(String),
     /// A parameter name or value is not valid for an effect.
     #[error("{0}")]
     Param(String),

@@ -35,10 +35,13 @@ pub mod effects;
 pub mod error;
 pub mod exact;
 pub mod gpu;
+pub mod lab;
 pub mod mesh;
 pub mod metrics;
 pub mod noise;
 pub mod offscreen;
+pub mod params;
+pub mod render;
 pub mod shader;
 pub mod tess;
 

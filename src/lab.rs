@@ -1,0 +1,126 @@
+//! The contract between an exercise and the shell that drives it.
+//!
+//! The shell (window, `--screenshot`, `--bench`, tests) drives any [`Lab`] without naming one:
+//! it turns window events into GLUT-shaped [`Input`], sets parameters by name through
+//! [`Lab::params_mut`], and asks the lab to [`render`](Lab::render) into a [`Frame`]. A lab never
+//! sees winit, and no lab knows another.
+
+use crate::error::Result;
+use crate::gpu::Gpu;
+use crate::params::Params;
+use crate::render::Frame;
+use crate::shader::ShaderSource;
+
+/// What identifies an exercise.
+#[derive(Debug)]
+pub struct LabInfo {
+    /// The name shared by its module, shaders, example and tests (`phong`, `suzanne_flat`).
+    pub name: &'static str,
+    /// The original's window title (`Lab05-3`).
+    pub title: &'static str,
+    /// Human name of the effect.
+    pub label: &'static str,
+    /// The lecture it comes from.
+    pub lecture: &'static str,
+    /// Default window and image size.
+    pub size: (u32, u32),
+    /// The keys and mouse, for `--help` and the README.
+    pub keys: &'static str,
+}
+
+/// A special key (GLUT's `glutSpecialFunc` keys).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Special {
+    /// ←
+    Left,
+    /// →
+    Right,
+    /// ↑
+    Up,
+    /// ↓
+    Down,
+    /// Page Up
+    PageUp,
+    /// Page Down
+    PageDown,
+}
+
+/// Input as the originals' callbacks saw it, in window pixels (origin top left).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Input {
+    /// A character key (`glutKeyboardFunc`).
+    Key(char),
+    /// A special key (`glutSpecialFunc`).
+    Special(Special),
+    /// The left button went down at (x, y).
+    Press(i32, i32),
+    /// The left button went up at (x, y).
+    Release(i32, i32),
+    /// The mouse moved to (x, y) with the left button down (`glutMotionFunc`).
+    Drag(i32, i32),
+}
+
+/// What a lab is built with.
+pub struct LabContext<'a> {
+    /// The device.
+    pub gpu: &'a Gpu,
+    /// Where shader files come from.
+    pub source: &'a ShaderSource,
+    /// The colour format of the targets it will draw into.
+    pub format: wgpu::TextureFormat,
+}
+
+/// One exercise, ready to draw.
+pub trait Lab {
+    /// Its name, title and size.
+    fn info(&self) -> &'static LabInfo;
+    /// Its parameters.
+    fn params(&self) -> &Params;
+    /// Its parameters, to change.
+    fn params_mut(&mut self) -> &mut Params;
+    /// An input event; returns whether anything changed (the title is rewritten then).
+    fn input(&mut self, input: Input) -> bool;
+    /// Compiles its shaders again (live reload). On failure the last good pipelines stay.
+    fn reload(&mut self, cx: &LabContext) -> Result<()>;
+    /// Records one frame.
+    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()>;
+    /// Whether a clock drives its `time` parameter in a window (Space pauses it).
+    fn animated(&self) -> bool {
+        false
+    }
+    /// The window title: the original's, then the lab's state.
+    fn title(&self) -> String {
+        let info = self.info();
+        let p = self.params();
+        let state: Vec<String> = p
+            .specs()
+            .iter()
+            .filter(|s| p.get(s.name) != Some(s.default))
+            .map(|s| format!("{}={}", s.name, p.text(s.name)))
+            .collect();
+        if state.is_empty() {
+            format!("{} {}", info.title, info.label)
+        } else {
+            format!("{} {} | {}", info.title, info.label, state.join(" "))
+        }
+    }
+    /// An error found while drawing that the window should show once (e.g. a model whose
+    /// shader is broken); `None` when all is well.
+    fn take_error(&mut self) -> Option<crate::Error> {
+        None
+    }
+}
+
+/// An entry of the one list of labs ([`crate::labs::ALL`]).
+pub struct LabEntry {
+    /// Its name and size.
+    pub info: &'static LabInfo,
+    /// Builds it.
+    pub new: fn(&LabContext) -> Result<Box<dyn Lab>>,
+}
+
+impl std::fmt::Debug for LabEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LabEntry").field("info", &self.info).finish()
+    }
+}

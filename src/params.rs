@@ -1,0 +1,410 @@
+//! Parameters by name: the one mechanism behind `--set NAME=VALUE`, `--help`, keys, the window
+//! title and tests, for every lab.
+//!
+//! A lab (or each part it is composed of) declares its parameters as [`ParamSpec`]s with a
+//! default, a range and a kind; [`Params`] holds the current values. Values are kept in f64 so
+//! that a clock can run for hours without losing precision before a lab narrows them to the
+//! f32 its uniforms take.
+
+use crate::error::{Error, Result};
+
+/// What kind of values a parameter takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Kind {
+    /// Any finite number within the range (one or more components).
+    Real,
+    /// A whole number within the range.
+    Int,
+    /// 0 or 1.
+    Bool,
+    /// One of several named values, stored as its index (`--set object=torus` or `object=2`).
+    Choice(&'static [&'static str]),
+}
+
+/// One named parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// The name used by `--set`, tests and the title (SPEC's state keys).
+    pub name: &'static str,
+    /// Default value, one entry per component.
+    pub default: &'static [f64],
+    /// Smallest value of each component.
+    pub min: f64,
+    /// Largest value of each component.
+    pub max: f64,
+    /// Kind of value.
+    pub kind: Kind,
+    /// One line for `--help`.
+    pub help: &'static str,
+}
+
+impl ParamSpec {
+    /// A real number in `[min, max]`.
+    pub const fn real(name: &'static str, default: &'static [f64], min: f64, max: f64, help: &'static str) -> Self {
+        ParamSpec {
+            name,
+            default,
+            min,
+            max,
+            kind: Kind::Real,
+            help,
+        }
+    }
+
+    /// A whole number in `[min, max]`.
+    pub const fn int(name: &'static str, default: &'static [f64], min: f64, max: f64, help: &'static str) -> Self {
+        ParamSpec {
+            name,
+            default,
+            min,
+            max,
+            kind: Kind::Int,
+            help,
+        }
+    }
+
+    /// A switch, 0 or 1.
+    pub const fn flag(name: &'static str, default: &'static [f64], help: &'static str) -> Self {
+        ParamSpec {
+            name,
+            default,
+            min: 0.0,
+            max: 1.0,
+            kind: Kind::Bool,
+            help,
+        }
+    }
+
+    /// One of `names` (index 0, 1, ...).
+    pub const fn choice(
+        name: &'static str,
+        default: &'static [f64],
+        names: &'static [&'static str],
+        help: &'static str,
+    ) -> Self {
+        ParamSpec {
+            name,
+            default,
+            min: 0.0,
+            max: (names.len() - 1) as f64,
+            kind: Kind::Choice(names),
+            help,
+        }
+    }
+
+    /// The default as text, e.g. `0.2,0.2,0.2` or `teapot`.
+    pub fn default_text(&self) -> String {
+        format_value(self, self.default)
+    }
+}
+
+fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
+    match spec.kind {
+        Kind::Choice(names) => values
+            .first()
+            .and_then(|v| names.get(*v as usize))
+            .map(|s| s.to_string())
+            .unwrap_or_default(),
+        _ => values.iter().map(|v| format!("{}", *v as f32)).collect::<Vec<_>>().join(","),
+    }
+}
+
+/// The current values of a set of parameters.
+#[derive(Clone, Debug, Default)]
+pub struct Params {
+    specs: Vec<ParamSpec>,
+    values: Vec<Vec<f64>>,
+}
+
+impl Params {
+    /// Parameters at their defaults.
+    pub fn new(specs: &[ParamSpec]) -> Self {
+        let mut params = Params::default();
+        params.extend(specs);
+        params
+    }
+
+    /// Adds more parameters (a part of a lab adding its own). A name declared twice keeps the
+    /// first declaration: parts compose, they do not override each other.
+    pub fn extend(&mut self, specs: &[ParamSpec]) {
+        for spec in specs {
+            if self.index(spec.name).is_none() {
+                self.specs.push(*spec);
+                self.values.push(spec.default.to_vec());
+            }
+        }
+    }
+
+    fn index(&self, name: &str) -> Option<usize> {
+        self.specs.iter().position(|s| s.name == name)
+    }
+
+    /// Every declared parameter, in declaration order.
+    pub fn specs(&self) -> &[ParamSpec] {
+        &self.specs
+    }
+
+    /// Whether `name` is a parameter.
+    pub fn has(&self, name: &str) -> bool {
+        self.index(name).is_some()
+    }
+
+    /// The values of `name`.
+    pub fn get(&self, name: &str) -> Option<&[f64]> {
+        self.index(name).map(|i| self.values[i].as_slice())
+    }
+
+    /// The first component of `name` as f64 (0 for an unknown name, which a test catches).
+    pub fn f64(&self, name: &str) -> f64 {
+        debug_assert!(self.has(name), "unknown parameter {name}");
+        self.get(name).and_then(|v| v.first().copied()).unwrap_or(0.0)
+    }
+
+    /// The first component of `name` as f32.
+    pub fn f(&self, name: &str) -> f32 {
+        self.f64(name) as f32
+    }
+
+    /// The value of a whole-number or choice parameter.
+    pub fn index_of(&self, name: &str) -> usize {
+        self.f64(name).max(0.0) as usize
+    }
+
+    /// Whether a switch is on.
+    pub fn on(&self, name: &str) -> bool {
+        self.f64(name) != 0.0
+    }
+
+    /// Three components as f32.
+    pub fn v3(&self, name: &str) -> [f32; 3] {
+        let v = self.get(name).unwrap_or(&[]);
+        std::array::from_fn(|i| v.get(i).copied().unwrap_or(0.0) as f32)
+    }
+
+    /// Four components as f32.
+    pub fn v4(&self, name: &str) -> [f32; 4] {
+        let v = self.get(name).unwrap_or(&[]);
+        std::array::from_fn(|i| v.get(i).copied().unwrap_or(0.0) as f32)
+    }
+
+    /// Sets `name` from numbers, checking count, finiteness, kind and range.
+    pub fn set(&mut self, name: &str, values: &[f64]) -> Result<()> {
+        let i = self.index(name).ok_or_else(|| self.unknown(name))?;
+        let spec = self.specs[i];
+        if values.len() != spec.default.len() {
+            return Err(Error::Param(format!(
+                "parameter `{name}` takes {} number(s), got {}",
+                spec.default.len(),
+                values.len()
+            )));
+        }
+        for &v in values {
+            if !v.is_finite() {
+                return Err(Error::Param(format!("parameter `{name}`: {v} is not a finite number")));
+            }
+            let whole = !matches!(spec.kind, Kind::Real);
+            if whole && v.fract() != 0.0 {
+                return Err(Error::Param(format!(
+                    "parameter `{name}` takes a whole number{}, not {v}",
+                    self.choices_hint(&spec)
+                )));
+            }
+            if v < spec.min || v > spec.max {
+                return Err(Error::Param(format!(
+                    "parameter `{name}`: {v} is outside {}..{}{}",
+                    spec.min as f32,
+                    spec.max as f32,
+                    self.choices_hint(&spec)
+                )));
+            }
+        }
+        self.values[i] = values.to_vec();
+        Ok(())
+    }
+
+    fn choices_hint(&self, spec: &ParamSpec) -> String {
+        match spec.kind {
+            Kind::Choice(names) => format!(
+                " ({})",
+                names
+                    .iter()
+                    .enumerate()
+                    .map(|(i, n)| format!("{i} = {n}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            _ => String::new(),
+        }
+    }
+
+    /// Sets `name` from text: comma-separated numbers, or a choice's name.
+    pub fn set_str(&mut self, name: &str, text: &str) -> Result<()> {
+        let i = self.index(name).ok_or_else(|| self.unknown(name))?;
+        if let Kind::Choice(names) = self.specs[i].kind {
+            if let Some(k) = names.iter().position(|n| *n == text.trim()) {
+                return self.set(name, &[k as f64]);
+            }
+        }
+        let values = parse_numbers(text).map_err(|e| {
+            let spec = self.specs[i];
+            Error::Param(format!("parameter `{name}`: {e}{}", self.choices_hint(&spec)))
+        })?;
+        self.set(name, &values)
+    }
+
+    /// Adds `delta` to every component of `name`, clamped to its range (the keys of the
+    /// originals step values; their bounds checks let a value step just past a bound, the port
+    /// clamps).
+    pub fn step(&mut self, name: &str, delta: f64) {
+        self.step_component(name, usize::MAX, delta);
+    }
+
+    /// Adds `delta` to component `c` of `name` (all components for `usize::MAX`), clamped.
+    pub fn step_component(&mut self, name: &str, c: usize, delta: f64) {
+        debug_assert!(self.has(name), "unknown parameter {name}");
+        if let Some(i) = self.index(name) {
+            let (lo, hi) = (self.specs[i].min, self.specs[i].max);
+            for (k, v) in self.values[i].iter_mut().enumerate() {
+                if c == usize::MAX || c == k {
+                    // Steps are computed in f32, as the originals' globals are floats.
+                    *v = f64::from((*v as f32 + delta as f32).clamp(lo as f32, hi as f32));
+                }
+            }
+        }
+    }
+
+    /// Sets `name` to `value` without range checks beyond clamping (keys, clocks).
+    pub fn put(&mut self, name: &str, values: &[f64]) {
+        debug_assert!(self.has(name), "unknown parameter {name}");
+        if let Some(i) = self.index(name) {
+            let (lo, hi) = (self.specs[i].min, self.specs[i].max);
+            self.values[i] = values.iter().map(|v| v.clamp(lo, hi)).collect();
+        }
+    }
+
+    /// Flips a switch.
+    pub fn toggle(&mut self, name: &str) {
+        let v = if self.on(name) { 0.0 } else { 1.0 };
+        self.put(name, &[v]);
+    }
+
+    /// Moves a choice or whole number to its next value, wrapping to the minimum.
+    pub fn cycle(&mut self, name: &str) {
+        if let Some(i) = self.index(name) {
+            let (lo, hi) = (self.specs[i].min, self.specs[i].max);
+            let next = self.values[i][0] + 1.0;
+            self.values[i][0] = if next > hi { lo } else { next };
+        }
+    }
+
+    /// The value of `name` as text (a choice's name, or numbers).
+    pub fn text(&self, name: &str) -> String {
+        match self.index(name) {
+            Some(i) => format_value(&self.specs[i], &self.values[i]),
+            None => String::new(),
+        }
+    }
+
+    fn unknown(&self, name: &str) -> Error {
+        let valid: Vec<&str> = self.specs.iter().map(|s| s.name).collect();
+        Error::Param(format!(
+            "unknown parameter `{name}`; valid: {}",
+            if valid.is_empty() {
+                "(none)".to_string()
+            } else {
+                valid.join(", ")
+            }
+        ))
+    }
+
+    /// `--help` text: one line per parameter with its default and range.
+    pub fn help(&self) -> String {
+        let mut out = String::new();
+        for s in &self.specs {
+            let range = match s.kind {
+                Kind::Choice(names) => format!(
+                    "one of {}",
+                    names
+                        .iter()
+                        .enumerate()
+                        .map(|(i, n)| format!("{n} ({i})"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                Kind::Bool => "0 or 1".into(),
+                Kind::Int => format!("whole number {}..{}", s.min, s.max),
+                Kind::Real => format!("{}..{}", s.min as f32, s.max as f32),
+            };
+            out.push_str(&format!(
+                "  {:<16} default {:<14} {range}: {}\n",
+                s.name,
+                s.default_text(),
+                s.help
+            ));
+        }
+        out
+    }
+}
+
+/// Parses one finite number (as f32, then widened: the originals' values are floats).
+pub fn parse_finite(s: &str) -> std::result::Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("`{s}` is not a finite number")),
+    }
+}
+
+/// Parses comma-separated finite numbers.
+pub fn parse_numbers(s: &str) -> std::result::Result<Vec<f64>, String> {
+    s.split(',').map(|p| parse_finite(p).map(f64::from)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SPECS: &[ParamSpec] = &[
+        ParamSpec::real("ka", &[0.2], 0.0, 1.0, "ambient"),
+        ParamSpec::real("light", &[2.0, 2.0, 2.0], -50.0, 50.0, "light"),
+        ParamSpec::choice("object", &[0.0], &["teapot", "sphere", "torus", "cube"], "object"),
+        ParamSpec::flag("fixpos", &[0.0], "fix"),
+    ];
+
+    #[test]
+    fn set_checks_names_counts_ranges_and_kinds() {
+        let mut p = Params::new(SPECS);
+        assert_eq!(p.f("ka"), 0.2);
+        p.set_str("ka", "0.5").unwrap();
+        assert_eq!(p.f("ka"), 0.5);
+        assert!(p.set_str("ka", "1.5").unwrap_err().to_string().contains("outside"));
+        assert!(p.set_str("ka", "nan").is_err());
+        assert!(p.set_str("light", "1,2").unwrap_err().to_string().contains("3 number"));
+        p.set_str("object", "torus").unwrap();
+        assert_eq!(p.index_of("object"), 2);
+        p.set_str("object", "3").unwrap();
+        assert_eq!(p.text("object"), "cube");
+        assert!(p.set_str("object", "4").unwrap_err().to_string().contains("3 = cube"));
+        assert!(p.set_str("object", "1.5").is_err());
+        assert!(p.set_str("fixpos", "2").is_err());
+        let e = p.set_str("nope", "1").unwrap_err().to_string();
+        assert!(e.contains("unknown parameter `nope`") && e.contains("ka, light, object, fixpos"), "{e}");
+    }
+
+    #[test]
+    fn steps_clamp_and_choices_cycle() {
+        let mut p = Params::new(SPECS);
+        for _ in 0..30 {
+            p.step("ka", 0.05);
+        }
+        assert_eq!(p.f("ka"), 1.0);
+        p.step_component("light", 1, -0.25);
+        assert_eq!(p.v3("light"), [2.0, 1.75, 2.0]);
+        for _ in 0..4 {
+            p.cycle("object");
+        }
+        assert_eq!(p.index_of("object"), 0);
+        p.toggle("fixpos");
+        assert!(p.on("fixpos"));
+        assert!(p.help().contains("teapot (0)"));
+    }
+}

@@ -1,0 +1,73 @@
+//! One frame being recorded: the encoder and the target, for window, offscreen and tests alike.
+
+use crate::gpu::Gpu;
+use crate::offscreen::DEPTH_FORMAT;
+
+/// What a render pass does with the target first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Load {
+    /// Clear colour to this RGB (alpha 1) and depth to 1 (`glClear`).
+    Clear([f64; 3]),
+    /// Keep what earlier passes drew.
+    Keep,
+}
+
+/// Where and with what a lab records one frame.
+pub struct Frame<'a> {
+    /// The device and queue (uniform uploads before the pass).
+    pub gpu: &'a Gpu,
+    /// The encoder the passes go into; the shell submits it.
+    pub encoder: &'a mut wgpu::CommandEncoder,
+    /// Colour target.
+    pub color: &'a wgpu::TextureView,
+    /// Depth target ([`DEPTH_FORMAT`]).
+    pub depth: &'a wgpu::TextureView,
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Timestamp writes for the first pass (`--bench --gpu-time`), taken by [`Frame::pass`].
+    pub timestamps: Option<wgpu::RenderPassTimestampWrites<'a>>,
+}
+
+impl<'a> Frame<'a> {
+    /// Begins a render pass over the whole target.
+    pub fn pass(&mut self, label: &str, load: Load) -> wgpu::RenderPass<'_> {
+        let (color_load, depth_load) = match load {
+            Load::Clear([r, g, b]) => (
+                wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                wgpu::LoadOp::Clear(1.0),
+            ),
+            Load::Keep => (wgpu::LoadOp::Load, wgpu::LoadOp::Load),
+        };
+        let _ = DEPTH_FORMAT; // the depth view is always of this format
+        self.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: self.color,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: color_load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: self.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: depth_load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: self.timestamps.take(),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        })
+    }
+
+    /// Width over height as the originals compute it: `(float)w / h`, height 0 taken as 1.
+    pub fn aspect(&self) -> f32 {
+        self.width as f32 / self.height.max(1) as f32
+    }
+}

@@ -1,0 +1,118 @@
+//! Textures and samplers as data: RGBA8 images (2D or six cube faces) with their mip levels
+//! given by the caller, so the bytes are the same on every device (mip levels are built on the
+//! CPU, not by a GPU blit), and GL's sampler state expressed as wgpu's.
+
+use crate::gpu::Gpu;
+
+/// A texture and its view.
+pub struct Texture {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// A view of all its levels (and faces).
+    pub view: wgpu::TextureView,
+    /// `D2` or `Cube`.
+    pub dimension: wgpu::TextureViewDimension,
+}
+
+impl Texture {
+    /// An RGBA8 (UNORM, no sRGB: GL's `GL_RGB8`) texture from `levels`, level 0 first; each
+    /// level holds `layers` images of its size, row 0 first (uploaded in the order GL's
+    /// `glTexImage2D` takes them). `layers` is 1 for a 2D texture and 6 for a cube map
+    /// (+X, -X, +Y, -Y, +Z, -Z).
+    pub fn new(gpu: &Gpu, label: &str, width: u32, height: u32, layers: u32, levels: &[Vec<u8>]) -> Texture {
+        let dimension = if layers == 6 {
+            wgpu::TextureViewDimension::Cube
+        } else {
+            wgpu::TextureViewDimension::D2
+        };
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        };
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size,
+            mip_level_count: levels.len().max(1) as u32,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        for (level, data) in levels.iter().enumerate() {
+            let (w, h) = ((width >> level).max(1), (height >> level).max(1));
+            gpu.queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &texture,
+                    mip_level: level as u32,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                data,
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * w),
+                    rows_per_image: Some(h),
+                },
+                wgpu::Extent3d {
+                    width: w,
+                    height: h,
+                    depth_or_array_layers: layers,
+                },
+            );
+        }
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some(&format!("{label}.view")),
+            dimension: Some(dimension),
+            ..Default::default()
+        });
+        Texture {
+            texture,
+            view,
+            dimension,
+        }
+    }
+}
+
+/// GL's texture parameters (`GL_TEXTURE_WRAP_*`, `GL_TEXTURE_MIN/MAG_FILTER`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplerDesc {
+    /// Wrap along s, t, r (`GL_REPEAT` = Repeat, `GL_CLAMP_TO_EDGE` = ClampToEdge).
+    pub wrap: [wgpu::AddressMode; 3],
+    /// Magnification filter.
+    pub mag: wgpu::FilterMode,
+    /// Minification filter within a level.
+    pub min: wgpu::FilterMode,
+    /// Between levels: `None` for GL's NEAREST / LINEAR (level 0 only), else the
+    /// `*_MIPMAP_NEAREST` / `*_MIPMAP_LINEAR` choice.
+    pub mipmap: Option<wgpu::MipmapFilterMode>,
+}
+
+impl Default for SamplerDesc {
+    /// REPEAT, LINEAR/LINEAR, no mipmaps.
+    fn default() -> Self {
+        SamplerDesc {
+            wrap: [wgpu::AddressMode::Repeat; 3],
+            mag: wgpu::FilterMode::Linear,
+            min: wgpu::FilterMode::Linear,
+            mipmap: None,
+        }
+    }
+}
+
+/// A sampler for `desc`.
+pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
+    gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        address_mode_u: desc.wrap[0],
+        address_mode_v: desc.wrap[1],
+        address_mode_w: desc.wrap[2],
+        mag_filter: desc.mag,
+        min_filter: desc.min,
+        mipmap_filter: desc.mipmap.unwrap_or(wgpu::MipmapFilterMode::Nearest),
+        // GL's non-mipmapped minification filters read the base level only.
+        lod_max_clamp: if desc.mipmap.is_some() { 32.0 } else { 0.0 },
+        ..Default::default()
+    })
+}
