@@ -115,6 +115,8 @@ pub trait Lab {
 pub struct LabEntry {
     /// Its name and size.
     pub info: &'static LabInfo,
+    /// Its parameters at their defaults (checked before a GPU is opened).
+    pub params: fn() -> crate::params::Params,
     /// Builds it.
     pub new: fn(&LabContext) -> Result<Box<dyn Lab>>,
 }

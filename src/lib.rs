@@ -1,14 +1,19 @@
 //! # shaderlab
 //!
-//! The five exercises of CMP211 Lab05 ("Shader programming", OpenGL 2.0 / GLSL 1.10 / GLUT),
-//! ported to wgpu: position → RGB, normal → RGB, Phong, simplex noise and displacement, on
-//! GLUT-exact cube, sphere, torus and teapot meshes, rendered like the original in a window or
-//! offscreen.
+//! Classic OpenGL/GLSL shader lectures ported to wgpu, starting with the five exercises of
+//! CMP211 Lab05 ("Shader programming", OpenGL 2.0 / GLSL 1.10 / GLUT): position → RGB,
+//! normal → RGB, Phong, simplex noise and displacement, on GLUT-exact cube, sphere, torus and
+//! teapot meshes, rendered like the original in a window or offscreen.
 //!
-//! The core is small: [`gpu`] (device), [`mesh`] (GLUT geometry), [`camera`] (GLU matrices),
-//! [`shader`] (GLSL loading, diagnostics, reflection), [`offscreen`] (render to an image) and
-//! [`effect`] (the shared lab renderer). Each exercise is one module in [`effects`]. The window
-//! and command line live in [`app`] and [`cli`].
+//! Layers, each using only those below it:
+//! - [`shell`]: command line, window, `--screenshot`/`--bench`; drives any [`Lab`].
+//! - [`labs`]: one module per exercise and [`labs::ALL`], the one list of labs.
+//! - [`lab`] and [`params`]: the contract a lab fulfils, and parameters by name.
+//! - [`render`]: programs reflected from their shaders, uniforms, meshes, textures, frames.
+//! - [`shader`] (GLSL loading, diagnostics, reflection), [`camera`] (GLU matrices),
+//!   [`mesh`] and [`tess`] (GLUT geometry), [`gpu`], [`offscreen`], [`error`].
+//! - The speed/accuracy yardsticks, used by tests and studies only: [`exact`], [`metrics`],
+//!   [`noise`].
 //!
 //! Everything that needs no GPU can be used directly, e.g. GLUT's meshes and the tessellation
 //! level `--tess auto` would pick:
@@ -27,15 +32,12 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod app;
 pub mod camera;
-pub mod cli;
-pub mod effect;
-pub mod effects;
 pub mod error;
 pub mod exact;
 pub mod gpu;
 pub mod lab;
+pub mod labs;
 pub mod mesh;
 pub mod metrics;
 pub mod noise;
@@ -43,8 +45,10 @@ pub mod offscreen;
 pub mod params;
 pub mod render;
 pub mod shader;
+pub mod shell;
 pub mod tess;
 
-pub use effect::{Effect, Lab, Object, Scene};
+pub use lab::{Lab, LabEntry};
+pub use tess::Object;
 pub use error::{Error, Result};
 pub use gpu::Gpu;

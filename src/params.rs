@@ -202,6 +202,9 @@ impl Params {
             if !v.is_finite() {
                 return Err(Error::Param(format!("parameter `{name}`: {v} is not a finite number")));
             }
+            if spec.kind == Kind::Bool && v != 0.0 && v != 1.0 {
+                return Err(Error::Param(format!("parameter `{name}` takes 0 or 1, not {v}")));
+            }
             let whole = !matches!(spec.kind, Kind::Real);
             if whole && v.fract() != 0.0 {
                 return Err(Error::Param(format!(
@@ -245,9 +248,13 @@ impl Params {
                 return self.set(name, &[k as f64]);
             }
         }
-        let values = parse_numbers(text).map_err(|e| {
-            let spec = self.specs[i];
-            Error::Param(format!("parameter `{name}`: {e}{}", self.choices_hint(&spec)))
+        let values = parse_numbers(text).map_err(|e| match self.specs[i].kind {
+            Kind::Choice(names) => Error::Param(format!(
+                "unknown {name} `{}`; valid: {}",
+                text.trim(),
+                names.join(", ")
+            )),
+            _ => Error::Param(format!("parameter `{name}`: {e}")),
         })?;
         self.set(name, &values)
     }

@@ -9,8 +9,45 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
-use crate::effect::Object;
 use crate::mesh::Mesh;
+
+/// The four objects of keys `1`..`4`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Object {
+    /// `glutSolidCube(1.5)`
+    Cube,
+    /// `glutSolidSphere(1, 24, 24)`
+    Sphere,
+    /// `glutSolidTorus(0.5, 1, 24, 24)`
+    Torus,
+    /// `glutSolidTeapot(1)`, the default
+    Teapot,
+}
+
+impl Object {
+    /// All objects, in key order.
+    pub const ALL: [Object; 4] = [Object::Cube, Object::Sphere, Object::Torus, Object::Teapot];
+
+    /// Lower-case name used on the command line and in file names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Object::Cube => "cube",
+            Object::Sphere => "sphere",
+            Object::Torus => "torus",
+            Object::Teapot => "teapot",
+        }
+    }
+
+    /// Parses a command-line name.
+    pub fn from_name(name: &str) -> Option<Object> {
+        Object::ALL.into_iter().find(|o| o.name() == name)
+    }
+
+    /// The mesh the original draws for this object.
+    pub fn mesh(self) -> Mesh {
+        mesh(self, glut_level(self))
+    }
+}
 
 /// Smallest level offered.
 pub const MIN_LEVEL: u32 = 3;

@@ -1,6 +1,11 @@
-//! The window: winit events mapped to the original's GLUT callbacks, a surface that follows
-//! resizes (height 0 is treated as 1, minimising pauses drawing), F12 screenshots and live
-//! shader reload. Effects never see winit; this module calls [`Lab`]'s plain methods.
+//! The window: winit events mapped to the original's GLUT callbacks ([`Input`]), a surface that
+//! follows resizes (height 0 is treated as 1, minimising pauses drawing), F12 screenshots, live
+//! shader reload and the clock of animated labs (Space pauses it). Labs never see winit; this
+//! module drives any [`Lab`] through its plain methods.
+//!
+//! Nothing is drawn when nothing changes: a lab that is not animated is redrawn after input,
+//! a resize, an expose or a reload only, so an idle window costs no CPU (the originals redraw
+//! continuously from `glutIdleFunc`).
 //!
 //! Failure handling: a surface that is `Outdated` is reconfigured and a `Lost` one is created
 //! again, then drawing goes on; a lost GPU device (or a GPU out of memory) ends the event loop
@@ -23,12 +28,15 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-use crate::cli::LabArgs;
-use crate::effect::{Effect, Lab};
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::offscreen::{depth_texture, save_png};
+use crate::lab::{Input, Lab, LabContext, LabEntry, Special};
+use crate::offscreen::{depth_texture, save_png, Offscreen};
+use crate::params::Params;
+use crate::render::Frame;
 use crate::shader::ShaderSource;
+
+use super::Args;
 
 /// Frames per second when the monitor does not say its refresh rate.
 const DEFAULT_REFRESH_HZ: f64 = 60.0;
@@ -50,10 +58,19 @@ pub fn frame_interval(refresh_millihertz: Option<u32>) -> Duration {
     Duration::from_secs_f64(1.0 / (hz * 1.1))
 }
 
-/// Whether a window can be opened (an X11 or Wayland display is named in the environment).
+/// Whether a window can be opened: this build talks X11 (also through XWayland), so a
+/// display must be named in `DISPLAY`.
 pub fn has_display() -> bool {
     std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty())
-        || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| !d.is_empty())
+}
+
+/// Why [`has_display`] is false, in words a user can act on.
+pub fn no_display_reason() -> &'static str {
+    if std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| !d.is_empty()) {
+        "WAYLAND_DISPLAY is set but DISPLAY is not; shaderlab windows use X11, so start XWayland or set DISPLAY"
+    } else {
+        "DISPLAY is unset"
+    }
 }
 
 /// The surface size for a window size, or `None` when the window has no area (zero width or
@@ -63,33 +80,54 @@ pub fn surface_size(size: PhysicalSize<u32>) -> Option<(u32, u32)> {
 }
 
 /// Opens the lab in a window and runs until Esc or close.
-pub fn run_window<E: Effect>(args: &LabArgs) -> Result<()> {
-    let event_loop = EventLoop::new().map_err(|e| Error::Surface(format!("cannot open a window: {e}")))?;
+pub fn run(entry: &'static LabEntry, args: &Args, params: Params) -> Result<()> {
+    let event_loop = EventLoop::new().map_err(|e| {
+        Error::Surface(format!(
+            "cannot open a window on DISPLAY={}: {}",
+            std::env::var("DISPLAY").unwrap_or_default(),
+            e.to_string().lines().next().unwrap_or("").split(" at /").next().unwrap_or("")
+        ))
+    })?;
     event_loop.set_control_flow(ControlFlow::Poll);
     // Live reload needs files: --shaders DIR, else shaders_glsl/ of the source tree, else the built-in copies.
     let source = match args.shader_source()? {
         ShaderSource::Embedded => ShaderSource::source_tree().unwrap_or(ShaderSource::Embedded),
         dir => dir,
     };
-    let mut app = App::<E> {
+    let mut app = App {
+        entry,
         args: args.clone(),
+        params: Some(params),
         source,
         state: None,
         error: None,
     };
-    event_loop
-        .run_app(&mut app)
-        .map_err(|e| Error::Surface(format!("event loop failed: {e}")))?;
+    // winit panics inside its X11 backend when another program destroys the window
+    // (`xdotool windowclose`): turn that into an error instead of a crash report.
+    let previous_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| event_loop.run_app(&mut app)));
+    std::panic::set_hook(previous_hook);
+    match outcome {
+        Ok(result) => result.map_err(|e| Error::Surface(format!("event loop failed: {e}")))?,
+        Err(_) => {
+            return Err(Error::Surface(
+                "the window was closed or destroyed by another program".into(),
+            ))
+        }
+    }
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
     }
 }
 
-struct App<E: Effect> {
-    args: LabArgs,
+struct App {
+    entry: &'static LabEntry,
+    args: Args,
+    params: Option<Params>,
     source: ShaderSource,
-    state: Option<WindowState<E>>,
+    state: Option<WindowState>,
     error: Option<Error>,
 }
 
@@ -102,16 +140,25 @@ fn set_fatal(fatal: &Fatal, message: String) {
     }
 }
 
-struct WindowState<E: Effect> {
+struct WindowState {
+    entry: &'static LabEntry,
+    source: ShaderSource,
     window: Arc<Window>,
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
     depth: wgpu::TextureView,
     gpu: Gpu,
-    lab: Lab<E>,
+    lab: Box<dyn Lab>,
     start: Instant,
     clock_scale: f64,
-    time_offset: f32,
+    /// The lab's time when the clock (re)started, and whether Space paused it.
+    time_offset: f64,
+    paused_clock: bool,
+    /// The time the clock last wrote, to notice a lab that set its own (e.g. a restart key).
+    last_time: Option<f64>,
+    /// Frames still to draw for a lab that is not animated (input, resize, reload).
+    dirty: u32,
+    unpaced: bool,
     cursor: (i32, i32),
     buttons: u32,
     /// The window has no area: nothing to draw.
@@ -130,11 +177,12 @@ struct WindowState<E: Effect> {
     screenshots: u32,
 }
 
-impl<E: Effect> App<E> {
-    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState<E>> {
-        let (width, height) = self.args.size;
+impl App {
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
+        let entry = self.entry;
+        let (width, height) = self.args.size(entry);
         let attributes = Window::default_attributes()
-            .with_title(format!("{} {}", E::TITLE, E::LABEL))
+            .with_title(format!("{} {}", entry.info.title, entry.info.label))
             .with_inner_size(PhysicalSize::new(width, height));
         let window = Arc::new(
             event_loop
@@ -183,14 +231,23 @@ impl<E: Effect> App<E> {
             .or_else(|| caps.formats.first().copied())
             .ok_or_else(|| Error::Surface("the surface supports no formats".into()))?;
         let size = window.inner_size();
+        let present_mode = if self.args.unpaced {
+            [wgpu::PresentMode::Immediate, wgpu::PresentMode::Mailbox]
+                .into_iter()
+                .find(|m| caps.present_modes.contains(m))
+                .unwrap_or(wgpu::PresentMode::Fifo)
+        } else {
+            wgpu::PresentMode::Fifo
+        };
+        let max = gpu.device.limits().max_texture_dimension_2d;
         let config = wgpu::SurfaceConfiguration {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             format,
             color_space: Default::default(),
-            width: size.width.max(1),
-            height: size.height.max(1),
+            width: size.width.clamp(1, max),
+            height: size.height.clamp(1, max),
             desired_maximum_frame_latency: 2,
-            present_mode: wgpu::PresentMode::Fifo,
+            present_mode,
             alpha_mode: caps
                 .alpha_modes
                 .first()
@@ -203,8 +260,20 @@ impl<E: Effect> App<E> {
             surface.configure(&gpu.device, &config)
         })?;
         let depth = depth_texture(&gpu.device, config.width, config.height);
-        let mut lab = Lab::<E>::new(&gpu, self.source.clone(), format)?;
-        self.args.apply(&mut lab)?;
+        if size.width > max || size.height > max {
+            eprintln!(
+                "{}: the window ({}x{}) is larger than the GPU can draw ({max}x{max}); drawing the part that fits",
+                entry.info.name, size.width, size.height
+            );
+        }
+        let mut lab = (entry.new)(&LabContext {
+            gpu: &gpu,
+            source: &self.source,
+            format,
+        })?;
+        if let Some(params) = self.params.take() {
+            *lab.params_mut() = params;
+        }
         let reload = match &self.source {
             ShaderSource::Dir(dir) => watch(dir),
             ShaderSource::Embedded => None,
@@ -221,7 +290,19 @@ impl<E: Effect> App<E> {
             .map(|d| Instant::now() + d);
         let refresh_millihertz = window.current_monitor().and_then(|m| m.refresh_rate_millihertz());
         window.set_title(&lab.title());
+        let time_offset = if lab.params().has("time") {
+            lab.params().f64("time")
+        } else {
+            0.0
+        };
         Ok(WindowState {
+            entry,
+            source: self.source.clone(),
+            time_offset,
+            paused_clock: false,
+            last_time: None,
+            dirty: 2,
+            unpaced: self.args.unpaced,
             minimised: surface_size(size).is_none(),
             window,
             surface,
@@ -231,7 +312,6 @@ impl<E: Effect> App<E> {
             lab,
             start: Instant::now(),
             clock_scale,
-            time_offset: self.args.time.unwrap_or(0.0),
             cursor: (0, 0),
             buttons: 0,
             occluded: false,
@@ -252,7 +332,14 @@ fn watch(dir: &std::path::Path) -> Option<(notify::RecommendedWatcher, mpsc::Rec
     let (tx, rx) = mpsc::channel();
     let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
         if let Ok(event) = event {
-            if event.kind.is_modify() || event.kind.is_create() {
+            // Only shader files: a screenshot written into the folder is not an edit.
+            let shader = event.paths.iter().any(|p| {
+                matches!(
+                    p.extension().and_then(|e| e.to_str()),
+                    Some("vert" | "frag" | "glsl" | "comp")
+                )
+            });
+            if shader && (event.kind.is_modify() || event.kind.is_create()) {
                 let _ = tx.send(());
             }
         }
@@ -266,7 +353,11 @@ fn watch(dir: &std::path::Path) -> Option<(notify::RecommendedWatcher, mpsc::Rec
     Some((watcher, rx))
 }
 
-impl<E: Effect> WindowState<E> {
+impl WindowState {
+    fn name(&self) -> &'static str {
+        self.entry.info.name
+    }
+
     fn update_title(&self) {
         let mut title = self.lab.title();
         if self.shader_error {
@@ -284,7 +375,7 @@ impl<E: Effect> WindowState<E> {
     fn fatal_error(&self) -> Option<Error> {
         let message = self.fatal.lock().ok()?.clone()?;
         Some(Error::Wgpu {
-            context: format!("the {} window", E::NAME),
+            context: format!("the {} window", self.name()),
             message,
         })
     }
@@ -297,10 +388,12 @@ impl<E: Effect> WindowState<E> {
             return;
         };
         self.minimised = false;
-        self.config.width = width;
-        self.config.height = height;
+        self.dirty = 2;
+        let max = self.gpu.device.limits().max_texture_dimension_2d;
+        self.config.width = width.min(max);
+        self.config.height = height.min(max);
         self.surface.configure(&self.gpu.device, &self.config);
-        self.depth = depth_texture(&self.gpu.device, width, height);
+        self.depth = depth_texture(&self.gpu.device, self.config.width, self.config.height);
     }
 
     /// A `Lost` surface must be created again from the window, then configured.
@@ -323,17 +416,23 @@ impl<E: Effect> WindowState<E> {
         // Editors write in several steps: let them finish, then drain the queue.
         std::thread::sleep(Duration::from_millis(50));
         while rx.try_recv().is_ok() {}
-        match self.lab.reload(&self.gpu) {
+        self.dirty = 2;
+        let cx = LabContext {
+            gpu: &self.gpu,
+            source: &self.source,
+            format: self.config.format,
+        };
+        match self.lab.reload(&cx) {
             Ok(()) => {
                 if self.shader_error {
-                    eprintln!("{}: shaders reloaded, error fixed", E::NAME);
+                    eprintln!("{}: shaders reloaded, error fixed", self.name());
                 } else {
-                    eprintln!("{}: shaders reloaded", E::NAME);
+                    eprintln!("{}: shaders reloaded", self.name());
                 }
                 self.shader_error = false;
             }
             Err(e) => {
-                eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", E::NAME);
+                eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name());
                 self.shader_error = true;
             }
         }
@@ -346,15 +445,29 @@ impl<E: Effect> WindowState<E> {
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs())
             .unwrap_or(0);
-        let path = PathBuf::from(format!("{}-{stamp}-{}.png", E::NAME, self.screenshots));
+        // The process id keeps two windows started in the same second apart.
+        let mut path;
+        loop {
+            path = PathBuf::from(format!(
+                "{}-{stamp}-{}-{}.png",
+                self.name(),
+                std::process::id(),
+                self.screenshots
+            ));
+            if !path.exists() {
+                break;
+            }
+            self.screenshots += 1;
+        }
         let (w, h) = (self.config.width, self.config.height);
-        match self
-            .lab
-            .screenshot(&self.gpu, w, h)
+        // Drawn by the window's own pipelines (its format), read back as RGB.
+        let target = Offscreen::with_format(&self.gpu, w, h, self.config.format);
+        match super::render_into(&self.gpu, self.lab.as_mut(), &target)
+            .and_then(|()| target.read(&self.gpu))
             .and_then(|image| save_png(&image, &path))
         {
             Ok(()) => println!("screenshot: {}", std::fs::canonicalize(&path).unwrap_or(path).display()),
-            Err(e) => eprintln!("{}: screenshot failed: {e}", E::NAME),
+            Err(e) => eprintln!("{}: screenshot failed: {e}", self.name()),
         }
     }
 
@@ -362,7 +475,7 @@ impl<E: Effect> WindowState<E> {
         if let Some(at) = self.lose_device_at {
             if Instant::now() >= at {
                 self.lose_device_at = None;
-                eprintln!("{}: SHADERLAB_TEST_LOSE_DEVICE: destroying the GPU device", E::NAME);
+                eprintln!("{}: SHADERLAB_TEST_LOSE_DEVICE: destroying the GPU device", self.name());
                 self.gpu.device.destroy();
                 // The device-lost callback runs when the device is next maintained.
                 let _ = self.gpu.device.poll(wgpu::PollType::Poll);
@@ -377,10 +490,8 @@ impl<E: Effect> WindowState<E> {
         // Pace from the previous deadline (no drift), but never plan a burst to catch up.
         let now = Instant::now();
         self.next_frame = (self.next_frame + self.frame_interval).max(now);
-        if self.animated() {
-            let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
-            self.lab.scene.time = f64::from(self.time_offset) + elapsed;
-        }
+        self.tick();
+        self.dirty = self.dirty.saturating_sub(1);
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
@@ -417,14 +528,30 @@ impl<E: Effect> WindowState<E> {
             ..Default::default()
         });
         let (w, h) = (self.config.width, self.config.height);
-        self.lab.render(&self.gpu, &view, &self.depth, w, h);
-        // Key `m` switches the shading model; the pipeline is rebuilt while drawing, and a
-        // broken shader file leaves the previous model in place.
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("window.frame"),
+        });
+        let rendered = {
+            let mut frame = Frame {
+                gpu: &self.gpu,
+                encoder: &mut encoder,
+                color: &view,
+                depth: &self.depth,
+                width: w,
+                height: h,
+                timestamps: None,
+            };
+            self.lab.render(&mut frame)
+        };
+        if let Err(e) = rendered {
+            eprintln!("{}: {e}", self.name());
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+        // A lab may rebuild a program while drawing (a shading model chosen by key); a broken
+        // shader file leaves the previous one in place, and the error is shown once.
         if let Some(e) = self.lab.take_error() {
-            eprintln!(
-                "{}: cannot switch the shading model (keeping the previous one):\n{e}",
-                E::NAME
-            );
+            eprintln!("{}: {e}", self.name());
+            self.shader_error = true;
             self.update_title();
         }
         self.window.pre_present_notify();
@@ -432,9 +559,46 @@ impl<E: Effect> WindowState<E> {
         Ok(())
     }
 
-    /// Whether the effect has a `time` uniform that the window's clock drives.
+    /// Whether the lab's clock runs (an animated lab, not paused with Space).
     fn animated(&self) -> bool {
-        self.lab.params_layout().member("time").is_some()
+        self.lab.animated() && self.lab.params().has("time") && !self.paused_clock
+    }
+
+    /// Advances an animated lab's `time`: the clock since the start, from the time the lab had
+    /// then. A lab that set its own time since (a restart key, a parameter) moves the origin.
+    fn tick(&mut self) {
+        if !self.animated() {
+            return;
+        }
+        let current = self.lab.params().f64("time");
+        let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
+        if self.last_time.is_some_and(|t| t != current) {
+            self.time_offset = current - elapsed;
+        }
+        let t = self.time_offset + elapsed;
+        self.lab.params_mut().put("time", &[t]);
+        self.last_time = Some(self.lab.params().f64("time"));
+    }
+
+    /// Space: pauses or resumes the clock of an animated lab, keeping its time.
+    fn toggle_clock(&mut self) {
+        if !self.lab.animated() {
+            return;
+        }
+        if self.paused_clock {
+            let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
+            self.time_offset = self.lab.params().f64("time") - elapsed;
+            self.last_time = None;
+        }
+        self.paused_clock = !self.paused_clock;
+        self.dirty = 2;
+    }
+
+    fn input(&mut self, input: Input) {
+        self.dirty = 2;
+        if self.lab.input(input) {
+            self.update_title();
+        }
     }
 
     fn key(&mut self, event: &KeyEvent, event_loop: &ActiveEventLoop) {
@@ -444,23 +608,47 @@ impl<E: Effect> WindowState<E> {
         match &event.logical_key {
             Key::Named(NamedKey::Escape) => event_loop.exit(),
             Key::Named(NamedKey::F12) => self.screenshot(),
+            Key::Named(NamedKey::Space) if self.lab.animated() => self.toggle_clock(),
+            Key::Named(named) => {
+                let special = match named {
+                    NamedKey::ArrowLeft => Special::Left,
+                    NamedKey::ArrowRight => Special::Right,
+                    NamedKey::ArrowUp => Special::Up,
+                    NamedKey::ArrowDown => Special::Down,
+                    NamedKey::PageUp => Special::PageUp,
+                    NamedKey::PageDown => Special::PageDown,
+                    _ => {
+                        // Space and other named keys that type a character.
+                        if let Some(c) = event.text.as_deref().and_then(single_char) {
+                            self.input(Input::Key(c));
+                        }
+                        return;
+                    }
+                };
+                self.input(Input::Special(special));
+            }
             _ => {
                 let text = event.text.as_deref().or(match &event.logical_key {
                     Key::Character(s) => Some(s.as_str()),
                     _ => None,
                 });
-                let mut chars = text.unwrap_or("").chars();
-                if let (Some(c), None) = (chars.next(), chars.next()) {
-                    if self.lab.key(c) {
-                        self.update_title();
-                    }
+                if let Some(c) = text.and_then(single_char) {
+                    self.input(Input::Key(c));
                 }
             }
         }
     }
 }
 
-impl<E: Effect> ApplicationHandler for App<E> {
+fn single_char(s: &str) -> Option<char> {
+    let mut chars = s.chars();
+    match (chars.next(), chars.next()) {
+        (Some(c), None) => Some(c),
+        _ => None,
+    }
+}
+
+impl ApplicationHandler for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.state.is_some() {
             return;
@@ -496,7 +684,7 @@ impl<E: Effect> ApplicationHandler for App<E> {
                 state.cursor = (position.x as i32, position.y as i32);
                 if state.buttons != 0 {
                     // glutMotionFunc: called while any button is held.
-                    state.lab.mouse_motion(state.cursor.0, state.cursor.1);
+                    state.input(Input::Drag(state.cursor.0, state.cursor.1));
                 }
             }
             WindowEvent::MouseInput {
@@ -513,10 +701,13 @@ impl<E: Effect> ApplicationHandler for App<E> {
                 if button_state == ElementState::Pressed {
                     state.buttons |= bit;
                     if button == MouseButton::Left {
-                        state.lab.mouse_press(state.cursor.0, state.cursor.1);
+                        state.input(Input::Press(state.cursor.0, state.cursor.1));
                     }
                 } else {
                     state.buttons &= !bit;
+                    if button == MouseButton::Left {
+                        state.input(Input::Release(state.cursor.0, state.cursor.1));
+                    }
                 }
             }
             WindowEvent::RedrawRequested => {
@@ -541,7 +732,21 @@ impl<E: Effect> ApplicationHandler for App<E> {
                 Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
                 None => event_loop.set_control_flow(ControlFlow::Wait),
             }
-        } else if now >= state.next_frame {
+        } else if !state.unpaced && !state.animated() && state.dirty == 0 {
+            // Nothing changes: sleep until an event (input, resize, expose) wakes the loop,
+            // looking at the shader folder a few times a second for live reload.
+            if state.reload.is_some() {
+                let Some(state) = self.state.as_mut() else { return };
+                state.check_reload();
+                let wake = now + Duration::from_millis(100);
+                event_loop.set_control_flow(ControlFlow::WaitUntil(wake));
+                if state.dirty > 0 {
+                    state.window.request_redraw();
+                }
+            } else {
+                event_loop.set_control_flow(ControlFlow::Wait);
+            }
+        } else if state.unpaced || now >= state.next_frame {
             event_loop.set_control_flow(ControlFlow::Poll);
             state.window.request_redraw();
         } else {

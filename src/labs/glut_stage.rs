@@ -1,0 +1,244 @@
+//! The stage of the GLUT programs: one of GLUT's four solids, rotated by `glRotatef` angles that
+//! the left-button drag changes, seen through `gluPerspective` + `gluLookAt`, with the GL 2.0
+//! built-in matrices as one uniform block (`transform.glsl`). Labs compose it with their own
+//! uniforms and programs; it answers for its own parameters (`object`, `xangle`, `yangle`,
+//! `zangle`, and for seed 000 the port's `tess`, `scale`, `naive_nm`).
+
+use std::collections::HashMap;
+
+use glam::{Mat3, Mat4, Vec3};
+
+use crate::camera;
+use crate::gpu::Gpu;
+use crate::lab::Input;
+use crate::mesh::{Mesh, Vertex};
+use crate::params::{ParamSpec, Params};
+use crate::render::{GpuMesh, Uniforms};
+use crate::tess::{self, Object};
+
+/// The shared transform block of `transform.glsl`: the GL 2.0 built-in matrices.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct TransformUniforms {
+    /// `gl_ModelViewMatrix`.
+    pub modelview: [[f32; 4]; 4],
+    /// `gl_ModelViewProjectionMatrix`, depth already mapped to 0..1.
+    pub mvp: [[f32; 4]; 4],
+    /// `gl_NormalMatrix`; std140 stores a mat3 as three vec4 columns (48 bytes).
+    pub normal_matrix: [[f32; 4]; 3],
+}
+crate::uniform_block!(TransformUniforms, "Transform", {
+    modelview: "modelview",
+    mvp: "mvp",
+    normal_matrix: "normal_matrix",
+});
+
+impl TransformUniforms {
+    /// From a modelview and a (wgpu-depth) projection.
+    pub fn new(modelview: Mat4, projection: Mat4) -> Self {
+        TransformUniforms {
+            modelview: modelview.to_cols_array_2d(),
+            mvp: (projection * modelview).to_cols_array_2d(),
+            normal_matrix: std140_mat3(camera::normal_matrix(modelview)),
+        }
+    }
+}
+
+/// A mat3 as std140 stores it: three columns, each padded to a vec4.
+pub fn std140_mat3(m: Mat3) -> [[f32; 4]; 3] {
+    [m.x_axis, m.y_axis, m.z_axis].map(|c| [c.x, c.y, c.z, 0.0])
+}
+
+/// Seed 000's object order (keys `1`-`4`: cube, sphere, torus, teapot).
+pub const OBJECTS_000: &[&str] = &["cube", "sphere", "torus", "teapot"];
+
+const OBJECTS_BY_KEY: [Object; 4] = [Object::Cube, Object::Sphere, Object::Torus, Object::Teapot];
+
+/// How a lab's GLUT stage looks.
+#[derive(Clone, Copy, Debug)]
+pub struct StageConfig {
+    /// `gluPerspective` fovy, near, far (the aspect is the window's).
+    pub perspective: (f64, f64, f64),
+    /// The eye at start; the view looks down -z from it (`gluLookAt(eye, eye - z, y)`).
+    pub eye: Vec3,
+}
+
+/// Parameters of the stage with seed 000's object order and the port's tessellation and
+/// normal-matrix study knobs.
+pub const PARAMS_000: &[ParamSpec] = &[
+    ParamSpec::choice("object", &[3.0], OBJECTS_000, "object drawn (keys 1-4)"),
+    ParamSpec::real("xangle", &[0.0], -36000.0, 36000.0, "glRotatef about x, degrees (mouse: vertical drag)"),
+    ParamSpec::real("yangle", &[0.0], -36000.0, 36000.0, "glRotatef about y, degrees (mouse: horizontal drag)"),
+    ParamSpec::real("zangle", &[0.0], -36000.0, 36000.0, "glRotatef about z, degrees"),
+    ParamSpec::int(
+        "tess",
+        &[0.0],
+        -1.0,
+        512.0,
+        "port: tessellation level 3-512; 0 = GLUT's (auto in a port-only mode), -1 = auto",
+    ),
+    ParamSpec::real("scale", &[1.0, 1.0, 1.0], -100.0, 100.0, "port study: glScalef after the rotations"),
+    ParamSpec::flag(
+        "naive_nm",
+        &[0.0],
+        "port study: normals by the modelview's 3x3 instead of its inverse transpose",
+    ),
+];
+
+/// Object, rotation, mouse, meshes and the Transform block.
+pub struct GlutStage {
+    config: StageConfig,
+    /// Where the eye is (a lab may move it, e.g. Phong's W/A/S/D).
+    pub eye: Vec3,
+    motion: (i32, i32),
+    meshes: HashMap<(Object, u32, bool), GpuMesh<Vertex>>,
+    /// The Transform block of the object.
+    pub transform: Uniforms<TransformUniforms>,
+}
+
+impl GlutStage {
+    /// A stage with GLUT's meshes at their default levels uploaded.
+    pub fn new(gpu: &Gpu, label: &str, config: StageConfig) -> Self {
+        let meshes = Object::ALL
+            .into_iter()
+            .map(|o| {
+                let mesh = GpuMesh::new(
+                    gpu,
+                    &format!("mesh.{}", o.name()),
+                    &o.mesh().vertices,
+                    Some(&o.mesh().indices),
+                );
+                ((o, tess::glut_level(o), false), mesh)
+            })
+            .collect();
+        let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
+        GlutStage {
+            config,
+            eye: config.eye,
+            motion: (0, 0),
+            meshes,
+            transform: Uniforms::new(gpu, &format!("{label}.transform"), identity),
+        }
+    }
+
+    /// The object chosen by the `object` parameter.
+    pub fn object(params: &Params) -> Object {
+        let name = params.text("object");
+        Object::ALL
+            .into_iter()
+            .find(|o| o.name() == name)
+            .unwrap_or(Object::Teapot)
+    }
+
+    /// The GLUT programs' input: keys `1`-`4` choose the object; a left-button drag rotates by
+    /// ±2° of yangle per horizontal event and ±1° of xangle per vertical one. Like the
+    /// originals, a coordinate that was 0 at the press does not rotate (their `if (xMotion)`).
+    pub fn input(&mut self, params: &mut Params, input: Input) -> bool {
+        match input {
+            Input::Key(c @ '1'..='4') => {
+                let object = OBJECTS_BY_KEY[(c as u8 - b'1') as usize];
+                params.set_str("object", object.name()).is_ok()
+            }
+            Input::Press(x, y) => {
+                self.motion = (x, y);
+                false
+            }
+            Input::Drag(x, y) => {
+                let (xm, ym) = &mut self.motion;
+                let mut angles = [params.f("xangle"), params.f("yangle")];
+                if *xm != 0 {
+                    angles[1] += match x.cmp(xm) {
+                        std::cmp::Ordering::Less => -2.0,
+                        std::cmp::Ordering::Greater => 2.0,
+                        std::cmp::Ordering::Equal => 0.0,
+                    };
+                    *xm = x;
+                }
+                if *ym != 0 {
+                    angles[0] += match y.cmp(ym) {
+                        std::cmp::Ordering::Less => -1.0,
+                        std::cmp::Ordering::Greater => 1.0,
+                        std::cmp::Ordering::Equal => 0.0,
+                    };
+                    *ym = y;
+                }
+                // Keep angles bounded (a long drag session must not lose float precision).
+                params.put("xangle", &[f64::from(angles[0].rem_euclid(360.0))]);
+                params.put("yangle", &[f64::from(angles[1].rem_euclid(360.0))]);
+                let z = params.f("zangle").rem_euclid(360.0);
+                params.put("zangle", &[f64::from(z)]);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The tessellation level drawn for the object in a viewport `height` rows high. GLUT's by
+    /// default, as the original; once a port-only mode is on (`faithful` false) the default
+    /// becomes the smallest level whose silhouette error stays within half a pixel.
+    pub fn level(&self, params: &Params, height: u32, faithful: bool) -> u32 {
+        let object = Self::object(params);
+        let tess = params.f64("tess") as i64;
+        match tess {
+            _ if object == Object::Cube => 0,
+            0 if faithful => tess::glut_level(object),
+            1.. => (tess as u32).clamp(tess::MIN_LEVEL, tess::MAX_LEVEL),
+            _ => {
+                let distance = self.eye.length() as f64;
+                tess::choose_level(object, distance, height, tess::DEFAULT_BUDGET_PX)
+            }
+        }
+    }
+
+    /// The modelview for the current state.
+    pub fn modelview(&self, params: &Params) -> Mat4 {
+        let angles = Vec3::new(params.f("xangle"), params.f("yangle"), params.f("zangle"));
+        let scale = Vec3::from_array(params.v3("scale"));
+        let model = camera::lab_rotation(angles) * Mat4::from_scale(scale);
+        camera::glu_look_at(self.eye, self.eye - Vec3::Z, Vec3::Y) * model
+    }
+
+    /// `gluPerspective` for a viewport, in wgpu's depth convention (`(float)w/h`, h 0 taken as 1).
+    pub fn projection(&self, width: u32, height: u32) -> Mat4 {
+        let (fovy, near, far) = self.config.perspective;
+        let aspect = (width as f32 / height.max(1) as f32) as f64;
+        camera::gl_to_wgpu_depth(camera::glu_perspective(fovy, aspect, near, far))
+    }
+
+    /// Writes the Transform block for a `width` x `height` viewport and returns the mesh to
+    /// draw (built on first use; GLUT's levels stay cached, of the others only the one in use).
+    pub fn prepare(
+        &mut self,
+        gpu: &Gpu,
+        params: &Params,
+        width: u32,
+        height: u32,
+        faithful: bool,
+        smooth: bool,
+    ) -> &GpuMesh<Vertex> {
+        let modelview = self.modelview(params);
+        let mut transform = TransformUniforms::new(modelview, self.projection(width, height));
+        if params.on("naive_nm") {
+            transform.normal_matrix = std140_mat3(Mat3::from_mat4(modelview));
+        }
+        self.transform.value = transform;
+        self.transform.upload(gpu);
+        let object = Self::object(params);
+        let key = (object, self.level(params, height, faithful), smooth);
+        let (_, level, _) = key;
+        if !self.meshes.contains_key(&key) && level != tess::glut_level(object) {
+            self.meshes
+                .retain(|&(o, l, _), _| o != object || l == tess::glut_level(o));
+        }
+        self.meshes.entry(key).or_insert_with(|| {
+            let mesh = tess::mesh(object, level);
+            let mesh: Mesh = if smooth { mesh.welded() } else { mesh };
+            GpuMesh::new(
+                gpu,
+                &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }),
+                &mesh.vertices,
+                Some(&mesh.indices),
+            )
+        })
+    }
+}

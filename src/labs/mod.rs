@@ -1,0 +1,76 @@
+//! The exercises, one module each, and [`ALL`]: the one list that examples, the bench and the
+//! tests iterate. Each module names its shaders (`shaders_glsl/NAME.*`), its example
+//! (`examples/NAME.rs`) and its tests after itself.
+
+pub mod glut_stage;
+
+pub mod displacement;
+pub mod noise;
+pub mod normal_rgb;
+pub mod phong;
+mod plain;
+pub mod position_rgb;
+
+use crate::lab::LabEntry;
+use crate::params::{ParamSpec, Params};
+
+/// Seed 000, CMP211 Lab05 exercise 1.
+pub static POSITION_RGB: &LabEntry = &position_rgb::ENTRY;
+/// Seed 000, exercise 2.
+pub static NORMAL_RGB: &LabEntry = &normal_rgb::ENTRY;
+/// Seed 000, exercise 3.
+pub static PHONG: &LabEntry = &phong::ENTRY;
+/// Seed 000, exercise 4.
+pub static NOISE: &LabEntry = &noise::ENTRY;
+/// Seed 000, exercise 5.
+pub static DISPLACEMENT: &LabEntry = &displacement::ENTRY;
+
+/// Every lab, in lecture order.
+pub static ALL: &[&LabEntry] = &[
+    &position_rgb::ENTRY,
+    &normal_rgb::ENTRY,
+    &phong::ENTRY,
+    &noise::ENTRY,
+    &displacement::ENTRY,
+];
+
+/// The lab called `name`.
+pub fn find(name: &str) -> Option<&'static LabEntry> {
+    ALL.iter().copied().find(|e| e.info.name == name)
+}
+
+/// The simplex noise is periodic in `time` along (1,1,1): its lattice repeats every 289 skewed
+/// units, and a shift of t along (1,1,1) moves the skewed coordinates by 2t, so t = 289/2.
+pub const NOISE_PERIOD: f64 = 144.5;
+
+/// The clock of exercises 4 and 5, and the port's wrap of it by the noise period.
+const NOISE_PARAMS: &[ParamSpec] = &[
+    ParamSpec::real("time", &[0.0], -1e9, 1e9, "seconds (a clock in a window)"),
+    ParamSpec::flag(
+        "wrap_time",
+        &[1.0],
+        "port: wrap time by the noise period (144.5 s) so f32 never loses precision",
+    ),
+];
+
+/// The time uniform of exercises 4 and 5: kept in f64 by the clock and wrapped by the noise
+/// period before it is narrowed, so a long-running window keeps full precision.
+fn noise_time(p: &Params) -> f32 {
+    let t = p.f64("time");
+    (if p.on("wrap_time") { t.rem_euclid(NOISE_PERIOD) } else { t }) as f32
+}
+
+/// The shade keys of exercises 4 and 5: `R/G/B` +0.05, `r/g/b` -0.05 on the noise colour.
+fn shade_key(p: &mut Params, key: char) -> bool {
+    let (channel, delta) = match key {
+        'R' => (0, 0.05),
+        'r' => (0, -0.05),
+        'G' => (1, 0.05),
+        'g' => (1, -0.05),
+        'B' => (2, 0.05),
+        'b' => (2, -0.05),
+        _ => return false,
+    };
+    p.step_component("shade", channel, delta);
+    true
+}

@@ -1,0 +1,29 @@
+//! Exercise 2, normal → RGB (`Lab05-2`): `normalize(gl_NormalMatrix * gl_Normal)` in eye space
+//! as colour; negative components clamp to 0. Keys: `1`-`4` objects, mouse drag rotates.
+
+use crate::lab::{LabEntry, LabInfo};
+
+use super::plain::{self, Plain};
+
+/// Exercise 2.
+pub static INFO: LabInfo = LabInfo {
+    name: "normal_rgb",
+    title: "Lab05-2",
+    label: "normal to RGB",
+    lecture: "000 CMP211 Lab05",
+    size: (640, 360),
+    keys: "1-4: cube, sphere, torus, teapot; left drag rotates",
+};
+
+const PLAIN: Plain = Plain {
+    info: &INFO,
+    vert: "normal_rgb.vert",
+    frag: "normal_rgb.frag",
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params: plain::params,
+    new: |cx| plain::new(cx, &PLAIN),
+};

@@ -1,0 +1,30 @@
+//! Exercise 1, position → RGB (`Lab05-1`): each vertex's colour is `normalize(gl_Vertex.zyxw)
+//! + 0.5` — a 4-component normalize with w = 1 — so the object shows its position as colour,
+//! z as red, y as green, x as blue; values above 1 clamp. Keys: `1`-`4` objects, mouse drag rotates.
+
+use crate::lab::{LabEntry, LabInfo};
+
+use super::plain::{self, Plain};
+
+/// Exercise 1.
+pub static INFO: LabInfo = LabInfo {
+    name: "position_rgb",
+    title: "Lab05-1",
+    label: "position to RGB",
+    lecture: "000 CMP211 Lab05",
+    size: (640, 360),
+    keys: "1-4: cube, sphere, torus, teapot; left drag rotates",
+};
+
+const PLAIN: Plain = Plain {
+    info: &INFO,
+    vert: "position_rgb.vert",
+    frag: "position_rgb.frag",
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params: plain::params,
+    new: |cx| plain::new(cx, &PLAIN),
+};

@@ -1,0 +1,183 @@
+//! The command line of every example. Parameters are the lab's own (`--set NAME=VALUE`,
+//! listed by `--help`); `--object`, `--rotate`, `--time`, `--shading` and `--tess` are
+//! shorthands for the parameters of the same meaning, kept from seed 000's command line.
+
+use std::path::PathBuf;
+
+use clap::{CommandFactory, FromArgMatches, Parser};
+
+use crate::error::Error;
+use crate::lab::LabEntry;
+use crate::params::{parse_finite, parse_numbers, Params};
+use crate::shader::ShaderSource;
+
+/// Arguments of every example.
+#[derive(Parser, Debug, Clone)]
+#[command(version)]
+pub struct Args {
+    /// Set a parameter by name, e.g. xangle=30, Ka=0.2, object=torus (repeatable; see PARAMETERS below).
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_set, allow_hyphen_values = true)]
+    pub set: Vec<(String, String)>,
+    /// Render one frame offscreen (no window), write it to this PNG and exit.
+    #[arg(long, value_name = "FILE.png")]
+    pub screenshot: Option<PathBuf>,
+    /// Render N frames offscreen, waiting for each, and print ms_per_frame.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub bench: Option<u32>,
+    /// With --bench: also time each frame on the GPU with timestamp queries (slower on CPU drivers).
+    #[arg(long)]
+    pub gpu_time: bool,
+    /// Image or window size (default: the original's).
+    #[arg(long, value_name = "WxH", value_parser = parse_size, allow_hyphen_values = true)]
+    pub size: Option<(u32, u32)>,
+    /// Read shaders from this directory instead of the built-in copies (same file names as shaders_glsl/).
+    #[arg(long, value_name = "DIR")]
+    pub shaders: Option<PathBuf>,
+    /// Object to draw (the `object` parameter): cube, sphere, torus or teapot.
+    #[arg(long, value_name = "NAME")]
+    pub object: Option<String>,
+    /// Rotation in degrees (the `xangle`, `yangle`, `zangle` parameters), applied as glRotatef X, then Y, then Z.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub rotate: Option<[f64; 3]>,
+    /// The `time` parameter in seconds. Default: 0 offscreen, a clock in a window.
+    #[arg(long, value_name = "T", value_parser = parse_time, allow_hyphen_values = true)]
+    pub time: Option<f64>,
+    /// Shading model (the `shading` parameter of labs that have one, e.g. phong: flat, gouraud, phong, blinn).
+    #[arg(long, value_name = "NAME")]
+    pub shading: Option<String>,
+    /// Tessellation of sphere, torus and teapot (the `tess` parameter): a level from 3 to 512, or
+    /// `auto` (smallest level with silhouette error under half a pixel). Default: GLUT's, as the
+    /// original; `auto` with a port-only mode (`--shading` other than phong, `--set smooth=1`).
+    #[arg(long, value_name = "N|auto", value_parser = parse_tess)]
+    pub tess: Option<f64>,
+    /// In a window: draw as fast as possible (present mode Immediate, no pacing), to measure frame time.
+    #[arg(long)]
+    pub unpaced: bool,
+}
+
+fn parse_time(s: &str) -> Result<f64, String> {
+    parse_finite(s).map(f64::from)
+}
+
+fn parse_tess(s: &str) -> Result<f64, String> {
+    if s == "auto" {
+        return Ok(-1.0);
+    }
+    match s.parse::<u32>() {
+        Ok(n) if (crate::tess::MIN_LEVEL..=crate::tess::MAX_LEVEL).contains(&n) => Ok(f64::from(n)),
+        _ => Err(format!("`{s}`: expected `auto` or a level from 3 to 512")),
+    }
+}
+
+fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
+    match parse_numbers(s)?.as_slice() {
+        [x, y, z] => Ok([*x, *y, *z]),
+        _ => Err(format!("`{s}`: expected three numbers X,Y,Z")),
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{s}`: expected WxH with each side between 1 and 8192, e.g. 640x360");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h) = (
+        w.trim().parse::<u32>().map_err(|_| bad())?,
+        h.trim().parse::<u32>().map_err(|_| bad())?,
+    );
+    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
+fn parse_set(s: &str) -> Result<(String, String), String> {
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| format!("`{s}`: expected NAME=VALUE, e.g. xangle=30"))?;
+    Ok((name.trim().to_owned(), value.trim().to_owned()))
+}
+
+impl Args {
+    /// Parses the process arguments for `entry`; prints usage and exits 2 on a bad flag.
+    pub fn parse_for(entry: &LabEntry) -> Self {
+        let info = entry.info;
+        let params = (entry.params)();
+        let (w, h) = info.size;
+        let after = format!(
+            "PARAMETERS (--set NAME=VALUE):\n{}\nKEYS AND MOUSE:\n  {}\n  F12 saves a screenshot, Esc quits; shaders edited under --shaders DIR (or shaders_glsl/) reload live.\n\nDefault size {w}x{h}.",
+            params.help(),
+            info.keys.replace('\n', "\n  ")
+        );
+        let command = Args::command()
+            .name(info.name)
+            .about(format!("{} {} ({}), on wgpu", info.title, info.label, info.lecture))
+            .after_help(after);
+        let matches = command.get_matches();
+        Args::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+    }
+
+    /// The shader source chosen by `--shaders` (built-in copies otherwise).
+    pub fn shader_source(&self) -> Result<ShaderSource, Error> {
+        match &self.shaders {
+            Some(dir) => ShaderSource::dir(dir),
+            None => Ok(ShaderSource::Embedded),
+        }
+    }
+
+    /// The image or window size.
+    pub fn size(&self, entry: &LabEntry) -> (u32, u32) {
+        self.size.unwrap_or(entry.info.size)
+    }
+
+    /// The lab's parameters with the command line applied; usage errors name the lab.
+    pub fn params(&self, entry: &LabEntry) -> Result<Params, Error> {
+        let name = entry.info.name;
+        let mut p = (entry.params)();
+        let missing = |flag: &str, what: &str| {
+            Error::Param(format!("`{flag}`: {name} has no {what}"))
+        };
+        if let Some(object) = &self.object {
+            if !p.has("object") {
+                return Err(missing("--object", "objects to choose from"));
+            }
+            p.set_str("object", object)?;
+        }
+        if let Some([x, y, z]) = self.rotate {
+            for (axis, v) in [("xangle", x), ("yangle", y), ("zangle", z)] {
+                if p.has(axis) {
+                    p.set(axis, &[v])?;
+                } else if v != 0.0 {
+                    return Err(missing("--rotate", &format!("`{axis}` parameter")));
+                }
+            }
+        }
+        if let Some(t) = self.time {
+            // Labs without a clock ignore it, as seed 000's labs without noise always did.
+            if p.has("time") {
+                p.set("time", &[t])?;
+            }
+        }
+        if let Some(shading) = &self.shading {
+            if !p.has("shading") {
+                return Err(missing("--shading", "shading models (no `shading` parameter)"));
+            }
+            p.set_str("shading", shading)?;
+        }
+        if let Some(tess) = self.tess {
+            if !p.has("tess") {
+                return Err(missing("--tess", "tessellated objects (no `tess` parameter)"));
+            }
+            p.set("tess", &[tess])?;
+        }
+        for (key, value) in &self.set {
+            if !p.has(key) {
+                let valid: Vec<&str> = p.specs().iter().map(|s| s.name).collect();
+                return Err(Error::Param(format!(
+                    "unknown parameter `{key}` for {name}; valid: {}",
+                    valid.join(", ")
+                )));
+            }
+            p.set_str(key, value)?;
+        }
+        Ok(p)
+    }
+}

@@ -1,0 +1,199 @@
+//! Rendering without a window: `--screenshot`, `--bench`, and the tests.
+
+use std::path::Path;
+use std::time::Instant;
+
+use crate::error::{Error, Result};
+use crate::gpu::Gpu;
+use crate::lab::{Lab, LabContext, LabEntry};
+use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
+use crate::params::Params;
+use crate::render::Frame;
+
+use super::{say, Args, Failure};
+
+/// Checks a `--screenshot` name before anything is rendered or written.
+pub(crate) fn check_png_path(path: &Path) -> Result<()> {
+    let is_png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if path.is_dir() {
+        return Err(Error::Param(format!("{}: is a directory; give a file name ending in .png", path.display())));
+    }
+    if !is_png {
+        return Err(Error::Param(format!(
+            "{}: only PNG is written; use a name ending in .png",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
+pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params) -> Result<(), Failure> {
+    let gpu = Gpu::headless()?;
+    let source = args.shader_source()?;
+    let cx = LabContext {
+        gpu: &gpu,
+        source: &source,
+        format: COLOR_FORMAT,
+    };
+    let mut lab = (entry.new)(&cx)?;
+    *lab.params_mut() = params;
+    let (width, height) = args.size(entry);
+    if let Some(frames) = args.bench {
+        let result = bench(&gpu, lab.as_mut(), frames, width, height, args.gpu_time)?;
+        say(&result.line(entry.info.name, lab.params(), width, height, frames))?;
+    }
+    if let Some(path) = &args.screenshot {
+        let image = screenshot(&gpu, lab.as_mut(), width, height)?;
+        save_png(&image, path)?;
+        say(&format!("wrote {}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// Records one frame of `lab` into `target` and submits it.
+pub fn render_into(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen) -> Result<()> {
+    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("shaderlab.frame"),
+    });
+    gpu.checked(&format!("{}.render", lab.info().name), || {
+        let mut frame = Frame {
+            gpu,
+            encoder: &mut encoder,
+            color: &target.color,
+            depth: &target.depth,
+            width: target.width,
+            height: target.height,
+            timestamps: None,
+        };
+        lab.render(&mut frame)
+    })??;
+    gpu.queue.submit([encoder.finish()]);
+    if let Some(e) = lab.take_error() {
+        return Err(e);
+    }
+    Ok(())
+}
+
+/// Renders one frame offscreen at `width` x `height` (RGBA8) and reads it back, top row first.
+pub fn screenshot(gpu: &Gpu, lab: &mut dyn Lab, width: u32, height: u32) -> Result<image::RgbaImage> {
+    let target = Offscreen::with_format(gpu, width, height, COLOR_FORMAT);
+    render_into(gpu, lab, &target)?;
+    target.read(gpu)
+}
+
+/// What `--bench` measured.
+#[derive(Clone, Copy, Debug)]
+pub struct BenchResult {
+    /// Wall-clock milliseconds per frame (upload, encode, submit, wait).
+    pub ms_per_frame: f64,
+    /// GPU milliseconds per frame from timestamp queries (`--gpu-time`).
+    pub gpu_ms: Option<f64>,
+}
+
+impl BenchResult {
+    /// The one line `--bench` prints.
+    pub fn line(&self, name: &str, params: &Params, width: u32, height: u32, frames: u32) -> String {
+        let gpu = self.gpu_ms.map(|g| format!(" gpu_ms={g:.3}")).unwrap_or_default();
+        let object = if params.has("object") {
+            format!(" object={}", params.text("object"))
+        } else {
+            String::new()
+        };
+        format!(
+            "effect={name}{object} size={width}x{height} frames={frames} ms_per_frame={:.3}{gpu}",
+            self.ms_per_frame
+        )
+    }
+}
+
+/// Renders `frames` frames offscreen, waiting for each (like the original's swap + glFinish).
+/// An animated lab's time advances 1/60 s per frame, as the originals' benchmarks do.
+pub fn bench(gpu: &Gpu, lab: &mut dyn Lab, frames: u32, width: u32, height: u32, gpu_time: bool) -> Result<BenchResult> {
+    let target = Offscreen::new(gpu, width, height);
+    // Warm up: the first frames compile shaders in the driver.
+    for _ in 0..3 {
+        render_into(gpu, lab, &target)?;
+        gpu.wait()?;
+    }
+    let queries = (gpu_time && gpu.timestamps).then(|| {
+        let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("bench.timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("bench.resolve"),
+            size: 16,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let read = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("bench.read"),
+            size: 16 * frames as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        (set, resolve, read)
+    });
+    let animated = lab.animated() && lab.params().has("time");
+    let start = Instant::now();
+    for frame in 0..frames {
+        if animated {
+            let t = lab.params().f64("time") + 1.0 / 60.0;
+            lab.params_mut().put("time", &[t]);
+        }
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("bench.encoder"),
+        });
+        let writes = queries.as_ref().map(|(set, _, _)| wgpu::RenderPassTimestampWrites {
+            query_set: set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        });
+        {
+            let mut f = Frame {
+                gpu,
+                encoder: &mut encoder,
+                color: &target.color,
+                depth: &target.depth,
+                width,
+                height,
+                timestamps: writes,
+            };
+            lab.render(&mut f)?;
+        }
+        if let Some((set, resolve, read)) = &queries {
+            encoder.resolve_query_set(set, 0..2, resolve, 0);
+            encoder.copy_buffer_to_buffer(resolve, 0, read, 16 * frame as u64, 16);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        gpu.wait()?;
+    }
+    let ms_per_frame = start.elapsed().as_secs_f64() * 1000.0 / frames as f64;
+    let gpu_ms = match &queries {
+        Some((_, _, read)) => {
+            let slice = read.slice(..);
+            slice.map_async(wgpu::MapMode::Read, |_| {});
+            gpu.wait()?;
+            let ticks: Vec<u64> = {
+                let view = slice.get_mapped_range().map_err(|e| Error::Wgpu {
+                    context: "reading timestamps".into(),
+                    message: e.to_string(),
+                })?;
+                bytemuck::cast_slice(&view).to_vec()
+            };
+            read.unmap();
+            let period = gpu.queue.get_timestamp_period() as f64;
+            let total: f64 = ticks
+                .chunks_exact(2)
+                .map(|t| t[1].saturating_sub(t[0]) as f64 * period)
+                .sum();
+            Some(total / 1e6 / frames as f64)
+        }
+        None => None,
+    };
+    Ok(BenchResult { ms_per_frame, gpu_ms })
+}

@@ -1,0 +1,128 @@
+//! The shell: the command line every example shares, the offscreen paths (`--screenshot`,
+//! `--bench`) and the window. It drives any [`Lab`] through its [`LabEntry`] and never names an
+//! exercise.
+//!
+//! Usage errors exit with status 2 and say what is valid; they are found before anything is
+//! rendered (parameters are checked against the lab's declaration before the GPU is opened).
+//! Runtime errors (no adapter, broken shader, unwritable file) print one clear message and exit
+//! with 1.
+
+mod args;
+mod headless;
+pub mod window;
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+pub use args::Args;
+pub use headless::{bench, render_into, screenshot, BenchResult};
+
+use crate::error::Error;
+use crate::lab::LabEntry;
+use crate::params::Params;
+
+/// A failure with the exit status it deserves.
+#[derive(Debug)]
+pub struct Failure {
+    /// 1 for runtime errors, 2 for usage errors.
+    pub code: u8,
+    /// What to print.
+    pub error: Error,
+}
+
+impl From<Error> for Failure {
+    fn from(error: Error) -> Self {
+        let code = if matches!(error, Error::Param(_)) { 2 } else { 1 };
+        Failure { code, error }
+    }
+}
+
+/// Mesa prints two warnings on every run when `XDG_RUNTIME_DIR` is unset, which makes a
+/// newcomer's first, successful run look broken: give the process a private one instead.
+fn ensure_runtime_dir() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| !d.is_empty()) {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("shaderlab-runtime-{}", std::process::id()));
+    #[cfg(unix)]
+    let made = {
+        use std::os::unix::fs::DirBuilderExt;
+        std::fs::DirBuilder::new().mode(0o700).create(&dir).is_ok()
+    };
+    #[cfg(not(unix))]
+    let made = std::fs::create_dir(&dir).is_ok();
+    if made {
+        // SAFETY: called first thing in main, before any other thread exists.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
+}
+
+/// Entry point of every example: parses arguments, then renders offscreen or opens a window.
+pub fn main(entry: &'static LabEntry) -> ExitCode {
+    ensure_runtime_dir();
+    let name = entry.info.name;
+    let args = Args::parse_for(entry);
+    let result = run(entry, args);
+    if let Ok(dir) = std::env::var("XDG_RUNTIME_DIR") {
+        if dir.contains("shaderlab-runtime-") {
+            let _ = std::fs::remove_dir_all(dir);
+        }
+    }
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            let hint = if failure.code == 2 {
+                "\n\nFor more information, try '--help'."
+            } else {
+                ""
+            };
+            let _ = writeln!(std::io::stderr(), "{name}: error: {}{hint}", failure.error);
+            ExitCode::from(failure.code)
+        }
+    }
+}
+
+fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
+    // Everything the user typed is checked before a GPU is opened or a frame drawn.
+    let params = args.params(entry)?;
+    if let Some(path) = &args.screenshot {
+        headless::check_png_path(path)?;
+    }
+    args.shader_source()?;
+    if args.screenshot.is_some() || args.bench.is_some() {
+        headless::run(entry, &args, params)
+    } else if !window::has_display() {
+        // No display: still do something useful.
+        let path = PathBuf::from(format!("{}.png", entry.info.name));
+        eprintln!(
+            "{}: no display found ({}); writing a screenshot to {} instead",
+            entry.info.name,
+            window::no_display_reason(),
+            path.display()
+        );
+        let args = Args {
+            screenshot: Some(path),
+            ..args
+        };
+        headless::run(entry, &args, params)
+    } else {
+        window::run(entry, &args, params).map_err(Failure::from)
+    }
+}
+
+/// Prints a line to stdout; a closed or full stdout is a clean error, not a panic.
+pub(crate) fn say(line: &str) -> Result<(), Error> {
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{line}")
+        .and_then(|_| out.flush())
+        .map_err(|source| Error::Io {
+            path: PathBuf::from("<stdout>"),
+            source,
+        })
+}
+
+/// The parameters of a lab at their defaults (for tests and `--help`).
+pub fn defaults(entry: &LabEntry) -> Params {
+    (entry.params)()
+}
