@@ -1,0 +1,4 @@
+//! CPU-side data of the lecture ports (SPEC seeds 001–004), no GPU code: the procedural
+//! textures and their mipmaps ([`images`]).
+
+pub mod images;
