@@ -8,7 +8,7 @@
 //! Before tobj sees the text, every line is checked here, so that each malformed file is
 //! reported as `file:line: message` (tobj itself is lenient about some of these and reports
 //! no line): `v`/`vt`/`vn` fields must be finite numbers (`v`: 3 coordinates, optionally a w
-//! or an r g b colour, both ignored; `vt`: u v [w]; `vn`: x y z); `f` needs at least 3 corners
+//! or an r g b colour, both ignored; `vt`: u v, optionally w; `vn`: x y z); `f` needs at least 3 corners
 //! `v`, `v/vt`, `v//vn` or `v/vt/vn`, each index a non-zero integer naming an element defined
 //! above it (negative = relative to the last one). Only `v`, `vt`, `vn`, `f`, `o` and `g` lines
 //! reach tobj; point and line elements (`p`, `l`) are not drawn (a notice says so), and
