@@ -67,6 +67,24 @@ pub enum Error {
     /// A window surface could not be created or configured.
     #[error("surface error: {0}")]
     Surface(String),
+    /// A Wavefront OBJ file is malformed or unusable; shown as `file:line: message`
+    /// (`file: message` when no single line is to blame).
+    #[error("{}: {message}", obj_location(.path, .line))]
+    Obj {
+        /// The file (or the name the text was given).
+        path: PathBuf,
+        /// 1-based line number of the offending line, if there is one.
+        line: Option<usize>,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+fn obj_location(path: &std::path::Path, line: &Option<usize>) -> String {
+    match line {
+        Some(line) => format!("{}:{line}", path.display()),
+        None => path.display().to_string(),
+    }
 }
 
 /// Shorthand for results with [`Error`].

@@ -457,6 +457,27 @@ impl Mesh {
     }
 }
 
+/// The texture coordinates freeglut 3.4 gives `glutSolidTeapot`, one per vertex of
+/// [`Mesh::teapot`]`(size, grid)` in the same order (`grid` clamped the same way).
+///
+/// freeglut builds the table for the first patch — vertex `u*grid + v` (u = first Bezier
+/// parameter, the row) gets (s, t) = (u/(grid-1), v/(grid-1)) in float — and copies it to all
+/// 32 patches, including the 8 mirrored handle/spout patches whose rows it reverses (so their
+/// texture is mirrored). Only the solid teapot has them; sphere, torus and cube have none.
+pub fn teapot_texcoords(grid: u32) -> Vec<[f32; 2]> {
+    let n = grid.clamp(2, 1024);
+    let last = (n - 1) as f32;
+    let patch: Vec<[f32; 2]> = (0..n)
+        .flat_map(|u| (0..n).map(move |v| [u as f32 / last, v as f32 / last]))
+        .collect();
+    let patches = 6 * 4 + 4 * 2;
+    let mut out = Vec::with_capacity(patch.len() * patches);
+    for _ in 0..patches {
+        out.extend_from_slice(&patch);
+    }
+    out
+}
+
 /// Upper clamp for slices/stacks/sides/rings, so index arithmetic stays in u32.
 const MAX_COUNT: u32 = 1 << 14;
 
@@ -1002,6 +1023,29 @@ mod tests {
     }
 
     // ------------------------------------------------------------- teapot
+
+    #[test]
+    fn teapot_texcoords_follow_the_patches() {
+        for grid in [Mesh::TEAPOT_DEFAULT_GRID, 10, 1] {
+            let m = Mesh::teapot(1.0, grid);
+            let tc = teapot_texcoords(grid);
+            assert_eq!(tc.len(), m.vertices.len(), "grid {grid}");
+            assert!(tc
+                .iter()
+                .all(|c| (0.0..=1.0).contains(&c[0]) && (0.0..=1.0).contains(&c[1])));
+        }
+        let tc = teapot_texcoords(8);
+        // First patch corners: (u, v) = (0,0), (0,7), (7,0), (7,7) at u*8 + v.
+        assert_eq!(
+            [tc[0], tc[7], tc[56], tc[63]],
+            [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]]
+        );
+        assert_eq!(tc[8 + 3], [1.0 / 7.0, 3.0 / 7.0]);
+        // Every patch, the mirrored ones (the last 8) included, repeats the first table.
+        for p in 1..32 {
+            assert_eq!(&tc[p * 64..(p + 1) * 64], &tc[..64], "patch {p}");
+        }
+    }
 
     #[test]
     fn teapot_bounds() {

@@ -1,0 +1,460 @@
+//! The procedural textures of SPEC §0.1, their mipmaps, and image files.
+//!
+//! Every image is RGBA8 with alpha 255. Texel (i, j): i = column (s direction), j = row; row
+//! j = 0 is the first row in [`Image::rgba`] and the first row uploaded, which GL samples at
+//! t ≈ 0 and wgpu at v ≈ 0: a port uploads these bytes as they are, no flip. Cube maps have
+//! 6 layers, concatenated in the order +X, −X, +Y, −Y, +Z, −Z (wgpu's cube layer order).
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// An RGBA8 image with one or more layers (6 for a cube map), rows first-uploaded first.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Image {
+    /// Texels per row.
+    pub width: u32,
+    /// Rows per layer.
+    pub height: u32,
+    /// Layers (1 for a 2D texture, 6 for a cube map in the order +X, −X, +Y, −Y, +Z, −Z).
+    pub layers: u32,
+    /// `width * height * layers * 4` bytes: layer by layer, row j = 0 first, RGBA per texel.
+    pub rgba: Vec<u8>,
+}
+
+impl Image {
+    /// Builds an image from `texel(layer, i, j) -> [r, g, b, a]`, i = column, j = row.
+    pub fn from_fn(width: u32, height: u32, layers: u32, mut texel: impl FnMut(u32, u32, u32) -> [u8; 4]) -> Image {
+        let mut rgba = Vec::with_capacity(width as usize * height as usize * layers as usize * 4);
+        for layer in 0..layers {
+            for j in 0..height {
+                for i in 0..width {
+                    rgba.extend_from_slice(&texel(layer, i, j));
+                }
+            }
+        }
+        Image {
+            width,
+            height,
+            layers,
+            rgba,
+        }
+    }
+
+    /// The texel at column `i`, row `j` of `layer`, or `None` outside the image.
+    pub fn texel(&self, layer: u32, i: u32, j: u32) -> Option<[u8; 4]> {
+        if layer >= self.layers || i >= self.width || j >= self.height {
+            return None;
+        }
+        let at = self.offset(layer, i, j);
+        self.rgba.get(at..at + 4).map(|t| [t[0], t[1], t[2], t[3]])
+    }
+
+    /// The bytes of one layer (`width * height * 4`), or an empty slice if there is no such layer.
+    pub fn layer(&self, layer: u32) -> &[u8] {
+        let size = self.width as usize * self.height as usize * 4;
+        let start = layer as usize * size;
+        self.rgba.get(start..start + size).unwrap_or(&[])
+    }
+
+    fn offset(&self, layer: u32, i: u32, j: u32) -> usize {
+        (((layer as usize * self.height as usize) + j as usize) * self.width as usize + i as usize) * 4
+    }
+}
+
+/// `round(x)` of SPEC §0.1: floor(x + 0.5) in double, as a byte.
+fn round_byte(x: f64) -> u8 {
+    (x + 0.5).floor().clamp(0.0, 255.0) as u8
+}
+
+/// A unit vector in [−1, 1]³ stored as round(255·(0.5·n + 0.5)) per channel, alpha 255.
+fn encode_unit(n: [f64; 3]) -> [u8; 4] {
+    [
+        round_byte(255.0 * (0.5 * n[0] + 0.5)),
+        round_byte(255.0 * (0.5 * n[1] + 0.5)),
+        round_byte(255.0 * (0.5 * n[2] + 0.5)),
+        255,
+    ]
+}
+
+fn normalize64(v: [f64; 3]) -> [f64; 3] {
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / len, v[1] / len, v[2] / len]
+}
+
+/// SPEC §0.1.1 **uvgrid**, 256×256: white grid lines every 32 texels, a dark (16,16,16) disc of
+/// radius 40 in the middle, elsewhere (i, j, 96). Used by 001 `texture`, 002 `double_vision`
+/// and 004's "BMP" texture.
+pub fn uvgrid() -> Image {
+    Image::from_fn(256, 256, 1, |_, i, j| {
+        if i % 32 == 0 || j % 32 == 0 {
+            return [255, 255, 255, 255];
+        }
+        let (x, y) = (f64::from(i) + 0.5 - 128.0, f64::from(j) + 0.5 - 128.0);
+        if x * x + y * y < 40.0 * 40.0 {
+            [16, 16, 16, 255]
+        } else {
+            [i as u8, j as u8, 96, 255]
+        }
+    })
+}
+
+/// SPEC §0.1.2 **checker**, the course's `createTexureChecker()` (004), 256×256: 8-texel
+/// squares, `c = ((row & 8) == 0) ^ ((col & 8) == 0)` (the course's `i` is the row), so texel
+/// (0,0) is black. Stored as 0 or 255.
+pub fn checker() -> Image {
+    Image::from_fn(256, 256, 1, |_, col, row| {
+        let c = ((row & 8) == 0) ^ ((col & 8) == 0);
+        let v = if c { 255 } else { 0 };
+        [v, v, v, 255]
+    })
+}
+
+/// The base colours of [`cube_faces`], in face order +X, −X, +Y, −Y, +Z, −Z.
+pub const CUBE_FACE_COLORS: [[u8; 3]; 6] = [
+    [230, 60, 60],
+    [60, 230, 230],
+    [60, 230, 60],
+    [230, 60, 230],
+    [60, 60, 230],
+    [230, 230, 60],
+];
+
+/// SPEC §0.1.3 **cube faces** (001 `envmap`), 6 × 128×128 in face order +X, −X, +Y, −Y, +Z, −Z:
+/// white lines every 16 texels, the quadrant i < 64, j < 64 at half the base colour (integer
+/// division; it shows each face's orientation), elsewhere the base colour
+/// ([`CUBE_FACE_COLORS`]).
+pub fn cube_faces() -> Image {
+    Image::from_fn(128, 128, 6, |face, i, j| {
+        let base = CUBE_FACE_COLORS[face as usize];
+        if i % 16 == 0 || j % 16 == 0 {
+            [255, 255, 255, 255]
+        } else if i < 64 && j < 64 {
+            [base[0] / 2, base[1] / 2, base[2] / 2, 255]
+        } else {
+            [base[0], base[1], base[2], 255]
+        }
+    })
+}
+
+/// SPEC §0.1.4 **bump normal map** (001 `bump`, `normmap`), 256×256: the normals of the
+/// egg-crate height field sin(a u)·sin(a v), a = 2π·4/256, u = i + 0.5, v = j + 0.5,
+/// n = normalize(−0.8·cos(a u)·sin(a v), −0.8·sin(a u)·cos(a v), 1), stored as
+/// round(255·(0.5·n + 0.5)); all in double.
+pub fn bump_normal_map() -> Image {
+    let a = 2.0 * std::f64::consts::PI * 4.0 / 256.0;
+    Image::from_fn(256, 256, 1, |_, i, j| {
+        let (u, v) = (f64::from(i) + 0.5, f64::from(j) + 0.5);
+        let n = [
+            -0.8 * (a * u).cos() * (a * v).sin(),
+            -0.8 * (a * u).sin() * (a * v).cos(),
+            1.0,
+        ];
+        encode_unit(normalize64(n))
+    })
+}
+
+/// SPEC §0.1.5 **normalization cube map** (001 `normmap`; SPEC uses `size` = 32), 6 × size²
+/// in face order +X, −X, +Y, −Y, +Z, −Z: texel (i, j) of face f holds the unit direction the GL
+/// cube-map table assigns to sc = 2(i+0.5)/size − 1, tc = 2(j+0.5)/size − 1, stored as
+/// round(255·(0.5·d/|d| + 0.5)). `size` 0 gives an empty image.
+pub fn normalization_cube(size: u32) -> Image {
+    let s = f64::from(size);
+    Image::from_fn(size, size, 6, |face, i, j| {
+        let sc = 2.0 * (f64::from(i) + 0.5) / s - 1.0;
+        let tc = 2.0 * (f64::from(j) + 0.5) / s - 1.0;
+        let d = match face {
+            0 => [1.0, -tc, -sc],
+            1 => [-1.0, -tc, sc],
+            2 => [sc, 1.0, tc],
+            3 => [sc, -1.0, -tc],
+            4 => [sc, -tc, 1.0],
+            _ => [-sc, -tc, -1.0],
+        };
+        encode_unit(normalize64(d))
+    })
+}
+
+/// The mipmap chain of `level0` as `glGenerateMipmap`'s box filter builds it, level 0 (a copy)
+/// first, down to 1×1: each level is max(1, size/2) per axis, and each texel of it is
+/// (a + b + c + d + 2) / 4 (integer, per channel, alpha too) of the 2×2 block at (2i, 2j) of
+/// the level above, source coordinates clamped to that level (odd or 1-texel sizes). Every
+/// layer is filtered on its own. Deterministic; an empty image gives just the copy.
+pub fn mip_chain(level0: &Image) -> Vec<Image> {
+    let mut chain = vec![level0.clone()];
+    if level0.width == 0 || level0.height == 0 || level0.rgba.len() != level0.offset(level0.layers, 0, 0) {
+        return chain;
+    }
+    loop {
+        let src = &chain[chain.len() - 1];
+        if src.width == 1 && src.height == 1 {
+            break;
+        }
+        let (w, h) = ((src.width / 2).max(1), (src.height / 2).max(1));
+        let next = Image::from_fn(w, h, src.layers, |layer, i, j| {
+            let (x0, x1) = ((2 * i).min(src.width - 1), (2 * i + 1).min(src.width - 1));
+            let (y0, y1) = ((2 * j).min(src.height - 1), (2 * j + 1).min(src.height - 1));
+            let at = |x, y| src.offset(layer, x, y);
+            let (a, b, c, d) = (at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1));
+            let mut out = [0u8; 4];
+            for (k, o) in out.iter_mut().enumerate() {
+                let sum = u32::from(src.rgba[a + k])
+                    + u32::from(src.rgba[b + k])
+                    + u32::from(src.rgba[c + k])
+                    + u32::from(src.rgba[d + k]);
+                *o = ((sum + 2) / 4) as u8;
+            }
+            out
+        });
+        chain.push(next);
+    }
+    chain
+}
+
+/// Reads a PNG or BMP file (format guessed from its content) as a one-layer RGBA8 [`Image`].
+///
+/// Rows come in the decoder's order, the picture's top row first (a BMP's bottom-up storage is
+/// undone by the decoder); a port that wants GL's "first row uploaded = t ≈ 0" for a picture
+/// file decides itself whether to flip. Errors name the file: [`Error::Io`] if it cannot be
+/// opened or read, [`Error::Image`] if it is not a decodable PNG/BMP.
+pub fn load_image(path: &Path) -> Result<Image> {
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let reader = image::ImageReader::open(path)
+        .map_err(io)?
+        .with_guessed_format()
+        .map_err(io)?;
+    let decoded = reader.decode().map_err(|source| Error::Image {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let rgba = decoded.to_rgba8();
+    Ok(Image {
+        width: rgba.width(),
+        height: rgba.height(),
+        layers: 1,
+        rgba: rgba.into_raw(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rgb(image: &Image, layer: u32, i: u32, j: u32) -> [u8; 3] {
+        let t = image.texel(layer, i, j).expect("texel inside the image");
+        assert_eq!(t[3], 255, "alpha at ({i},{j})");
+        [t[0], t[1], t[2]]
+    }
+
+    fn decode(image: &Image, layer: u32, i: u32, j: u32) -> [f64; 3] {
+        rgb(image, layer, i, j).map(|c| f64::from(c) / 255.0 * 2.0 - 1.0)
+    }
+
+    #[test]
+    fn uvgrid_texels() {
+        let g = uvgrid();
+        assert_eq!(
+            (g.width, g.height, g.layers, g.rgba.len()),
+            (256, 256, 1, 256 * 256 * 4)
+        );
+        assert_eq!(rgb(&g, 0, 0, 5), [255, 255, 255]);
+        assert_eq!(rgb(&g, 0, 5, 64), [255, 255, 255]);
+        // (128,128) lies on the grid lines (128 = 4·32); just off them the disc shows.
+        assert_eq!(rgb(&g, 0, 128, 128), [255, 255, 255]);
+        assert_eq!(rgb(&g, 0, 127, 127), [16, 16, 16]);
+        assert_eq!(rgb(&g, 0, 130, 129), [16, 16, 16]);
+        assert_eq!(rgb(&g, 0, 40, 70), [40, 70, 96]);
+        // i is the column: texel (i, j) sits at byte (j * 256 + i) * 4.
+        assert_eq!(&g.rgba[(70 * 256 + 40) * 4..][..4], &[40, 70, 96, 255]);
+        assert_eq!(rgb(&g, 0, 255, 1), [255, 1, 96]);
+        // disc edge: (168.5-128)² + (128.5-128)² = 1640.5 ≥ 1600, (167.5-128)² + 0.25 < 1600
+        assert_eq!(rgb(&g, 0, 168, 129), [168, 129, 96]);
+        assert_eq!(rgb(&g, 0, 167, 129), [16, 16, 16]);
+    }
+
+    #[test]
+    fn checker_texels() {
+        let c = checker();
+        assert_eq!((c.width, c.height, c.layers), (256, 256, 1));
+        assert_eq!(rgb(&c, 0, 0, 0), [0, 0, 0]);
+        assert_eq!(rgb(&c, 0, 8, 0), [255, 255, 255]); // row 0, column 8
+        assert_eq!(rgb(&c, 0, 0, 8), [255, 255, 255]); // row 8, column 0
+        assert_eq!(rgb(&c, 0, 8, 8), [0, 0, 0]);
+        assert_eq!(rgb(&c, 0, 7, 7), [0, 0, 0]);
+        assert_eq!(rgb(&c, 0, 255, 0), [255, 255, 255]);
+        assert!(c
+            .rgba
+            .chunks(4)
+            .all(|t| (t[0] == 0 || t[0] == 255) && t[0] == t[1] && t[1] == t[2]));
+    }
+
+    #[test]
+    fn cube_face_texels() {
+        let c = cube_faces();
+        assert_eq!(
+            (c.width, c.height, c.layers, c.rgba.len()),
+            (128, 128, 6, 6 * 128 * 128 * 4)
+        );
+        assert_eq!(rgb(&c, 0, 1, 1), [115, 30, 30]);
+        assert_eq!(rgb(&c, 0, 0, 1), [255, 255, 255]);
+        assert_eq!(rgb(&c, 0, 17, 64), [255, 255, 255]);
+        assert_eq!(rgb(&c, 0, 65, 1), [230, 60, 60]);
+        for (face, base) in CUBE_FACE_COLORS.iter().enumerate() {
+            assert_eq!(rgb(&c, face as u32, 100, 100), *base);
+            assert_eq!(rgb(&c, face as u32, 63, 63), base.map(|b| b / 2));
+        }
+        assert_eq!(rgb(&c, 5, 1, 1), [115, 115, 30]);
+        // layer 1 starts right after layer 0
+        assert_eq!(&c.layer(1)[..4], &[255, 255, 255, 255]);
+        assert_eq!(&c.layer(1)[(128 + 1) * 4..][..4], &[30, 115, 115, 255]);
+    }
+
+    #[test]
+    fn bump_map_texels() {
+        let b = bump_normal_map();
+        assert_eq!((b.width, b.height, b.layers), (256, 256, 1));
+        for &(i, j) in &[
+            (0, 0),
+            (15, 15),
+            (16, 16),
+            (100, 37),
+            (127, 128),
+            (128, 128),
+            (255, 255),
+        ] {
+            let n = decode(&b, 0, i, j);
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            assert!((len - 1.0).abs() < 0.01, "({i},{j}) {n:?}");
+            assert!(n[2] > 0.75, "tilt at most atan 0.8: ({i},{j}) {n:?}");
+        }
+        // Exact value at texel (0,0): u = v = 0.5, a·u = π/64.
+        let a = std::f64::consts::PI / 64.0;
+        let (x, y) = (-0.8 * a.cos() * a.sin(), -0.8 * a.sin() * a.cos());
+        let len = (x * x + y * y + 1.0f64).sqrt();
+        let expect = [x / len, y / len, 1.0 / len].map(|c| (255.0 * (0.5 * c + 0.5) + 0.5).floor() as u8);
+        assert_eq!(rgb(&b, 0, 0, 0), expect);
+        assert_eq!(expect, [123, 123, 255]);
+        // On the diagonal i = j the tilt is symmetric: equal x and y.
+        let d = rgb(&b, 0, 40, 40);
+        assert_eq!(d[0], d[1]);
+    }
+
+    #[test]
+    fn normalization_cube_texels() {
+        let n = normalization_cube(32);
+        assert_eq!(
+            (n.width, n.height, n.layers, n.rgba.len()),
+            (32, 32, 6, 6 * 32 * 32 * 4)
+        );
+        let centre = rgb(&n, 0, 16, 16);
+        assert_eq!(centre[0], 255);
+        assert!(
+            centre[1].abs_diff(128) <= 4 && centre[2].abs_diff(128) <= 4,
+            "{centre:?}"
+        );
+        // The +X face at (i, j) = (0, 0): d = (1, -tc, -sc) with sc = tc = -31/32.
+        let s = 31.0 / 32.0;
+        let len = (1.0f64 + 2.0 * s * s).sqrt();
+        let want = [1.0 / len, s / len, s / len].map(|c| (255.0 * (0.5 * c + 0.5) + 0.5).floor() as u8);
+        assert_eq!(rgb(&n, 0, 0, 0), want);
+        // Each face's centre points along its axis.
+        let axes = [
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ];
+        for (face, axis) in axes.iter().enumerate() {
+            let d = decode(&n, face as u32, 16, 16);
+            let dot: f64 = d.iter().zip(axis).map(|(a, b)| a * b).sum();
+            assert!(dot > 0.99, "face {face}: {d:?}");
+        }
+        for layer in 0..6 {
+            for (i, j) in [(0, 0), (31, 0), (5, 27), (31, 31)] {
+                let d = decode(&n, layer, i, j);
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                assert!((len - 1.0).abs() < 0.01, "{layer} ({i},{j}) {d:?}");
+            }
+        }
+        assert!(normalization_cube(0).rgba.is_empty());
+    }
+
+    #[test]
+    fn mip_chain_sizes_and_rounding() {
+        let chain = mip_chain(&checker());
+        let sizes: Vec<(u32, u32)> = chain.iter().map(|m| (m.width, m.height)).collect();
+        assert_eq!(sizes, (0..9).map(|k| (256 >> k, 256 >> k)).collect::<Vec<_>>());
+        assert_eq!(chain[0], checker());
+        // 8-texel squares stay exact down to level 3 (32×32, one texel per square), then blend to grey.
+        assert_eq!(rgb(&chain[3], 0, 0, 0), [0, 0, 0]);
+        assert_eq!(rgb(&chain[3], 0, 1, 0), [255, 255, 255]);
+        assert_eq!(rgb(&chain[4], 0, 0, 0), [128, 128, 128]);
+        assert_eq!(rgb(&chain[8], 0, 0, 0), [128, 128, 128]);
+
+        // 2×2 black/white checker: (0 + 255 + 255 + 0 + 2) / 4 = 128 (127.5 rounds up).
+        let tiny = Image::from_fn(2, 2, 1, |_, i, j| {
+            if (i + j) % 2 == 0 {
+                [0, 0, 0, 255]
+            } else {
+                [255, 255, 255, 255]
+            }
+        });
+        let chain = mip_chain(&tiny);
+        assert_eq!(chain.len(), 2);
+        assert_eq!(chain[1].rgba, vec![128, 128, 128, 255]);
+
+        // Odd and non-square sizes: 5×2 → 2×1 → 1×1, layers kept apart, coordinates clamped.
+        let odd = Image::from_fn(5, 2, 2, |layer, i, _| [(i * 10) as u8, layer as u8 * 100, 0, 255]);
+        let chain = mip_chain(&odd);
+        let sizes: Vec<(u32, u32, u32)> = chain.iter().map(|m| (m.width, m.height, m.layers)).collect();
+        assert_eq!(sizes, vec![(5, 2, 2), (2, 1, 2), (1, 1, 2)]);
+        assert_eq!(chain[1].texel(0, 0, 0), Some([5, 0, 0, 255])); // (0+10+0+10+2)/4 = 5
+        assert_eq!(chain[1].texel(0, 1, 0), Some([25, 0, 0, 255])); // (20+30+20+30+2)/4 = 25
+        assert_eq!(chain[1].texel(1, 1, 0), Some([25, 100, 0, 255]));
+        assert_eq!(chain[2].texel(0, 0, 0), Some([15, 0, 0, 255])); // (5+25+5+25+2)/4 = 15
+        assert_eq!(mip_chain(&odd), chain, "deterministic");
+
+        // A 1×1 image is its own chain; an empty or inconsistent one is only copied.
+        assert_eq!(mip_chain(&Image::from_fn(1, 1, 1, |_, _, _| [1, 2, 3, 4])).len(), 1);
+        let broken = Image {
+            width: 4,
+            height: 4,
+            layers: 1,
+            rgba: vec![0; 3],
+        };
+        assert_eq!(mip_chain(&broken), vec![broken.clone()]);
+    }
+
+    #[test]
+    fn load_image_png_bmp_and_errors() {
+        let dir = std::env::temp_dir().join(format!("shaderlab-images-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let picture = image::RgbImage::from_fn(3, 2, |x, y| image::Rgb([x as u8 * 50, y as u8 * 100, 7]));
+        for ext in ["png", "bmp"] {
+            let path = dir.join(format!("p.{ext}"));
+            picture.save(&path).unwrap();
+            let loaded = load_image(&path).unwrap();
+            assert_eq!((loaded.width, loaded.height, loaded.layers), (3, 2, 1));
+            assert_eq!(loaded.texel(0, 2, 1), Some([100, 100, 7, 255]), "{ext}");
+            assert_eq!(loaded.texel(0, 0, 0), Some([0, 0, 7, 255]), "{ext}");
+        }
+        let missing = dir.join("missing.png");
+        let err = load_image(&missing).unwrap_err();
+        assert!(
+            matches!(err, Error::Io { .. }) && err.to_string().contains("missing.png"),
+            "{err}"
+        );
+        let junk = dir.join("junk.png");
+        std::fs::write(&junk, b"not an image at all").unwrap();
+        let err = load_image(&junk).unwrap_err();
+        assert!(
+            matches!(err, Error::Image { .. }) && err.to_string().contains("junk.png"),
+            "{err}"
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

@@ -1,0 +1,726 @@
+//! Wavefront OBJ models the way seed 004's `load_obj` reads them (SPEC §4.0), parsed with
+//! [`tobj`].
+//!
+//! Every triangle corner becomes one [`ObjCorner`] — the course's 9-float VBO record
+//! v.xyzw (w = 1), vt.uv, vn.xyz — in file order (Suzanne: 967 triangles, 2901 corners).
+//! Polygons with more than three corners are split as a fan (0,1,2), (0,2,3), … by tobj.
+//!
+//! Before tobj sees the text, every line is checked here, so that each malformed file is
+//! reported as `file:line: message` (tobj itself is lenient about some of these and reports
+//! no line): `v`/`vt`/`vn` fields must be finite numbers (`v`: 3 coordinates, optionally a w
+//! or an r g b colour, both ignored; `vt`: u v, optionally w; `vn`: x y z); `f` needs at least 3 corners
+//! `v`, `v/vt`, `v//vn` or `v/vt/vn`, each index a non-zero integer naming an element defined
+//! above it (negative = relative to the last one). Only `v`, `vt`, `vn`, `f`, `o` and `g` lines
+//! reach tobj; point and line elements (`p`, `l`) are not drawn (a notice says so), and
+//! materials, smoothing groups and unknown keywords are ignored.
+
+use crate::error::{Error, Result};
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use std::path::Path;
+
+/// One triangle corner, the course's interleaved VBO record: 9 floats, 36 bytes
+/// (offsets 0, 16, 24).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct ObjCorner {
+    /// `v` x, y, z and w = 1.
+    pub position: [f32; 4],
+    /// `vt` u, v ((0, 0) when the corner has no `vt`).
+    pub uv: [f32; 2],
+    /// `vn` x, y, z as written in the file (or a computed normal, see [`ObjModel`]).
+    pub normal: [f32; 3],
+}
+
+/// A loaded model: the triangle corners twice, with face and with vertex normals.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ObjModel {
+    /// Every triangle corner in file order, with the file's `vn` as its normal (Blender's flat
+    /// export: one normal per face). A corner without `vn` gets its face's normal
+    /// normalize((b − a) × (c − a)) from the face's first three positions.
+    pub corners: Vec<ObjCorner>,
+    /// The same corners with vertex normals (SPEC §4.0 "Smooth Suzanne"): for each `v` index,
+    /// the f32 sum, in file order, of the unit normals of the faces using it, normalized (an
+    /// unweighted average; zero if the faces cancel). A face's unit normal is its corners' `vn`
+    /// normalized (if they differ: the normalized sum of their normalized `vn`), or the
+    /// cross-product normal above when some corner has no `vn`. Each face counts once per `v`.
+    pub smooth: Vec<ObjCorner>,
+    /// One-line remarks about what was filled in or ignored (missing `vt`/`vn`, `w`, points and
+    /// lines), for the caller to print.
+    pub notices: Vec<String>,
+}
+
+impl ObjModel {
+    /// Number of triangles (`corners.len() / 3`).
+    pub fn triangle_count(&self) -> usize {
+        self.corners.len() / 3
+    }
+}
+
+/// The Suzanne of SPEC §4.0, shipped with the crate (`assets/suzanne.obj`, Blender 5.0.1's
+/// export following the course's steps).
+pub const SUZANNE_OBJ: &str = include_str!("../../assets/suzanne.obj");
+
+/// Reads and parses an OBJ file. Errors name the file: [`Error::Io`] if it cannot be read
+/// (missing, unreadable, not UTF-8), [`Error::Obj`] for its content.
+pub fn load_obj(path: &Path) -> Result<ObjModel> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(path, &text)
+}
+
+/// Parses OBJ text; `name` is the file name used in errors and notices.
+pub fn parse_obj(name: &str, text: &str) -> Result<ObjModel> {
+    parse(Path::new(name), text)
+}
+
+/// The shipped Suzanne ([`SUZANNE_OBJ`]): 507 `v`, 967 triangles, 2901 corners.
+pub fn suzanne() -> ObjModel {
+    // The text is compiled in and checked by the tests; it cannot fail at run time.
+    parse_obj("assets/suzanne.obj", SUZANNE_OBJ).expect("the shipped suzanne.obj parses")
+}
+
+/// A face corner as the file gives it: 0-based indices into the whole file's `v`, `vt`, `vn`.
+#[derive(Clone, Copy, Debug)]
+struct Corner {
+    v: usize,
+    vt: Option<usize>,
+    vn: Option<usize>,
+}
+
+struct Face {
+    corners: Vec<Corner>,
+}
+
+/// What the line-by-line check found, and the text handed on to tobj.
+struct Scan {
+    faces: Vec<Face>,
+    positions: usize,
+    sanitized: String,
+    notices: Vec<String>,
+}
+
+fn obj_error(path: &Path, line: Option<usize>, message: impl Into<String>) -> Error {
+    Error::Obj {
+        path: path.to_path_buf(),
+        line,
+        message: message.into(),
+    }
+}
+
+fn parse(path: &Path, text: &str) -> Result<ObjModel> {
+    let scan = scan(path, text)?;
+    let load_options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, _materials) =
+        tobj::load_obj_buf(
+            &mut scan.sanitized.as_bytes(),
+            &load_options,
+            |_| Ok(Default::default()),
+        )
+        .map_err(|e| obj_error(path, None, format!("tobj: {e}")))?;
+    assemble(path, &scan, &models)
+}
+
+fn parse_number(path: &Path, line: usize, keyword: &str, field: &str) -> Result<f32> {
+    match field.parse::<f32>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(obj_error(
+            path,
+            Some(line),
+            format!("`{keyword}`: field `{field}` is not a finite number"),
+        )),
+        Err(_) => Err(obj_error(
+            path,
+            Some(line),
+            format!("`{keyword}`: field `{field}` is not a number"),
+        )),
+    }
+}
+
+/// Resolves one index of a face corner (`what` = "v", "vt" or "vn") against `count` elements.
+fn resolve_index(path: &Path, line: usize, corner: &str, what: &str, text: &str, count: usize) -> Result<usize> {
+    let bad = |message: String| obj_error(path, Some(line), format!("face corner `{corner}`: {message}"));
+    let k: i64 = text
+        .parse()
+        .map_err(|_| bad(format!("{what} index `{text}` is not an integer")))?;
+    let resolved = if k > 0 {
+        usize::try_from(k - 1).ok().filter(|&i| i < count)
+    } else if k < 0 {
+        usize::try_from(k.unsigned_abs())
+            .ok()
+            .and_then(|back| count.checked_sub(back))
+    } else {
+        return Err(bad(format!("{what} index 0 (OBJ indices start at 1)")));
+    };
+    resolved.ok_or_else(|| {
+        bad(format!(
+            "{what} index {k} is out of range ({count} {what} defined so far)"
+        ))
+    })
+}
+
+fn parse_corner(path: &Path, line: usize, corner: &str, counts: [usize; 3]) -> Result<Corner> {
+    let parts: Vec<&str> = corner.split('/').collect();
+    if parts.len() > 3 {
+        return Err(obj_error(
+            path,
+            Some(line),
+            format!("face corner `{corner}` has more than v/vt/vn"),
+        ));
+    }
+    if parts[0].is_empty() {
+        return Err(obj_error(
+            path,
+            Some(line),
+            format!("face corner `{corner}` has no v index"),
+        ));
+    }
+    let v = resolve_index(path, line, corner, "v", parts[0], counts[0])?;
+    let optional = |k: usize, what: &str| -> Result<Option<usize>> {
+        match parts.get(k) {
+            Some(text) if !text.is_empty() => resolve_index(path, line, corner, what, text, counts[k]).map(Some),
+            _ => Ok(None),
+        }
+    };
+    Ok(Corner {
+        v,
+        vt: optional(1, "vt")?,
+        vn: optional(2, "vn")?,
+    })
+}
+
+fn scan(path: &Path, text: &str) -> Result<Scan> {
+    let mut faces = Vec::new();
+    let mut counts = [0usize; 3]; // v, vt, vn
+    let mut sanitized = String::with_capacity(text.len());
+    let mut anything = false;
+    let (mut w_ignored, mut points, mut lines) = (0usize, 0usize, 0usize);
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let mut words = raw.split_whitespace();
+        let Some(keyword) = words.next() else {
+            sanitized.push('\n');
+            continue;
+        };
+        let fields: Vec<&str> = words.collect();
+        if keyword.starts_with('#') {
+            sanitized.push('\n');
+            continue;
+        }
+        anything = true;
+        match keyword {
+            "v" => {
+                if ![3, 4, 6].contains(&fields.len()) {
+                    let message = format!(
+                        "`v` needs x y z (optionally w, or r g b), found {} field(s)",
+                        fields.len()
+                    );
+                    return Err(obj_error(path, Some(line), message));
+                }
+                let values = fields
+                    .iter()
+                    .map(|f| parse_number(path, line, "v", f))
+                    .collect::<Result<Vec<_>>>()?;
+                if fields.len() == 4 && values[3] != 1.0 {
+                    w_ignored += 1;
+                }
+                counts[0] += 1;
+                sanitized.push_str(&format!("v {} {} {}\n", fields[0], fields[1], fields[2]));
+                continue;
+            }
+            "vt" => {
+                if !(2..=3).contains(&fields.len()) {
+                    let message = format!("`vt` needs u v (optionally w), found {} field(s)", fields.len());
+                    return Err(obj_error(path, Some(line), message));
+                }
+                for f in &fields {
+                    parse_number(path, line, "vt", f)?;
+                }
+                counts[1] += 1;
+            }
+            "vn" => {
+                if fields.len() != 3 {
+                    let message = format!("`vn` needs x y z, found {} field(s)", fields.len());
+                    return Err(obj_error(path, Some(line), message));
+                }
+                for f in &fields {
+                    parse_number(path, line, "vn", f)?;
+                }
+                counts[2] += 1;
+            }
+            "f" => {
+                if fields.len() < 3 {
+                    let message = format!("face with {} corner(s); a face needs at least 3", fields.len());
+                    return Err(obj_error(path, Some(line), message));
+                }
+                let corners = fields
+                    .iter()
+                    .map(|c| parse_corner(path, line, c, counts))
+                    .collect::<Result<Vec<_>>>()?;
+                // Absolute indices for tobj, which resolves relative ones the same way.
+                let mut out = String::from("f");
+                for c in &corners {
+                    out.push_str(&format!(" {}/", c.v + 1));
+                    if let Some(vt) = c.vt {
+                        out.push_str(&(vt + 1).to_string());
+                    }
+                    if let Some(vn) = c.vn {
+                        out.push_str(&format!("/{}", vn + 1));
+                    }
+                }
+                out.push('\n');
+                sanitized.push_str(&out);
+                faces.push(Face { corners });
+                continue;
+            }
+            "o" | "g" => {}
+            "p" => {
+                points += 1;
+                sanitized.push('\n');
+                continue;
+            }
+            "l" => {
+                lines += 1;
+                sanitized.push('\n');
+                continue;
+            }
+            _ => {
+                sanitized.push('\n');
+                continue;
+            }
+        }
+        sanitized.push_str(raw);
+        sanitized.push('\n');
+    }
+    let name = path.display();
+    if !anything {
+        return Err(obj_error(path, None, "empty file (no OBJ statements)"));
+    }
+    if faces.is_empty() {
+        return Err(obj_error(path, None, "no faces (`f` lines): nothing to draw"));
+    }
+    let mut notices = Vec::new();
+    if w_ignored > 0 {
+        notices.push(format!(
+            "{name}: {w_ignored} `v` line(s) with w ≠ 1: w ignored (positions get w = 1)"
+        ));
+    }
+    if points + lines > 0 {
+        notices.push(format!(
+            "{name}: {points} point and {lines} line element(s) ignored (only faces are drawn)"
+        ));
+    }
+    Ok(Scan {
+        faces,
+        positions: counts[0],
+        sanitized,
+        notices,
+    })
+}
+
+fn get3(values: &[f32], index: u32) -> Option<Vec3> {
+    let at = index as usize * 3;
+    values.get(at..at + 3).map(Vec3::from_slice)
+}
+
+fn get2(values: &[f32], index: u32) -> Option<[f32; 2]> {
+    let at = index as usize * 2;
+    values.get(at..at + 2).map(|s| [s[0], s[1]])
+}
+
+/// A corner as tobj gives it for one triangle slot: position, uv, file normal.
+struct Loaded {
+    position: Vec3,
+    uv: Option<[f32; 2]>,
+    normal: Option<Vec3>,
+}
+
+fn assemble(path: &Path, scan: &Scan, models: &[tobj::Model]) -> Result<ObjModel> {
+    let mismatch = || obj_error(path, None, "tobj's triangles do not match the file's faces");
+    // tobj's triangles in order (model by model, face by face, fans), one slot per corner.
+    let mut slots = models
+        .iter()
+        .flat_map(|m| (0..m.mesh.indices.len()).map(move |k| (&m.mesh, k)));
+    let mut next_slot = |c: &Corner| -> Result<Loaded> {
+        let (mesh, k) = slots.next().ok_or_else(mismatch)?;
+        let position = mesh
+            .indices
+            .get(k)
+            .and_then(|&i| get3(&mesh.positions, i))
+            .ok_or_else(mismatch)?;
+        let uv = match c.vt {
+            Some(_) => Some(
+                mesh.texcoord_indices
+                    .get(k)
+                    .and_then(|&i| get2(&mesh.texcoords, i))
+                    .ok_or_else(mismatch)?,
+            ),
+            None => None,
+        };
+        let normal = match c.vn {
+            Some(_) => Some(
+                mesh.normal_indices
+                    .get(k)
+                    .and_then(|&i| get3(&mesh.normals, i))
+                    .ok_or_else(mismatch)?,
+            ),
+            None => None,
+        };
+        Ok(Loaded { position, uv, normal })
+    };
+
+    let mut corners = Vec::new();
+    let mut keys = Vec::new(); // the `v` index of every corner
+    let mut vertex_sums = vec![Vec3::ZERO; scan.positions];
+    let (mut no_uv, mut no_normal) = (0usize, 0usize);
+    for face in &scan.faces {
+        // The fan tobj emits: (0, k, k+1) for k = 1 .. n-2.
+        let fan: Vec<usize> = (1..face.corners.len() - 1).flat_map(|k| [0, k, k + 1]).collect();
+        let loaded = fan
+            .iter()
+            .map(|&i| next_slot(&face.corners[i]))
+            .collect::<Result<Vec<_>>>()?;
+        // Face normal from positions: the first triangle (corners 0, 1, 2 = slots 0, 1, 2).
+        let (a, b, c) = (loaded[0].position, loaded[1].position, loaded[2].position);
+        let geometric = (b - a).cross(c - a).normalize_or_zero();
+        let file_normals: Option<Vec<Vec3>> = loaded.iter().map(|l| l.normal).collect();
+        let face_normal = match file_normals {
+            Some(ns) if ns.iter().all(|n| *n == ns[0]) => ns[0].normalize_or_zero(),
+            Some(ns) => ns
+                .iter()
+                .map(|n| n.normalize_or_zero())
+                .fold(Vec3::ZERO, |s, n| s + n)
+                .normalize_or_zero(),
+            None => geometric,
+        };
+        let mut seen: Vec<usize> = Vec::with_capacity(face.corners.len());
+        for corner in &face.corners {
+            if !seen.contains(&corner.v) {
+                seen.push(corner.v);
+                vertex_sums[corner.v] += face_normal;
+            }
+        }
+        for (&i, l) in fan.iter().zip(&loaded) {
+            no_uv += usize::from(l.uv.is_none());
+            no_normal += usize::from(l.normal.is_none());
+            let p = l.position;
+            corners.push(ObjCorner {
+                position: [p.x, p.y, p.z, 1.0],
+                uv: l.uv.unwrap_or([0.0, 0.0]),
+                normal: l.normal.unwrap_or(geometric).to_array(),
+            });
+            keys.push(face.corners[i].v);
+        }
+    }
+    if slots.next().is_some() {
+        return Err(mismatch());
+    }
+    let vertex_normals: Vec<Vec3> = vertex_sums.iter().map(|n| n.normalize_or_zero()).collect();
+    let smooth = corners
+        .iter()
+        .zip(&keys)
+        .map(|(c, &v)| ObjCorner {
+            normal: vertex_normals[v].to_array(),
+            ..*c
+        })
+        .collect();
+
+    let name = path.display();
+    let mut notices = scan.notices.clone();
+    if no_uv > 0 {
+        notices.push(format!(
+            "{name}: {no_uv} of {} corners have no `vt`: uv (0, 0) used",
+            corners.len()
+        ));
+    }
+    if no_normal > 0 {
+        notices.push(format!(
+            "{name}: {no_normal} of {} corners have no `vn`: face normals computed from the positions",
+            corners.len()
+        ));
+    }
+    Ok(ObjModel {
+        corners,
+        smooth,
+        notices,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+
+    fn err(text: &str) -> (Option<usize>, String) {
+        match parse_obj("t.obj", text) {
+            Err(Error::Obj { path, line, message }) => {
+                assert_eq!(path, PathBuf::from("t.obj"));
+                let shown = Error::Obj {
+                    path,
+                    line,
+                    message: message.clone(),
+                }
+                .to_string();
+                match line {
+                    Some(l) => assert!(shown.starts_with(&format!("t.obj:{l}: ")), "{shown}"),
+                    None => assert!(shown.starts_with("t.obj: "), "{shown}"),
+                }
+                (line, message)
+            }
+            other => panic!("expected an OBJ error for {text:?}, got {other:?}"),
+        }
+    }
+
+    const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+    #[test]
+    fn corner_layout_is_nine_floats() {
+        assert_eq!(std::mem::size_of::<ObjCorner>(), 36);
+        let c = ObjCorner {
+            position: [1.0, 2.0, 3.0, 1.0],
+            uv: [4.0, 5.0],
+            normal: [6.0, 7.0, 8.0],
+        };
+        let floats: &[f32] = bytemuck::cast_slice(std::slice::from_ref(&c));
+        assert_eq!(floats, &[1.0, 2.0, 3.0, 1.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
+    }
+
+    #[test]
+    fn suzanne_counts_and_values() {
+        assert_eq!(SUZANNE_OBJ.lines().filter(|l| l.starts_with("v ")).count(), 507);
+        let m = suzanne();
+        assert_eq!(m.corners.len(), 2901);
+        assert_eq!(m.smooth.len(), 2901);
+        assert_eq!(m.triangle_count(), 967);
+        assert!(m.notices.is_empty(), "{:?}", m.notices);
+        // Every corner has w = 1; uv and normal come from the file.
+        assert!(m.corners.iter().all(|c| c.position[3] == 1.0));
+        // The first face's corners hold exactly the values its indices name.
+        let first_face = SUZANNE_OBJ.lines().find(|l| l.starts_with("f ")).unwrap();
+        let v: Vec<&str> = SUZANNE_OBJ.lines().filter(|l| l.starts_with("v ")).collect();
+        let vt: Vec<&str> = SUZANNE_OBJ.lines().filter(|l| l.starts_with("vt ")).collect();
+        let vn: Vec<&str> = SUZANNE_OBJ.lines().filter(|l| l.starts_with("vn ")).collect();
+        let floats = |line: &str| -> Vec<f32> { line.split_whitespace().skip(1).map(|f| f.parse().unwrap()).collect() };
+        for (k, corner) in first_face.split_whitespace().skip(1).enumerate() {
+            let idx: Vec<usize> = corner.split('/').map(|i| i.parse().unwrap()).collect();
+            let c = m.corners[k];
+            assert_eq!(c.position[..3], floats(v[idx[0] - 1])[..], "corner {k}");
+            assert_eq!(c.uv[..], floats(vt[idx[1] - 1])[..], "corner {k}");
+            assert_eq!(c.normal[..], floats(vn[idx[2] - 1])[..], "corner {k}");
+            assert_eq!(m.smooth[k].position, c.position);
+            assert_eq!(m.smooth[k].uv, c.uv);
+        }
+    }
+
+    #[test]
+    fn suzanne_smooth_normals() {
+        let m = suzanne();
+        let (mut differing, mut opposed) = (0, 0);
+        for (flat, smooth) in m.corners.iter().zip(&m.smooth) {
+            let n = Vec3::from_array(smooth.normal);
+            assert!((n.length() - 1.0).abs() < 1e-5, "{n}");
+            opposed += usize::from(n.dot(Vec3::from_array(flat.normal)) <= 0.0);
+            if (n - Vec3::from_array(flat.normal).normalize()).length() > 1e-3 {
+                differing += 1;
+            }
+        }
+        assert!(differing > 2800, "{differing}");
+        // An unweighted average can point away from a face only at sharp creases (eye rims,
+        // ear edges): a few corners, not a side of the model.
+        assert!(opposed > 0 && opposed < 40, "{opposed}");
+        // Corners sharing a `v` index share the vertex normal (Suzanne has coincident but
+        // distinct `v`s, which keep their own).
+        let v_indices = SUZANNE_OBJ.lines().filter(|l| l.starts_with("f ")).flat_map(|l| {
+            l.split_whitespace()
+                .skip(1)
+                .map(|c| c.split('/').next().unwrap().parse::<usize>().unwrap())
+        });
+        let mut by_v = std::collections::HashMap::new();
+        for (c, v) in m.smooth.iter().zip(v_indices) {
+            assert_eq!(*by_v.entry(v).or_insert(c.normal), c.normal, "v {v}");
+        }
+        assert_eq!(by_v.len(), 507);
+    }
+
+    #[test]
+    fn smooth_normal_is_unweighted_average() {
+        // Two faces sharing v1 and v3, their file normals at a right angle (one not unit length).
+        let text = "v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 2 2\nvn 1 0 0\nvn 0 0 3\n\
+                    f 1//1 2//1 3//1\nf 1//2 3//2 4//2\n";
+        let m = parse_obj("t.obj", text).unwrap();
+        let flat: Vec<[f32; 3]> = m.corners.iter().map(|c| c.normal).collect();
+        assert_eq!(
+            flat,
+            vec![[1.0, 0.0, 0.0]; 3]
+                .into_iter()
+                .chain(vec![[0.0, 0.0, 3.0]; 3])
+                .collect::<Vec<_>>()
+        );
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        let smooth: Vec<[f32; 3]> = m.smooth.iter().map(|c| c.normal).collect();
+        // v1 and v3 are shared: (1,0,0) + (0,0,1) normalized; v2 only face 1, v4 only face 2.
+        assert_eq!(
+            smooth,
+            vec![
+                [h, 0.0, h],
+                [1.0, 0.0, 0.0],
+                [h, 0.0, h],
+                [h, 0.0, h],
+                [h, 0.0, h],
+                [0.0, 0.0, 1.0]
+            ]
+        );
+    }
+
+    #[test]
+    fn quad_is_triangulated_as_a_fan() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n\
+                    f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+        let m = parse_obj("t.obj", text).unwrap();
+        assert_eq!(m.triangle_count(), 2);
+        let xy: Vec<[f32; 2]> = m.corners.iter().map(|c| [c.position[0], c.position[1]]).collect();
+        assert_eq!(
+            xy,
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+        );
+        let uv: Vec<[f32; 2]> = m.corners.iter().map(|c| c.uv).collect();
+        assert_eq!(uv, xy);
+        assert!(m.smooth.iter().all(|c| c.normal == [0.0, 0.0, 1.0]));
+        assert!(m.notices.is_empty());
+        // A pentagon: three triangles (0,1,2), (0,2,3), (0,3,4).
+        let penta = "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n";
+        let m = parse_obj("p.obj", penta).unwrap();
+        assert_eq!(m.triangle_count(), 3);
+        assert_eq!(m.corners[6].position, [0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(m.corners[8].position, [0.0, 1.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn missing_texcoords_and_normals_are_filled_in() {
+        let m = parse_obj("t.obj", &format!("{TRI}f 1 2 3\n")).unwrap();
+        assert!(m
+            .corners
+            .iter()
+            .all(|c| c.uv == [0.0, 0.0] && c.normal == [0.0, 0.0, 1.0]));
+        assert!(m.smooth.iter().all(|c| c.normal == [0.0, 0.0, 1.0]));
+        assert_eq!(m.notices.len(), 2, "{:?}", m.notices);
+        assert!(
+            m.notices[0].contains("no `vt`") && m.notices[1].contains("no `vn`"),
+            "{:?}",
+            m.notices
+        );
+        assert!(m.notices.iter().all(|n| n.starts_with("t.obj: ") && !n.contains('\n')));
+        // Mixed: only the corner without vt gets (0,0), even though the file has texcoords
+        // (tobj alone would repeat the previous corner's).
+        let m = parse_obj("t.obj", &format!("{TRI}vt 0.5 0.25\nvn 0 0 -1\nf 1/1/1 2//1 3/1/1\n")).unwrap();
+        let uv: Vec<[f32; 2]> = m.corners.iter().map(|c| c.uv).collect();
+        assert_eq!(uv, vec![[0.5, 0.25], [0.0, 0.0], [0.5, 0.25]]);
+        assert!(m.corners.iter().all(|c| c.normal == [0.0, 0.0, -1.0]));
+        assert_eq!(m.notices.len(), 1);
+        // Relative indices, comments, groups, w and ignored elements.
+        let text = "# c\no a\nv 0 0 0 2\nv 1 0 0\nv 0 1 0\ns 1\nusemtl x\nl 1 2\ng b\nf -3 -2 -1\n";
+        let m = parse_obj("t.obj", text).unwrap();
+        assert_eq!(m.corners[0].position, [0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(m.corners[1].position, [1.0, 0.0, 0.0, 1.0]);
+        assert!(m.notices.iter().any(|n| n.contains("w ignored")), "{:?}", m.notices);
+        assert!(
+            m.notices.iter().any(|n| n.contains("1 line element")),
+            "{:?}",
+            m.notices
+        );
+    }
+
+    #[test]
+    fn several_objects_share_vertices() {
+        // Vertex normals are per `v` index across objects.
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no a\nf 1 2 3\no b\nf 1 3 4\n";
+        let m = parse_obj("t.obj", text).unwrap();
+        assert_eq!(m.triangle_count(), 2);
+        assert_eq!(m.smooth[0].normal, m.smooth[3].normal);
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        assert_eq!(m.smooth[0].normal, [h, 0.0, h]);
+    }
+
+    #[test]
+    fn error_cases_name_file_and_line() {
+        assert_eq!(err("").0, None);
+        assert!(err("   \n# only a comment\n\n").1.contains("empty"));
+        let (line, message) = err(TRI);
+        assert_eq!(line, None);
+        assert!(message.contains("no faces"), "{message}");
+
+        let cases: &[(&str, usize, &str)] = &[
+            ("v 0 0 0\nv 1 x 0\n", 2, "not a number"),
+            ("v 0 0\n", 1, "found 2 field"),
+            ("v 0 0 nan\n", 1, "finite"),
+            ("vt 0.5 y\n", 1, "not a number"),
+            ("vn 0 0\n", 1, "found 2 field"),
+            ("vn 1 2 three\n", 1, "not a number"),
+            ("v 0 0 0\nv 1 0 0\nf 1 2\n", 3, "at least 3"),
+            ("v 0 0 0\nf 1\n", 2, "at least 3"),
+            ("f\n", 1, "at least 3"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", 4, "out of range"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4, "index 0"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n", 4, "out of range"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", 4, "not an integer"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3.5\n", 4, "not an integer"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n",
+                4,
+                "vt index 1 is out of range",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//2 2//1 3//1\n",
+                4,
+                "vn index 2 is out of range",
+            ),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/// 2 3\n", 4, "more than"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf /1 2 3\n", 4, "no v index"),
+            // An index must name an element defined above it.
+            ("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", 1, "out of range"),
+        ];
+        for &(text, want_line, want) in cases {
+            let (line, message) = err(text);
+            assert_eq!(line, Some(want_line), "{text:?}: {message}");
+            assert!(message.contains(want), "{text:?}: {message}");
+        }
+    }
+
+    #[test]
+    fn file_errors() {
+        let dir = std::env::temp_dir().join(format!("shaderlab-obj-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let missing = dir.join("missing.obj");
+        let e = load_obj(&missing).unwrap_err();
+        assert!(
+            matches!(e, Error::Io { .. }) && e.to_string().contains("missing.obj"),
+            "{e}"
+        );
+        let empty = dir.join("empty.obj");
+        std::fs::write(&empty, "").unwrap();
+        let e = load_obj(&empty).unwrap_err();
+        assert!(e.to_string().starts_with(&format!("{}: empty", empty.display())), "{e}");
+        let binary = dir.join("binary.obj");
+        std::fs::write(&binary, [0xff, 0xfe, 0x00, 0x80]).unwrap();
+        let e = load_obj(&binary).unwrap_err();
+        assert!(
+            matches!(e, Error::Io { .. }) && e.to_string().contains("binary.obj"),
+            "{e}"
+        );
+        let bad = dir.join("bad.obj");
+        std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+        let e = load_obj(&bad).unwrap_err();
+        assert!(e.to_string().starts_with(&format!("{}:4: ", bad.display())), "{e}");
+        let good = dir.join("good.obj");
+        std::fs::write(&good, SUZANNE_OBJ).unwrap();
+        assert_eq!(load_obj(&good).unwrap().corners, suzanne().corners);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
