@@ -1,73 +1,77 @@
-//! `cargo run --release --example bench`: every exercise on every object, offscreen at 640x360,
-//! rotated 30/45 degrees as the original's timing runs were, N frames each (submit + wait per
-//! frame, like the original's swap + glFinish). Prints ms per frame, GPU ms from timestamp
-//! queries, and the ratio to the original C/GLUT program on the same machine (lower is faster).
+//! `cargo run --release --example bench`: every lab of `labs::ALL` (on every object where it has
+//! a choice of objects), offscreen at its default size, rotated 30/45 degrees where it has
+//! angles, N frames each (submit + wait per frame, like the originals' swap + glFinish; animated
+//! labs advance their time by 1/60 s per frame). Prints the port's milliseconds per frame only:
+//! a comparison with the original is measured side by side, alternating, with
+//! `../shared/original/bench-vs-original`, never against stored figures.
 
 use clap::Parser;
-use glam::Vec3;
-use shaderlab::cli::bench;
-use shaderlab::effects::*;
+use shaderlab::lab::LabContext;
 use shaderlab::offscreen::COLOR_FORMAT;
+use shaderlab::params::Kind;
 use shaderlab::shader::ShaderSource;
-use shaderlab::{Effect, Gpu, Lab, Object};
-
-/// The original's milliseconds per frame (shared/reference/README.md), cube, sphere, torus, teapot.
-const ORIGINAL: [[f64; 4]; 5] = [
-    [0.91, 1.39, 2.48, 2.77],
-    [1.01, 1.89, 2.31, 2.10],
-    [0.96, 2.28, 2.99, 2.69],
-    [1.43, 2.29, 5.12, 4.29],
-    [1.13, 2.58, 3.42, 4.04],
-];
+use shaderlab::shell::bench;
+use shaderlab::{labs, Gpu};
 
 #[derive(Parser)]
-#[command(about = "Benchmark every lab exercise and object against the original's figures")]
+#[command(about = "Benchmark every lab (and object) offscreen")]
 struct Args {
     /// Frames per case.
     #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     frames: u32,
-}
-
-fn run<E: Effect>(gpu: &Gpu, exercise: usize, frames: u32, ratios: &mut Vec<f64>) -> anyhow::Result<()> {
-    let mut lab = Lab::<E>::new(gpu, ShaderSource::Embedded, COLOR_FORMAT)?;
-    lab.scene.angles = Vec3::new(30.0, 45.0, 0.0);
-    for (i, object) in Object::ALL.into_iter().enumerate() {
-        lab.scene.object = object;
-        let r = bench(gpu, &mut lab, frames, 640, 360)?;
-        let original = ORIGINAL[exercise - 1][i];
-        let ratio = r.ms_per_frame / original;
-        ratios.push(ratio);
-        println!(
-            "| {exercise} {:<13} | {:<6} | {:>8.3} | {:>8} | {:>8.2} | {:>5.2} |",
-            E::NAME,
-            object.name(),
-            r.ms_per_frame,
-            r.gpu_ms.map(|g| format!("{g:.3}")).unwrap_or_else(|| "-".into()),
-            original,
-            ratio
-        );
-    }
-    Ok(())
+    /// Only labs whose name contains this.
+    #[arg(long)]
+    only: Option<String>,
+    /// Also time each frame on the GPU with timestamp queries.
+    #[arg(long)]
+    gpu_time: bool,
 }
 
 fn main() -> anyhow::Result<()> {
     let args = Args::parse();
     let gpu = Gpu::headless()?;
-    println!(
-        "adapter: {}; {} frames per case at 640x360, rotated 30,45,0",
-        gpu.describe(),
-        args.frames
-    );
-    println!("| exercise        | object | ms/frame |   gpu ms | original | ratio |");
-    println!("|---|---|---|---|---|---|");
-    let mut ratios = Vec::new();
-    run::<PositionRgb>(&gpu, 1, args.frames, &mut ratios)?;
-    run::<NormalRgb>(&gpu, 2, args.frames, &mut ratios)?;
-    run::<Phong>(&gpu, 3, args.frames, &mut ratios)?;
-    run::<Noise>(&gpu, 4, args.frames, &mut ratios)?;
-    run::<Displacement>(&gpu, 5, args.frames, &mut ratios)?;
-    let geo = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len() as f64).exp();
-    let worst = ratios.iter().cloned().fold(0.0, f64::max);
-    println!("geometric mean ratio (port / original): {geo:.2}; worst case: {worst:.2}");
+    println!("adapter: {}; {} frames per case", gpu.describe(), args.frames);
+    println!("| lab | object | size | ms/frame | gpu ms |");
+    println!("|---|---|---|---|---|");
+    let source = ShaderSource::Embedded;
+    let cx = LabContext {
+        gpu: &gpu,
+        source: &source,
+        format: COLOR_FORMAT,
+    };
+    for entry in labs::ALL {
+        if args.only.as_ref().is_some_and(|o| !entry.info.name.contains(o.as_str())) {
+            continue;
+        }
+        let mut lab = (entry.new)(&cx)?;
+        for (name, value) in [("xangle", 30.0), ("yangle", 45.0)] {
+            if lab.params().has(name) {
+                lab.params_mut().set(name, &[value])?;
+            }
+        }
+        let objects: Vec<&str> = lab
+            .params()
+            .specs()
+            .iter()
+            .find(|s| s.name == "object")
+            .and_then(|s| match s.kind {
+                Kind::Choice(names) => Some(names.to_vec()),
+                _ => None,
+            })
+            .unwrap_or_else(|| vec!["-"]);
+        let (w, h) = entry.info.size;
+        for object in objects {
+            if object != "-" {
+                lab.params_mut().set_str("object", object)?;
+            }
+            let r = bench(&gpu, lab.as_mut(), args.frames, w, h, args.gpu_time)?;
+            println!(
+                "| {} | {object} | {w}x{h} | {:.3} | {} |",
+                entry.info.name,
+                r.ms_per_frame,
+                r.gpu_ms.map(|g| format!("{g:.3}")).unwrap_or_else(|| "-".into())
+            );
+        }
+    }
     Ok(())
 }

@@ -1,4 +1,4 @@
 //! `cargo run --release --example displacement`: Exercise 5, displacement (`Lab05-5`). Run with `--help` for the command line.
 fn main() -> std::process::ExitCode {
-    shaderlab::cli::main::<shaderlab::effects::Displacement>()
+    shaderlab::shell::main(shaderlab::labs::DISPLACEMENT)
 }

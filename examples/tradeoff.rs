@@ -10,13 +10,34 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Parser;
 use plotters::prelude::*;
-use shaderlab::effect::{Shading, Tess};
-use shaderlab::effects::Phong;
 use shaderlab::exact::{image_error, silhouette_error, ExactScene, Shape, Specular};
 use shaderlab::metrics::mask;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
+use shaderlab::lab::LabContext;
 use shaderlab::shader::ShaderSource;
-use shaderlab::{Gpu, Lab, Object};
+use shaderlab::shell::{bench, screenshot};
+use shaderlab::{labs, Gpu, Object};
+
+/// The phong lab's shading models (its `shading` parameter).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Shading {
+    Flat,
+    Gouraud,
+    Phong,
+    Blinn,
+}
+
+impl Shading {
+    const ALL: [Shading; 4] = [Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::Blinn];
+    fn name(self) -> &'static str {
+        match self {
+            Shading::Flat => "flat",
+            Shading::Gouraud => "gouraud",
+            Shading::Phong => "phong",
+            Shading::Blinn => "blinn",
+        }
+    }
+}
 
 #[derive(Parser)]
 #[command(about = "Chart speed against accuracy: shading model x tessellation, against an exact reference")]
@@ -64,11 +85,17 @@ fn main() -> anyhow::Result<()> {
         gpu.describe(),
         args.frames
     );
-    let mut lab = Lab::<Phong>::new(&gpu, ShaderSource::Embedded, COLOR_FORMAT)?;
+    let source = ShaderSource::Embedded;
+    let cx = LabContext {
+        gpu: &gpu,
+        source: &source,
+        format: COLOR_FORMAT,
+    };
+    let mut lab = (labs::PHONG.new)(&cx)?;
     let mut rows = Vec::new();
     let mut done = 0;
     for (object, shape) in shapes {
-        lab.scene.object = object;
+        lab.params_mut().set_str("object", object.name())?;
         let exact_phong = ExactScene {
             shape,
             ..Default::default()
@@ -80,16 +107,16 @@ fn main() -> anyhow::Result<()> {
         };
         let (phong_img, blinn_img) = (exact_phong.render(W, H), exact_blinn.render(W, H));
         for shading in Shading::ALL {
-            lab.set_shading(&gpu, shading)?;
+            lab.params_mut().set_str("shading", shading.name())?;
             let (exact, exact_img) = if shading == Shading::Blinn {
                 (&exact_blinn, &blinn_img)
             } else {
                 (&exact_phong, &phong_img)
             };
             for &level in levels {
-                lab.options.tess = Tess::Level(level);
-                let timing = shaderlab::cli::bench(&gpu, &mut lab, args.frames, W, H)?;
-                let image = to_rgb(&lab.screenshot(&gpu, W, H)?);
+                lab.params_mut().set("tess", &[f64::from(level)])?;
+                let timing = bench(&gpu, lab.as_mut(), args.frames, W, H, true)?;
+                let image = to_rgb(&screenshot(&gpu, lab.as_mut(), W, H)?);
                 let err = image_error(exact_img, &image)?;
                 let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H)?;
                 let triangles = shaderlab::tess::mesh(object, level).triangle_count();

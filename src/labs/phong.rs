@@ -160,7 +160,7 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         "light_marker.frag",
         RenderState::default(),
     )?;
-    marker.bind(cx.gpu, vec![marker_transform.bind(), uniforms.bind()])?;
+    marker.bind(cx.gpu, vec![marker_transform.bind()])?;
     let sphere = Mesh::sphere(0.05, 4, 4);
     let marker_mesh = GpuMesh::new(cx.gpu, "mesh.light_marker", &sphere.vertices, Some(&sphere.indices));
     Ok(Box::new(Phong {
