@@ -84,6 +84,10 @@ pub trait Lab {
     fn reload(&mut self, cx: &LabContext) -> Result<()>;
     /// Records one frame.
     fn render(&mut self, frame: &mut Frame<'_>) -> Result<()>;
+    /// Its programs, for checks that swap a pipeline (the GLSL-versus-WGSL round trip).
+    fn programs(&mut self) -> Vec<&mut dyn crate::render::AnyProgram> {
+        Vec::new()
+    }
     /// Whether a clock drives its `time` parameter in a window (Space pauses it).
     fn animated(&self) -> bool {
         false

@@ -280,6 +280,20 @@ impl Params {
         }
     }
 
+    /// Adds `delta` to component `c` of `name` (all for `usize::MAX`), clamped to `[lo, hi]`
+    /// instead of the declared range: for keys whose bounds are narrower than what `--set`
+    /// accepts (seed 000's keys clamp to [0, 1], its `--set` takes any finite value).
+    pub fn step_clamped(&mut self, name: &str, c: usize, delta: f64, lo: f64, hi: f64) {
+        debug_assert!(self.has(name), "unknown parameter {name}");
+        if let Some(i) = self.index(name) {
+            for (k, v) in self.values[i].iter_mut().enumerate() {
+                if c == usize::MAX || c == k {
+                    *v = f64::from((*v as f32 + delta as f32).clamp(lo as f32, hi as f32));
+                }
+            }
+        }
+    }
+
     /// Sets `name` to `value` without range checks beyond clamping (keys, clocks).
     pub fn put(&mut self, name: &str, values: &[f64]) {
         debug_assert!(self.has(name), "unknown parameter {name}");

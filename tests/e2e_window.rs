@@ -20,10 +20,9 @@ use std::thread;
 use std::time::{Duration, Instant};
 
 use image::RgbImage;
-use shaderlab::effects::phong::PhongUniforms;
-use shaderlab::effects::Phong;
+use shaderlab::labs;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
-use shaderlab::{Effect, Object, Scene};
+
 
 mod common;
 
@@ -1179,18 +1178,12 @@ fn input_storm_keeps_values_in_range_and_the_window_responsive() {
     storm.extend(std::iter::repeat_n('r', 120));
     assert_eq!(storm.len(), 2000);
     // What the lab must end with: the same keys through the effect's own handler.
-    let mut expected = PhongUniforms::default();
-    let mut scene = Scene {
-        object: Object::Teapot,
-        angles: Default::default(),
-        camera: Phong::CAMERA,
-        time: 0.0,
-        motion: (0, 0),
-    };
+    let mut model = common::lab(labs::PHONG);
     for &c in &storm {
-        Phong::key(c, &mut expected, &mut scene);
+        model.key(c);
     }
-    let expected_summary = Phong::summary(&expected);
+    let expected_title = model.lab.title();
+    let expected_summary = expected_title.split(" | ").nth(2).expect("a summary in the title").to_owned();
 
     let names: Vec<String> = storm.iter().map(|&c| keysym(c)).collect();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();

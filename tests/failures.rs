@@ -7,12 +7,11 @@ mod common;
 use common::*;
 use glam::{Mat3, Vec3};
 use image::RgbImage;
-use shaderlab::effect::{Shading, Tess, NOISE_PERIOD};
-use shaderlab::effects::*;
+use shaderlab::labs::{self, NOISE_PERIOD};
 use shaderlab::exact::{image_error, ExactScene, Shape};
 use shaderlab::metrics::{luma_stats, mask, psnr};
 use shaderlab::shader::ShaderSource;
-use shaderlab::{Lab, Object};
+use shaderlab::Object;
 
 /// Fraction of horizontally adjacent object pixels with exactly the same value: smooth noise has
 /// some (8-bit steps), a pattern frozen into blocks by f32 rounding has many more.
@@ -32,11 +31,11 @@ fn blockiness(image: &RgbImage) -> f64 {
 }
 
 fn noise_at(time: f64, wrap: bool) -> RgbImage {
-    let mut lab = lab::<Noise>();
-    lab.scene.object = Object::Sphere;
-    lab.scene.time = time;
-    lab.options.wrap_time = wrap;
-    shaderlab::offscreen::to_rgb(&lab.screenshot(gpu(), 640, 360).expect("render"))
+    let mut lab = lab(labs::NOISE);
+    lab.set_object(Object::Sphere);
+    lab.set_time(time);
+    lab.set("wrap_time", &[if wrap { 1.0 } else { 0.0 }]).expect("wrap_time");
+    lab.rgb(640, 360)
 }
 
 #[test]
@@ -95,12 +94,12 @@ fn noise_time_precision_and_period() {
     );
 }
 
-fn phong_sphere(shading: Shading, level: u32) -> RgbImage {
-    let mut lab = lab::<Phong>();
-    lab.scene.object = Object::Sphere;
-    lab.options.tess = Tess::Level(level);
-    lab.set_shading(gpu(), shading).expect("shading");
-    shaderlab::offscreen::to_rgb(&lab.screenshot(gpu(), 640, 360).expect("render"))
+fn phong_sphere(shading: &str, level: u32) -> RgbImage {
+    let mut lab = lab(labs::PHONG);
+    lab.set_object(Object::Sphere);
+    lab.set("tess", &[level as f32]).expect("tess");
+    lab.set_str("shading", shading).expect("shading");
+    lab.rgb(640, 360)
 }
 
 fn peak(image: &RgbImage) -> u8 {
@@ -120,8 +119,8 @@ fn gouraud_loses_the_highlight_on_coarse_meshes() {
     );
     let mut rows = Vec::new();
     for level in [6u32, 12, 24, 48, 96] {
-        let g = phong_sphere(Shading::Gouraud, level);
-        let p = phong_sphere(Shading::Phong, level);
+        let g = phong_sphere("gouraud", level);
+        let p = phong_sphere("phong", level);
         let (eg, ep) = (
             image_error(&exact, &g).expect("sizes match"),
             image_error(&exact, &p).expect("sizes match"),
@@ -170,11 +169,11 @@ fn normal_matrix_under_non_uniform_scale() {
     assert!(worst > 30.0, "the naive matrix must be badly wrong under this scale");
     // In the image: the true normals of the flattened sphere point up and down far more (green).
     let render = |naive: bool| {
-        let mut lab = lab::<NormalRgb>();
-        lab.scene.object = Object::Sphere;
-        lab.options.scale = scale;
-        lab.options.naive_normal_matrix = naive;
-        shaderlab::offscreen::to_rgb(&lab.screenshot(gpu(), 640, 360).expect("render"))
+        let mut lab = lab(labs::NORMAL_RGB);
+        lab.set_object(Object::Sphere);
+        lab.set("scale", &scale.to_array()).expect("scale");
+        lab.set("naive_nm", &[if naive { 1.0 } else { 0.0 }]).expect("naive_nm");
+        lab.rgb(640, 360)
     };
     let (right, naive) = (render(false), render(true));
     let green = |img: &RgbImage| shaderlab::metrics::mean_color(img, (300, 145, 340, 165), None)[1];
@@ -240,12 +239,12 @@ fn degenerate_inputs_never_reach_the_image_as_nan() {
             ("original", ShaderSource::Dir(dir.clone())),
             ("port", ShaderSource::Embedded),
         ] {
-            let mut lab = Lab::<Phong>::new(gpu(), source, wgpu::TextureFormat::Rgba32Float).expect("lab");
-            lab.scene.object = Object::Sphere;
+            let mut lab = lab_with(labs::PHONG, &source, wgpu::TextureFormat::Rgba32Float);
+            lab.set_object(Object::Sphere);
             for (n, v) in *set {
                 lab.set(n, v).expect("set");
             }
-            let pixels = lab.render_f32(gpu(), 320, 180).expect("render");
+            let pixels = lab.render_f32(320, 180).expect("render");
             let bad = non_finite(&pixels);
             println!("{what}: {label}: {bad} NaN/inf pixels of {}", pixels.len());
             if label == "port" {
@@ -263,20 +262,15 @@ fn degenerate_inputs_never_reach_the_image_as_nan() {
         }
     }
     // Every exercise on every object, including the teapot's degenerate poles: all finite.
-    fn all_finite<E: shaderlab::Effect>() {
-        let mut lab = Lab::<E>::new(gpu(), ShaderSource::Embedded, wgpu::TextureFormat::Rgba32Float).expect("lab");
+    for entry in [labs::POSITION_RGB, labs::NORMAL_RGB, labs::PHONG, labs::NOISE, labs::DISPLACEMENT] {
+        let mut lab = lab_with(entry, &ShaderSource::Embedded, wgpu::TextureFormat::Rgba32Float);
         for object in Object::ALL {
-            lab.scene.object = object;
-            lab.scene.time = 3.0;
-            let pixels = lab.render_f32(gpu(), 320, 180).expect("render");
-            assert_eq!(non_finite(&pixels), 0, "{} on {object:?}", E::NAME);
+            lab.set_object(object);
+            lab.set_time(3.0);
+            let pixels = lab.render_f32(320, 180).expect("render");
+            assert_eq!(non_finite(&pixels), 0, "{} on {object:?}", entry.info.name);
         }
     }
-    all_finite::<PositionRgb>();
-    all_finite::<NormalRgb>();
-    all_finite::<Phong>();
-    all_finite::<Noise>();
-    all_finite::<Displacement>();
 }
 
 #[test]
@@ -297,7 +291,7 @@ fn displacement_cracks_and_the_smooth_variant() {
     }
     // The smooth variant renders, and differs from the cracked one where the cracks were (at
     // t = 1 the cube's faces are lit and the original shows dark gaps between them).
-    let render = |smooth: f32| render::<Displacement>(Object::Cube, [30.0, 45.0, 0.0], 1.0, &[("smooth", &[smooth])]);
+    let render = |smooth: f32| render(labs::DISPLACEMENT, Object::Cube, [30.0, 45.0, 0.0], 1.0, &[("smooth", &[smooth])]);
     let (cracked, smooth) = (render(0.0), render(1.0));
     let p = psnr(&cracked, &smooth).expect("size");
     println!("cube at t = 1, cracked vs smooth: PSNR {p:.1} dB");

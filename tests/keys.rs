@@ -3,13 +3,13 @@
 mod common;
 
 use glam::Vec3;
-use shaderlab::effects::*;
+use shaderlab::labs;
 use shaderlab::Object;
 
 #[test]
 fn object_keys() {
-    let mut lab = common::lab::<PositionRgb>();
-    assert_eq!(lab.scene.object, Object::Teapot, "the teapot is the default");
+    let mut lab = common::lab(labs::POSITION_RGB);
+    assert_eq!(lab.object(), Object::Teapot, "the teapot is the default");
     for (key, object) in [
         ('1', Object::Cube),
         ('2', Object::Sphere),
@@ -17,15 +17,15 @@ fn object_keys() {
         ('4', Object::Teapot),
     ] {
         assert!(lab.key(key));
-        assert_eq!(lab.scene.object, object);
+        assert_eq!(lab.object(), object);
     }
     assert!(!lab.key('q'), "unbound keys do nothing");
 }
 
 #[test]
 fn phong_keys_and_clamps() {
-    let mut lab = common::lab::<Phong>();
-    let get = |lab: &shaderlab::Lab<Phong>, n: &str| lab.get(n).expect("param");
+    let mut lab = common::lab(labs::PHONG);
+    let get = |lab: &common::TestLab, n: &str| lab.get(n).expect("param");
     lab.key('X');
     lab.key('Y');
     lab.key('z');
@@ -66,14 +66,14 @@ fn phong_keys_and_clamps() {
 
 #[test]
 fn noise_and_displacement_keys() {
-    let mut noise = common::lab::<Noise>();
+    let mut noise = common::lab(labs::NOISE);
     noise.key('r');
     assert!((noise.get("shade").expect("shade")[0] - 0.95).abs() < 1e-6);
     for _ in 0..50 {
         noise.key('g');
     }
     assert_eq!(noise.get("shade").expect("shade")[1], 0.0);
-    let mut disp = common::lab::<Displacement>();
+    let mut disp = common::lab(labs::DISPLACEMENT);
     disp.key(']');
     assert!((disp.get("displacement").expect("d")[0] - 0.51).abs() < 1e-6);
     for _ in 0..200 {
@@ -86,49 +86,48 @@ fn noise_and_displacement_keys() {
 
 #[test]
 fn mouse_drag_rotates_like_glut() {
-    let mut lab = common::lab::<Noise>();
+    let mut lab = common::lab(labs::NOISE);
     lab.mouse_press(100, 100);
     lab.mouse_motion(110, 100); // right: yAngle += 2
     lab.mouse_motion(120, 95); // right and up: yAngle += 2, xAngle -= 1
     lab.mouse_motion(120, 95); // no movement: nothing
-    assert_eq!(lab.scene.angles, Vec3::new(359.0, 4.0, 0.0));
+    assert_eq!(lab.angles(), Vec3::new(359.0, 4.0, 0.0));
     // The original tests `if (xMotion)`: a press at x = 0 does not rotate around y.
-    let mut edge = common::lab::<Noise>();
+    let mut edge = common::lab(labs::NOISE);
     edge.mouse_press(0, 50);
     edge.mouse_motion(30, 60);
-    assert_eq!(edge.scene.angles, Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(edge.angles(), Vec3::new(1.0, 0.0, 0.0));
 }
 
 #[test]
 fn set_rejects_bad_values() {
-    let mut lab = common::lab::<Phong>();
+    let mut lab = common::lab(labs::PHONG);
     assert!(lab.set("Ka", &[f32::NAN]).is_err());
     assert!(lab.set("lightPosition", &[1.0]).is_err());
     assert!(lab.set("camera", &[0.0, 0.0, 3.0]).is_ok());
-    let mut p1 = common::lab::<PositionRgb>();
+    let mut p1 = common::lab(labs::POSITION_RGB);
     let err = p1.set("camera", &[0.0, 0.0, 3.0]).expect_err("no camera in exercise 1");
     assert!(err.to_string().contains("valid"), "{err}");
 }
 
 #[test]
 fn key_m_cycles_shading_models_and_rebuilds_the_pipeline() {
-    use shaderlab::effect::Shading;
     use shaderlab::offscreen::to_rgb;
-    let mut lab = common::lab::<Phong>();
-    lab.scene.object = Object::Sphere;
+    let mut lab = common::lab(labs::PHONG);
+    lab.set_object(Object::Sphere);
     let phong = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
     assert!(lab.key('m'));
-    assert_eq!(lab.options.shading, Shading::Blinn);
+    assert_eq!(lab.text("shading"), "blinn");
     let blinn = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
-    assert!(lab.take_error().is_none());
+    assert!(lab.lab.take_error().is_none());
     assert_ne!(phong, blinn, "the Blinn-Phong pipeline must be in use after m");
-    for expected in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+    for expected in ["flat", "gouraud", "phong"] {
         lab.key('m');
-        assert_eq!(lab.options.shading, expected);
+        assert_eq!(lab.text("shading"), expected);
     }
     let again = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
     assert_eq!(phong, again, "back to the original after a full cycle");
     // Effects without shading models ignore m.
-    let mut noise = common::lab::<Noise>();
+    let mut noise = common::lab(labs::NOISE);
     assert!(!noise.key('m'));
 }

@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use image::RgbImage;
-use shaderlab::effects::*;
+use shaderlab::labs;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, psnr};
 use shaderlab::Object;
 
@@ -25,7 +25,7 @@ fn sphere_radius_px(d: f64) -> f64 {
 
 #[test]
 fn position_rgb_maps_z_y_x_to_red_green_blue() {
-    let cube = render::<PositionRgb>(Object::Cube, [0.0; 3], 0.0, &[]);
+    let cube = render(labs::POSITION_RGB, Object::Cube, [0.0; 3], 0.0, &[]);
     // The front face is z = +0.75: colour = normalize(z, y, x, 1) + 0.5 — red above 0.5 everywhere,
     // blue growing to the right (x), green growing upwards (y).
     let left = mean_color(&cube, (250, 150, 300, 210), Some(BLACK));
@@ -45,7 +45,7 @@ fn position_rgb_maps_z_y_x_to_red_green_blue() {
         "red must be high on the z = +0.75 face: {left:?} {right:?}"
     );
     // Turned around (yAngle 180) the visible face is z = -0.75: red drops.
-    let back = render::<PositionRgb>(Object::Cube, [0.0, 180.0, 0.0], 0.0, &[]);
+    let back = render(labs::POSITION_RGB, Object::Cube, [0.0, 180.0, 0.0], 0.0, &[]);
     let back_mid = mean_color(&back, (300, 160, 340, 200), Some(BLACK));
     assert!(back_mid[0] < 110.0, "the back face must be darker red: {back_mid:?}");
     // The cube, seen face on, is a square: glutSolidCube(1.5) at distance 4 - 0.75.
@@ -65,7 +65,7 @@ fn position_rgb_maps_z_y_x_to_red_green_blue() {
 
 #[test]
 fn normal_rgb_shows_eye_space_normals() {
-    let sphere = render::<NormalRgb>(Object::Sphere, [0.0; 3], 0.0, &[]);
+    let sphere = render(labs::NORMAL_RGB, Object::Sphere, [0.0; 3], 0.0, &[]);
     let r = sphere_radius_px(4.0) as u32;
     let right = mean_color(&sphere, (320 + r - 20, 170, 320 + r - 5, 190), None);
     let left = mean_color(&sphere, (320 - r + 5, 170, 320 - r + 20, 190), None);
@@ -81,13 +81,13 @@ fn normal_rgb_shows_eye_space_normals() {
         "blue = towards the eye: {centre:?}"
     );
     // Rotating the sphere must not change a sphere's normal image much (eye-space normals).
-    let turned = render::<NormalRgb>(Object::Sphere, [0.0, 90.0, 0.0], 0.0, &[]);
+    let turned = render(labs::NORMAL_RGB, Object::Sphere, [0.0, 90.0, 0.0], 0.0, &[]);
     assert!(psnr(&sphere, &turned).expect("size") > 25.0);
 }
 
 #[test]
 fn phong_sphere_highlight_follows_the_light() {
-    let base = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[]);
+    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
     // Coverage: a unit sphere at distance 5.
     let r = sphere_radius_px(5.0);
     let expected = std::f64::consts::PI * r * r / (640.0 * 360.0);
@@ -108,10 +108,10 @@ fn phong_sphere_highlight_follows_the_light() {
         "sphere must be mirror-symmetric"
     );
     // Moving the light right moves the highlight right; up moves it up.
-    let right = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[2.0, 1.0, 1.0])]);
+    let right = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[2.0, 1.0, 1.0])]);
     let (rx, _) = highlight(&right, 2.0);
     assert!(rx > hx + 10.0, "highlight must move right: {hx:.1} -> {rx:.1}");
-    let down = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[0.0, -1.0, 1.0])]);
+    let down = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[0.0, -1.0, 1.0])]);
     let (_, dy) = highlight(&down, 2.0);
     assert!(dy > hy + 10.0, "highlight must move down: {hy:.1} -> {dy:.1}");
     // The object's colour is orange: red > green > blue in the lit region.
@@ -122,25 +122,25 @@ fn phong_sphere_highlight_follows_the_light() {
 #[test]
 fn phong_coefficients_move_the_image() {
     let white_area = |img: &RgbImage| img.pixels().filter(|p| p[2] > 200).count();
-    let base = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[]);
-    let sharp = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("shininess", &[128.0])]);
+    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let sharp = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("shininess", &[128.0])]);
     assert!(
         white_area(&sharp) * 2 < white_area(&base),
         "higher shininess must shrink the highlight"
     );
-    let no_spec = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("Ks", &[0.0])]);
+    let no_spec = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Ks", &[0.0])]);
     assert_eq!(white_area(&no_spec), 0, "Ks = 0 removes the white highlight");
-    let dim = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("Kd", &[0.5])]);
+    let dim = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Kd", &[0.5])]);
     let side = (250, 200, 280, 230);
     assert!(mean_color(&dim, side, Some(PHONG_BG))[0] < mean_color(&base, side, Some(PHONG_BG))[0] - 20.0);
-    let green = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("diffuseColor", &[0.0, 1.0, 0.0])]);
+    let green = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("diffuseColor", &[0.0, 1.0, 0.0])]);
     let g = mean_color(&green, side, Some(PHONG_BG));
     assert!(
         g[1] > g[0] + 50.0,
         "a green diffuse colour must turn the sphere green: {g:?}"
     );
     // Ambient only: a flat colour Ka * ambientColor (0.1 * 0.1 -> 3/255) on the dark side.
-    let flat = render::<Phong>(
+    let flat = render(labs::PHONG, 
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -159,9 +159,9 @@ fn phong_coefficients_move_the_image() {
 fn phong_light_marker_appears_in_front_of_the_camera() {
     // Default light (0,1,1) is behind the eye: no marker. At (1.2, 0.8, -2.5) it projects to about
     // (528.6, 41.0) with a radius of about 8 pixels.
-    let base = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[]);
+    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
     assert_eq!(base.get_pixel(528, 41).0, PHONG_BG);
-    let moved = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[1.2, 0.8, -2.5])]);
+    let moved = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[1.2, 0.8, -2.5])]);
     assert_eq!(moved.get_pixel(528, 41).0, [255, 255, 255], "white marker at the light");
     let white = moved
         .enumerate_pixels()
@@ -172,20 +172,20 @@ fn phong_light_marker_appears_in_front_of_the_camera() {
 
 #[test]
 fn phong_camera_moves_the_view() {
-    let base = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[]);
-    let closer = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("camera", &[0.0, 0.0, 3.0])]);
+    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let closer = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("camera", &[0.0, 0.0, 3.0])]);
     assert!(
         coverage(&closer, PHONG_BG) > 2.0 * coverage(&base, PHONG_BG),
         "a closer camera makes the sphere bigger"
     );
-    let left = render::<Phong>(Object::Sphere, [0.0; 3], 0.0, &[("camera", &[-1.0, 0.0, 5.0])]);
+    let left = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("camera", &[-1.0, 0.0, 5.0])]);
     let (x0, _, x1, _) = bounding_box(&left, PHONG_BG).expect("visible");
     assert!((x0 + x1) / 2 > 330, "moving the camera left moves the sphere right");
 }
 
 #[test]
 fn noise_statistics_and_time() {
-    let t0 = render::<Noise>(Object::Sphere, [0.0; 3], 0.0, &[]);
+    let t0 = render(labs::NOISE, Object::Sphere, [0.0; 3], 0.0, &[]);
     let m = mask(&t0, BLACK, 0);
     let (mean, var) = luma_stats(&t0, &m);
     // |snoise| over a surface: mean around 0.2-0.35, clearly varying.
@@ -196,25 +196,25 @@ fn noise_statistics_and_time() {
     // Grey: shade (1,1,1) gives r = g = b.
     assert!(t0.pixels().all(|p| p[0] == p[1] && p[1] == p[2]));
     // Time moves the pattern but keeps its statistics.
-    let t1 = render::<Noise>(Object::Sphere, [0.0; 3], 0.5, &[]);
+    let t1 = render(labs::NOISE, Object::Sphere, [0.0; 3], 0.5, &[]);
     let (mean1, var1) = luma_stats(&t1, &mask(&t1, BLACK, 0));
     assert!(psnr(&t0, &t1).expect("size") < 25.0, "time must change the pattern");
     assert!((mean1 - mean).abs() < 0.1 && var1 > 0.01);
     // Shade (1,0,0) keeps only red.
-    let red = render::<Noise>(Object::Sphere, [0.0; 3], 0.0, &[("shade", &[1.0, 0.0, 0.0])]);
+    let red = render(labs::NOISE, Object::Sphere, [0.0; 3], 0.0, &[("shade", &[1.0, 0.0, 0.0])]);
     assert!(red.pixels().all(|p| p[1] == 0 && p[2] == 0));
     assert!(red.pixels().any(|p| p[0] > 100));
 }
 
 #[test]
 fn displacement_grows_the_silhouette() {
-    let flat = render::<Displacement>(
+    let flat = render(labs::DISPLACEMENT, 
         Object::Sphere,
         [0.0; 3],
         0.0,
         &[("displacement", &[0.0]), ("shade", &[1.0, 1.0, 1.0])],
     );
-    let full = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[1.0])]);
+    let full = render(labs::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[1.0])]);
     // With no displacement the silhouette is the sphere's; its pixels are drawn even where
     // the noise is dark, so measure shape from depth-independent coverage: any non-black pixel
     // or the sphere's own disc.
@@ -230,11 +230,11 @@ fn displacement_grows_the_silhouette() {
         4.0 * r
     );
     // The default (0.5) lies in between, and the value clamps at 1.
-    let half = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[]);
+    let half = render(labs::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[]);
     let (hx0, hy0, hx1, hy1) = bbox(&half);
     let half_size = (hx1 - hx0) + (hy1 - hy0);
     assert!(half_size > (fx1 - fx0) + (fy1 - fy0) && half_size < grown);
-    let over = render::<Displacement>(Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[3.0])]);
+    let over = render(labs::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[3.0])]);
     assert_eq!(
         psnr(&over, &full),
         Some(f64::INFINITY),
@@ -244,8 +244,8 @@ fn displacement_grows_the_silhouette() {
 
 #[test]
 fn rotation_turns_the_teapot() {
-    let front = render::<NormalRgb>(Object::Teapot, [0.0; 3], 0.0, &[]);
-    let side = render::<NormalRgb>(Object::Teapot, [0.0, 90.0, 0.0], 0.0, &[]);
+    let front = render(labs::NORMAL_RGB, Object::Teapot, [0.0; 3], 0.0, &[]);
+    let side = render(labs::NORMAL_RGB, Object::Teapot, [0.0, 90.0, 0.0], 0.0, &[]);
     let (x0, _, x1, _) = bounding_box(&front, BLACK).expect("visible");
     let (s0, _, s1, _) = bounding_box(&side, BLACK).expect("visible");
     assert!(
@@ -260,11 +260,11 @@ fn rotation_turns_the_teapot() {
 #[test]
 fn sizes_and_aspect() {
     // A square viewport keeps the sphere round and centred.
-    let img = render_sized::<NormalRgb>(Object::Sphere, [0.0; 3], 0.0, &[], 300, 300);
+    let img = render_sized(labs::NORMAL_RGB, Object::Sphere, [0.0; 3], 0.0, &[], 300, 300);
     let (x0, y0, x1, y1) = bounding_box(&img, BLACK).expect("visible");
     assert!((x1 - x0).abs_diff(y1 - y0) <= 1 && (x0 + x1).abs_diff(299) <= 1 && (y0 + y1).abs_diff(299) <= 1);
     // One-pixel-high targets (the original clamps height 0 to 1) render without error.
-    let tiny = render_sized::<Phong>(Object::Teapot, [0.0; 3], 0.0, &[], 64, 1);
+    let tiny = render_sized(labs::PHONG, Object::Teapot, [0.0; 3], 0.0, &[], 64, 1);
     assert_eq!(tiny.dimensions(), (64, 1));
 }
 
@@ -280,7 +280,7 @@ fn rotated_states_agree_with_the_exact_reference() {
         [10.0, 80.0, 40.0],
         [-35.0, 120.0, -70.0],
     ] {
-        let port = render::<Phong>(Object::Torus, angles, 0.0, &[]);
+        let port = render(labs::PHONG, Object::Torus, angles, 0.0, &[]);
         let exact = ExactScene {
             shape: Shape::Torus,
             angles: angles.map(f64::from),

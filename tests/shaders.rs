@@ -15,14 +15,16 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::{gpu, output_dir};
-use glam::Vec3;
-use shaderlab::effect::compile_effect;
-use shaderlab::effects::phong::PhongUniforms;
-use shaderlab::effects::*;
+
+use shaderlab::lab::{LabContext, LabEntry};
+use shaderlab::labs::glut_stage::TransformUniforms;
+use shaderlab::labs::phong::PhongUniforms;
+use shaderlab::render::{Program, RenderState, Uniforms};
+use shaderlab::labs;
 use shaderlab::metrics::{coverage, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::{check_layout, embedded_names, embedded_source, ShaderSource};
-use shaderlab::{Effect, Error, Lab, Object};
+use shaderlab::{Error, Object};
 
 // ---------------------------------------------------------------------------------------------
 // Helpers
@@ -247,17 +249,17 @@ fn broken_shader_reported_by_example_binary() {
 fn reload_keeps_last_good_pipeline() {
     let gpu = gpu();
     let copy = ShaderCopy::new("reload");
-    let mut lab = Lab::<Phong>::new(gpu, copy.source(), COLOR_FORMAT).expect("good copy builds");
-    lab.scene.object = Object::Sphere;
+    let mut lab = common::lab_from(labs::PHONG, &copy.source());
+    lab.set_object(Object::Sphere);
     let good = lab.screenshot(gpu, 160, 90).expect("screenshot");
     for b in breaks() {
         let line = b.apply(&copy);
-        let err = lab.reload(gpu).expect_err(b.what);
+        let err = lab.reload().expect_err(b.what);
         assert_shader_error(err, &copy.path(BROKEN), line, b.column);
         let after = lab.screenshot(gpu, 160, 90).expect("screenshot after failed reload");
         assert!(after == good, "{}: the last good pipeline must keep drawing", b.what);
         copy.restore(BROKEN);
-        lab.reload(gpu).expect("fixed file reloads");
+        lab.reload().expect("fixed file reloads");
         assert!(
             lab.screenshot(gpu, 160, 90).unwrap() == good,
             "{}: image after fixing",
@@ -274,7 +276,7 @@ fn reload_keeps_last_good_pipeline() {
         std::fs::read_to_string(copy.path(BROKEN)).unwrap().lines().count(),
         lines + 1
     );
-    lab.reload(gpu).expect("edited shader reloads");
+    lab.reload().expect("edited shader reloads");
     assert!(
         lab.screenshot(gpu, 160, 90).unwrap() != good,
         "an edited shader must change the image"
@@ -344,23 +346,27 @@ fn every_shader_translates_to_valid_wgsl() {
 }
 
 /// Renders every object with the GLSL pipeline, then with the WGSL translation; returns PSNRs.
-fn glsl_vs_wgsl<E: Effect>() {
+fn glsl_vs_wgsl(entry: &LabEntry, clear: [f64; 3]) {
     let gpu = gpu();
-    let vs = wgsl_of(&format!("{}.vert", E::NAME));
-    let fs = wgsl_of(&format!("{}.frag", E::NAME));
-    let mut glsl = Lab::<E>::new(gpu, ShaderSource::Embedded, COLOR_FORMAT).expect("lab");
-    let mut wgsl = Lab::<E>::new(gpu, ShaderSource::Embedded, COLOR_FORMAT).expect("lab");
-    wgsl.use_wgsl(gpu, &vs, &fs).expect("WGSL pipeline");
+    let mut glsl = common::lab(entry);
+    let mut wgsl = common::lab(entry);
+    let programs = wgsl.lab.programs();
+    assert!(!programs.is_empty(), "{} exposes no programs", entry.info.name);
+    for program in programs {
+        let (v, f) = program.files();
+        let (vs, fs) = (wgsl_of(v), wgsl_of(f));
+        program.use_wgsl(gpu, &vs, &fs).expect("WGSL pipeline");
+    }
     for object in Object::ALL {
         for lab in [&mut glsl, &mut wgsl] {
-            lab.scene.object = object;
-            lab.scene.angles = Vec3::new(20.0, 30.0, 10.0);
-            lab.scene.time = 0.75;
+            lab.set_object(object);
+            lab.set_angles([20.0, 30.0, 10.0]);
+            lab.set_time(0.75);
         }
         let a = to_rgb(&glsl.screenshot(gpu, 640, 360).unwrap());
         let b = to_rgb(&wgsl.screenshot(gpu, 640, 360).unwrap());
-        let name = format!("{}_{}", E::NAME, object.name());
-        let background = E::CLEAR.map(|c| (c * 255.0).round() as u8);
+        let name = format!("{}_{}", entry.info.name, object.name());
+        let background = clear.map(|c| (c * 255.0).round() as u8);
         let covered = coverage(&b, background);
         assert!(
             covered > 0.02,
@@ -382,20 +388,20 @@ fn glsl_vs_wgsl<E: Effect>() {
 
 #[test]
 fn wgsl_renders_like_glsl_position_rgb() {
-    glsl_vs_wgsl::<PositionRgb>();
+    glsl_vs_wgsl(labs::POSITION_RGB, [0.0; 3]);
 }
 
 #[test]
 fn wgsl_renders_like_glsl_normal_rgb() {
-    glsl_vs_wgsl::<NormalRgb>();
+    glsl_vs_wgsl(labs::NORMAL_RGB, [0.0; 3]);
 }
 
 #[test]
 fn wgsl_renders_like_glsl_phong() {
-    glsl_vs_wgsl::<Phong>();
+    glsl_vs_wgsl(labs::PHONG, [0.05, 0.1, 0.2]);
     // use_wgsl really compiles the text it is given.
-    let mut lab = common::lab::<Phong>();
-    let err = lab
+    let mut lab = common::lab(labs::PHONG);
+    let err = lab.lab.programs()[0]
         .use_wgsl(gpu(), &wgsl_of("phong.vert"), "fn main( {")
         .expect_err("broken WGSL");
     assert!(matches!(err, Error::Wgpu { .. }), "{err:?}");
@@ -403,12 +409,12 @@ fn wgsl_renders_like_glsl_phong() {
 
 #[test]
 fn wgsl_renders_like_glsl_noise() {
-    glsl_vs_wgsl::<Noise>();
+    glsl_vs_wgsl(labs::NOISE, [0.0; 3]);
 }
 
 #[test]
 fn wgsl_renders_like_glsl_displacement() {
-    glsl_vs_wgsl::<Displacement>();
+    glsl_vs_wgsl(labs::DISPLACEMENT, [0.0; 3]);
 }
 
 #[test]
@@ -523,10 +529,21 @@ fn mismatched_uniform_struct_is_rejected() {
     assert_eq!(block.member("Ka").map(|m| m.offset), Some(12));
     check_layout::<PhongUniforms>("PhongUniforms", &block).expect("the real struct matches");
     assert_layout_message(check_layout::<BadPhongUniforms>("BadPhongUniforms", &block).unwrap_err());
-    let err = compile_effect::<BadPhongUniforms>(&ShaderSource::Embedded, "phong", "BadPhongUniforms")
-        .err()
-        .expect("compile_effect must reject the struct");
-    assert_layout_message(err);
+    // Binding the struct to a program runs the same check, and names both sides.
+    let source = ShaderSource::Embedded;
+    let cx = LabContext {
+        gpu: gpu(),
+        source: &source,
+        format: COLOR_FORMAT,
+    };
+    let mut program =
+        Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default()).unwrap();
+    let transform = Uniforms::new(gpu(), "t", TransformUniforms::new(glam::Mat4::IDENTITY, glam::Mat4::IDENTITY));
+    let bad = Uniforms::new(gpu(), "bad", <BadPhongUniforms as bytemuck::Zeroable>::zeroed());
+    match program.bind(gpu(), vec![transform.bind(), bad.bind()]) {
+        Err(Error::Binding(message)) => assert_layout_message(Error::Layout(message)),
+        other => panic!("binding must reject the struct, got {:?}", other.err()),
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -564,7 +581,7 @@ fn misspelt_set_name_lists_valid_names() {
 
 #[test]
 fn lab_set_unknown_name_is_param_error() {
-    let mut lab = common::lab::<Phong>();
+    let mut lab = common::lab(labs::PHONG);
     match lab.set("Kx", &[0.2]) {
         Err(Error::Param(message)) => {
             for name in PHONG_NAMES {

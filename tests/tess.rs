@@ -7,8 +7,9 @@ mod common;
 
 use common::*;
 use glam::Vec3;
-use shaderlab::effect::Tess;
-use shaderlab::effects::Phong;
+use shaderlab::labs::glut_stage::{GlutStage, StageConfig, PARAMS_000};
+use shaderlab::labs;
+use shaderlab::params::Params;
 use shaderlab::exact::{silhouette_error, ExactScene, Shape};
 use shaderlab::metrics::mask;
 use shaderlab::Object;
@@ -17,11 +18,11 @@ const SS: u32 = 4;
 
 fn measured_error(object: Object, shape: Shape, level: u32, angles: [f32; 3], camera: [f32; 3]) -> f64 {
     let (w, h) = (640 * SS, 360 * SS);
-    let mut lab = lab::<Phong>();
-    lab.scene.object = object;
-    lab.scene.angles = Vec3::from_array(angles);
-    lab.scene.camera = Vec3::from_array(camera);
-    lab.options.tess = Tess::Level(level);
+    let mut lab = lab(labs::PHONG);
+    lab.set_object(object);
+    lab.set_angles(angles);
+    lab.set("camera", &camera).expect("camera");
+    lab.set("tess", &[level as f32]).expect("tess");
     let image = shaderlab::offscreen::to_rgb(&lab.screenshot(gpu(), w, h).expect("render"));
     let rendered = mask(&image, [13, 26, 51], 0);
     let exact = ExactScene {
@@ -63,11 +64,7 @@ fn worst(object: Object, shape: Shape, level: u32, camera: [f32; 3]) -> (f64, f6
 /// 4x4 supersampling over 12 views comes within about 2% of the bound, so a closer call would
 /// test the sampling rather than the predictor.
 fn check(object: Object, shape: Shape, camera: [f32; 3]) {
-    let mut lab = lab::<Phong>();
-    lab.scene.object = object;
-    lab.scene.camera = Vec3::from_array(camera);
-    lab.options.tess = Tess::Auto { budget_px: 0.5 };
-    let level = lab.level(360);
+    let level = auto_level(object, camera, 360, -1.0);
     let distance = Vec3::from_array(camera).length() as f64;
     let (chosen, chosen_best) = worst(object, shape, level, camera);
     let (coarser, coarser_best) = worst(object, shape, level - 1, camera);
@@ -100,17 +97,31 @@ fn auto_torus_meets_the_budget_minimally() {
     check(Object::Torus, Shape::Torus, [0.0, 0.0, 12.0]);
 }
 
+/// The level the phong lab's stage draws for `object` seen from `camera` (`tess` -1 is auto).
+fn auto_level(object: Object, camera: [f32; 3], height: u32, tess: f64) -> u32 {
+    let mut p = Params::new(PARAMS_000);
+    p.set_str("object", object.name()).expect("object");
+    p.set("tess", &[tess]).expect("tess");
+    let stage = GlutStage::new(
+        gpu(),
+        "test",
+        StageConfig {
+            perspective: (45.0, 1.0, 100.0),
+            eye: Vec3::from_array(camera),
+        },
+    );
+    stage.level(&p, height, true)
+}
+
 #[test]
 fn auto_level_follows_the_view() {
-    let mut lab = lab::<Phong>();
-    lab.scene.object = Object::Sphere;
-    lab.options.tess = Tess::Auto { budget_px: 0.5 };
-    let near = lab.level(360);
-    lab.scene.camera = Vec3::new(0.0, 0.0, 20.0);
-    let far = lab.level(360);
+    let near = auto_level(Object::Sphere, [0.0, 0.0, 5.0], 360, -1.0);
+    let far = auto_level(Object::Sphere, [0.0, 0.0, 20.0], 360, -1.0);
     assert!(far < near, "a farther sphere needs fewer triangles: {near} -> {far}");
-    assert!(lab.level(1440) > far, "a bigger window needs more");
+    assert!(
+        auto_level(Object::Sphere, [0.0, 0.0, 20.0], 1440, -1.0) > far,
+        "a bigger window needs more"
+    );
     // The GLUT default is what the original draws.
-    lab.options.tess = Tess::Glut;
-    assert_eq!(lab.level(360), 24);
+    assert_eq!(auto_level(Object::Sphere, [0.0, 0.0, 20.0], 360, 0.0), 24);
 }

@@ -12,9 +12,9 @@ use crate::error::Result;
 use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, Load, Program, RenderState, Uniforms};
+use crate::render::{AnyProgram, Frame, Load, Program, RenderState, Uniforms};
 
-use super::glut_stage::{GlutStage, StageConfig, PARAMS_000};
+use super::glut_stage::{title_000, GlutStage, StageConfig, PARAMS_000};
 use super::{noise_time, shade_key, NOISE_PARAMS};
 
 /// Exercise 5.
@@ -54,8 +54,8 @@ crate::uniform_block!(DisplacementUniforms, "DisplacementParams", {
 });
 
 const OWN: &[ParamSpec] = &[
-    ParamSpec::real("shade", &[1.0, 1.0, 1.0], 0.0, 1.0, "colour of the noise (R/r G/g B/b)"),
-    ParamSpec::real("displacement", &[0.5], 0.0, 1.0, "strength ([ / ])"),
+    ParamSpec::real("shade", &[1.0, 1.0, 1.0], -1e30, 1e30, "colour of the noise (R/r G/g B/b, keys within 0..1)"),
+    ParamSpec::real("displacement", &[0.5], -1e30, 1e30, "strength ([ / ], keys within 0..1; the shader clamps)"),
     ParamSpec::flag("smooth", &[0.0], "port: weld shared vertices and average normals (no cracks)"),
 ];
 
@@ -120,12 +120,27 @@ impl Lab for Displacement {
     }
     fn input(&mut self, input: Input) -> bool {
         match input {
-            Input::Key('[') => self.params.step("displacement", -0.01),
-            Input::Key(']') => self.params.step("displacement", 0.01),
+            Input::Key('[') => self.params.step_clamped("displacement", 0, -0.01, 0.0, 1.0),
+            Input::Key(']') => self.params.step_clamped("displacement", 0, 0.01, 0.0, 1.0),
             Input::Key(c) if shade_key(&mut self.params, c) => {}
             _ => return self.stage.input(&mut self.params, input),
         }
         true
+    }
+    fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
+        vec![&mut self.program]
+    }
+    fn title(&self) -> String {
+        let [r, g, b] = self.params.v3("shade");
+        let summary = format!(
+            "displacement {:.2} shade ({r:.2},{g:.2},{b:.2}) time {:.1}",
+            self.params.f("displacement"),
+            noise_time(&self.params)
+        );
+        let smooth = if self.params.on("smooth") { " | smooth" } else { "" };
+        let mut title = title_000(&INFO, &self.params, &summary, "");
+        title.push_str(smooth);
+        title
     }
     fn reload(&mut self, cx: &LabContext) -> Result<()> {
         self.program.reload(cx)

@@ -10,7 +10,7 @@ use glam::{Mat3, Mat4, Vec3};
 
 use crate::camera;
 use crate::gpu::Gpu;
-use crate::lab::Input;
+use crate::lab::{Input, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{GpuMesh, Uniforms};
@@ -84,6 +84,18 @@ pub const PARAMS_000: &[ParamSpec] = &[
         "port study: normals by the modelview's 3x3 instead of its inverse transpose",
     ),
 ];
+
+/// Seed 000's window title: `Lab05-N label | object | summary`, then the port-only modes
+/// (`extra`, e.g. the shading model) and the tessellation when it is not GLUT's.
+pub fn title_000(info: &LabInfo, params: &Params, summary: &str, extra: &str) -> String {
+    let mut title = format!("{} {} | {} | {summary}{extra}", info.title, info.label, params.text("object"));
+    match params.f64("tess") as i64 {
+        0 => {}
+        -1 => title.push_str(" | tess auto"),
+        n => title.push_str(&format!(" | tess {n}")),
+    }
+    title
+}
 
 /// Object, rotation, mouse, meshes and the Transform block.
 pub struct GlutStage {

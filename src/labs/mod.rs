@@ -71,6 +71,6 @@ fn shade_key(p: &mut Params, key: char) -> bool {
         'b' => (2, -0.05),
         _ => return false,
     };
-    p.step_component("shade", channel, delta);
+    p.step_clamped("shade", channel, delta, 0.0, 1.0);
     true
 }

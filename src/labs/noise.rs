@@ -9,9 +9,9 @@ use crate::error::Result;
 use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, Load, Program, RenderState, Uniforms};
+use crate::render::{AnyProgram, Frame, Load, Program, RenderState, Uniforms};
 
-use super::glut_stage::{GlutStage, StageConfig, PARAMS_000};
+use super::glut_stage::{title_000, GlutStage, StageConfig, PARAMS_000};
 use super::{noise_time, shade_key, NOISE_PARAMS};
 
 /// Exercise 4.
@@ -42,7 +42,7 @@ pub struct NoiseUniforms {
 }
 crate::uniform_block!(NoiseUniforms, "NoiseParams", { shade: "shade", time: "time" });
 
-const OWN: &[ParamSpec] = &[ParamSpec::real("shade", &[1.0, 1.0, 1.0], 0.0, 1.0, "colour of the noise (R/r G/g B/b)")];
+const OWN: &[ParamSpec] = &[ParamSpec::real("shade", &[1.0, 1.0, 1.0], -1e30, 1e30, "colour of the noise (R/r G/g B/b, keys within 0..1)")];
 
 fn params() -> Params {
     let mut p = Params::new(OWN);
@@ -100,6 +100,14 @@ impl Lab for Noise {
             Input::Key(c) if shade_key(&mut self.params, c) => true,
             _ => self.stage.input(&mut self.params, input),
         }
+    }
+    fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
+        vec![&mut self.program]
+    }
+    fn title(&self) -> String {
+        let [r, g, b] = self.params.v3("shade");
+        let summary = format!("shade ({r:.2},{g:.2},{b:.2}) time {:.1}", noise_time(&self.params));
+        title_000(&INFO, &self.params, &summary, "")
     }
     fn reload(&mut self, cx: &LabContext) -> Result<()> {
         self.program.reload(cx)

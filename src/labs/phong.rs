@@ -19,10 +19,10 @@ use crate::error::{Error, Result};
 use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+use crate::render::{AnyProgram, Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 use crate::shader::ShaderSource;
 
-use super::glut_stage::{GlutStage, StageConfig, TransformUniforms, PARAMS_000};
+use super::glut_stage::{title_000, GlutStage, StageConfig, TransformUniforms, PARAMS_000};
 
 /// Exercise 3.
 pub static INFO: LabInfo = LabInfo {
@@ -87,16 +87,20 @@ const MODELS: [(&str, &str, &str); 4] = [
 ];
 const PHONG: usize = 2;
 
+/// `--set` takes any finite value, as the original's uniforms do (the "where methods fail"
+/// studies set values far outside what the keys reach); the keys clamp.
+const ANY: f64 = f32::MAX as f64;
+
 const OWN: &[ParamSpec] = &[
-    ParamSpec::real("lightPosition", &[0.0, 1.0, 1.0], -REACH, REACH, "light, eye space (X/Y/Z x/y/z)"),
-    ParamSpec::real("Ka", &[0.1], 0.0, 1.0, "ambient coefficient (< >)"),
-    ParamSpec::real("ambientColor", &[0.1, 0.1, 0.1], 0.0, 1.0, "ambient colour"),
-    ParamSpec::real("Kd", &[1.0], 0.0, 1.0, "diffuse coefficient ([ ])"),
-    ParamSpec::real("diffuseColor", &[1.0, 0.5, 0.0], 0.0, 1.0, "diffuse colour (R/G/B r/g/b)"),
-    ParamSpec::real("Ks", &[1.0], 0.0, 1.0, "specular coefficient ({ })"),
-    ParamSpec::real("specularColor", &[1.0, 1.0, 1.0], 0.0, 1.0, "specular colour"),
-    ParamSpec::real("shininess", &[32.0], 0.0, 10000.0, "specular exponent (H/h, keys within 6..200)"),
-    ParamSpec::real("camera", &[0.0, 0.0, 5.0], -REACH, REACH, "eye position; the view looks down -z (W/A/S/D)"),
+    ParamSpec::real("lightPosition", &[0.0, 1.0, 1.0], -ANY, ANY, "light, eye space (X/Y/Z x/y/z, ±50)"),
+    ParamSpec::real("Ka", &[0.1], -ANY, ANY, "ambient coefficient (< >, keys within 0..1)"),
+    ParamSpec::real("ambientColor", &[0.1, 0.1, 0.1], -ANY, ANY, "ambient colour"),
+    ParamSpec::real("Kd", &[1.0], -ANY, ANY, "diffuse coefficient ([ ], keys within 0..1)"),
+    ParamSpec::real("diffuseColor", &[1.0, 0.5, 0.0], -ANY, ANY, "diffuse colour (R/G/B r/g/b, keys within 0..1)"),
+    ParamSpec::real("Ks", &[1.0], -ANY, ANY, "specular coefficient ({ }, keys within 0..1)"),
+    ParamSpec::real("specularColor", &[1.0, 1.0, 1.0], -ANY, ANY, "specular colour"),
+    ParamSpec::real("shininess", &[32.0], -ANY, ANY, "specular exponent (H/h, keys within 6..200)"),
+    ParamSpec::real("camera", &[0.0, 0.0, 5.0], -ANY, ANY, "eye position; the view looks down -z (W/A/S/D, ±50)"),
     ParamSpec::choice(
         "shading",
         &[PHONG as f64],
@@ -196,10 +200,10 @@ impl Phong {
     /// Moves the camera by (dx, dz) and the eye-space light the opposite way.
     fn walk(&mut self, dx: f64, dz: f64) {
         let p = &mut self.params;
-        p.step_component("camera", 0, dx);
-        p.step_component("camera", 2, dz);
-        p.step_component("lightPosition", 0, -dx);
-        p.step_component("lightPosition", 2, -dz);
+        p.step_clamped("camera", 0, dx, -REACH, REACH);
+        p.step_clamped("camera", 2, dz, -REACH, REACH);
+        p.step_clamped("lightPosition", 0, -dx, -REACH, REACH);
+        p.step_clamped("lightPosition", 2, -dz, -REACH, REACH);
     }
 
     /// Builds the chosen model if needed. A model that does not build is skipped when key `m`
@@ -251,24 +255,26 @@ impl Lab for Phong {
             Input::Key('d' | 'D') => self.walk(0.1, 0.0),
             Input::Key('w' | 'W') => self.walk(0.0, -0.1),
             Input::Key('s' | 'S') => self.walk(0.0, 0.1),
-            Input::Key(c @ ('X' | 'Y' | 'Z')) => p.step_component("lightPosition", (c as u8 - b'X') as usize, 0.1),
-            Input::Key(c @ ('x' | 'y' | 'z')) => p.step_component("lightPosition", (c as u8 - b'x') as usize, -0.1),
-            Input::Key(c @ ('R' | 'G' | 'B')) => p.step_component("diffuseColor", "RGB".find(c).unwrap_or(0), 0.01),
-            Input::Key(c @ ('r' | 'g' | 'b')) => p.step_component("diffuseColor", "rgb".find(c).unwrap_or(0), -0.01),
-            Input::Key('H') => {
-                let v = (p.f("shininess") + 1.0).clamp(6.0, 200.0);
-                p.put("shininess", &[f64::from(v)]);
+            Input::Key(c @ ('X' | 'Y' | 'Z')) => {
+                p.step_clamped("lightPosition", (c as u8 - b'X') as usize, 0.1, -REACH, REACH)
             }
-            Input::Key('h') => {
-                let v = (p.f("shininess") - 1.0).clamp(6.0, 200.0);
-                p.put("shininess", &[f64::from(v)]);
+            Input::Key(c @ ('x' | 'y' | 'z')) => {
+                p.step_clamped("lightPosition", (c as u8 - b'x') as usize, -0.1, -REACH, REACH)
             }
-            Input::Key('[') => p.step("Kd", -0.05),
-            Input::Key(']') => p.step("Kd", 0.05),
-            Input::Key('{') => p.step("Ks", -0.05),
-            Input::Key('}') => p.step("Ks", 0.05),
-            Input::Key('<') => p.step("Ka", -0.05),
-            Input::Key('>') => p.step("Ka", 0.05),
+            Input::Key(c @ ('R' | 'G' | 'B')) => {
+                p.step_clamped("diffuseColor", "RGB".find(c).unwrap_or(0), 0.01, 0.0, 1.0)
+            }
+            Input::Key(c @ ('r' | 'g' | 'b')) => {
+                p.step_clamped("diffuseColor", "rgb".find(c).unwrap_or(0), -0.01, 0.0, 1.0)
+            }
+            Input::Key('H') => p.step_clamped("shininess", 0, 1.0, 6.0, 200.0),
+            Input::Key('h') => p.step_clamped("shininess", 0, -1.0, 6.0, 200.0),
+            Input::Key('[') => p.step_clamped("Kd", 0, -0.05, 0.0, 1.0),
+            Input::Key(']') => p.step_clamped("Kd", 0, 0.05, 0.0, 1.0),
+            Input::Key('{') => p.step_clamped("Ks", 0, -0.05, 0.0, 1.0),
+            Input::Key('}') => p.step_clamped("Ks", 0, 0.05, 0.0, 1.0),
+            Input::Key('<') => p.step_clamped("Ka", 0, -0.05, 0.0, 1.0),
+            Input::Key('>') => p.step_clamped("Ka", 0, 0.05, 0.0, 1.0),
             Input::Key('m') => {
                 p.cycle("shading");
                 self.cycling = true;
@@ -277,12 +283,34 @@ impl Lab for Phong {
         }
         true
     }
+    fn title(&self) -> String {
+        let p = &self.params;
+        // Keys step in f32, so +0.1 then -0.1 can leave -0.00000001: show it as 0.0, not -0.0.
+        let [lx, ly, lz] = p.v3("lightPosition").map(|c| if c.abs() < 0.05 { 0.0 } else { c });
+        let [r, g, b] = p.v3("diffuseColor");
+        let summary = format!(
+            "light ({lx:.1},{ly:.1},{lz:.1}) Ka {:.2} Kd {:.2} Ks {:.2} shininess {:.0} diffuse ({r:.2},{g:.2},{b:.2})",
+            p.f("Ka"),
+            p.f("Kd"),
+            p.f("Ks"),
+            p.f("shininess")
+        );
+        title_000(&INFO, p, &summary, &format!(" | shading {} (m)", p.text("shading")))
+    }
     fn reload(&mut self, cx: &LabContext) -> Result<()> {
         self.source = cx.source.clone();
         for program in self.models.values_mut() {
             program.reload(cx)?;
         }
         self.marker.reload(cx)
+    }
+    fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
+        let mut out: Vec<&mut dyn AnyProgram> = Vec::new();
+        for program in self.models.values_mut() {
+            out.push(program);
+        }
+        out.push(&mut self.marker);
+        out
     }
     fn take_error(&mut self) -> Option<Error> {
         self.error.take()

@@ -5,9 +5,9 @@ use crate::error::Result;
 use crate::lab::{Input, Lab, LabContext, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::Params;
-use crate::render::{Frame, Load, Program, RenderState};
+use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
 
-use super::glut_stage::{GlutStage, StageConfig, PARAMS_000};
+use super::glut_stage::{title_000, GlutStage, StageConfig, PARAMS_000};
 use glam::Vec3;
 
 /// What distinguishes one such exercise.
@@ -65,6 +65,12 @@ impl Lab for PlainLab {
     }
     fn input(&mut self, input: Input) -> bool {
         self.stage.input(&mut self.params, input)
+    }
+    fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
+        vec![&mut self.program]
+    }
+    fn title(&self) -> String {
+        title_000(self.info, &self.params, "drag to rotate, 1-4 objects", "")
     }
     fn reload(&mut self, cx: &LabContext) -> Result<()> {
         self.program.reload(cx)

@@ -351,6 +351,23 @@ struct Built {
     pipeline: wgpu::RenderPipeline,
 }
 
+/// What the shell and tests can do with any program, whatever its vertex type.
+pub trait AnyProgram {
+    /// The shader file names (vertex, fragment).
+    fn files(&self) -> (&str, &str);
+    /// Replaces the pipeline with one built from WGSL text for both stages.
+    fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()>;
+}
+
+impl<V: VertexType> AnyProgram for Program<V> {
+    fn files(&self) -> (&str, &str) {
+        Program::files(self)
+    }
+    fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()> {
+        Program::use_wgsl(self, gpu, vertex_wgsl, fragment_wgsl)
+    }
+}
+
 /// A vertex + fragment program for vertices of type `V`.
 pub struct Program<V: VertexType> {
     label: String,

@@ -8,30 +8,144 @@ use std::sync::OnceLock;
 
 use glam::Vec3;
 use image::RgbImage;
+use shaderlab::lab::{Input, Lab, LabContext, LabEntry};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::{Effect, Gpu, Lab, Object};
+use shaderlab::shader::ShaderSource;
+use shaderlab::{Gpu, Object};
 
 /// The shared headless GPU. No adapter is a failure, never a skip.
 pub fn gpu() -> &'static Gpu {
     static GPU: OnceLock<Gpu> = OnceLock::new();
     GPU.get_or_init(|| match Gpu::headless() {
         Ok(gpu) => gpu,
-        Err(e) => panic!("GPU tests need an adapter: {e}"),
+        Err(e) => panic!("GPU tests need an adapter (on Debian/Ubuntu: sudo apt-get install -y mesa-vulkan-drivers): {e}"),
     })
 }
 
-/// A lab with the built-in shaders.
-pub fn lab<E: Effect>() -> Lab<E> {
-    Lab::<E>::new(gpu(), shaderlab::shader::ShaderSource::Embedded, COLOR_FORMAT).expect("lab builds")
+/// A lab under test, with the seed-000 shorthands the tests use.
+pub struct TestLab {
+    /// The lab.
+    pub lab: Box<dyn Lab>,
+    /// Where its shaders come from.
+    pub source: ShaderSource,
+    /// The target format it was built for.
+    pub format: wgpu::TextureFormat,
 }
 
-/// Renders `E` at an object, rotation and time, 640x360, with `--set`-style parameters.
-pub fn render<E: Effect>(object: Object, angles: [f32; 3], time: f32, set: &[(&str, &[f32])]) -> RgbImage {
-    render_sized::<E>(object, angles, time, set, 640, 360)
+impl TestLab {
+    /// A key press; returns whether it changed anything.
+    pub fn key(&mut self, c: char) -> bool {
+        self.lab.input(Input::Key(c))
+    }
+    /// A left-button press at (x, y).
+    pub fn mouse_press(&mut self, x: i32, y: i32) {
+        self.lab.input(Input::Press(x, y));
+    }
+    /// A drag to (x, y).
+    pub fn mouse_motion(&mut self, x: i32, y: i32) {
+        self.lab.input(Input::Drag(x, y));
+    }
+    /// A parameter's values as f32.
+    pub fn get(&self, name: &str) -> Option<Vec<f32>> {
+        self.lab.params().get(name).map(|v| v.iter().map(|x| *x as f32).collect())
+    }
+    /// A parameter's value as text.
+    pub fn text(&self, name: &str) -> String {
+        self.lab.params().text(name)
+    }
+    /// Sets a parameter from f32 values.
+    pub fn set(&mut self, name: &str, values: &[f32]) -> shaderlab::Result<()> {
+        let v: Vec<f64> = values.iter().map(|x| f64::from(*x)).collect();
+        self.lab.params_mut().set(name, &v)
+    }
+    /// Sets a parameter from text (`object=torus`).
+    pub fn set_str(&mut self, name: &str, value: &str) -> shaderlab::Result<()> {
+        self.lab.params_mut().set_str(name, value)
+    }
+    /// The object drawn.
+    pub fn object(&self) -> Object {
+        let name = self.text("object");
+        Object::ALL.into_iter().find(|o| o.name() == name).expect("an object")
+    }
+    /// Chooses the object.
+    pub fn set_object(&mut self, object: Object) {
+        self.set_str("object", object.name()).expect("object");
+    }
+    /// xangle, yangle, zangle.
+    pub fn angles(&self) -> Vec3 {
+        let p = self.lab.params();
+        Vec3::new(p.f("xangle"), p.f("yangle"), p.f("zangle"))
+    }
+    /// Sets xangle, yangle, zangle.
+    pub fn set_angles(&mut self, a: [f32; 3]) {
+        self.set("xangle", &[a[0]]).expect("xangle");
+        self.set("yangle", &[a[1]]).expect("yangle");
+        self.set("zangle", &[a[2]]).expect("zangle");
+    }
+    /// Sets the time, for labs that have one.
+    pub fn set_time(&mut self, t: f64) {
+        if self.lab.params().has("time") {
+            self.lab.params_mut().set("time", &[t]).expect("time");
+        }
+    }
+    /// Compiles the shaders again from the lab's source (live reload).
+    pub fn reload(&mut self) -> shaderlab::Result<()> {
+        let cx = LabContext {
+            gpu: gpu(),
+            source: &self.source,
+            format: self.format,
+        };
+        self.lab.reload(&cx)
+    }
+    /// Renders offscreen (RGBA).
+    pub fn screenshot(&mut self, gpu: &Gpu, w: u32, h: u32) -> shaderlab::Result<image::RgbaImage> {
+        shaderlab::shell::screenshot(gpu, self.lab.as_mut(), w, h)
+    }
+    /// Renders into an `Rgba32Float` target (the lab must be built for it, see [`lab_with`]) and
+    /// returns the raw shader outputs, top row first.
+    pub fn render_f32(&mut self, w: u32, h: u32) -> shaderlab::Result<Vec<[f32; 4]>> {
+        let target = shaderlab::offscreen::Offscreen::with_format(gpu(), w, h, self.format);
+        shaderlab::shell::render_into(gpu(), self.lab.as_mut(), &target)?;
+        target.read_f32(gpu())
+    }
+    /// Renders offscreen (RGB).
+    pub fn rgb(&mut self, w: u32, h: u32) -> RgbImage {
+        to_rgb(&self.screenshot(gpu(), w, h).expect("screenshot"))
+    }
+}
+
+/// A lab with the built-in shaders.
+pub fn lab(entry: &LabEntry) -> TestLab {
+    lab_from(entry, &ShaderSource::Embedded)
+}
+
+/// A lab with shaders from `source`.
+pub fn lab_from(entry: &LabEntry, source: &ShaderSource) -> TestLab {
+    lab_with(entry, source, COLOR_FORMAT)
+}
+
+/// A lab with shaders from `source`, built for targets of `format`.
+pub fn lab_with(entry: &LabEntry, source: &ShaderSource, format: wgpu::TextureFormat) -> TestLab {
+    let cx = LabContext {
+        gpu: gpu(),
+        source,
+        format,
+    };
+    TestLab {
+        lab: (entry.new)(&cx).expect("lab builds"),
+        source: source.clone(),
+        format,
+    }
+}
+
+/// Renders a seed-000 lab at an object, rotation and time, 640x360, with `--set`-style parameters.
+pub fn render(entry: &LabEntry, object: Object, angles: [f32; 3], time: f32, set: &[(&str, &[f32])]) -> RgbImage {
+    render_sized(entry, object, angles, time, set, 640, 360)
 }
 
 /// As [`render`] at any size.
-pub fn render_sized<E: Effect>(
+pub fn render_sized(
+    entry: &LabEntry,
     object: Object,
     angles: [f32; 3],
     time: f32,
@@ -39,14 +153,14 @@ pub fn render_sized<E: Effect>(
     w: u32,
     h: u32,
 ) -> RgbImage {
-    let mut lab = lab::<E>();
-    lab.scene.object = object;
-    lab.scene.angles = Vec3::from_array(angles);
-    lab.scene.time = f64::from(time);
+    let mut lab = lab(entry);
+    lab.set_object(object);
+    lab.set_angles(angles);
+    lab.set_time(f64::from(time));
     for (name, values) in set {
         lab.set(name, values).expect("parameter");
     }
-    to_rgb(&lab.screenshot(gpu(), w, h).expect("screenshot"))
+    lab.rgb(w, h)
 }
 
 /// The directory of checked-in reference images.
