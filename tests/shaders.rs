@@ -535,6 +535,7 @@ fn mismatched_uniform_struct_is_rejected() {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
     };
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default()).unwrap();

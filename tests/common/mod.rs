@@ -94,6 +94,7 @@ impl TestLab {
             gpu: gpu(),
             source: &self.source,
             format: self.format,
+            files: &shaderlab::lab::NO_FILES,
         };
         self.lab.reload(&cx)
     }
@@ -130,6 +131,7 @@ pub fn lab_with(entry: &LabEntry, source: &ShaderSource, format: wgpu::TextureFo
         gpu: gpu(),
         source,
         format,
+        files: &shaderlab::lab::NO_FILES,
     };
     TestLab {
         lab: (entry.new)(&cx).expect("lab builds"),
