@@ -85,6 +85,12 @@ pub struct UserFiles {
     /// `--texture FILE`: a PNG or BMP, decoded, its top row first (the lab decides the upload
     /// order).
     pub texture: Option<UserFile<Image>>,
+    /// `--texture NAME=FILE` (repeatable): pictures for the texture called NAME in the lab's
+    /// shaders, decoded like `texture`, in command-line order.
+    pub named_textures: Vec<(String, UserFile<Image>)>,
+    /// Positional `FILES...` of a lab that declares them ([`crate::params::FileArgs`]), e.g.
+    /// a user's shaders: paths only, the lab reads them (again on live reload).
+    pub inputs: Vec<PathBuf>,
 }
 
 /// A file the user named, and what was read from it.
@@ -100,6 +106,8 @@ pub struct UserFile<T> {
 pub static NO_FILES: UserFiles = UserFiles {
     model: None,
     texture: None,
+    named_textures: Vec::new(),
+    inputs: Vec::new(),
 };
 
 impl UserFiles {
@@ -117,7 +125,24 @@ impl UserFiles {
         Ok(UserFiles {
             model: read(model, load_obj)?,
             texture: read(texture, load_image)?,
+            named_textures: Vec::new(),
+            inputs: Vec::new(),
         })
+    }
+
+    /// Reads `--texture NAME=FILE` pictures (errors name the file).
+    pub fn load_named_textures(&mut self, named: &[(String, PathBuf)]) -> Result<()> {
+        for (name, path) in named {
+            let data = load_image(path)?;
+            self.named_textures.push((
+                name.clone(),
+                UserFile {
+                    path: path.clone(),
+                    data,
+                },
+            ));
+        }
+        Ok(())
     }
 }
 

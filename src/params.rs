@@ -6,6 +6,8 @@
 //! that a clock can run for hours without losing precision before a lab narrows them to the
 //! f32 its uniforms take.
 
+use std::path::PathBuf;
+
 use crate::error::{Error, Result};
 
 /// What kind of values a parameter takes.
@@ -109,11 +111,26 @@ fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
     }
 }
 
+/// Files a lab takes on the command line (positional `FILES...`), and the parameters those
+/// files declare (e.g. the uniforms of a user's shaders). The shell reads them, and checks
+/// `--set` against what they declare, before a GPU is opened; a lab without `FileArgs` takes
+/// no positional files.
+#[derive(Clone, Copy, Debug)]
+pub struct FileArgs {
+    /// Their names in the usage line, e.g. `["VERT", "FRAG"]`: all of them, or none (the lab
+    /// then uses its built-in data).
+    pub names: &'static [&'static str],
+    /// Reads the files and adds the parameters they declare; with no paths, adds those of the
+    /// lab's built-in data.
+    pub declare: fn(&[PathBuf], &mut Params) -> Result<()>,
+}
+
 /// The current values of a set of parameters.
 #[derive(Clone, Debug, Default)]
 pub struct Params {
     specs: Vec<ParamSpec>,
     values: Vec<Vec<f64>>,
+    files: Option<FileArgs>,
 }
 
 impl Params {
@@ -133,6 +150,41 @@ impl Params {
                 self.values.push(spec.default.to_vec());
             }
         }
+    }
+
+    /// Declares the files the lab takes on the command line ([`FileArgs`]).
+    pub fn with_files(mut self, files: FileArgs) -> Self {
+        self.files = Some(files);
+        self
+    }
+
+    /// The files the lab takes on the command line, if any.
+    pub fn file_args(&self) -> Option<FileArgs> {
+        self.files
+    }
+
+    /// Adds the parameters declared by the files `paths` (as many as [`FileArgs::names`], or
+    /// none for the lab's built-in data). Files given to a lab that takes none are a usage
+    /// error; no files for such a lab add nothing.
+    pub fn declare_files(&mut self, paths: &[PathBuf]) -> Result<()> {
+        let Some(files) = self.files else {
+            return match paths.first() {
+                Some(first) => Err(Error::Param(format!(
+                    "unexpected argument `{}`: this lab takes no files",
+                    first.display()
+                ))),
+                None => Ok(()),
+            };
+        };
+        if !paths.is_empty() && paths.len() != files.names.len() {
+            return Err(Error::Param(format!(
+                "expected {} file(s) {}, got {}",
+                files.names.len(),
+                files.names.join(" "),
+                paths.len()
+            )));
+        }
+        (files.declare)(paths, self)
     }
 
     fn index(&self, name: &str) -> Option<usize> {

@@ -1,6 +1,8 @@
 //! The command line of every example. Parameters are the lab's own (`--set NAME=VALUE`,
-//! listed by `--help`); `--object`, `--rotate`, `--time`, `--shading` and `--tess` are
-//! shorthands for the parameters of the same meaning, kept from seed 000's command line.
+//! listed by `--help`); `--object`, `--rotate`, `--time`, `--shading`, `--tess`, `--camera`
+//! and `--clear` are shorthands for the parameters of the same meaning, kept from seed 000's
+//! command line. Positional `FILES...` go to the labs that declare them
+//! ([`crate::params::FileArgs`]); any other lab rejects them as a usage error.
 
 use std::path::PathBuf;
 
@@ -15,6 +17,9 @@ use crate::shader::ShaderSource;
 #[derive(Parser, Debug, Clone)]
 #[command(version)]
 pub struct Args {
+    /// Files for labs that take them (e.g. legacy: VERT FRAG); other labs take none.
+    #[arg(value_name = "FILES")]
+    pub files: Vec<PathBuf>,
     /// Set a parameter by name, e.g. xangle=30, Ka=0.2, object=torus (repeatable; see PARAMETERS below).
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_set, allow_hyphen_values = true)]
     pub set: Vec<(String, String)>,
@@ -53,12 +58,49 @@ pub struct Args {
     /// A Wavefront OBJ to draw instead of the lab's built-in model (labs that draw one, e.g. suzanne_*; others ignore it).
     #[arg(long, value_name = "FILE.obj")]
     pub model: Option<PathBuf>,
-    /// A PNG or BMP picture to use instead of the lab's picture texture (labs that sample one, e.g. suzanne_texture, texparams; others ignore it).
-    #[arg(long, value_name = "FILE")]
-    pub texture: Option<PathBuf>,
+    /// A PNG or BMP picture to use instead of the lab's picture texture (labs that sample one, e.g. suzanne_texture, texparams; others ignore it); `NAME=FILE` (repeatable) binds it to the texture called NAME in the lab's shaders (legacy).
+    #[arg(long, value_name = "[NAME=]FILE", value_parser = parse_texture)]
+    pub texture: Vec<TextureArg>,
+    /// Eye position (the `camera` parameter of labs that have one, e.g. legacy).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub camera: Option<[f64; 3]>,
+    /// Clear colour (the `clear` parameter of labs that have one, e.g. legacy).
+    #[arg(long, value_name = "R,G,B", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub clear: Option<[f64; 3]>,
     /// In a window: draw as fast as possible (present mode Immediate, no pacing), to measure frame time.
     #[arg(long)]
     pub unpaced: bool,
+}
+
+/// One `--texture`: a picture for the lab's texture, or for the texture called `name`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TextureArg {
+    /// `NAME` of `NAME=FILE`.
+    pub name: Option<String>,
+    /// The picture.
+    pub path: PathBuf,
+}
+
+fn parse_texture(s: &str) -> Result<TextureArg, String> {
+    let identifier = |n: &str| {
+        n.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    };
+    match s.split_once('=') {
+        Some((name, path)) if identifier(name) => {
+            if path.is_empty() {
+                return Err(format!("`{s}`: expected NAME=FILE"));
+            }
+            Ok(TextureArg {
+                name: Some(name.to_owned()),
+                path: PathBuf::from(path),
+            })
+        }
+        _ => Ok(TextureArg {
+            name: None,
+            path: PathBuf::from(s),
+        }),
+    }
 }
 
 fn parse_time(s: &str) -> Result<f64, String> {
@@ -106,8 +148,27 @@ impl Args {
     /// Parses the process arguments for `entry`; prints usage and exits 2 on a bad flag.
     pub fn parse_for(entry: &LabEntry) -> Self {
         let info = entry.info;
-        let params = (entry.params)();
+        let mut params = (entry.params)();
         let (w, h) = info.size;
+        let file_args = params.file_args();
+        if file_args.is_some() {
+            // List the parameters the files on the command line declare (those of the lab's
+            // built-in files without any); a file that does not load is reported after parsing.
+            let prescan = Args::command()
+                .disable_help_flag(true)
+                .disable_version_flag(true)
+                .ignore_errors(true);
+            let files = prescan
+                .try_get_matches()
+                .ok()
+                .and_then(|m| Args::from_arg_matches(&m).ok())
+                .map(|a| a.files)
+                .unwrap_or_default();
+            let mut declared = params.clone();
+            if declared.declare_files(&files).is_ok() {
+                params = declared;
+            }
+        }
         let after = format!(
             "PARAMETERS (--set NAME=VALUE):\n{}\nKEYS AND MOUSE:\n  {}\n  F12 saves a screenshot, Esc quits; shaders edited under --shaders DIR (or shaders_glsl/) reload live.\n\nDefault size {w}x{h}.",
             params.help(),
@@ -116,7 +177,11 @@ impl Args {
         let command = Args::command()
             .name(info.name)
             .about(format!("{} {} ({}), on wgpu", info.title, info.label, info.lecture))
-            .after_help(after);
+            .after_help(after)
+            .mut_arg("files", |a| match file_args {
+                Some(f) => a.value_names(f.names.iter().copied()).num_args(0..=f.names.len()),
+                None => a.hide(true),
+            });
         let matches = command.get_matches();
         Args::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
     }
@@ -130,9 +195,25 @@ impl Args {
     }
 
     /// Reads and checks `--model` and `--texture` (errors name the file), printing the model's
-    /// notices (missing `vt`/`vn`, ignored elements) on stderr, one line each.
+    /// notices (missing `vt`/`vn`, ignored elements) on stderr, one line each; the positional
+    /// files go along as paths.
     pub fn files(&self, entry: &LabEntry) -> Result<UserFiles, Error> {
-        let files = UserFiles::load(self.model.as_deref(), self.texture.as_deref())?;
+        let mut plain = self.texture.iter().filter(|t| t.name.is_none());
+        let texture = plain.next().map(|t| t.path.as_path());
+        if let Some(second) = plain.next() {
+            return Err(Error::Param(format!(
+                "`--texture {}`: one texture without a NAME= is taken; name the others (NAME=FILE)",
+                second.path.display()
+            )));
+        }
+        let mut files = UserFiles::load(self.model.as_deref(), texture)?;
+        let named: Vec<(String, PathBuf)> = self
+            .texture
+            .iter()
+            .filter_map(|t| t.name.clone().map(|n| (n, t.path.clone())))
+            .collect();
+        files.load_named_textures(&named)?;
+        files.inputs = self.files.clone();
         for notice in files.model.iter().flat_map(|m| &m.data.notices) {
             eprintln!("{}: {notice}", entry.info.name);
         }
@@ -148,6 +229,8 @@ impl Args {
     pub fn params(&self, entry: &LabEntry) -> Result<Params, Error> {
         let name = entry.info.name;
         let mut p = (entry.params)();
+        // The files a lab takes declare parameters of their own (e.g. a shader's uniforms).
+        p.declare_files(&self.files)?;
         let missing = |flag: &str, what: &str| {
             Error::Param(format!("`{flag}`: {name} has no {what}"))
         };
@@ -177,6 +260,14 @@ impl Args {
                 return Err(missing("--shading", "shading models (no `shading` parameter)"));
             }
             p.set_str("shading", shading)?;
+        }
+        for (flag, param, value) in [("--camera", "camera", self.camera), ("--clear", "clear", self.clear)] {
+            if let Some(v) = value {
+                if !p.has(param) {
+                    return Err(missing(flag, &format!("`{param}` parameter")));
+                }
+                p.set(param, &v)?;
+            }
         }
         if let Some(tess) = self.tess {
             if !p.has("tess") {

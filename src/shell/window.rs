@@ -278,10 +278,21 @@ impl App {
         if let Some(params) = self.params.take() {
             *lab.params_mut() = params;
         }
-        let reload = match &self.source {
-            ShaderSource::Dir(dir) => watch(dir),
-            ShaderSource::Embedded => None,
+        // Live reload watches the shader folder and the folders of the lab's input files.
+        let mut dirs: Vec<std::path::PathBuf> = match &self.source {
+            ShaderSource::Dir(dir) => vec![dir.clone()],
+            ShaderSource::Embedded => Vec::new(),
         };
+        for input in &self.files.inputs {
+            let dir = match input.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+                _ => std::path::PathBuf::from("."),
+            };
+            if !dirs.contains(&dir) {
+                dirs.push(dir);
+            }
+        }
+        let reload = watch(&dirs, &self.files.inputs);
         let env_seconds = |name: &str| {
             std::env::var(name)
                 .ok()
@@ -332,17 +343,28 @@ impl App {
     }
 }
 
-fn watch(dir: &std::path::Path) -> Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)> {
+fn watch(
+    dirs: &[std::path::PathBuf],
+    inputs: &[std::path::PathBuf],
+) -> Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)> {
     use notify::Watcher;
+    if dirs.is_empty() {
+        return None;
+    }
+    let names: Vec<std::ffi::OsString> = inputs
+        .iter()
+        .filter_map(|p| p.file_name().map(|n| n.to_owned()))
+        .collect();
     let (tx, rx) = mpsc::channel();
     let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
         if let Ok(event) = event {
-            // Only shader files: a screenshot written into the folder is not an edit.
+            // Only shader files and the lab's inputs: a screenshot written into the folder is
+            // not an edit.
             let shader = event.paths.iter().any(|p| {
                 matches!(
                     p.extension().and_then(|e| e.to_str()),
                     Some("vert" | "frag" | "glsl" | "comp")
-                )
+                ) || p.file_name().is_some_and(|n| names.iter().any(|m| m == n))
             });
             if shader && (event.kind.is_modify() || event.kind.is_create()) {
                 let _ = tx.send(());
@@ -351,10 +373,12 @@ fn watch(dir: &std::path::Path) -> Option<(notify::RecommendedWatcher, mpsc::Rec
     })
     .map_err(|e| eprintln!("live reload disabled: {e}"))
     .ok()?;
-    watcher
-        .watch(dir, notify::RecursiveMode::NonRecursive)
-        .map_err(|e| eprintln!("live reload disabled: cannot watch {}: {e}", dir.display()))
-        .ok()?;
+    for dir in dirs {
+        watcher
+            .watch(dir, notify::RecursiveMode::NonRecursive)
+            .map_err(|e| eprintln!("live reload disabled: cannot watch {}: {e}", dir.display()))
+            .ok()?;
+    }
     Some((watcher, rx))
 }
 
