@@ -420,6 +420,57 @@ impl<V: VertexType> Program<V> {
         })
     }
 
+    /// A program from shaders compiled elsewhere (e.g. translated from another GLSL dialect);
+    /// [`Program::reload`] does not apply to it: give it new shaders with
+    /// [`Program::set_shaders`].
+    pub fn from_shaders(
+        gpu: &Gpu,
+        label: &str,
+        vertex: CompiledShader,
+        fragment: CompiledShader,
+        state: RenderState,
+        format: wgpu::TextureFormat,
+    ) -> Result<Self> {
+        let built = Self::build_from(gpu, label, vertex, fragment, state, format)?;
+        Ok(Program {
+            label: label.to_owned(),
+            vert: built.vertex.path.clone(),
+            frag: built.fragment.path.clone(),
+            state,
+            format,
+            built,
+            resources: Vec::new(),
+            bind_group: None,
+            _vertex: PhantomData,
+        })
+    }
+
+    /// Replaces the shaders and rebinds the resources bound so far; on failure the last good
+    /// pipeline and bindings stay (live reload of shaders compiled elsewhere).
+    pub fn set_shaders(&mut self, gpu: &Gpu, vertex: CompiledShader, fragment: CompiledShader) -> Result<()> {
+        let built = Self::build_from(gpu, &self.label, vertex, fragment, self.state, self.format)?;
+        self.install(gpu, built)
+    }
+
+    /// Replaces the shaders and binds `resources` (all of them at once), keeping everything as
+    /// it was on failure.
+    pub fn set_shaders_and_bind(
+        &mut self,
+        gpu: &Gpu,
+        vertex: CompiledShader,
+        fragment: CompiledShader,
+        resources: Vec<Bind>,
+    ) -> Result<()> {
+        let built = Self::build_from(gpu, &self.label, vertex, fragment, self.state, self.format)?;
+        let group = Self::bind_group(gpu, &self.label, &built, &resources)?;
+        self.vert = built.vertex.path.clone();
+        self.frag = built.fragment.path.clone();
+        self.built = built;
+        self.resources = resources;
+        self.bind_group = Some(group);
+        Ok(())
+    }
+
     fn build(
         gpu: &Gpu,
         source: &ShaderSource,
@@ -431,6 +482,17 @@ impl<V: VertexType> Program<V> {
     ) -> Result<Built> {
         let vertex = source.compile(vert)?;
         let fragment = source.compile(frag)?;
+        Self::build_from(gpu, label, vertex, fragment, state, format)
+    }
+
+    fn build_from(
+        gpu: &Gpu,
+        label: &str,
+        vertex: CompiledShader,
+        fragment: CompiledShader,
+        state: RenderState,
+        format: wgpu::TextureFormat,
+    ) -> Result<Built> {
         let bindings = reflect_bindings(&[&vertex, &fragment])?;
         let inputs = reflect_inputs(&vertex)?;
         let attributes = vertex_attributes::<V>(&vertex.path, &inputs)?;
@@ -523,10 +585,14 @@ impl<V: VertexType> Program<V> {
     /// Compiles the shaders again; on failure the last good pipeline and bindings stay.
     pub fn reload(&mut self, cx: &LabContext) -> Result<()> {
         let built = Self::build(cx.gpu, cx.source, &self.label, &self.vert, &self.frag, self.state, self.format)?;
+        self.install(cx.gpu, built)
+    }
+
+    fn install(&mut self, gpu: &Gpu, built: Built) -> Result<()> {
         let bind_group = if self.resources.is_empty() && !built.bindings.is_empty() {
             None
         } else {
-            Some(Self::bind_group(cx.gpu, &self.label, &built, &self.resources)?)
+            Some(Self::bind_group(gpu, &self.label, &built, &self.resources)?)
         };
         self.built = built;
         self.bind_group = bind_group;
