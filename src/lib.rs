@@ -10,6 +10,7 @@
 //! - [`labs`]: one module per exercise and [`labs::ALL`], the one list of labs.
 //! - [`lab`] and [`params`]: the contract a lab fulfils, and parameters by name.
 //! - [`render`]: programs reflected from their shaders, uniforms, meshes, textures, frames.
+//! - [`legacy`]: a course's own GLSL 1.10/1.20 shaders translated to GLSL 450 (source-mapped).
 //! - [`shader`] (GLSL loading, diagnostics, reflection), [`camera`] (GLU matrices),
 //!   [`mesh`] and [`tess`] (GLUT geometry), [`gpu`], [`offscreen`], [`error`].
 //! - The speed/accuracy yardsticks, used by tests and studies only: [`exact`], [`metrics`],
@@ -38,6 +39,7 @@ pub mod exact;
 pub mod geometry;
 pub mod gpu;
 pub mod lab;
+pub mod legacy;
 pub mod labs;
 pub mod mesh;
 pub mod metrics;

@@ -5,6 +5,7 @@
 pub mod glut_stage;
 
 pub mod displacement;
+pub mod legacy;
 pub mod noise;
 pub mod normal_rgb;
 pub mod phong;
@@ -25,6 +26,9 @@ pub static NOISE: &LabEntry = &noise::ENTRY;
 /// Seed 000, exercise 5.
 pub static DISPLACEMENT: &LabEntry = &displacement::ENTRY;
 
+/// A course's own GLSL 1.10/1.20 shaders (`legacy VERT FRAG`).
+pub static LEGACY: &LabEntry = &legacy::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -32,6 +36,7 @@ pub static ALL: &[&LabEntry] = &[
     &phong::ENTRY,
     &noise::ENTRY,
     &displacement::ENTRY,
+    &legacy::ENTRY,
 ];
 
 /// The lab called `name`.
