@@ -1152,6 +1152,9 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
             // GL leaves it undefined when the shader writes none; the current colour is what
             // fixed-function GL would give.
             init.push("gl_FrontColor = gl_Color;".to_owned());
+            // GL_CLAMP_VERTEX_COLOR is on by default: colours are clamped per vertex, before
+            // they are interpolated.
+            finish.push("gl_FrontColor = clamp(gl_FrontColor, 0.0, 1.0);".to_owned());
         }
     } else if let Some(loc) = ctx.color_location {
         out.generated(&format!("layout(location = {loc}) in vec4 gl_Color;\n"), first_use("gl_Color"));
