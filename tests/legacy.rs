@@ -174,3 +174,166 @@ fn seed002_shaders_render_specs_references() {
         assert!(db >= 40.0, "002 {name}: {db:.1} dB");
     }
 }
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(common::example("legacy"))
+        .args(args)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run legacy");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("shaderlab-legacy-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn command_line_runs_a_course_pair_with_its_uniforms() {
+    let dir = scratch("cli");
+    let png = dir.join("lab3.png");
+    let [vert, frag] = [&course(3)[0], &course(3)[1]].map(|p| p.display().to_string());
+    let mut args: Vec<String> = vec![vert.clone(), frag.clone()];
+    for (k, v) in labref_state(3) {
+        match k {
+            "camera" => args.extend(["--camera".into(), v.into()]),
+            "clear" => args.extend(["--clear".into(), v.into()]),
+            _ => args.extend(["--set".into(), format!("{k}={v}")]),
+        }
+    }
+    args.extend(["--object".into(), "torus".into(), "--screenshot".into(), png.display().to_string()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, out, err) = run(&args);
+    assert_eq!(code, 0, "{out}{err}");
+    let image = image::open(&png).unwrap().to_rgb8();
+    let db = psnr(&image, &reference(&shared("reference/lab3_torus_x0_y0_t0.png"))).unwrap();
+    assert!(db >= 40.0, "{db:.1} dB");
+
+    // --help lists the shaders' uniforms by name.
+    let (code, out, _) = run(&[&vert, &frag, "--help"]);
+    assert_eq!(code, 0);
+    for name in ["lightPosition", "shininess", "camera", "clear", "uniform vec3"] {
+        assert!(out.contains(name), "--help lists {name}:\n{out}");
+    }
+    // An unknown name is a usage error that lists the valid ones.
+    let (code, _, err) = run(&[&vert, &frag, "--set", "lightPos=1,2,3", "--screenshot", "x.png"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("unknown parameter `lightPos`") && err.contains("lightPosition"), "{err}");
+    // One file, or three, is a usage error.
+    let (code, _, err) = run(&[&vert, "--screenshot", "x.png"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("VERT FRAG"), "{err}");
+    // The course's own lab 4 has an extra `)`: the error points at the user's file.
+    let lab4 = fixture("course000/lab4.frag").display().to_string();
+    let lab4v = fixture("course000/lab4.vert").display().to_string();
+    let (code, _, err) = run(&[&lab4v, &lab4, "--screenshot", "x.png"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("course000/lab4.frag:34:46: unexpected `)`"), "{err}");
+    assert!(err.contains("34 |         + i.x + vec4(0.0, i1.x, i2.x, 1.0 ) ));"), "{err}");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn labs_that_take_no_files_reject_them() {
+    let out = std::process::Command::new(common::example("noise"))
+        .args(["a.vert", "a.frag", "--screenshot", "x.png"])
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("unexpected argument `a.vert`: this lab takes no files"), "{err}");
+}
+
+const TEXTURE_VS: &str = "varying vec2 uv;\nvoid main() { uv = gl_MultiTexCoord0.st; gl_Position = ftransform(); }\n";
+const TEXTURE_FS: &str =
+    "uniform sampler2D picture;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(picture, vec2(0.45, 0.45)); }\n";
+
+#[test]
+fn textures_come_from_named_files_or_the_default_picture() {
+    let dir = scratch("texture");
+    let (vert, frag) = (dir.join("t.vert"), dir.join("t.frag"));
+    std::fs::write(&vert, TEXTURE_VS).unwrap();
+    std::fs::write(&frag, TEXTURE_FS).unwrap();
+    let png = dir.join("orange.png");
+    image::RgbImage::from_pixel(4, 4, image::Rgb([255, 128, 0])).save(&png).unwrap();
+    let centre = |image: &RgbImage| *image.get_pixel(320, 180);
+    // Default: SPEC's uvgrid, whose centre is the dark disc.
+    let mut lab = legacy(vec![vert.clone(), frag.clone()], &[("object", "cube")]);
+    assert_eq!(centre(&render(lab.as_mut(), 640, 360)).0, [16, 16, 16]);
+    // --texture picture=orange.png
+    let mut files = UserFiles {
+        inputs: vec![vert.clone(), frag.clone()],
+        ..UserFiles::default()
+    };
+    files.load_named_textures(&[("picture".into(), png.clone())]).unwrap();
+    let mut lab = legacy_with(files, &[("object", "cube")]);
+    assert_eq!(centre(&render(lab.as_mut(), 640, 360)).0, [255, 128, 0]);
+    // On the command line, and a name the shaders do not have.
+    let out = dir.join("out.png");
+    let (v, f, p, o) = (vert.display().to_string(), frag.display().to_string(), png.display().to_string(), out.display().to_string());
+    let (code, _, err) = run(&[&v, &f, "--texture", &format!("picture={p}"), "--screenshot", &o]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(image::open(&out).unwrap().to_rgb8().get_pixel(320, 180).0, [255, 128, 0]);
+    let (code, _, err) = run(&[&v, &f, "--texture", &format!("pic={p}"), "--screenshot", &o]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("no sampler `pic` (they have: picture)"), "{err}");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn live_reload_keeps_the_last_good_pipeline_and_values() {
+    let dir = scratch("reload");
+    let (vert, frag) = (dir.join("r.vert"), dir.join("r.frag"));
+    std::fs::write(&vert, "void main() { gl_Position = ftransform(); }\n").unwrap();
+    std::fs::write(&frag, "uniform vec3 tint;\nvoid main() { gl_FragColor = vec4(tint, 1.0); }\n").unwrap();
+    let mut lab = legacy(vec![vert.clone(), frag.clone()], &[("object", "sphere"), ("tint", "1,0,0")]);
+    assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [255, 0, 0]);
+    let source = ShaderSource::Embedded;
+    let files = UserFiles {
+        inputs: vec![vert.clone(), frag.clone()],
+        ..UserFiles::default()
+    };
+    let cx = LabContext {
+        gpu: gpu(),
+        source: &source,
+        format: COLOR_FORMAT,
+        files: &files,
+    };
+    // An edit that adds a uniform: `tint` keeps its value, `gain` appears with GL's 0.
+    std::fs::write(
+        &frag,
+        "uniform vec3 tint;\nuniform float gain;\nvoid main() { gl_FragColor = vec4(tint * (1.0 - gain), 1.0); }\n",
+    )
+    .unwrap();
+    lab.reload(&cx).expect("reload");
+    assert!(lab.params().has("gain"));
+    assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [255, 0, 0]);
+    lab.params_mut().set_str("gain", "0.5").unwrap();
+    assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [128, 0, 0]);
+    // A broken edit: the error names the file and line; the last good pipeline still draws.
+    std::fs::write(&frag, "uniform vec3 tint;\nvoid main() {\n  gl_FragColor = vec4(tint, 1.0) * undefined_thing;\n}\n").unwrap();
+    let e = lab.reload(&cx).unwrap_err().to_string();
+    assert!(e.contains("r.frag:3:") && e.contains("undefined_thing"), "{e}");
+    assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [128, 0, 0]);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn time_runs_when_the_shaders_declare_it() {
+    let lab = legacy(course(4), &[]);
+    assert!(lab.animated(), "lab 4 declares uniform float time");
+    let lab = legacy(course(3), &[]);
+    assert!(!lab.animated());
+    // Without files: the built-in GLSL 1.10 pair, lit by GL's light 0.
+    let mut lab = legacy(Vec::new(), &[("object", "sphere")]);
+    let image = render(lab.as_mut(), 640, 360);
+    assert!(image.get_pixel(320, 180).0[0] > 100, "{:?}", image.get_pixel(320, 180));
+    assert!(lab.params().has("gl_LightSource[0].position"));
+}
