@@ -7,6 +7,7 @@
 //! glsl2wgsl FILE              # WGSL on stdout
 //! glsl2wgsl FILE -o OUT.wgsl  # WGSL into a file
 //! glsl2wgsl --all DIR OUTDIR  # every .vert/.frag/.comp of DIR to OUTDIR/NAME.EXT.wgsl
+//! glsl2wgsl --legacy VERT FRAG # a GLSL 1.10/1.20 pair: the GLSL 450 it becomes, then the WGSL
 //! ```
 //!
 //! Shader errors print as `path:line:column: message` with the line and a caret, and exit 1.
@@ -23,7 +24,7 @@ use shaderlab::shader::{compile_text, embedded_source, stage_of};
 #[command(name = "glsl2wgsl", arg_required_else_help = true)]
 struct Args {
     /// A .vert, .frag or .comp file.
-    #[arg(required_unless_present = "all", conflicts_with = "all")]
+    #[arg(required_unless_present_any = ["all", "legacy"], conflicts_with_all = ["all", "legacy"])]
     file: Option<PathBuf>,
     /// Write the WGSL here instead of stdout.
     #[arg(short, long, value_name = "OUT", conflicts_with = "all")]
@@ -31,6 +32,22 @@ struct Args {
     /// Translate every .vert/.frag/.comp of DIR into OUTDIR as NAME.EXT.wgsl.
     #[arg(long, num_args = 2, value_names = ["DIR", "OUTDIR"])]
     all: Option<Vec<PathBuf>>,
+    /// Translate a GLSL 1.10/1.20 vertex and fragment shader (as the legacy example runs them):
+    /// prints the GLSL 450 of both, then their WGSL.
+    #[arg(long, num_args = 2, value_names = ["VERT", "FRAG"], conflicts_with_all = ["all", "output"])]
+    legacy: Option<Vec<PathBuf>>,
+}
+
+/// The GLSL 450 and WGSL of a GLSL 1.10/1.20 pair.
+fn legacy(vert: &Path, frag: &Path) -> anyhow::Result<String> {
+    let translation = shaderlab::legacy::Translation::from_files(vert, frag)?;
+    let (vs, fs) = translation.compile()?;
+    let mut out = String::new();
+    for (t, compiled) in [(&translation.vertex, &vs), (&translation.fragment, &fs)] {
+        out.push_str(&format!("// ==== {}: GLSL 450 ====\n{}", t.source.path, t.output.text));
+        out.push_str(&format!("\n// ==== {}: WGSL ====\n{}\n", t.source.path, compiled.to_wgsl()?));
+    }
+    Ok(out)
 }
 
 /// Reads, splices, validates and translates one file.
@@ -52,6 +69,10 @@ fn translate(path: &Path) -> anyhow::Result<String> {
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
+    if let Some([vert, frag]) = args.legacy.as_deref() {
+        print!("{}", legacy(vert, frag)?);
+        return Ok(());
+    }
     if let Some([dir, out_dir]) = args.all.as_deref() {
         std::fs::create_dir_all(out_dir).with_context(|| format!("cannot create {}", out_dir.display()))?;
         let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
