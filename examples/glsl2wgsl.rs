@@ -45,7 +45,11 @@ fn legacy(vert: &Path, frag: &Path) -> anyhow::Result<String> {
     let mut out = String::new();
     for (t, compiled) in [(&translation.vertex, &vs), (&translation.fragment, &fs)] {
         out.push_str(&format!("// ==== {}: GLSL 450 ====\n{}", t.source.path, t.output.text));
-        out.push_str(&format!("\n// ==== {}: WGSL ====\n{}\n", t.source.path, compiled.to_wgsl()?));
+        out.push_str(&format!(
+            "\n// ==== {}: WGSL ====\n{}\n",
+            t.source.path,
+            compiled.to_wgsl()?
+        ));
     }
     Ok(out)
 }

@@ -34,10 +34,13 @@ fn course(lab: u32) -> Vec<PathBuf> {
 
 /// The legacy lab on `files`, with `--set`-style assignments applied.
 fn legacy(files: Vec<PathBuf>, set: &[(&str, &str)]) -> Box<dyn Lab> {
-    legacy_with(UserFiles {
-        inputs: files,
-        ..UserFiles::default()
-    }, set)
+    legacy_with(
+        UserFiles {
+            inputs: files,
+            ..UserFiles::default()
+        },
+        set,
+    )
 }
 
 fn legacy_with(files: UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
@@ -50,7 +53,9 @@ fn legacy_with(files: UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
     };
     let mut lab = (shaderlab::labs::LEGACY.new)(&cx).unwrap_or_else(|e| panic!("legacy builds: {e}"));
     for (k, v) in set {
-        lab.params_mut().set_str(k, v).unwrap_or_else(|e| panic!("--set {k}={v}: {e}"));
+        lab.params_mut()
+            .set_str(k, v)
+            .unwrap_or_else(|e| panic!("--set {k}={v}: {e}"));
     }
     lab
 }
@@ -60,7 +65,9 @@ fn render(lab: &mut dyn Lab, w: u32, h: u32) -> RgbImage {
 }
 
 fn reference(path: &Path) -> RgbImage {
-    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgb8()
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8()
 }
 
 fn shared(rel: &str) -> PathBuf {
@@ -133,7 +140,11 @@ fn seed_reference(name: &str) -> RgbImage {
 fn seed001_builtin_state_shaders_render_specs_references() {
     for (name, vert, frag) in [
         ("phong_vertex", "seed001/phong_vertex.vert", "seed001/pass.frag"),
-        ("phong_fragment", "seed001/phong_fragment.vert", "seed001/phong_fragment.frag"),
+        (
+            "phong_fragment",
+            "seed001/phong_fragment.vert",
+            "seed001/phong_fragment.frag",
+        ),
         ("toon", "seed001/toon.vert", "seed001/pass.frag"),
     ] {
         let mut app = legacy(vec![fixture(vert), fixture(frag)], &[]);
@@ -156,8 +167,19 @@ fn seed001_builtin_state_shaders_render_specs_references() {
 #[test]
 fn seed002_shaders_render_specs_references() {
     let cases: [(&str, &[(&str, &str)]); 2] = [
-        ("twist", &[("object", "grid"), ("twisting", "4.25"), ("color", "0.5,9,0.5")]),
-        ("normal_world", &[("object", "teapot"), ("fovy", "60"), ("near", "0.1"), ("camera", "0,0,5")]),
+        (
+            "twist",
+            &[("object", "grid"), ("twisting", "4.25"), ("color", "0.5,9,0.5")],
+        ),
+        (
+            "normal_world",
+            &[
+                ("object", "teapot"),
+                ("fovy", "60"),
+                ("near", "0.1"),
+                ("camera", "0,0,5"),
+            ],
+        ),
     ];
     for (name, set) in cases {
         let files = vec![
@@ -207,7 +229,12 @@ fn command_line_runs_a_course_pair_with_its_uniforms() {
             _ => args.extend(["--set".into(), format!("{k}={v}")]),
         }
     }
-    args.extend(["--object".into(), "torus".into(), "--screenshot".into(), png.display().to_string()]);
+    args.extend([
+        "--object".into(),
+        "torus".into(),
+        "--screenshot".into(),
+        png.display().to_string(),
+    ]);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let (code, out, err) = run(&args);
     assert_eq!(code, 0, "{out}{err}");
@@ -224,7 +251,10 @@ fn command_line_runs_a_course_pair_with_its_uniforms() {
     // An unknown name is a usage error that lists the valid ones.
     let (code, _, err) = run(&[&vert, &frag, "--set", "lightPos=1,2,3", "--screenshot", "x.png"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("unknown parameter `lightPos`") && err.contains("lightPosition"), "{err}");
+    assert!(
+        err.contains("unknown parameter `lightPos`") && err.contains("lightPosition"),
+        "{err}"
+    );
     // One file, or three, is a usage error.
     let (code, _, err) = run(&[&vert, "--screenshot", "x.png"]);
     assert_eq!(code, 2, "{err}");
@@ -235,7 +265,10 @@ fn command_line_runs_a_course_pair_with_its_uniforms() {
     let (code, _, err) = run(&[&lab4v, &lab4, "--screenshot", "x.png"]);
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("course000/lab4.frag:34:46: unexpected `)`"), "{err}");
-    assert!(err.contains("34 |         + i.x + vec4(0.0, i1.x, i2.x, 1.0 ) ));"), "{err}");
+    assert!(
+        err.contains("34 |         + i.x + vec4(0.0, i1.x, i2.x, 1.0 ) ));"),
+        "{err}"
+    );
     std::fs::remove_dir_all(dir).ok();
 }
 
@@ -248,7 +281,10 @@ fn labs_that_take_no_files_reject_them() {
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("unexpected argument `a.vert`: this lab takes no files"), "{err}");
+    assert!(
+        err.contains("unexpected argument `a.vert`: this lab takes no files"),
+        "{err}"
+    );
 }
 
 const TEXTURE_VS: &str = "varying vec2 uv;\nvoid main() { uv = gl_MultiTexCoord0.st; gl_Position = ftransform(); }\n";
@@ -262,7 +298,9 @@ fn textures_come_from_named_files_or_the_default_picture() {
     std::fs::write(&vert, TEXTURE_VS).unwrap();
     std::fs::write(&frag, TEXTURE_FS).unwrap();
     let png = dir.join("orange.png");
-    image::RgbImage::from_pixel(4, 4, image::Rgb([255, 128, 0])).save(&png).unwrap();
+    image::RgbImage::from_pixel(4, 4, image::Rgb([255, 128, 0]))
+        .save(&png)
+        .unwrap();
     let centre = |image: &RgbImage| *image.get_pixel(320, 180);
     // Default: SPEC's uvgrid, whose centre is the dark disc.
     let mut lab = legacy(vec![vert.clone(), frag.clone()], &[("object", "cube")]);
@@ -277,10 +315,18 @@ fn textures_come_from_named_files_or_the_default_picture() {
     assert_eq!(centre(&render(lab.as_mut(), 640, 360)).0, [255, 128, 0]);
     // On the command line, and a name the shaders do not have.
     let out = dir.join("out.png");
-    let (v, f, p, o) = (vert.display().to_string(), frag.display().to_string(), png.display().to_string(), out.display().to_string());
+    let (v, f, p, o) = (
+        vert.display().to_string(),
+        frag.display().to_string(),
+        png.display().to_string(),
+        out.display().to_string(),
+    );
     let (code, _, err) = run(&[&v, &f, "--texture", &format!("picture={p}"), "--screenshot", &o]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(image::open(&out).unwrap().to_rgb8().get_pixel(320, 180).0, [255, 128, 0]);
+    assert_eq!(
+        image::open(&out).unwrap().to_rgb8().get_pixel(320, 180).0,
+        [255, 128, 0]
+    );
     let (code, _, err) = run(&[&v, &f, "--texture", &format!("pic={p}"), "--screenshot", &o]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("no sampler `pic` (they have: picture)"), "{err}");
@@ -292,8 +338,15 @@ fn live_reload_keeps_the_last_good_pipeline_and_values() {
     let dir = scratch("reload");
     let (vert, frag) = (dir.join("r.vert"), dir.join("r.frag"));
     std::fs::write(&vert, "void main() { gl_Position = ftransform(); }\n").unwrap();
-    std::fs::write(&frag, "uniform vec3 tint;\nvoid main() { gl_FragColor = vec4(tint, 1.0); }\n").unwrap();
-    let mut lab = legacy(vec![vert.clone(), frag.clone()], &[("object", "sphere"), ("tint", "1,0,0")]);
+    std::fs::write(
+        &frag,
+        "uniform vec3 tint;\nvoid main() { gl_FragColor = vec4(tint, 1.0); }\n",
+    )
+    .unwrap();
+    let mut lab = legacy(
+        vec![vert.clone(), frag.clone()],
+        &[("object", "sphere"), ("tint", "1,0,0")],
+    );
     assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [255, 0, 0]);
     let source = ShaderSource::Embedded;
     let files = UserFiles {
@@ -318,7 +371,11 @@ fn live_reload_keeps_the_last_good_pipeline_and_values() {
     lab.params_mut().set_str("gain", "0.5").unwrap();
     assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [128, 0, 0]);
     // A broken edit: the error names the file and line; the last good pipeline still draws.
-    std::fs::write(&frag, "uniform vec3 tint;\nvoid main() {\n  gl_FragColor = vec4(tint, 1.0) * undefined_thing;\n}\n").unwrap();
+    std::fs::write(
+        &frag,
+        "uniform vec3 tint;\nvoid main() {\n  gl_FragColor = vec4(tint, 1.0) * undefined_thing;\n}\n",
+    )
+    .unwrap();
     let e = lab.reload(&cx).unwrap_err().to_string();
     assert!(e.contains("r.frag:3:") && e.contains("undefined_thing"), "{e}");
     assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [128, 0, 0]);

@@ -19,7 +19,9 @@ use crate::gpu::Gpu;
 use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo, UserFiles};
 use crate::legacy::{self, state, LegacySource, SamplerDim, Translation, STATE_BLOCK, UNIFORM_BLOCK};
 use crate::params::{FileArgs, ParamSpec, Params};
-use crate::render::{sampler, AnyProgram, Bind, Frame, GpuMesh, Load, Program, RenderState, Resource, SamplerDesc, Texture};
+use crate::render::{
+    sampler, AnyProgram, Bind, Frame, GpuMesh, Load, Program, RenderState, Resource, SamplerDesc, Texture,
+};
 use crate::shader::CompiledShader;
 use crate::tess::{self, Object};
 
@@ -47,8 +49,19 @@ pub static ENTRY: LabEntry = LabEntry {
 const OBJECTS: &[&str] = &["cube", "sphere", "torus", "teapot", "grid"];
 
 const OWN: &[ParamSpec] = &[
-    ParamSpec::choice("object", &[3.0], OBJECTS, "object drawn (keys 1-4; grid: SPEC 002's quad grid)"),
-    ParamSpec::real("camera", &[0.0, 0.0, 4.0], -1000.0, 1000.0, "eye position; it looks down -z (gluLookAt)"),
+    ParamSpec::choice(
+        "object",
+        &[3.0],
+        OBJECTS,
+        "object drawn (keys 1-4; grid: SPEC 002's quad grid)",
+    ),
+    ParamSpec::real(
+        "camera",
+        &[0.0, 0.0, 4.0],
+        -1000.0,
+        1000.0,
+        "eye position; it looks down -z (gluLookAt)",
+    ),
     ParamSpec::real("clear", &[0.0, 0.0, 0.0], 0.0, 1.0, "glClearColor (RGB)"),
     ParamSpec::real("fovy", &[45.0], 1.0, 179.0, "gluPerspective field of view, degrees"),
     ParamSpec::real("near", &[1.0], 1e-4, 1e6, "gluPerspective near plane"),
@@ -186,13 +199,23 @@ fn picture(s: &legacy::Sampler, first_2d: bool, files: &UserFiles) -> Result<Ima
     }
 }
 
-fn bind_all(gpu: &Gpu, translation: Translation, vs: &CompiledShader, files: &UserFiles, params: &Params) -> Result<(Bound, Vec<Bind>)> {
+fn bind_all(
+    gpu: &Gpu,
+    translation: Translation,
+    vs: &CompiledShader,
+    files: &UserFiles,
+    params: &Params,
+) -> Result<(Bound, Vec<Bind>)> {
     for (name, _) in &files.named_textures {
         if !translation.samplers.iter().any(|s| &s.name == name) {
             let have: Vec<&str> = translation.samplers.iter().map(|s| s.name.as_str()).collect();
             return Err(Error::Param(format!(
                 "--texture {name}=...: the shaders have no sampler `{name}` (they have: {})",
-                if have.is_empty() { "none".to_owned() } else { have.join(", ") }
+                if have.is_empty() {
+                    "none".to_owned()
+                } else {
+                    have.join(", ")
+                }
             )));
         }
     }
@@ -221,7 +244,7 @@ fn bind_all(gpu: &Gpu, translation: Translation, vs: &CompiledShader, files: &Us
             image.width,
             image.height,
             image.layers,
-            &[image.rgba.clone()],
+            std::slice::from_ref(&image.rgba),
         );
         let smp = sampler(gpu, &format!("legacy.{}.sampler", s.name), &SamplerDesc::default());
         binds.push(Bind::texture(&s.glsl, &texture));
@@ -277,7 +300,10 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
 
 impl LegacyLab {
     fn files_title(&self) -> String {
-        let (v, f) = (&self.bound.translation.vertex.source.path, &self.bound.translation.fragment.source.path);
+        let (v, f) = (
+            &self.bound.translation.vertex.source.path,
+            &self.bound.translation.fragment.source.path,
+        );
         let short = |p: &str| {
             std::path::Path::new(p)
                 .file_name()
@@ -413,7 +439,13 @@ impl Lab for LegacyLab {
             .filter(|s| s.name != "object" && p.get(s.name) != Some(s.default))
             .map(|s| format!("{}={}", s.name, p.text(s.name)))
             .collect();
-        let mut title = format!("{} {} | {} | {}", INFO.title, self.title, p.text("object"), changed.join(" "));
+        let mut title = format!(
+            "{} {} | {} | {}",
+            INFO.title,
+            self.title,
+            p.text("object"),
+            changed.join(" ")
+        );
         if changed.is_empty() {
             title.truncate(title.trim_end_matches(" | ").len());
         }

@@ -30,8 +30,14 @@ pub const STRUCTS: &[(&str, &str)] = &[
         "gl_MaterialParameters",
         "struct gl_MaterialParameters { vec4 emission; vec4 ambient; vec4 diffuse; vec4 specular; float shininess; };",
     ),
-    ("gl_LightModelParameters", "struct gl_LightModelParameters { vec4 ambient; };"),
-    ("gl_LightModelProducts", "struct gl_LightModelProducts { vec4 sceneColor; };"),
+    (
+        "gl_LightModelParameters",
+        "struct gl_LightModelParameters { vec4 ambient; };",
+    ),
+    (
+        "gl_LightModelProducts",
+        "struct gl_LightModelProducts { vec4 sceneColor; };",
+    ),
     (
         "gl_LightProducts",
         "struct gl_LightProducts { vec4 ambient; vec4 diffuse; vec4 specular; };",
@@ -46,15 +52,39 @@ pub const STRUCTS: &[(&str, &str)] = &[
 pub const STATE: &[StateMember] = &[
     member("gl_ModelViewMatrix", "mat4 gl_ModelViewMatrix;", &[]),
     member("gl_ProjectionMatrix", "mat4 gl_ProjectionMatrix;", &[]),
-    member("gl_ModelViewProjectionMatrix", "mat4 gl_ModelViewProjectionMatrix;", &[]),
+    member(
+        "gl_ModelViewProjectionMatrix",
+        "mat4 gl_ModelViewProjectionMatrix;",
+        &[],
+    ),
     member("gl_ModelViewMatrixInverse", "mat4 gl_ModelViewMatrixInverse;", &[]),
     member("gl_ProjectionMatrixInverse", "mat4 gl_ProjectionMatrixInverse;", &[]),
-    member("gl_ModelViewProjectionMatrixInverse", "mat4 gl_ModelViewProjectionMatrixInverse;", &[]),
+    member(
+        "gl_ModelViewProjectionMatrixInverse",
+        "mat4 gl_ModelViewProjectionMatrixInverse;",
+        &[],
+    ),
     member("gl_ModelViewMatrixTranspose", "mat4 gl_ModelViewMatrixTranspose;", &[]),
-    member("gl_ProjectionMatrixTranspose", "mat4 gl_ProjectionMatrixTranspose;", &[]),
-    member("gl_ModelViewProjectionMatrixTranspose", "mat4 gl_ModelViewProjectionMatrixTranspose;", &[]),
-    member("gl_ModelViewMatrixInverseTranspose", "mat4 gl_ModelViewMatrixInverseTranspose;", &[]),
-    member("gl_ProjectionMatrixInverseTranspose", "mat4 gl_ProjectionMatrixInverseTranspose;", &[]),
+    member(
+        "gl_ProjectionMatrixTranspose",
+        "mat4 gl_ProjectionMatrixTranspose;",
+        &[],
+    ),
+    member(
+        "gl_ModelViewProjectionMatrixTranspose",
+        "mat4 gl_ModelViewProjectionMatrixTranspose;",
+        &[],
+    ),
+    member(
+        "gl_ModelViewMatrixInverseTranspose",
+        "mat4 gl_ModelViewMatrixInverseTranspose;",
+        &[],
+    ),
+    member(
+        "gl_ProjectionMatrixInverseTranspose",
+        "mat4 gl_ProjectionMatrixInverseTranspose;",
+        &[],
+    ),
     member(
         "gl_ModelViewProjectionMatrixInverseTranspose",
         "mat4 gl_ModelViewProjectionMatrixInverseTranspose;",
@@ -62,14 +92,26 @@ pub const STATE: &[StateMember] = &[
     ),
     member("gl_NormalMatrix", "mat3 gl_NormalMatrix;", &[]),
     member("gl_Color", "vec4 gl_Color;", &[]),
-    member("gl_DepthRange", "gl_DepthRangeParameters gl_DepthRange;", &["gl_DepthRangeParameters"]),
+    member(
+        "gl_DepthRange",
+        "gl_DepthRangeParameters gl_DepthRange;",
+        &["gl_DepthRangeParameters"],
+    ),
     member(
         "gl_LightSource",
         "gl_LightSourceParameters gl_LightSource[8];",
         &["gl_LightSourceParameters"],
     ),
-    member("gl_LightModel", "gl_LightModelParameters gl_LightModel;", &["gl_LightModelParameters"]),
-    member("gl_FrontMaterial", "gl_MaterialParameters gl_FrontMaterial;", &["gl_MaterialParameters"]),
+    member(
+        "gl_LightModel",
+        "gl_LightModelParameters gl_LightModel;",
+        &["gl_LightModelParameters"],
+    ),
+    member(
+        "gl_FrontMaterial",
+        "gl_MaterialParameters gl_FrontMaterial;",
+        &["gl_MaterialParameters"],
+    ),
     member(
         "gl_FrontLightModelProduct",
         "gl_LightModelProducts gl_FrontLightModelProduct;",
@@ -151,8 +193,8 @@ pub fn classify(name: &str, stage: ShaderStage) -> Option<Builtin> {
         "gl_Vertex" => only_vertex(Builtin::Vertex),
         "gl_Normal" => only_vertex(Builtin::Normal),
         "gl_MultiTexCoord0" => only_vertex(Builtin::MultiTexCoord0),
-        "gl_MultiTexCoord1" | "gl_MultiTexCoord2" | "gl_MultiTexCoord3" | "gl_MultiTexCoord4"
-        | "gl_MultiTexCoord5" | "gl_MultiTexCoord6" | "gl_MultiTexCoord7" => only_vertex(Builtin::MultiTexCoordN),
+        "gl_MultiTexCoord1" | "gl_MultiTexCoord2" | "gl_MultiTexCoord3" | "gl_MultiTexCoord4" | "gl_MultiTexCoord5"
+        | "gl_MultiTexCoord6" | "gl_MultiTexCoord7" => only_vertex(Builtin::MultiTexCoordN),
         "gl_FrontColor" => only_vertex(Builtin::FrontColor),
         "gl_TexCoord" => Builtin::TexCoord,
         "gl_FragColor" => only_fragment(Builtin::FragColor),
@@ -172,7 +214,9 @@ pub fn classify(name: &str, stage: ShaderStage) -> Option<Builtin> {
         "gl_BackColor" | "gl_BackMaterial" | "gl_BackLightProduct" | "gl_BackLightModelProduct" => {
             Builtin::Unsupported("two-sided lighting state (back colour and material) is not supported")
         }
-        "gl_TextureMatrix" | "gl_TextureMatrixInverse" | "gl_TextureMatrixTranspose"
+        "gl_TextureMatrix"
+        | "gl_TextureMatrixInverse"
+        | "gl_TextureMatrixTranspose"
         | "gl_TextureMatrixInverseTranspose" => Builtin::Unsupported("texture matrices are not supported"),
         "gl_Point" => Builtin::Unsupported("point parameters (gl_Point) are not supported"),
         "gl_TextureEnvColor" | "gl_EyePlaneS" | "gl_EyePlaneT" | "gl_EyePlaneR" | "gl_EyePlaneQ"

@@ -53,7 +53,10 @@ impl LegacySource {
     /// and a caret, like every other shader error of shaderlab.
     pub fn error(&self, range: Range<usize>, message: &str) -> Error {
         let (line, column, text) = self.line_col(range.start);
-        let len = self.text.get(range.clone()).map_or(1, |t| t.lines().next().unwrap_or("").chars().count());
+        let len = self
+            .text
+            .get(range.clone())
+            .map_or(1, |t| t.lines().next().unwrap_or("").chars().count());
         Error::Shader {
             file: self.path.clone(),
             line,
@@ -225,7 +228,10 @@ mod tests {
                 },
             ],
         );
-        assert_eq!(out.text, "#version 450\nlayout(location=0) in vec3 a;\nvoid sl_main() { x = a; }\n");
+        assert_eq!(
+            out.text,
+            "#version 450\nlayout(location=0) in vec3 a;\nvoid sl_main() { x = a; }\n"
+        );
         // The `x` of the second line is at offset 32 of the source.
         let x = out.text.find("x =").unwrap();
         assert_eq!(out.locate(x).unwrap().offset, 32);

@@ -235,7 +235,14 @@ fn write_leaf(
         T::Struct { members, .. } => {
             for m in members {
                 let name = m.name.clone().unwrap_or_default();
-                write_leaf(module, m.ty, offset + m.offset as usize, &format!("{path}.{name}"), bytes, lookup);
+                write_leaf(
+                    module,
+                    m.ty,
+                    offset + m.offset as usize,
+                    &format!("{path}.{name}"),
+                    bytes,
+                    lookup,
+                );
             }
         }
         T::Array {

@@ -259,9 +259,15 @@ pub fn values(used: &[&str], lights: usize, params: &Params, scene: &Scene) -> H
             ("spotExponent", vec![f1(params, &key("spotExponent"), 0.0)]),
             ("spotCutoff", vec![cutoff]),
             ("spotCosCutoff", vec![cos_cutoff]),
-            ("constantAttenuation", vec![f1(params, &key("constantAttenuation"), 1.0)]),
+            (
+                "constantAttenuation",
+                vec![f1(params, &key("constantAttenuation"), 1.0)],
+            ),
             ("linearAttenuation", vec![f1(params, &key("linearAttenuation"), 0.0)]),
-            ("quadraticAttenuation", vec![f1(params, &key("quadraticAttenuation"), 0.0)]),
+            (
+                "quadraticAttenuation",
+                vec![f1(params, &key("quadraticAttenuation"), 0.0)],
+            ),
         ] {
             out.insert(key(field), v);
         }
@@ -285,7 +291,10 @@ mod tests {
 
     #[test]
     fn products_follow_mesa() {
-        let mut p = Params::new(&params(&["gl_LightSource", "gl_FrontLightProduct", "gl_FrontMaterial"], 1));
+        let mut p = Params::new(&params(
+            &["gl_LightSource", "gl_FrontLightProduct", "gl_FrontMaterial"],
+            1,
+        ));
         p.set_str("gl_LightSource[0].ambient", "0.2,0.2,0.2,1").unwrap();
         p.set_str("gl_FrontMaterial.ambient", "0.2,0.3,0.8,1").unwrap();
         p.set_str("gl_LightSource[0].position", "2,2,2,1").unwrap();

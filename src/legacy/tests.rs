@@ -37,12 +37,19 @@ fn course_shaders_translate_and_validate() {
 fn course_parenthesis_errors_point_at_the_course_line() {
     let (v, _) = course(4);
     let e = translate(&v, &fixture("course000", "lab4.frag")).unwrap_err();
-    let Error::Shader { file, line, column, message } = e else { panic!("{e:?}") };
+    let Error::Shader {
+        file,
+        line,
+        column,
+        message,
+    } = e
+    else {
+        panic!("{e:?}")
+    };
     assert!(file.ends_with("course000/lab4.frag"), "{file}");
     assert_eq!((line, column), (34, 46), "{message}");
     assert!(message.contains("unexpected `)`"), "{message}");
 }
-
 
 const PASS_VS: &str = "void main() { gl_Position = ftransform(); }\n";
 const PASS_FS: &str = "void main() { gl_FragColor = vec4(1.0); }\n";
@@ -51,7 +58,10 @@ const PASS_FS: &str = "void main() { gl_FragColor = vec4(1.0); }\n";
 fn ok(vs: &str, fs: &str) -> Translation {
     let t = translate(&src("t.vert", vs), &src("t.frag", fs)).unwrap_or_else(|e| panic!("translate: {e}"));
     if let Err(e) = t.compile() {
-        panic!("compile: {e}\n{}\n-----\n{}", t.vertex.output.text, t.fragment.output.text);
+        panic!(
+            "compile: {e}\n{}\n-----\n{}",
+            t.vertex.output.text, t.fragment.output.text
+        );
     }
     t
 }
@@ -60,10 +70,18 @@ fn ok(vs: &str, fs: &str) -> Translation {
 fn err(vs: &str, fs: &str) -> (String, u32, u32, String) {
     let e = match translate(&src("t.vert", vs), &src("t.frag", fs)) {
         Err(e) => e,
-        Ok(t) => t.compile().err().unwrap_or_else(|| panic!("no error:\n{}\n{}", t.vertex.output.text, t.fragment.output.text)),
+        Ok(t) => t
+            .compile()
+            .err()
+            .unwrap_or_else(|| panic!("no error:\n{}\n{}", t.vertex.output.text, t.fragment.output.text)),
     };
     match e {
-        Error::Shader { file, line, column, message } => (file, line, column, message),
+        Error::Shader {
+            file,
+            line,
+            column,
+            message,
+        } => (file, line, column, message),
         e => panic!("not a shader error: {e:?}"),
     }
 }
@@ -85,15 +103,27 @@ fn varyings_get_locations_matched_by_name() {
         "varying float c;\nvarying vec3 b;\nvoid main() { gl_FragColor = vec4(b, c); }\n",
     );
     let v = &t.vertex.output.text;
-    assert!(v.contains("layout(location = 0) out vec3 a;layout(location = 1) out vec3 b;"), "{v}");
+    assert!(
+        v.contains("layout(location = 0) out vec3 a;layout(location = 1) out vec3 b;"),
+        "{v}"
+    );
     assert!(v.contains("layout(location = 2) out float c;"), "{v}");
     let f = &t.fragment.output.text;
-    assert!(f.contains("layout(location = 2) in float c;") && f.contains("layout(location = 1) in vec3 b;"), "{f}");
+    assert!(
+        f.contains("layout(location = 2) in float c;") && f.contains("layout(location = 1) in vec3 b;"),
+        "{f}"
+    );
     // A varying the vertex shader does not write is GL's link error, at the declaration.
-    let (file, line, col, m) = err(PASS_VS, "varying vec3 nope;\nvoid main() { gl_FragColor = vec4(nope, 1.0); }\n");
+    let (file, line, col, m) = err(
+        PASS_VS,
+        "varying vec3 nope;\nvoid main() { gl_FragColor = vec4(nope, 1.0); }\n",
+    );
     assert_eq!((file.as_str(), line, col), ("t.frag", 1, 14), "{m}");
     assert!(m.contains("not declared by the vertex shader"), "{m}");
-    let (_, line, _, m) = err(&("varying vec3 n;\n".to_owned() + PASS_VS), "\nvarying vec4 n;\nvoid main() { gl_FragColor = n; }\n");
+    let (_, line, _, m) = err(
+        &("varying vec3 n;\n".to_owned() + PASS_VS),
+        "\nvarying vec4 n;\nvoid main() { gl_FragColor = n; }\n",
+    );
     assert_eq!(line, 2, "{m}");
     assert!(m.contains("vec4 here but vec3 at t.vert:1:14"), "{m}");
 }
@@ -140,9 +170,15 @@ fn matrices_and_ftransform_are_state_members() {
         ]
     );
     let v = &t.vertex.output.text;
-    assert!(v.contains("vec4 ftransform() { return gl_ModelViewProjectionMatrix * gl_Vertex; }"), "{v}");
+    assert!(
+        v.contains("vec4 ftransform() { return gl_ModelViewProjectionMatrix * gl_Vertex; }"),
+        "{v}"
+    );
     // wgpu's depth range, once, after the shader's main.
-    assert!(v.contains("sl_main();\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;"), "{v}");
+    assert!(
+        v.contains("sl_main();\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;"),
+        "{v}"
+    );
 }
 
 #[test]
@@ -153,7 +189,11 @@ fn lighting_state_is_one_block_with_gl_names() {
     );
     assert_eq!(t.lights, 2);
     let names: Vec<&str> = t.params(&|_| false).iter().map(|p| p.name).collect();
-    for n in ["gl_LightSource[1].position", "gl_LightModel.ambient", "gl_FrontMaterial.shininess"] {
+    for n in [
+        "gl_LightSource[1].position",
+        "gl_LightModel.ambient",
+        "gl_FrontMaterial.shininess",
+    ] {
         assert!(names.contains(&n), "{n} in {names:?}");
     }
     assert!(!names.contains(&"gl_LightSource[2].position"));
@@ -173,9 +213,16 @@ fn colours_texcoords_and_fragdata_cross_the_stages() {
     );
     let (v, f) = (&t.vertex.output.text, &t.fragment.output.text);
     assert!(v.contains("layout(location = 0) out vec4 gl_FrontColor;"), "{v}");
-    assert!(v.contains("layout(location = 1) out vec4 sl_TexCoord0;") && v.contains("layout(location = 2) out vec4 sl_TexCoord2;"), "{v}");
+    assert!(
+        v.contains("layout(location = 1) out vec4 sl_TexCoord0;")
+            && v.contains("layout(location = 2) out vec4 sl_TexCoord2;"),
+        "{v}"
+    );
     assert!(v.contains("gl_FrontColor = clamp(gl_FrontColor, 0.0, 1.0);"), "{v}");
-    assert!(f.contains("layout(location = 0) in vec4 gl_Color;") && f.contains("gl_TexCoord[2] = sl_TexCoord2;"), "{f}");
+    assert!(
+        f.contains("layout(location = 0) in vec4 gl_Color;") && f.contains("gl_TexCoord[2] = sl_TexCoord2;"),
+        "{f}"
+    );
     assert!(f.contains("sl_FragData0 = gl_FragData[0];"), "{f}");
     assert!(t.state.contains(&"gl_Color"));
     // A variable index passes all eight.
@@ -196,7 +243,10 @@ fn loose_uniforms_of_every_type_share_one_block() {
         "uniform float w[4];\nuniform vec2 p[3];\nuniform vec3 q[2];\nuniform bool flags[2];\nuniform int n[3];\nuniform mat4 ms[2];\nuniform float f;\nvarying vec4 c;\nvoid main() { gl_FragColor = c + w[3] + p[2].y + q[1].x + (flags[1] ? 1.0 : 0.0) + float(n[2]) + ms[1][3][3] + f; }\n",
     );
     let names: Vec<&str> = t.uniforms.iter().map(|u| u.name.as_str()).collect();
-    assert_eq!(names, ["f", "i", "b", "bv", "v2", "iv", "m2", "m3", "m4", "m23", "m32", "w", "p", "q", "flags", "n", "ms"]);
+    assert_eq!(
+        names,
+        ["f", "i", "b", "bv", "v2", "iv", "m2", "m3", "m4", "m23", "m32", "w", "p", "q", "flags", "n", "ms"]
+    );
     let enc = |n: &str| t.uniforms.iter().find(|u| u.name == n).unwrap().encoding;
     assert_eq!(enc("f"), Encoding::Plain);
     assert_eq!(enc("b"), Encoding::Bool);
@@ -207,11 +257,21 @@ fn loose_uniforms_of_every_type_share_one_block() {
     assert_eq!(enc("q"), Encoding::Plain);
     assert_eq!(enc("flags"), Encoding::Padded);
     // Both stages declare the same block.
-    let block = |text: &str| text[text.find("uniform sl_Uniforms").unwrap()..].split("};").next().unwrap().to_owned();
+    let block = |text: &str| {
+        text[text.find("uniform sl_Uniforms").unwrap()..]
+            .split("};")
+            .next()
+            .unwrap()
+            .to_owned()
+    };
     assert_eq!(block(&t.vertex.output.text), block(&t.fragment.output.text));
     // Values land where naga lays them out.
     let (vs, _) = t.compile().unwrap();
-    let values: Vec<Vec<f64>> = t.uniforms.iter().map(|u| (0..u.components()).map(|k| k as f64 + 1.0).collect()).collect();
+    let values: Vec<Vec<f64>> = t
+        .uniforms
+        .iter()
+        .map(|u| (0..u.components()).map(|k| k as f64 + 1.0).collect())
+        .collect();
     let bytes = block_bytes(&vs, UNIFORM_BLOCK, &mut uniform_lookup(&t.uniforms, &values)).unwrap();
     let layout = vs.uniform_block(UNIFORM_BLOCK).unwrap();
     let f32_at = |at: usize| f32::from_ne_bytes(bytes[at..at + 4].try_into().unwrap());
@@ -227,7 +287,10 @@ fn loose_uniforms_of_every_type_share_one_block() {
     // mat3: std140 columns of 16 bytes.
     assert_eq!(f32_at(off("m3") + 32 + 8), 9.0);
     let params = t.params(&|n| n == "f");
-    assert!(params.iter().any(|p| p.name == "uniform.f"), "a taken name gets `uniform.`");
+    assert!(
+        params.iter().any(|p| p.name == "uniform.f"),
+        "a taken name gets `uniform.`"
+    );
     assert_eq!(params.iter().find(|p| p.name == "ms").unwrap().default.len(), 32);
 }
 
@@ -241,7 +304,10 @@ fn uniform_initializers_are_defaults() {
     assert_eq!(d("c"), vec![0.5, 1.0, -2.0]);
     assert_eq!(d("k"), vec![3.0]);
     assert_eq!(d("m"), vec![2.0, 0.0, 0.0, 2.0]);
-    let (_, line, col, m) = err(&("#version 120\nuniform float k = sin(1.0);\n".to_owned() + PASS_VS), PASS_FS);
+    let (_, line, col, m) = err(
+        &("#version 120\nuniform float k = sin(1.0);\n".to_owned() + PASS_VS),
+        PASS_FS,
+    );
     assert_eq!((line, col), (2, 19), "{m}");
 }
 
@@ -261,16 +327,43 @@ fn samplers_become_textures_with_samplers() {
         "uniform sampler2D heights;\nvarying vec2 uv;\nvoid main() { uv = gl_MultiTexCoord0.st; vec4 p = gl_Vertex; p.y += texture2DLod(heights, uv, 0.0).r; gl_Position = gl_ModelViewProjectionMatrix * p; }\n",
         "uniform sampler2D texture;\nuniform samplerCube env;\nuniform sampler2D heights;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv) + textureCube(env, vec3(uv, 1.0)) + texture2DProj(heights, vec3(uv, 1.0)); }\n",
     );
-    let names: Vec<(&str, &str, u32)> = t.samplers.iter().map(|s| (s.name.as_str(), s.glsl.as_str(), s.binding)).collect();
-    assert_eq!(names, [("heights", "heights", 2), ("texture", "sl_texture", 4), ("env", "env", 6)]);
+    let names: Vec<(&str, &str, u32)> = t
+        .samplers
+        .iter()
+        .map(|s| (s.name.as_str(), s.glsl.as_str(), s.binding))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("heights", "heights", 2),
+            ("texture", "sl_texture", 4),
+            ("env", "env", 6)
+        ]
+    );
     let f = &t.fragment.output.text;
-    assert!(f.contains("texture(sampler2D(sl_texture, sl_texture_sampler), uv)"), "{f}");
-    assert!(f.contains("texture(samplerCube(env, env_sampler), vec3(uv, 1.0))"), "{f}");
-    assert!(f.contains("textureProj(sampler2D(heights, heights_sampler), vec3(uv, 1.0))"), "{f}");
+    assert!(
+        f.contains("texture(sampler2D(sl_texture, sl_texture_sampler), uv)"),
+        "{f}"
+    );
+    assert!(
+        f.contains("texture(samplerCube(env, env_sampler), vec3(uv, 1.0))"),
+        "{f}"
+    );
+    assert!(
+        f.contains("textureProj(sampler2D(heights, heights_sampler), vec3(uv, 1.0))"),
+        "{f}"
+    );
     assert!(f.contains("layout(set = 0, binding = 6) uniform textureCube env; layout(set = 0, binding = 7) uniform sampler env_sampler;"), "{f}");
-    assert!(t.vertex.output.text.contains("textureLod(sampler2D(heights, heights_sampler), uv, 0.0)"));
+    assert!(t
+        .vertex
+        .output
+        .text
+        .contains("textureLod(sampler2D(heights, heights_sampler), uv, 0.0)"));
     // A lookup of the wrong kind, at the sampler.
-    let (_, line, col, m) = err(PASS_VS, "uniform sampler2D t;\nvoid main() {\n  gl_FragColor = textureCube(t, vec3(1.0));\n}\n");
+    let (_, line, col, m) = err(
+        PASS_VS,
+        "uniform sampler2D t;\nvoid main() {\n  gl_FragColor = textureCube(t, vec3(1.0));\n}\n",
+    );
     assert_eq!((line, col), (3, 30), "{m}");
     assert!(m.contains("is a sampler2D, this lookup takes a samplerCube"), "{m}");
 }
@@ -304,9 +397,15 @@ fn naga_errors_point_at_the_users_line_and_column() {
     );
     assert_eq!((file.as_str(), line), ("t.frag", 4), "{m}");
     assert!((5..=14).contains(&col), "column {col}: {m}");
-    assert!(m.contains(" 4 |     vec3 v = vec4(lightPosition, Ka);"), "the user's own line is shown: {m}");
+    assert!(
+        m.contains(" 4 |     vec3 v = vec4(lightPosition, Ka);"),
+        "the user's own line is shown: {m}"
+    );
     // An unknown name in the vertex shader, after the generated prologue.
-    let (file, line, col, m) = err("varying vec3 n;\nvoid main() {\n  n = nrmal;\n  gl_Position = ftransform();\n}\n", "varying vec3 n;\nvoid main() { gl_FragColor = vec4(n, 1.0); }\n");
+    let (file, line, col, m) = err(
+        "varying vec3 n;\nvoid main() {\n  n = nrmal;\n  gl_Position = ftransform();\n}\n",
+        "varying vec3 n;\nvoid main() { gl_FragColor = vec4(n, 1.0); }\n",
+    );
     assert_eq!((file.as_str(), line, col), ("t.vert", 3, 7), "{m}");
     // A syntax error, from glsl-lang's parse of the original text.
     let (file, line, col, m) = err("void main() {\n  gl_Position = ftransform()\n}\n", PASS_FS);
@@ -320,5 +419,7 @@ fn names_glsl_450_reserves_are_renamed() {
         "float round(float x) { return floor(x + 0.5); }\nvarying float r;\nvoid main() { r = round(1.4); gl_Position = ftransform(); }\n",
         "varying float r;\nvoid main() { gl_FragColor = vec4(r); }\n",
     );
-    assert!(t.vertex.output.text.contains("float sl_round(float x)") && t.vertex.output.text.contains("r = sl_round(1.4)"));
+    assert!(
+        t.vertex.output.text.contains("float sl_round(float x)") && t.vertex.output.text.contains("r = sl_round(1.4)")
+    );
 }

@@ -129,7 +129,11 @@ impl Uniform {
         match self.encoding {
             Encoding::Plain => format!("{} {}{n};", self.ty.glsl(), self.glsl),
             Encoding::Padded => {
-                let v = if self.ty.scalar == Scalar::Float { "vec4" } else { "ivec4" };
+                let v = if self.ty.scalar == Scalar::Float {
+                    "vec4"
+                } else {
+                    "ivec4"
+                };
                 format!("{v} {}{n};", self.member())
             }
             Encoding::Bool => {
@@ -337,7 +341,9 @@ impl Analysis<'_> {
     }
 
     fn use_builtin(&mut self, name: &str, range: Range<usize>) {
-        let Some(builtin) = classify(name, self.stage) else { return };
+        let Some(builtin) = classify(name, self.stage) else {
+            return;
+        };
         let key = match &builtin {
             Builtin::State(m) => m.name,
             _ => STATE
@@ -359,13 +365,15 @@ impl Analysis<'_> {
             Builtin::Constant(value) => self.edit(range, value),
             Builtin::TexCoord if !self.handled.contains(&range.start) => self.texcoord_any = true,
             Builtin::State(m)
-                if matches!(m.name, "gl_LightSource" | "gl_FrontLightProduct") && !self.handled.contains(&range.start) =>
+                if matches!(m.name, "gl_LightSource" | "gl_FrontLightProduct")
+                    && !self.handled.contains(&range.start) =>
             {
                 self.lights_any = true
             }
-            Builtin::FragData if !self.handled.contains(&range.start) => {
-                self.fail(range, "`gl_FragData` must be indexed with 0 (multiple render targets are not supported)")
-            }
+            Builtin::FragData if !self.handled.contains(&range.start) => self.fail(
+                range,
+                "`gl_FragData` must be indexed with 0 (multiple render targets are not supported)",
+            ),
             Builtin::FragData => self.fragdata = true,
             Builtin::FragColor => self.fragcolor = true,
             _ => {}
@@ -437,7 +445,10 @@ impl Visitor for Analysis<'_> {
                     let range = span0(ident);
                     if name == "ftransform" {
                         if self.stage != ShaderStage::Vertex {
-                            self.fail(range.clone(), "`ftransform()` is a vertex shader function; this is a fragment shader");
+                            self.fail(
+                                range.clone(),
+                                "`ftransform()` is a vertex shader function; this is a fragment shader",
+                            );
                         }
                         self.ftransform.get_or_insert(range);
                     } else if let Some(lookup) = texture_function(name) {
@@ -452,7 +463,10 @@ impl Visitor for Analysis<'_> {
                                     }
                                     Some((_, arg)) => self.fail(
                                         arg,
-                                        &format!("the first argument of `{name}` must be a uniform {}", dim.legacy_name()),
+                                        &format!(
+                                            "the first argument of `{name}` must be a uniform {}",
+                                            dim.legacy_name()
+                                        ),
                                     ),
                                     None => self.fail(range, &format!("`{name}` needs a sampler and coordinates")),
                                 }
@@ -586,11 +600,15 @@ fn const_values(expr: &ast::Expr) -> Option<Vec<f64>> {
         }
         ast::ExprData::Unary(op, e) if op.content == ast::UnaryOpData::Add => const_values(e)?,
         ast::ExprData::FunCall(fun, args) => {
-            let ast::FunIdentifierData::TypeSpecifier(t) = &fun.content else { return None };
+            let ast::FunIdentifierData::TypeSpecifier(t) = &fun.content else {
+                return None;
+            };
             if t.array_specifier.is_some() {
                 return None;
             }
-            let DeclTy::Value(ty) = decl_ty(&t.ty.content, "") else { return None };
+            let DeclTy::Value(ty) = decl_ty(&t.ty.content, "") else {
+                return None;
+            };
             let mut values = Vec::new();
             for a in args {
                 values.extend(const_values(a)?);
@@ -601,7 +619,13 @@ fn const_values(expr: &ast::Expr) -> Option<Vec<f64>> {
                 let v = values[0];
                 if ty.is_matrix() {
                     (0..n)
-                        .map(|i| if i % ty.rows as usize == i / ty.rows as usize { v } else { 0.0 })
+                        .map(|i| {
+                            if i % ty.rows as usize == i / ty.rows as usize {
+                                v
+                            } else {
+                                0.0
+                            }
+                        })
                         .collect()
                 } else {
                     vec![v; n]
@@ -724,7 +748,10 @@ fn global_decl(a: &mut Analysis, list: &ast::InitDeclaratorList, range: Range<us
     }
     let storage = storage?;
     if storage == Storage::Attribute && a.stage != ShaderStage::Vertex {
-        a.fail(range.clone(), "`attribute` is for vertex shaders; this is a fragment shader");
+        a.fail(
+            range.clone(),
+            "`attribute` is for vertex shaders; this is a fragment shader",
+        );
     }
     let ty_spec = &head.ty.ty;
     let ty_text = a.text(&span0(ty_spec)).to_owned();
@@ -774,7 +801,12 @@ fn global_decl(a: &mut Analysis, list: &ast::InitDeclaratorList, range: Range<us
         push(a, name, head.array_specifier.as_ref(), head.initializer.as_ref());
     }
     for tail in &list.tail {
-        push(a, &tail.ident.ident, tail.ident.array_spec.as_ref(), tail.initializer.as_ref());
+        push(
+            a,
+            &tail.ident.ident,
+            tail.ident.array_spec.as_ref(),
+            tail.initializer.as_ref(),
+        );
     }
     for d in &declarators {
         let what = match storage {
@@ -894,7 +926,12 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                             if s.dim != *dim {
                                 return Err(a.source.error(
                                     d.range.clone(),
-                                    &format!("`{}` is a {} here but a {} in the other shader", d.name, dim.legacy_name(), s.dim.legacy_name()),
+                                    &format!(
+                                        "`{}` is a {} here but a {} in the other shader",
+                                        d.name,
+                                        dim.legacy_name(),
+                                        s.dim.legacy_name()
+                                    ),
                                 ));
                             }
                             continue;
@@ -914,7 +951,10 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
         }
         if let Some(u) = uniforms.iter().find(|u| samplers.iter().any(|s| s.name == u.name)) {
             let file = if u.declared.0 { vertex } else { fragment };
-            return Err(file.error(u.declared.1.clone(), &format!("`{}` is a sampler in the other shader", u.name)));
+            return Err(file.error(
+                u.declared.1.clone(),
+                &format!("`{}` is a sampler in the other shader", u.name),
+            ));
         }
     }
     // Texture lookups name a sampler uniform of the right dimension.
@@ -925,7 +965,11 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                 Some(s) => {
                     return Err(a.source.error(
                         range.clone(),
-                        &format!("`{name}` is a {}, this lookup takes a {}", s.dim.legacy_name(), dim.legacy_name()),
+                        &format!(
+                            "`{name}` is a {}, this lookup takes a {}",
+                            s.dim.legacy_name(),
+                            dim.legacy_name()
+                        ),
                     ))
                 }
                 None => {
@@ -956,7 +1000,10 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                     None => {
                         return Err(fs.source.error(
                             d.range.clone(),
-                            &format!("varying `{}` is not declared by the vertex shader {}", d.name, vertex.path),
+                            &format!(
+                                "varying `{}` is not declared by the vertex shader {}",
+                                d.name, vertex.path
+                            ),
                         ))
                     }
                     Some(v) if v.1 != t => {
@@ -1063,7 +1110,13 @@ struct Context<'a> {
 
 fn generate(a: &Analysis, ctx: &Context) -> Output {
     let vertex = a.stage == ShaderStage::Vertex;
-    let this_file = |declared_in_vertex: bool| if declared_in_vertex == vertex { File::This } else { File::Other };
+    let this_file = |declared_in_vertex: bool| {
+        if declared_in_vertex == vertex {
+            File::This
+        } else {
+            File::Other
+        }
+    };
     let main = a.main.clone().unwrap_or(0..0);
     let at_main = Origin::this(main.clone());
     let first_use = |name: &str| a.builtins.get(name).map(|r| Origin::this(r.clone())).unwrap_or(at_main);
@@ -1075,8 +1128,11 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
 
     // GL's state.
     if !ctx.state.is_empty() {
-        let members: Vec<&super::builtins::StateMember> =
-            ctx.state.iter().filter_map(|n| STATE.iter().find(|m| m.name == *n)).collect();
+        let members: Vec<&super::builtins::StateMember> = ctx
+            .state
+            .iter()
+            .filter_map(|n| STATE.iter().find(|m| m.name == *n))
+            .collect();
         let mut structs: Vec<&str> = Vec::new();
         for m in &members {
             for s in m.structs {
@@ -1124,7 +1180,10 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         if a.builtins.contains_key("gl_Vertex") || a.ftransform.is_some() {
             out.generated(
                 "layout(location = 0) in vec3 sl_Vertex;\nvec4 gl_Vertex;\n",
-                a.builtins.get("gl_Vertex").or(a.ftransform.as_ref()).map_or(at_main, |r| Origin::this(r.clone())),
+                a.builtins
+                    .get("gl_Vertex")
+                    .or(a.ftransform.as_ref())
+                    .map_or(at_main, |r| Origin::this(r.clone())),
             );
             init.push("gl_Vertex = vec4(sl_Vertex, 1.0);".to_owned());
         }
@@ -1141,7 +1200,10 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         for k in 1..8 {
             let name = format!("gl_MultiTexCoord{k}");
             if a.builtins.contains_key(name.as_str()) {
-                out.generated(&format!("const vec4 {name} = vec4(0.0, 0.0, 0.0, 1.0);\n"), first_use(&name));
+                out.generated(
+                    &format!("const vec4 {name} = vec4(0.0, 0.0, 0.0, 1.0);\n"),
+                    first_use(&name),
+                );
             }
         }
         if let Some(loc) = ctx.color_location {
@@ -1157,10 +1219,16 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
             finish.push("gl_FrontColor = clamp(gl_FrontColor, 0.0, 1.0);".to_owned());
         }
     } else if let Some(loc) = ctx.color_location {
-        out.generated(&format!("layout(location = {loc}) in vec4 gl_Color;\n"), first_use("gl_Color"));
+        out.generated(
+            &format!("layout(location = {loc}) in vec4 gl_Color;\n"),
+            first_use("gl_Color"),
+        );
     }
     if !ctx.texcoords.is_empty() {
-        out.generated(&format!("vec4 gl_TexCoord[{MAX_TEXTURE_COORDS}];\n"), first_use("gl_TexCoord"));
+        out.generated(
+            &format!("vec4 gl_TexCoord[{MAX_TEXTURE_COORDS}];\n"),
+            first_use("gl_TexCoord"),
+        );
         for (k, loc) in ctx.texcoords {
             let dir = if vertex { "out" } else { "in" };
             out.generated(
@@ -1183,7 +1251,10 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
             );
             finish.push("sl_FragData0 = gl_FragData[0];".to_owned());
         } else {
-            out.generated("layout(location = 0) out vec4 gl_FragColor;\n", first_use("gl_FragColor"));
+            out.generated(
+                "layout(location = 0) out vec4 gl_FragColor;\n",
+                first_use("gl_FragColor"),
+            );
         }
     }
     if let Some(r) = &a.ftransform {
@@ -1201,7 +1272,9 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         for d in &g.declarators {
             match g.storage {
                 Storage::Varying => {
-                    let Some(loc) = ctx.varyings.iter().position(|v| v.0 == d.name) else { continue };
+                    let Some(loc) = ctx.varyings.iter().position(|v| v.0 == d.name) else {
+                        continue;
+                    };
                     let DeclTy::Value(t) = d.ty else { continue };
                     let dir = if vertex { "out" } else { "in" };
                     text.push_str(&format!(
