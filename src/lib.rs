@@ -34,6 +34,7 @@ pub mod effect;
 pub mod effects;
 pub mod error;
 pub mod exact;
+pub mod fsutil;
 pub mod gpu;
 pub mod mesh;
 pub mod metrics;

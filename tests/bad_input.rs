@@ -201,7 +201,7 @@ fn unwritable_screenshot_path() {
         &["--screenshot", "/nonexistent/x.png"],
         &[],
         1,
-        &["phong: error: /nonexistent/x.png: No such file or directory"],
+        &["phong: error: /nonexistent/x.png: the directory /nonexistent does not exist"],
     );
 }
 
