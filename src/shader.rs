@@ -66,22 +66,14 @@ impl ShaderSource {
         }
     }
 
-    /// Reads one file.
+    /// Reads one file: `name` must lie inside the directory (see [`resolve_in_dir`]) and be a
+    /// regular file of at most [`MAX_SHADER_BYTES`].
     pub fn read(&self, name: &str) -> Result<String> {
         match self {
             ShaderSource::Embedded => embedded_source(name)
                 .map(str::to_owned)
                 .ok_or_else(|| Error::ShaderNotFound(self.display_path(name))),
-            ShaderSource::Dir(dir) => {
-                let path = dir.join(name);
-                std::fs::read_to_string(&path).map_err(|source| {
-                    if source.kind() == std::io::ErrorKind::NotFound {
-                        Error::ShaderNotFound(path.display().to_string())
-                    } else {
-                        Error::Io { path, source }
-                    }
-                })
-            }
+            ShaderSource::Dir(dir) => read_shader_file(&resolve_in_dir(dir, name)?),
         }
     }
 
@@ -94,6 +86,160 @@ impl ShaderSource {
             self.read(include).map(|t| (self.display_path(include), t))
         })
     }
+}
+
+/// The largest shader file the loader reads (1 MiB); the course's largest is under 4 KiB.
+pub const MAX_SHADER_BYTES: u64 = 1 << 20;
+
+fn io_error(path: &Path, kind: std::io::ErrorKind, message: String) -> Error {
+    Error::Io {
+        path: path.to_owned(),
+        source: std::io::Error::new(kind, message),
+    }
+}
+
+/// The file `name` names inside `dir`, for `--shaders DIR` and `#include`: a relative path
+/// (no root, no drive) that stays inside `dir` once symbolic links and `..` are resolved.
+/// A missing file is [`Error::ShaderNotFound`]; a name that reaches outside is [`Error::Param`].
+pub fn resolve_in_dir(dir: &Path, name: &str) -> Result<PathBuf> {
+    use std::path::Component;
+    let relative = Path::new(name);
+    if name.is_empty() {
+        return Err(Error::Param("an empty shader file name".into()));
+    }
+    if relative
+        .components()
+        .any(|c| matches!(c, Component::RootDir | Component::Prefix(_)))
+    {
+        return Err(Error::Param(format!(
+            "{name} is an absolute path; shader files and #include name files inside the shader \
+             directory {}",
+            dir.display()
+        )));
+    }
+    let path = dir.join(relative);
+    let outside = || {
+        Error::Param(format!(
+            "{name} lies outside the shader directory {}; shader files and #include name files \
+             inside it",
+            dir.display()
+        ))
+    };
+    let canonical_dir = std::fs::canonicalize(dir).map_err(|source| Error::Io {
+        path: dir.to_owned(),
+        source,
+    })?;
+    match std::fs::canonicalize(&path) {
+        Ok(canonical) if canonical.starts_with(&canonical_dir) => Ok(canonical),
+        Ok(_) => Err(outside()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            // Missing: still refuse a name that climbs out with `..`, so the message is right.
+            let mut depth = 0usize;
+            for c in relative.components() {
+                match c {
+                    Component::ParentDir if depth == 0 => return Err(outside()),
+                    Component::ParentDir => depth -= 1,
+                    Component::Normal(_) => depth += 1,
+                    _ => {}
+                }
+            }
+            Err(Error::ShaderNotFound(path.display().to_string()))
+        }
+        Err(source) => Err(Error::Io { path, source }),
+    }
+}
+
+/// Reads a shader file from disk: a regular file (not a device, pipe or directory) of at most
+/// [`MAX_SHADER_BYTES`], in UTF-8.
+pub fn read_shader_file(path: &Path) -> Result<String> {
+    use std::io::Read;
+    let not_found = |e: std::io::Error| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            Error::ShaderNotFound(path.display().to_string())
+        } else {
+            Error::Io {
+                path: path.to_owned(),
+                source: e,
+            }
+        }
+    };
+    // Check before opening: opening a FIFO would block.
+    let meta = std::fs::metadata(path).map_err(not_found)?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() {
+            "a directory"
+        } else {
+            "not a regular file"
+        };
+        return Err(io_error(
+            path,
+            std::io::ErrorKind::InvalidInput,
+            format!("{what}; a shader must be a text file"),
+        ));
+    }
+    let too_big = |size: u64| {
+        io_error(
+            path,
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "{size} bytes; shader files are limited to {} bytes (1 MiB)",
+                MAX_SHADER_BYTES
+            ),
+        )
+    };
+    if meta.len() > MAX_SHADER_BYTES {
+        return Err(too_big(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(not_found)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(MAX_SHADER_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|source| Error::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+    if bytes.len() as u64 > MAX_SHADER_BYTES {
+        return Err(too_big(bytes.len() as u64));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        io_error(
+            path,
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Compiles a GLSL file anywhere on disk (the `glsl2wgsl` tool): the stage from its extension,
+/// `#include` resolved inside the file's directory (as [`resolve_in_dir`]), then to the
+/// snippets built into the binary.
+pub fn compile_file(path: &Path) -> Result<CompiledShader> {
+    let name = path.display().to_string();
+    let stage = stage_of(&name)?;
+    let text = read_shader_file(path)?;
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    let display_dir = path.parent().unwrap_or(Path::new(""));
+    compile_text(
+        &name,
+        &text,
+        stage,
+        &|include: &str| match resolve_in_dir(&dir, include) {
+            Ok(file) => Ok((
+                display_dir.join(include).display().to_string(),
+                read_shader_file(&file)?,
+            )),
+            Err(Error::ShaderNotFound(local)) => embedded_source(include)
+                .map(|t| (format!("shaders_glsl/{include}"), t.to_owned()))
+                .ok_or(Error::ShaderNotFound(local)),
+            Err(e) => Err(e),
+        },
+    )
 }
 
 /// The shader stage named by a file's extension: `.vert`, `.frag` or `.comp`.
@@ -130,52 +276,183 @@ impl Spliced {
 /// Resolves an `#include "name"` to (display path, text).
 pub type IncludeResolver<'a> = dyn Fn(&str) -> Result<(String, String)> + 'a;
 
-/// Splices `#include "file"` lines (recursively, each file once).
+/// How deep `#include`s may nest: the main file plus this many levels of snippets.
+pub const MAX_INCLUDE_DEPTH: usize = 8;
+
+/// Splices `#include "file"` lines (recursively, each file once). A UTF-8 byte order mark at
+/// the start of a file is skipped. Fails on a malformed `#include` line, a file that includes
+/// itself (directly or through others), and includes nested deeper than [`MAX_INCLUDE_DEPTH`].
 pub fn splice(path: &str, text: &str, resolve: &IncludeResolver) -> Result<Spliced> {
-    let mut out = Spliced {
-        text: String::new(),
-        line_map: Vec::new(),
+    let mut splicer = Splicer {
+        out: Spliced {
+            text: String::new(),
+            line_map: Vec::new(),
+        },
+        resolve,
+        seen: HashSet::new(),
+        stack: Vec::new(),
     };
-    let mut seen = HashSet::new();
-    splice_into(&mut out, path, text, resolve, &mut seen, 0)?;
-    Ok(out)
+    let name = Path::new(path)
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    splicer.splice_into(&name, path, text)?;
+    Ok(splicer.out)
 }
 
-fn splice_into(
-    out: &mut Spliced,
-    path: &str,
-    text: &str,
-    resolve: &IncludeResolver,
-    seen: &mut HashSet<String>,
-    depth: usize,
-) -> Result<()> {
-    for (i, line) in text.lines().enumerate() {
-        let line_no = i as u32 + 1;
-        let trimmed = line.trim_start();
-        if let Some(rest) = trimmed.strip_prefix("#include") {
-            let column = (line.len() - trimmed.len()) as u32 + 1;
-            let name = rest.trim().trim_matches(|c| c == '"' || c == '<' || c == '>');
-            let fail = |msg: String| Error::Shader {
-                file: path.to_owned(),
-                line: line_no,
-                column,
-                message: format_diagnostic(path, line_no, column, &msg, line, 8),
-            };
-            if name.is_empty() || depth > 8 {
-                return Err(fail("#include needs a file name, as in #include \"noise.glsl\"".into()));
+/// An `#include` line, parsed.
+#[derive(Debug, PartialEq, Eq)]
+enum IncludeLine<'a> {
+    /// Not an `#include` directive.
+    No,
+    /// `#include "name"` or `#include <name>`, with an optional comment after it.
+    Name(&'a str),
+    /// A malformed `#include`: the 0-based byte column of the problem and what is wrong.
+    Bad(usize, String),
+}
+
+const INCLUDE_EXAMPLE: &str = "as in #include \"noise.glsl\"";
+
+/// Parses one line as a preprocessor `#include` (`#` and `include` may be apart, as in C).
+fn parse_include(line: &str) -> IncludeLine<'_> {
+    let start = line.len() - line.trim_start().len();
+    let Some(after_hash) = line[start..].strip_prefix('#') else {
+        return IncludeLine::No;
+    };
+    let directive = after_hash.trim_start_matches([' ', '\t']);
+    let Some(rest) = directive.strip_prefix("include") else {
+        return IncludeLine::No;
+    };
+    if rest.starts_with(|c: char| c.is_alphanumeric() || c == '_') {
+        return IncludeLine::No; // `#includes`, `#include_foo`: another directive
+    }
+    let at = |s: &str| line.len() - s.len();
+    let args = rest.trim_start();
+    let close = match args.chars().next() {
+        None => return IncludeLine::Bad(start, format!("#include needs a file name, {INCLUDE_EXAMPLE}")),
+        Some('"') => '"',
+        Some('<') => '>',
+        Some(_) => {
+            return IncludeLine::Bad(
+                at(args),
+                format!("#include needs the file name in quotes, {INCLUDE_EXAMPLE}"),
+            )
+        }
+    };
+    let Some(len) = args[1..].find(close) else {
+        return IncludeLine::Bad(
+            at(args),
+            format!("the file name of #include lacks its closing `{close}`, {INCLUDE_EXAMPLE}"),
+        );
+    };
+    let name = &args[1..1 + len];
+    if name.trim().is_empty() {
+        return IncludeLine::Bad(at(args), format!("#include needs a file name, {INCLUDE_EXAMPLE}"));
+    }
+    // After the name: nothing, a `//` comment, or `/* ... */` comments.
+    let mut tail = args[2 + len..].trim_start();
+    loop {
+        if tail.is_empty() || tail.starts_with("//") {
+            return IncludeLine::Name(name);
+        }
+        if let Some(comment) = tail.strip_prefix("/*") {
+            match comment.find("*/") {
+                Some(end) => tail = comment[end + 2..].trim_start(),
+                None => {
+                    return IncludeLine::Bad(at(tail), "a /* comment after #include must end on the same line".into())
+                }
             }
-            if !seen.insert(name.to_owned()) {
+            continue;
+        }
+        return IncludeLine::Bad(
+            at(tail),
+            format!("unexpected `{}` after #include {:?}", tail.trim_end(), name),
+        );
+    }
+}
+
+struct Splicer<'r, 'a> {
+    out: Spliced,
+    resolve: &'r IncludeResolver<'a>,
+    /// Include names spliced so far (each once).
+    seen: HashSet<String>,
+    /// The files being spliced, outermost first: (name, display path).
+    stack: Vec<(String, String)>,
+}
+
+impl Splicer<'_, '_> {
+    fn chain(&self, last: &str) -> String {
+        let mut names: Vec<&str> = self
+            .stack
+            .iter()
+            .map(|(n, p)| if n.is_empty() { p.as_str() } else { n.as_str() })
+            .collect();
+        names.push(last);
+        names.join(" -> ")
+    }
+
+    fn splice_into(&mut self, name: &str, path: &str, text: &str) -> Result<()> {
+        self.stack.push((name.to_owned(), path.to_owned()));
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        for (i, line) in text.lines().enumerate() {
+            let line_no = i as u32 + 1;
+            let fail = |column: usize, msg: String| {
+                let column = line[..column.min(line.len())].chars().count() as u32 + 1;
+                Error::Shader {
+                    file: path.to_owned(),
+                    line: line_no,
+                    column,
+                    message: format_diagnostic(path, line_no, column, &msg, line, 8),
+                }
+            };
+            let hash = line.len() - line.trim_start().len();
+            let include = match parse_include(line) {
+                IncludeLine::No => {
+                    self.out.text.push_str(line);
+                    self.out.text.push('\n');
+                    self.out.line_map.push((path.to_owned(), line_no));
+                    continue;
+                }
+                IncludeLine::Bad(column, msg) => return Err(fail(column, msg)),
+                IncludeLine::Name(include) => include,
+            };
+            if self.stack.iter().any(|(n, _)| n == include) {
+                let itself = self.stack.last().is_some_and(|(n, _)| n == include);
+                return Err(fail(hash, self.cycle_message(include, itself)));
+            }
+            if !self.seen.insert(include.to_owned()) {
                 continue; // each snippet once, like an include guard
             }
-            let (inc_path, inc_text) = resolve(name).map_err(|e| fail(format!("cannot include {name:?}: {e}")))?;
-            splice_into(out, &inc_path, &inc_text, resolve, seen, depth + 1)?;
+            let (inc_path, inc_text) =
+                (self.resolve)(include).map_err(|e| fail(hash, format!("cannot include {include:?}: {e}")))?;
+            if self.stack.iter().any(|(_, p)| *p == inc_path) {
+                let itself = self.stack.last().is_some_and(|(_, p)| *p == inc_path);
+                return Err(fail(hash, self.cycle_message(include, itself)));
+            }
+            if self.stack.len() > MAX_INCLUDE_DEPTH {
+                return Err(fail(
+                    hash,
+                    format!(
+                        "includes nested deeper than {MAX_INCLUDE_DEPTH}: {}",
+                        self.chain(include)
+                    ),
+                ));
+            }
+            self.splice_into(include, &inc_path, &inc_text)?;
+        }
+        self.stack.pop();
+        Ok(())
+    }
+
+    /// The message for an `#include` of a file that is being spliced already; `itself` when it
+    /// is the file that has the `#include` line.
+    fn cycle_message(&self, include: &str, itself: bool) -> String {
+        if itself {
+            format!("{include} includes itself; remove this #include")
         } else {
-            out.text.push_str(line);
-            out.text.push('\n');
-            out.line_map.push((path.to_owned(), line_no));
+            format!("#include cycle: {}; remove one of these #includes", self.chain(include))
         }
     }
-    Ok(())
 }
 
 /// Formats `path:line:column: message`, the source line and a caret under the column.
@@ -209,6 +486,17 @@ pub struct CompiledShader {
 
 /// Splices, parses and validates GLSL text.
 pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &IncludeResolver) -> Result<CompiledShader> {
+    if text.trim_start_matches('\u{feff}').trim().is_empty() {
+        return Err(Error::Shader {
+            file: path.to_owned(),
+            line: 1,
+            column: 1,
+            message: format!(
+                "{path}: the file is empty; a {} shader needs `#version 450` and a `void main()`",
+                stage_name(stage)
+            ),
+        });
+    }
     let source = splice(path, text, resolve)?;
     let mut frontend = naga::front::glsl::Frontend::default();
     let module = frontend
@@ -219,7 +507,7 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
                 .iter()
                 .map(|e| parse_error_span(&source.text, e))
                 .collect();
-            shader_error(&source, &spans)
+            shader_error(path, stage, &source, &spans)
         })?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
         .validate(&module)
@@ -234,7 +522,7 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
             // naga lists the outermost span first (the whole function) and the offending
             // expression last: point at the innermost one.
             let span = err.spans().last().map(|(s, _)| *s).unwrap_or_default();
-            shader_error(&source, &[(span, message)])
+            shader_error(path, stage, &source, &[(span, message)])
         })?;
     Ok(CompiledShader {
         path: path.to_owned(),
@@ -275,27 +563,51 @@ fn parse_error_span(text: &str, error: &naga::front::glsl::Error) -> (naga::Span
     (error.meta, message)
 }
 
-fn shader_error(source: &Spliced, spans: &[(naga::Span, String)]) -> Error {
+fn stage_name(stage: ShaderStage) -> &'static str {
+    match stage {
+        ShaderStage::Vertex => "vertex",
+        ShaderStage::Fragment => "fragment",
+        ShaderStage::Compute => "compute",
+        _ => "shader",
+    }
+}
+
+/// One [`Error::Shader`] for naga's errors; `path` is the main file, named by errors that
+/// have no position (naga's "Missing entry point").
+fn shader_error(path: &str, stage: ShaderStage, source: &Spliced, spans: &[(naga::Span, String)]) -> Error {
     let mut messages = Vec::new();
     let mut first = None;
     for (span, msg) in spans {
-        let (file, line, column, src_line, len) =
-            if span.is_defined() && span.to_range().is_some_and(|r| r.start <= source.text.len()) {
-                let loc = span.location(&source.text);
-                let (file, line) = source.origin(loc.line_number);
-                let src_line = source
-                    .text
-                    .lines()
-                    .nth(loc.line_number as usize - 1)
-                    .unwrap_or("")
-                    .to_owned();
-                (file, line, loc.line_position, src_line, loc.length as usize)
+        if span.is_defined() && span.to_range().is_some_and(|r| r.start <= source.text.len()) {
+            let loc = span.location(&source.text);
+            let (file, line) = source.origin(loc.line_number);
+            let src_line = source
+                .text
+                .lines()
+                .nth(loc.line_number as usize - 1)
+                .unwrap_or("")
+                .to_owned();
+            first.get_or_insert((file.clone(), line, loc.line_position));
+            messages.push(format_diagnostic(
+                &file,
+                line,
+                loc.line_position,
+                msg,
+                &src_line,
+                loc.length as usize,
+            ));
+        } else {
+            first.get_or_insert((path.to_owned(), 1, 1));
+            let msg = if msg == "Missing entry point" {
+                format!(
+                    "no `void main()` found; a {} shader needs one (naga: {msg})",
+                    stage_name(stage)
+                )
             } else {
-                let (file, _) = source.origin(1);
-                (file, 1, 1, String::new(), 1)
+                msg.clone()
             };
-        first.get_or_insert((file.clone(), line, column));
-        messages.push(format_diagnostic(&file, line, column, msg, &src_line, len));
+            messages.push(format!("{path}: {msg}"));
+        }
     }
     let (file, line, column) = first.unwrap_or_default();
     Error::Shader {
@@ -481,4 +793,250 @@ pub fn get_member<T: UniformBlock>(value: &T, block: &BlockLayout, name: &str) -
             .map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]))
             .collect(),
     )
+}
+
+#[cfg(test)]
+mod loader_tests {
+    use super::*;
+    use std::fs;
+
+    /// A copy of the built-in shaders in a fresh directory.
+    fn shader_dir(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("shaderlab-loader-{}-{name}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        for name in embedded_names() {
+            fs::write(dir.join(name), embedded_source(name).unwrap()).unwrap();
+        }
+        dir
+    }
+
+    /// `phong.frag` with `line` inserted after `#version`.
+    fn phong_with(dir: &Path, line: &str) {
+        let text =
+            embedded_source("phong.frag")
+                .unwrap()
+                .replacen("#version 450\n", &format!("#version 450\n{line}\n"), 1);
+        fs::write(dir.join("phong.frag"), text).unwrap();
+    }
+
+    fn compile_err(dir: &Path, name: &str) -> String {
+        let source = ShaderSource::dir(dir).unwrap();
+        match source.compile(name) {
+            Ok(_) => panic!("{name} compiled"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    fn compiles(dir: &Path, name: &str) {
+        let source = ShaderSource::dir(dir).unwrap();
+        if let Err(e) = source.compile(name) {
+            panic!("{name}: {e}");
+        }
+    }
+
+    #[test]
+    fn includes_stay_inside_the_shader_directory() {
+        let dir = shader_dir("confined");
+        for (include, phrase) in [
+            ("/dev/zero", "is an absolute path"),
+            ("/etc/passwd", "is an absolute path"),
+            ("../outside.glsl", "outside the shader directory"),
+            ("sub/../../outside.glsl", "outside the shader directory"),
+        ] {
+            fs::write(dir.parent().unwrap().join("outside.glsl"), "float leaked_secret;\n").unwrap();
+            phong_with(&dir, &format!("#include \"{include}\""));
+            let err = compile_err(&dir, "phong.frag");
+            assert!(err.contains(phrase), "{include}: {err}");
+            assert!(err.contains("phong.frag:2:1:"), "{include}: {err}");
+            assert!(
+                !err.contains("root:") && !err.contains("leaked_secret"),
+                "{include}: {err}"
+            );
+        }
+        // A link inside the directory that points outside is outside too.
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink("/dev/zero", dir.join("zero.glsl")).unwrap();
+            phong_with(&dir, "#include \"zero.glsl\"");
+            let err = compile_err(&dir, "phong.frag");
+            assert!(err.contains("outside the shader directory"), "{err}");
+        }
+        // A subdirectory is fine, as long as it is inside.
+        fs::create_dir(dir.join("sub")).unwrap();
+        fs::write(dir.join("sub/extra.glsl"), "const float EXTRA = 1.0;\n").unwrap();
+        phong_with(&dir, "#include \"sub/extra.glsl\"");
+        compiles(&dir, "phong.frag");
+        phong_with(&dir, "#include \"sub/../sub/extra.glsl\"");
+        compiles(&dir, "phong.frag");
+        // Not a regular file.
+        fs::create_dir(dir.join("dir.glsl")).unwrap();
+        phong_with(&dir, "#include \"dir.glsl\"");
+        let err = compile_err(&dir, "phong.frag");
+        assert!(err.contains("a directory; a shader must be a text file"), "{err}");
+    }
+
+    #[test]
+    fn shader_files_have_a_size_limit() {
+        let dir = shader_dir("size");
+        let big = format!("// {}\n", "x".repeat(MAX_SHADER_BYTES as usize));
+        fs::write(dir.join("big.glsl"), &big).unwrap();
+        phong_with(&dir, "#include \"big.glsl\"");
+        let err = compile_err(&dir, "phong.frag");
+        assert!(
+            err.contains("shader files are limited to 1048576 bytes (1 MiB)"),
+            "{err}"
+        );
+        let text = embedded_source("phong.frag").unwrap().to_owned() + &big;
+        fs::write(dir.join("phong.frag"), text).unwrap();
+        let err = compile_err(&dir, "phong.frag");
+        assert!(err.contains("phong.frag") && err.contains("limited to"), "{err}");
+    }
+
+    #[test]
+    fn an_empty_file_is_named_and_called_empty() {
+        let dir = shader_dir("empty");
+        for text in ["", "\n\n  \n", "\u{feff}"] {
+            fs::write(dir.join("phong.frag"), text).unwrap();
+            let err = compile_err(&dir, "phong.frag");
+            let path = dir.join("phong.frag").display().to_string();
+            assert!(
+                err.starts_with(&format!("{path}: the file is empty")),
+                "{text:?}: {err}"
+            );
+            assert!(err.contains("void main()"), "{err}");
+        }
+        fs::write(dir.join("phong.frag"), "#version 450\n// nothing yet\n").unwrap();
+        let err = compile_err(&dir, "phong.frag");
+        assert!(
+            err.contains("phong.frag: no `void main()` found; a fragment shader needs one"),
+            "{err}"
+        );
+        // The main file is named even when its first line is an #include.
+        fs::write(dir.join("phong.frag"), "#include \"safe_math.glsl\"\n").unwrap();
+        let err = compile_err(&dir, "phong.frag");
+        assert!(err.contains("phong.frag: no `void main()`"), "{err}");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let dir = shader_dir("bom");
+        for name in ["phong.frag", "phong_params.glsl"] {
+            let text = format!("\u{feff}{}", embedded_source(name).unwrap());
+            fs::write(dir.join(name), text).unwrap();
+        }
+        compiles(&dir, "phong.frag");
+    }
+
+    #[test]
+    fn include_lines_are_parsed_properly() {
+        let dir = shader_dir("parse");
+        fs::write(dir.join("extra.glsl"), "const float EXTRA = 1.0;\n").unwrap();
+        for ok in [
+            "#include \"extra.glsl\" // the extra constant",
+            "#include \"extra.glsl\"// no space",
+            "  #  include \"extra.glsl\" /* a */ /* b */ // c",
+            "#include <extra.glsl>",
+        ] {
+            phong_with(&dir, ok);
+            compiles(&dir, "phong.frag");
+        }
+        for (bad, phrase, column) in [
+            (
+                "#include \"extra.glsl\" junk",
+                "unexpected `junk` after #include \"extra.glsl\"",
+                23,
+            ),
+            ("#include extra.glsl", "#include needs the file name in quotes", 10),
+            ("#include \"extra.glsl", "lacks its closing `\"`", 10),
+            ("#include", "#include needs a file name", 1),
+            ("#include \"\"", "#include needs a file name", 10),
+            ("#include \"extra.glsl\" /* open", "must end on the same line", 23),
+        ] {
+            phong_with(&dir, bad);
+            let err = compile_err(&dir, "phong.frag");
+            assert!(err.contains(phrase), "{bad}: {err}");
+            assert!(err.contains(&format!("phong.frag:2:{column}:")), "{bad}: {err}");
+        }
+    }
+
+    #[test]
+    fn deep_includes_say_so() {
+        let dir = shader_dir("deep");
+        // phong.frag -> i1 -> ... -> i8: eight levels are fine.
+        for i in 1..=9 {
+            fs::write(
+                dir.join(format!("i{i}.glsl")),
+                format!("#include \"i{}.glsl\"\n", i + 1),
+            )
+            .unwrap();
+        }
+        fs::write(dir.join("i8.glsl"), "const float DEEP = 1.0;\n").unwrap();
+        phong_with(&dir, "#include \"i1.glsl\"");
+        compiles(&dir, "phong.frag");
+        // Nine are too many.
+        fs::write(dir.join("i8.glsl"), "#include \"i9.glsl\"\n").unwrap();
+        fs::write(dir.join("i9.glsl"), "const float DEEP = 1.0;\n").unwrap();
+        let err = compile_err(&dir, "phong.frag");
+        assert!(err.contains("includes nested deeper than 8"), "{err}");
+        assert!(
+            err.contains("i8.glsl:1:1:") && err.contains("i7.glsl -> i8.glsl -> i9.glsl"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_file_that_includes_itself_is_named() {
+        let dir = shader_dir("self");
+        phong_with(&dir, "#include \"phong.frag\"");
+        let err = compile_err(&dir, "phong.frag");
+        assert!(err.contains("phong.frag:2:1: phong.frag includes itself"), "{err}");
+        let dir = shader_dir("self_snippet");
+        fs::write(dir.join("loop.glsl"), "// a snippet\n#include \"loop.glsl\"\n").unwrap();
+        phong_with(&dir, "#include \"loop.glsl\"");
+        let err = compile_err(&dir, "phong.frag");
+        assert!(err.contains("loop.glsl:2:1: loop.glsl includes itself"), "{err}");
+        let dir = shader_dir("cycle");
+        fs::write(dir.join("a.glsl"), "#include \"b.glsl\"\n").unwrap();
+        fs::write(dir.join("b.glsl"), "#include \"phong.frag\"\n").unwrap();
+        phong_with(&dir, "#include \"a.glsl\"");
+        let err = compile_err(&dir, "phong.frag");
+        assert!(
+            err.contains("#include cycle: phong.frag -> a.glsl -> b.glsl -> phong.frag"),
+            "{err}"
+        );
+        // A snippet included twice (not a cycle) is still spliced once.
+        let dir = shader_dir("twice");
+        fs::write(
+            dir.join("extra.glsl"),
+            "#include \"safe_math.glsl\"\nconst float EXTRA = 1.0;\n",
+        )
+        .unwrap();
+        phong_with(&dir, "#include \"extra.glsl\"");
+        compiles(&dir, "phong.frag");
+    }
+
+    #[test]
+    fn compile_file_confines_includes_and_falls_back_to_built_in_snippets() {
+        let dir = shader_dir("file");
+        let lone = dir.join("lone");
+        fs::create_dir(&lone).unwrap();
+        fs::write(lone.join("phong.frag"), embedded_source("phong.frag").unwrap()).unwrap();
+        let compiled = compile_file(&lone.join("phong.frag")).unwrap();
+        assert!(compiled
+            .source
+            .line_map
+            .iter()
+            .any(|(f, _)| f == "shaders_glsl/phong_params.glsl"));
+        let text = embedded_source("phong.frag").unwrap().replacen(
+            "#version 450\n",
+            "#version 450\n#include \"/etc/passwd\"\n",
+            1,
+        );
+        fs::write(lone.join("phong.frag"), text).unwrap();
+        let err = compile_file(&lone.join("phong.frag")).unwrap_err().to_string();
+        assert!(err.contains("is an absolute path"), "{err}");
+        let err = compile_file(Path::new("/dev/zero.frag")).unwrap_err().to_string();
+        assert!(err.contains("not found"), "{err}");
+    }
 }
