@@ -112,16 +112,16 @@ pub fn resolve_in_dir(dir: &Path, name: &str) -> Result<PathBuf> {
         .any(|c| matches!(c, Component::RootDir | Component::Prefix(_)))
     {
         return Err(Error::Param(format!(
-            "{name} is an absolute path; shader files and #include name files inside the shader \
-             directory {}",
+            "{name} is an absolute path; shader files and #include must name files inside the \
+             shader directory ({})",
             dir.display()
         )));
     }
     let path = dir.join(relative);
     let outside = || {
         Error::Param(format!(
-            "{name} lies outside the shader directory {}; shader files and #include name files \
-             inside it",
+            "{name} lies outside the shader directory ({}); shader files and #include must name \
+             files inside it",
             dir.display()
         ))
     };
