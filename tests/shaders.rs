@@ -527,6 +527,17 @@ fn mismatched_uniform_struct_is_rejected() {
         .err()
         .expect("compile_effect must reject the struct");
     assert_layout_message(err);
+    // A member's type counts, not only its offset: `int Ka` in an edited copy is refused.
+    let copy = ShaderCopy::new("int_ka");
+    let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
+    std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
+    let err = compile_effect::<PhongUniforms>(&copy.source(), "phong", "PhongUniforms")
+        .err()
+        .expect("int Ka must be rejected");
+    assert!(
+        matches!(&err, Error::Layout(m) if m.contains("field `ka: f32` does not fit GLSL block PhongParams member `int Ka` (use i32)")),
+        "{err}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
