@@ -165,16 +165,55 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
     false
 }
 
+/// A fresh directory under the system's temp directory for one unit test, removed when the
+/// test passes (kept for a look when it fails).
+#[cfg(test)]
+pub(crate) struct ScratchDir {
+    root: PathBuf,
+    dir: PathBuf,
+}
+
+#[cfg(test)]
+impl ScratchDir {
+    /// `TMP/shaderlab-TAG-PID`, empty.
+    pub(crate) fn new(tag: &str) -> Self {
+        Self::nested(tag, "")
+    }
+
+    /// `TMP/shaderlab-TAG-PID/SUB`, empty, inside a directory of its own (so a test can put
+    /// files next to it).
+    pub(crate) fn nested(tag: &str, sub: &str) -> Self {
+        let root = std::env::temp_dir().join(format!("shaderlab-{tag}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&root);
+        let dir = root.join(sub);
+        fs::create_dir_all(&dir).unwrap();
+        ScratchDir { root, dir }
+    }
+}
+
+#[cfg(test)]
+impl std::ops::Deref for ScratchDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.dir
+    }
+}
+
+#[cfg(test)]
+impl Drop for ScratchDir {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = fs::remove_dir_all(&self.root);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A fresh directory under the system's temp directory.
-    fn test_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("shaderlab-fsutil-{}-{name}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        dir
+    fn test_dir(name: &str) -> ScratchDir {
+        ScratchDir::new(&format!("fsutil-{name}"))
     }
 
     fn entries(dir: &Path) -> Vec<String> {

@@ -1266,10 +1266,8 @@ mod loader_tests {
     use std::fs;
 
     /// A copy of the built-in shaders in a fresh directory.
-    fn shader_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("shaderlab-loader-{}-{name}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
+    fn shader_dir(name: &str) -> crate::fsutil::ScratchDir {
+        let dir = crate::fsutil::ScratchDir::nested(&format!("loader-{name}"), "shaders");
         for name in embedded_names() {
             fs::write(dir.join(name), embedded_source(name).unwrap()).unwrap();
         }
