@@ -35,6 +35,7 @@
 pub mod camera;
 pub mod error;
 pub mod exact;
+pub mod fsutil;
 pub mod geometry;
 pub mod gpu;
 pub mod lab;

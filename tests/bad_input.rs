@@ -201,7 +201,7 @@ fn unwritable_screenshot_path() {
         &["--screenshot", "/nonexistent/x.png"],
         &[],
         1,
-        &["phong: error: /nonexistent/x.png: No such file or directory"],
+        &["phong: error: /nonexistent/x.png: the directory /nonexistent does not exist"],
     );
 }
 
@@ -303,4 +303,179 @@ fn port_options_work_from_the_command_line() {
     );
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     assert!(dir.join("g.png").is_file() && dir.join("s.png").is_file());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Nothing a user types loses a file (issue 9)
+
+/// The names in `dir`, sorted (to see that no temporary file was left behind).
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn screenshot_refuses_other_formats_and_keeps_the_file() {
+    let dir = test_dir("screenshot_jpg");
+    std::fs::write(dir.join("x.jpg"), b"a holiday photo").unwrap();
+    for name in ["x.jpg", "x.bmp", "x"] {
+        let run = run_in(&dir, "phong", &["--screenshot", name], &[]);
+        assert_eq!(run.code, Some(2), "{name}: {}", run.stderr);
+        assert!(
+            run.stderr
+                .contains(&format!("phong: error: {name}: only PNG is written; use a .png name")),
+            "{name}: {}",
+            run.stderr
+        );
+    }
+    assert_eq!(std::fs::read(dir.join("x.jpg")).unwrap(), b"a holiday photo");
+    assert_eq!(names_in(&dir), ["x.jpg", "xdg"]);
+}
+
+#[test]
+fn screenshot_into_a_directory_says_so() {
+    let dir = test_dir("screenshot_dir");
+    std::fs::create_dir(dir.join("shots.png")).unwrap();
+    let run = run_in(&dir, "phong", &["--screenshot", "shots.png"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stderr.contains("shots.png: is a directory"), "{}", run.stderr);
+    assert_eq!(names_in(&dir), ["shots.png", "xdg"]);
+    assert!(names_in(&dir.join("shots.png")).is_empty());
+}
+
+/// A copy of the shaders in `dir/shaders` with `line` inserted after `#version` in phong.frag.
+fn shaders_with(dir: &Path, line: &str) -> String {
+    let shaders = dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let text = std::fs::read_to_string(&frag).unwrap();
+    std::fs::write(
+        &frag,
+        text.replacen("#version 450\n", &format!("#version 450\n{line}\n"), 1),
+    )
+    .unwrap();
+    shaders.to_str().unwrap().to_owned()
+}
+
+#[test]
+fn includes_cannot_reach_outside_the_shader_directory() {
+    for (include, phrase) in [
+        ("/etc/passwd", "/etc/passwd is an absolute path"),
+        ("/dev/zero", "/dev/zero is an absolute path"),
+        (
+            "../../../../../../../../etc/passwd",
+            "lies outside the shader directory",
+        ),
+    ] {
+        let dir = test_dir("include_outside");
+        let shaders = shaders_with(&dir, &format!("#include \"{include}\""));
+        let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+        assert_eq!(run.code, Some(1), "{include}: {}", run.stderr);
+        assert!(run.stderr.contains("phong.frag:2:1: cannot include"), "{}", run.stderr);
+        assert!(run.stderr.contains(phrase), "{include}: {}", run.stderr);
+        assert!(
+            !run.stderr.contains("root:"),
+            "{include}: leaked a file:\n{}",
+            run.stderr
+        );
+        assert!(!dir.join("out.png").exists());
+    }
+}
+
+#[test]
+fn unclear_loader_cases_get_clear_messages() {
+    for (what, line, phrase) in [
+        (
+            "self",
+            "#include \"phong.frag\"",
+            "phong.frag:2:1: phong.frag includes itself",
+        ),
+        ("comment", "#include \"safe_math.glsl\" // helpers", ""),
+        (
+            "junk",
+            "#include \"safe_math.glsl\" junk",
+            "unexpected `junk` after #include",
+        ),
+    ] {
+        let dir = test_dir("loader_messages");
+        let shaders = shaders_with(&dir, line);
+        let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+        if phrase.is_empty() {
+            assert_eq!(run.code, Some(0), "{what}: {}", run.stderr);
+        } else {
+            assert_eq!(run.code, Some(1), "{what}: {}", run.stderr);
+            assert!(run.stderr.contains(phrase), "{what}: {}", run.stderr);
+        }
+    }
+    // An empty file: named, and called empty.
+    let dir = test_dir("loader_empty");
+    let shaders = shaders_with(&dir, "");
+    std::fs::write(Path::new(&shaders).join("phong.frag"), "").unwrap();
+    let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("shaders/phong.frag: the file is empty; a fragment shader needs"),
+        "{}",
+        run.stderr
+    );
+    // A member of another type than the Rust struct's.
+    let dir = test_dir("loader_int_ka");
+    let shaders = shaders_with(&dir, "");
+    let params = Path::new(&shaders).join("phong_params.glsl");
+    let text = std::fs::read_to_string(&params).unwrap();
+    std::fs::write(&params, text.replace("float Ka;", "int Ka;")).unwrap();
+    let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("`ka: f32` does not fit GLSL block PhongParams member `int Ka`"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.join("out.png").exists());
+}
+
+#[test]
+fn glsl2wgsl_refuses_to_overwrite_its_input() {
+    let dir = test_dir("glsl2wgsl_same_file");
+    common::copy_shaders(&dir.join("shaders"));
+    std::fs::create_dir(dir.join("shaders/sub")).unwrap();
+    let frag = dir.join("shaders/phong.frag");
+    let original = std::fs::read(&frag).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&frag, dir.join("link.wgsl")).unwrap();
+    for out in [
+        "shaders/phong.frag",
+        "shaders/sub/../phong.frag",
+        "./shaders/phong.frag",
+        "link.wgsl",
+    ] {
+        if !dir.join(out).exists() {
+            continue;
+        }
+        let run = run_in(&dir, "glsl2wgsl", &["shaders/phong.frag", "-o", out], &[]);
+        assert_eq!(run.code, Some(2), "-o {out}: {}", run.stderr);
+        assert!(
+            run.stderr.contains("refusing to overwrite the GLSL source with WGSL"),
+            "-o {out}: {}",
+            run.stderr
+        );
+        assert_eq!(std::fs::read(&frag).unwrap(), original, "-o {out} changed the source");
+    }
+    // A different file is fine, and written whole.
+    let run = run_in(&dir, "glsl2wgsl", &["shaders/phong.frag", "-o", "phong.wgsl"], &[]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(std::fs::read_to_string(dir.join("phong.wgsl"))
+        .unwrap()
+        .contains("fn main"));
+    assert!(
+        !names_in(&dir).iter().any(|n| n.contains(".tmp-")),
+        "{:?}",
+        names_in(&dir)
+    );
 }

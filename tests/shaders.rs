@@ -544,6 +544,21 @@ fn mismatched_uniform_struct_is_rejected() {
         Err(Error::Binding(message)) => assert_layout_message(Error::Layout(message)),
         other => panic!("binding must reject the struct, got {:?}", other.err()),
     }
+    // A member's type counts, not only its offset: `int Ka` in an edited copy is refused.
+    let copy = ShaderCopy::new("int_ka");
+    let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
+    std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
+    let source = copy.source();
+    let cx = LabContext {
+        gpu: gpu(),
+        source: &source,
+        format: COLOR_FORMAT,
+    };
+    let err = (labs::PHONG.new)(&cx).err().expect("int Ka must be rejected");
+    assert!(
+        matches!(&err, Error::Binding(m) if m.contains("field `ka: f32` does not fit GLSL block PhongParams member `int Ka` (use i32)")),
+        "{err}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
