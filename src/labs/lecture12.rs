@@ -23,16 +23,17 @@ pub const PERSPECTIVE: (f64, f64, f64, f64) = (60.0, 1.0, 0.1, 100.0);
 /// The eye of `gluLookAt(0,0,5, 0,0,0, 0,1,0)` (also `phong_dir`'s `eye` uniform).
 pub const EYE: Vec3 = Vec3::new(0.0, 0.0, 5.0);
 
-/// The projection stack, `gluPerspective(60, 1, 0.1, 100) · gluLookAt(0,0,5, 0,0,0, 0,1,0)`,
-/// in GL's depth convention (−w..w): what `ftransform()` multiplies by after the modelview.
-pub fn projection_stack_gl() -> Mat4 {
+/// The projection stack, `gluPerspective(60, 1, 0.1, 100) · gluLookAt(eye, 0,0,0, 0,1,0)`
+/// (the course's eye is [`EYE`]), in GL's depth convention (−w..w): what `ftransform()`
+/// multiplies by after the modelview.
+pub fn projection_stack_gl(eye: Vec3) -> Mat4 {
     let (fovy, aspect, near, far) = PERSPECTIVE;
-    camera::glu_perspective(fovy, aspect, near, far) * camera::glu_look_at(EYE, Vec3::ZERO, Vec3::Y)
+    camera::glu_perspective(fovy, aspect, near, far) * camera::glu_look_at(eye, Vec3::ZERO, Vec3::Y)
 }
 
 /// [`projection_stack_gl`] with wgpu's depth (0..w); x, y and w are unchanged.
-pub fn projection_stack() -> Mat4 {
-    camera::gl_to_wgpu_depth(projection_stack_gl())
+pub fn projection_stack(eye: Vec3) -> Mat4 {
+    camera::gl_to_wgpu_depth(projection_stack_gl(eye))
 }
 
 /// The modelview of `normal_world`: `glRotated(rz, 0,0,1); glRotated(ry, 0,1,0);
@@ -67,13 +68,13 @@ mod tests {
 
     #[test]
     fn projection_stack_sees_the_origin_at_five() {
-        let p = projection_stack_gl() * Vec4::new(0.0, 0.0, 0.0, 1.0);
+        let p = projection_stack_gl(EYE) * Vec4::new(0.0, 0.0, 0.0, 1.0);
         assert!(p.x.abs() < 1e-6 && p.y.abs() < 1e-6 && (p.w - 5.0).abs() < 1e-5, "{p}");
         // A point at height 5·tan(30°) on the plane z = 0 is at the top edge.
-        let top = projection_stack_gl() * Vec4::new(0.0, 5.0 * 30f32.to_radians().tan(), 0.0, 1.0);
+        let top = projection_stack_gl(EYE) * Vec4::new(0.0, 5.0 * 30f32.to_radians().tan(), 0.0, 1.0);
         assert!((top.y / top.w - 1.0).abs() < 1e-5, "{top}");
-        let w = projection_stack() * Vec4::new(0.3, 0.2, 1.0, 1.0);
-        let g = projection_stack_gl() * Vec4::new(0.3, 0.2, 1.0, 1.0);
+        let w = projection_stack(EYE) * Vec4::new(0.3, 0.2, 1.0, 1.0);
+        let g = projection_stack_gl(EYE) * Vec4::new(0.3, 0.2, 1.0, 1.0);
         assert_eq!((w.x, w.y, w.w), (g.x, g.y, g.w));
     }
 }

@@ -5,6 +5,9 @@
 //! never the camera. Model: `glRotated(rz, 0,0,1); glRotated(ry, 0,1,0); glRotated(rx, 1,0,0);
 //! glutSolidTeapot(1.0)`. Depth test on.
 //!
+//! Port addition: the parameter `eye` (default the course's (0, 0, 5)) moves the `gluLookAt`
+//! eye around the origin, to show that the colours belong to the surface, not to the view.
+//!
 //! Keys: `x`/`X`, `y`/`Y`, `z`/`Z`: rx, ry, rz ∓/±5°.
 
 use crate::error::Result;
@@ -42,7 +45,7 @@ const PARAMS: &[ParamSpec] = &[
         &[0.0],
         -TURNS,
         TURNS,
-        "glRotated about x, degrees (x/X), applied first",
+        "glRotated about x, degrees (x/X), turns first",
     ),
     ParamSpec::real("ry", &[0.0], -TURNS, TURNS, "glRotated about y, degrees (y/Y)"),
     ParamSpec::real(
@@ -50,7 +53,14 @@ const PARAMS: &[ParamSpec] = &[
         &[0.0],
         -TURNS,
         TURNS,
-        "glRotated about z, degrees (z/Z), applied last",
+        "glRotated about z, degrees (z/Z), turns last",
+    ),
+    ParamSpec::real(
+        "eye",
+        &[0.0, 0.0, 5.0],
+        -100.0,
+        100.0,
+        "port study: gluLookAt eye, looking at the origin (colours stay world-space)",
     ),
 ];
 
@@ -69,7 +79,7 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
     let transform = Uniforms::new(
         cx.gpu,
         "normal_world.transform",
-        TransformUniforms::new(glam::Mat4::IDENTITY, lecture12::projection_stack()),
+        TransformUniforms::new(glam::Mat4::IDENTITY, lecture12::projection_stack(lecture12::EYE)),
     );
     let mut program = Program::new(
         cx,
@@ -116,7 +126,8 @@ impl Lab for NormalWorld {
     fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
         let p = &self.params;
         let model = lecture12::model_zyx(p.f("rx"), p.f("ry"), p.f("rz"));
-        self.transform.value = TransformUniforms::new(model, lecture12::projection_stack());
+        let eye = glam::Vec3::from_array(p.v3("eye"));
+        self.transform.value = TransformUniforms::new(model, lecture12::projection_stack(eye));
         self.transform.upload(frame.gpu);
         let mut pass = frame.pass("normal_world", Load::Clear([0.0; 3]));
         self.program.draw(&mut pass, &self.teapot);

@@ -114,7 +114,7 @@ impl PhongDirUniforms {
             _pad4: 0.0,
             eye: lecture12::EYE.to_array(),
             _pad5: 0.0,
-            mvp_gl: (lecture12::projection_stack_gl() * model).to_cols_array_2d(),
+            mvp_gl: (lecture12::projection_stack_gl(lecture12::EYE) * model).to_cols_array_2d(),
         }
     }
 }
@@ -144,7 +144,7 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
     let transform = Uniforms::new(
         cx.gpu,
         "phong_dir.transform",
-        TransformUniforms::new(Mat4::IDENTITY, lecture12::projection_stack()),
+        TransformUniforms::new(Mat4::IDENTITY, lecture12::projection_stack(lecture12::EYE)),
     );
     let uniforms = Uniforms::new(
         cx.gpu,
@@ -192,7 +192,7 @@ impl Lab for PhongDir {
     }
     fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
         let model = model_rx(self.params.f("rx"));
-        self.transform.value = TransformUniforms::new(model, lecture12::projection_stack());
+        self.transform.value = TransformUniforms::new(model, lecture12::projection_stack(lecture12::EYE));
         self.transform.upload(frame.gpu);
         self.uniforms.value = PhongDirUniforms::course(model, self.params.on("fixpos"));
         self.uniforms.upload(frame.gpu);
