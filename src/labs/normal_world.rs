@@ -1,6 +1,6 @@
 //! Seed 002 (Lecture 12) `normal_world`, SPEC §2.3: the normal as colour, `(n + 1) / 2`, in
 //! world space. The view is folded into the projection (`gluPerspective(60, 1, 0.1, 100)` then
-//! `gluLookAt(0,0,5, …)` on the projection stack, [`lecture12`](super::lecture12)), so
+//! `gluLookAt(0,0,5, …)` on the projection stack, [`super::lecture12`]), so
 //! `gl_NormalMatrix` is the model's alone and the colours follow the teapot's own rotation,
 //! never the camera. Model: `glRotated(rz, 0,0,1); glRotated(ry, 0,1,0); glRotated(rx, 1,0,0);
 //! glutSolidTeapot(1.0)`. Depth test on.

@@ -1,7 +1,7 @@
 //! Seed 002 (Lecture 12) `phong_dir`, SPEC §2.4: Phong shading with a directional light
 //! (direction (1,1,1) toward the light, world space), an emission term and the eye at (0,0,5),
 //! on `glutSolidTeapot(1.0)` turned by `glRotated(rx, 1,0,0)`; the view is folded into the
-//! projection as in `normal_world` ([`lecture12`](super::lecture12)), so normals and positions
+//! projection as in `normal_world` ([`super::lecture12`]), so normals and positions
 //! are in world space. Depth test on.
 //!
 //! Course bug kept (SPEC §6.2 #1): the vertex shader computes `position =
