@@ -5,11 +5,17 @@
 pub mod glut_stage;
 
 pub mod displacement;
+pub mod double_vision;
+pub mod lecture12;
 pub mod noise;
 pub mod normal_rgb;
+pub mod normal_world;
 pub mod phong;
+pub mod phong_dir;
 mod plain;
 pub mod position_rgb;
+pub mod specular_strip;
+pub mod twist;
 
 use crate::lab::LabEntry;
 use crate::params::{ParamSpec, Params};
@@ -24,6 +30,16 @@ pub static PHONG: &LabEntry = &phong::ENTRY;
 pub static NOISE: &LabEntry = &noise::ENTRY;
 /// Seed 000, exercise 5.
 pub static DISPLACEMENT: &LabEntry = &displacement::ENTRY;
+/// Seed 002, Lecture 12: 2D twisting.
+pub static TWIST: &LabEntry = &twist::ENTRY;
+/// Seed 002, Lecture 12: double vision.
+pub static DOUBLE_VISION: &LabEntry = &double_vision::ENTRY;
+/// Seed 002, Lecture 12: normal as colour in world space.
+pub static NORMAL_WORLD: &LabEntry = &normal_world::ENTRY;
+/// Seed 002, Lecture 12: Phong with a directional light.
+pub static PHONG_DIR: &LabEntry = &phong_dir::ENTRY;
+/// Seed 003, LETI lab 5: Bézier strip with specular light.
+pub static SPECULAR_STRIP: &LabEntry = &specular_strip::ENTRY;
 
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
@@ -32,6 +48,11 @@ pub static ALL: &[&LabEntry] = &[
     &phong::ENTRY,
     &noise::ENTRY,
     &displacement::ENTRY,
+    &twist::ENTRY,
+    &double_vision::ENTRY,
+    &normal_world::ENTRY,
+    &phong_dir::ENTRY,
+    &specular_strip::ENTRY,
 ];
 
 /// The lab called `name`.
