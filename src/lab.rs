@@ -6,10 +6,8 @@
 //! sees winit, and no lab knows another.
 
 use crate::error::Result;
-use crate::gpu::Gpu;
 use crate::params::Params;
 use crate::render::Frame;
-use crate::shader::ShaderSource;
 
 /// What identifies an exercise.
 #[derive(Debug)]
@@ -60,15 +58,9 @@ pub enum Input {
     Drag(i32, i32),
 }
 
-/// What a lab is built with.
-pub struct LabContext<'a> {
-    /// The device.
-    pub gpu: &'a Gpu,
-    /// Where shader files come from.
-    pub source: &'a ShaderSource,
-    /// The colour format of the targets it will draw into.
-    pub format: wgpu::TextureFormat,
-}
+/// What a lab is built with: the device, where shaders come from, the target format
+/// (defined by the render layer, which builds programs from it).
+pub use crate::render::Context as LabContext;
 
 /// One exercise, ready to draw.
 pub trait Lab {

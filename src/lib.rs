@@ -50,7 +50,7 @@ pub mod shader;
 pub mod shell;
 pub mod tess;
 
-pub use lab::{Lab, LabEntry};
-pub use tess::Object;
 pub use error::{Error, Result};
 pub use gpu::Gpu;
+pub use lab::{Lab, LabEntry};
+pub use tess::Object;

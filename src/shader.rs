@@ -1549,15 +1549,20 @@ mod layout_tests {
         use crate::labs::{displacement::DisplacementUniforms, noise::NoiseUniforms};
         let block = |file: &str, name: &str| {
             let shader = ShaderSource::Embedded.compile(file).unwrap();
-            shader.uniform_block(name).unwrap_or_else(|| panic!("{file} declares {name}"))
+            shader
+                .uniform_block(name)
+                .unwrap_or_else(|| panic!("{file} declares {name}"))
         };
         for frag in ["phong.frag", "phong_flat.frag", "phong_blinn.frag"] {
             check_layout::<PhongUniforms>("PhongUniforms", &block(frag, "PhongParams")).unwrap();
         }
         check_layout::<PhongUniforms>("PhongUniforms", &block("phong_gouraud.vert", "PhongParams")).unwrap();
         check_layout::<NoiseUniforms>("NoiseUniforms", &block("noise.frag", "NoiseParams")).unwrap();
-        check_layout::<DisplacementUniforms>("DisplacementUniforms", &block("displacement.vert", "DisplacementParams"))
-            .unwrap();
+        check_layout::<DisplacementUniforms>(
+            "DisplacementUniforms",
+            &block("displacement.vert", "DisplacementParams"),
+        )
+        .unwrap();
         for vert in ["position_rgb.vert", "normal_rgb.vert"] {
             check_layout::<TransformUniforms>("TransformUniforms", &block(vert, "Transform")).unwrap();
         }

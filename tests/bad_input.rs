@@ -264,7 +264,11 @@ fn port_options_reject_bad_values() {
         &[],
     );
     assert_eq!(run.code, Some(2), "{}", run.stderr);
-    assert!(run.stderr.contains("position_rgb has no shading models"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("position_rgb has no shading models"),
+        "{}",
+        run.stderr
+    );
     let run = run_in(
         &dir,
         "displacement",

@@ -23,7 +23,6 @@ use image::RgbImage;
 use shaderlab::labs;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
 
-
 mod common;
 
 use common::example;
@@ -1183,7 +1182,11 @@ fn input_storm_keeps_values_in_range_and_the_window_responsive() {
         model.key(c);
     }
     let expected_title = model.lab.title();
-    let expected_summary = expected_title.split(" | ").nth(2).expect("a summary in the title").to_owned();
+    let expected_summary = expected_title
+        .split(" | ")
+        .nth(2)
+        .expect("a summary in the title")
+        .to_owned();
 
     let names: Vec<String> = storm.iter().map(|&c| keysym(c)).collect();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();

@@ -17,12 +17,12 @@ use std::process::{Command, Output};
 use common::{gpu, output_dir};
 
 use shaderlab::lab::{LabContext, LabEntry};
+use shaderlab::labs;
 use shaderlab::labs::glut_stage::TransformUniforms;
 use shaderlab::labs::phong::PhongUniforms;
-use shaderlab::render::{Program, RenderState, Uniforms};
-use shaderlab::labs;
 use shaderlab::metrics::{coverage, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
+use shaderlab::render::{Program, RenderState, Uniforms};
 use shaderlab::shader::{check_layout, embedded_names, embedded_source, ShaderSource};
 use shaderlab::{Error, Object};
 
@@ -537,8 +537,13 @@ fn mismatched_uniform_struct_is_rejected() {
         format: COLOR_FORMAT,
     };
     let mut program =
-        Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default()).unwrap();
-    let transform = Uniforms::new(gpu(), "t", TransformUniforms::new(glam::Mat4::IDENTITY, glam::Mat4::IDENTITY));
+        Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default())
+            .unwrap();
+    let transform = Uniforms::new(
+        gpu(),
+        "t",
+        TransformUniforms::new(glam::Mat4::IDENTITY, glam::Mat4::IDENTITY),
+    );
     let bad = Uniforms::new(gpu(), "bad", <BadPhongUniforms as bytemuck::Zeroable>::zeroed());
     match program.bind(gpu(), vec![transform.bind(), bad.bind()]) {
         Err(Error::Binding(message)) => assert_layout_message(Error::Layout(message)),

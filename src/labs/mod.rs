@@ -78,7 +78,11 @@ const NOISE_PARAMS: &[ParamSpec] = &[
 /// period before it is narrowed, so a long-running window keeps full precision.
 fn noise_time(p: &Params) -> f32 {
     let t = p.f64("time");
-    (if p.on("wrap_time") { t.rem_euclid(NOISE_PERIOD) } else { t }) as f32
+    (if p.on("wrap_time") {
+        t.rem_euclid(NOISE_PERIOD)
+    } else {
+        t
+    }) as f32
 }
 
 /// The shade keys of exercises 4 and 5: `R/G/B` +0.05, `r/g/b` -0.05 on the noise colour.

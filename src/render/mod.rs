@@ -4,6 +4,19 @@
 //! shader's inputs), [`Texture`] and samplers, and [`Frame`] (where one frame is recorded).
 //! Nothing here knows a lab or winit.
 
+use crate::gpu::Gpu;
+use crate::shader::ShaderSource;
+
+/// What programs, textures and labs are built with.
+pub struct Context<'a> {
+    /// The device.
+    pub gpu: &'a Gpu,
+    /// Where shader files come from.
+    pub source: &'a ShaderSource,
+    /// The colour format of the targets it will draw into.
+    pub format: wgpu::TextureFormat,
+}
+
 mod frame;
 mod mesh;
 mod program;
@@ -12,6 +25,8 @@ mod uniforms;
 
 pub use frame::{Frame, Load};
 pub use mesh::{GpuMesh, VertexAttr, VertexType};
-pub use program::{reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Program, RenderState, VertexInput};
+pub use program::{
+    reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Program, RenderState, VertexInput,
+};
 pub use texture::{sampler, SamplerDesc, Texture};
 pub use uniforms::Uniforms;

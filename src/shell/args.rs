@@ -132,9 +132,7 @@ impl Args {
     pub fn params(&self, entry: &LabEntry) -> Result<Params, Error> {
         let name = entry.info.name;
         let mut p = (entry.params)();
-        let missing = |flag: &str, what: &str| {
-            Error::Param(format!("`{flag}`: {name} has no {what}"))
-        };
+        let missing = |flag: &str, what: &str| Error::Param(format!("`{flag}`: {name} has no {what}"));
         if let Some(object) = &self.object {
             if !p.has("object") {
                 return Err(missing("--object", "objects to choose from"));

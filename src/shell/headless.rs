@@ -98,7 +98,14 @@ impl BenchResult {
 
 /// Renders `frames` frames offscreen, waiting for each (like the original's swap + glFinish).
 /// An animated lab's time advances 1/60 s per frame, as the originals' benchmarks do.
-pub fn bench(gpu: &Gpu, lab: &mut dyn Lab, frames: u32, width: u32, height: u32, gpu_time: bool) -> Result<BenchResult> {
+pub fn bench(
+    gpu: &Gpu,
+    lab: &mut dyn Lab,
+    frames: u32,
+    width: u32,
+    height: u32,
+    gpu_time: bool,
+) -> Result<BenchResult> {
     let target = Offscreen::new(gpu, width, height);
     // Warm up: the first frames compile shaders in the driver.
     for _ in 0..3 {

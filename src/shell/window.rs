@@ -85,7 +85,13 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params) -> Result<()> 
         Error::Surface(format!(
             "cannot open a window on DISPLAY={}: {}",
             std::env::var("DISPLAY").unwrap_or_default(),
-            e.to_string().lines().next().unwrap_or("").split(" at /").next().unwrap_or("")
+            e.to_string()
+                .lines()
+                .next()
+                .unwrap_or("")
+                .split(" at /")
+                .next()
+                .unwrap_or("")
         ))
     })?;
     event_loop.set_control_flow(ControlFlow::Poll);
