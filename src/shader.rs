@@ -43,6 +43,15 @@ impl ShaderSource {
     /// A directory source; fails if `dir` is not a readable directory.
     pub fn dir(dir: impl Into<PathBuf>) -> Result<Self> {
         let dir = dir.into();
+        if dir.exists() && !dir.is_dir() {
+            return Err(Error::Io {
+                path: dir,
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    "is not a directory; --shaders takes a folder holding the shader files",
+                ),
+            });
+        }
         if !dir.is_dir() {
             return Err(Error::Io {
                 path: dir,

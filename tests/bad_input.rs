@@ -483,3 +483,117 @@ fn glsl2wgsl_refuses_to_overwrite_its_input() {
         names_in(&dir)
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Issue 9: a hostile-input sweep's defects, each reproduced here.
+
+#[test]
+fn negative_numbers_after_a_space_parse() {
+    let dir = test_dir("negative_numbers");
+    for args in [
+        &["--rotate", "-30,0,0", "--screenshot", "a.png"][..],
+        &["--time", "-5", "--screenshot", "b.png"],
+        &["--set", "xangle=-45", "--screenshot", "c.png"],
+    ] {
+        let run = run_in(&dir, "noise", args, &[]);
+        assert_eq!(run.code, Some(0), "{args:?}: {}", run.stderr);
+    }
+    // Still validated.
+    let run = run_in(&dir, "phong", &["--size", "-1x5"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stderr.contains("expected WxH"), "{}", run.stderr);
+}
+
+#[test]
+fn a_closed_or_full_stdout_is_an_error_not_a_panic() {
+    use std::process::Stdio;
+    let dir = test_dir("closed_stdout");
+    // `phong --bench 5 | true`: the reader is gone before the line is written.
+    let mut child = Command::new(example("phong"))
+        .args(["--bench", "5"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env("XDG_RUNTIME_DIR", dir.join("xdg"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run phong");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked") && err.contains("stdout"), "{err}");
+    // `> /dev/full`
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let out = Command::new(example("phong"))
+            .args(["--bench", "5"])
+            .current_dir(&dir)
+            .env_remove("DISPLAY")
+            .env("XDG_RUNTIME_DIR", dir.join("xdg"))
+            .stdout(full)
+            .output()
+            .expect("run phong");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn usage_errors_come_before_any_rendering() {
+    let dir = test_dir("usage_first");
+    let started = std::time::Instant::now();
+    let run = run_in(&dir, "phong", &["--bench", "100000", "--set", "Kx=1"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stdout.is_empty(), "nothing may be benchmarked: {}", run.stdout);
+    assert!(started.elapsed().as_secs() < 10, "the error must come first");
+    let run = run_in(&dir, "phong", &["--set", "Ka=2,3"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(
+        !run.stderr.contains("writing a screenshot instead"),
+        "validated before falling back: {}",
+        run.stderr
+    );
+}
+
+#[test]
+fn shaders_flag_naming_a_file_says_so() {
+    let dir = test_dir("shaders_file");
+    std::fs::write(dir.join("afile"), "x").unwrap();
+    let run = run_in(&dir, "phong", &["--shaders", "afile", "--screenshot", "x.png"], &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(run.stderr.contains("is not a directory"), "{}", run.stderr);
+}
+
+#[test]
+fn wayland_only_sessions_fall_back_to_a_screenshot_with_a_hint() {
+    let dir = test_dir("wayland_only");
+    let run = run_in(&dir, "phong", &[], &[("WAYLAND_DISPLAY", "wayland-0")]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(run.stderr.contains("WAYLAND_DISPLAY is set"), "{}", run.stderr);
+    assert!(dir.join("phong.png").is_file());
+}
+
+#[test]
+fn a_bad_display_names_no_source_path() {
+    let dir = test_dir("bad_display");
+    let run = run_in(&dir, "phong", &[], &[("DISPLAY", ":4321")]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(run.stderr.contains(":4321"), "{}", run.stderr);
+    assert!(!run.stderr.contains(".cargo") && !run.stderr.contains("registry"), "{}", run.stderr);
+}
+
+#[test]
+fn no_runtime_dir_prints_no_mesa_warnings() {
+    let dir = test_dir("no_xdg");
+    let out = Command::new(example("phong"))
+        .args(["--screenshot", "x.png"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .expect("run phong");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
+}
