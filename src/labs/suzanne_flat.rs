@@ -1,4 +1,6 @@
-//! Seed 004 §4.7, Flat shading: the Gouraud shaders with `flat` interpolation on the face-normal VBO: one colour per triangle, lit at its first vertex (pinned).
+//! Seed 004 §4.7, flat shading (pinned): the Gouraud shaders with `flat` interpolation on the
+//! face-normal VBO, one colour per triangle, lit at its first vertex.
+//!
 //! Keys: see [`super::suzanne_lit`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
 
 use crate::lab::{LabEntry, LabInfo};

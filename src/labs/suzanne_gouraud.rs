@@ -1,4 +1,6 @@
-//! Seed 004 §4.8, Gouraud shading: ambient + diffuse + specular evaluated per vertex on the vertex-normal VBO and interpolated: highlights smear or vanish between vertices.
+//! Seed 004 §4.8, Gouraud shading: ambient + diffuse + specular evaluated per vertex on the
+//! vertex-normal VBO and interpolated; a highlight that falls between vertices smears or vanishes.
+//!
 //! Keys: see [`super::suzanne_lit`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
 
 use crate::lab::{LabEntry, LabInfo};

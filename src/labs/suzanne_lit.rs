@@ -116,7 +116,7 @@ struct LitSuzanne {
 /// Builds the exercise with all three models (keys switch between them without a pause).
 pub fn new(cx: &LabContext, lit: &'static Lit) -> Result<Box<dyn Lab>> {
     let name = lit.info.name;
-    let stage = SuzanneStage::new(cx, name)?;
+    let stage = SuzanneStage::new(cx, name);
     let params = (lit.params)();
     let light = Uniforms::new(cx.gpu, &format!("{name}.light"), SuzanneLight::of(&params));
     let programs = MODELS
@@ -184,11 +184,12 @@ impl Lab for LitSuzanne {
     }
     fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
         let model = self.params.index_of("shading").min(MODELS.len() - 1);
+        let (_, _, _, normals) = MODELS[model];
         self.stage.upload(frame.gpu, &self.params, frame.aspect());
         self.light.value = SuzanneLight::of(&self.params);
         self.light.upload(frame.gpu);
         let mut pass = frame.pass(self.lit.info.name, Load::Clear([0.0; 3]));
-        self.programs[model].draw(&mut pass, self.stage.mesh(MODELS[model].3));
+        self.programs[model].draw(&mut pass, self.stage.mesh(normals));
         Ok(())
     }
 }

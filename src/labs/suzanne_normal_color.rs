@@ -1,4 +1,7 @@
-//! Seed 004 §4.1, Hello Suzanne: the object-space face normal as colour (course, verbatim); the colours stay with the screen as the model turns.
+//! Seed 004 §4.1, "Hello Suzanne" (course shaders, verbatim): the object-space face normal as
+//! colour, `abs(v_normal)`. The colours belong to the model's surface as exported, not to the view:
+//! turned, the model shows the same colours on the same faces.
+//!
 //! Keys: left drag rotates (0.5° per pixel).
 
 use crate::lab::{LabEntry, LabInfo};

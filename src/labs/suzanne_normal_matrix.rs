@@ -1,4 +1,7 @@
-//! Seed 004 §4.2, the face normal turned by the normal matrix NM = transpose(inverse(mat3(MV))) as colour (course, verbatim): the colours turn with the model.
+//! Seed 004 §4.2 (course vertex shader, verbatim): the face normal turned by the normal matrix NM =
+//! transpose(inverse(mat3(MV))) as colour, so the colours follow the view: what faces the eye is
+//! blue however the model turns.
+//!
 //! Keys: left drag rotates (0.5° per pixel).
 
 use crate::lab::{LabEntry, LabInfo};

@@ -1,4 +1,6 @@
-//! Seed 004 §4.9, Phong shading: the same lighting evaluated per fragment with the interpolated, renormalized normal: sharp highlights.
+//! Seed 004 §4.9, Phong shading: the same lighting evaluated per fragment with the interpolated,
+//! renormalized normal; highlights stay sharp.
+//!
 //! Keys: see [`super::suzanne_lit`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
 
 use crate::lab::{LabEntry, LabInfo};

@@ -36,7 +36,7 @@ struct PlainSuzanne {
 /// Builds the exercise.
 pub fn new(cx: &LabContext, plain: &'static Plain) -> Result<Box<dyn Lab>> {
     let name = plain.info.name;
-    let stage = SuzanneStage::new(cx, name)?;
+    let stage = SuzanneStage::new(cx, name);
     let mut program = Program::new(cx, name, plain.vert, plain.frag, RenderState::default())?;
     program.bind(cx.gpu, vec![stage.matrices.bind()])?;
     Ok(Box::new(PlainSuzanne {

@@ -1,4 +1,7 @@
-//! Seed 004 §4.3, Smooth Suzanne: the shaders of 4.2 on the vertex-normal VBO (each vertex the normalized sum of its faces' normals), so colours blend across faces.
+//! Seed 004 §4.3, "Smooth Suzanne": the shaders of 4.2 on the vertex-normal VBO (each vertex the
+//! normalized sum of the normals of its faces), so the colours blend across faces instead of one
+//! per triangle.
+//!
 //! Keys: left drag rotates (0.5° per pixel).
 
 use crate::lab::{LabEntry, LabInfo};

@@ -9,7 +9,6 @@
 use glam::{Mat4, Vec3};
 
 use crate::camera::{self, glm};
-use crate::error::Result;
 use crate::geometry::obj::{self, ObjCorner};
 use crate::gpu::Gpu;
 use crate::lab::{Input, LabContext};
@@ -110,7 +109,7 @@ pub struct SuzanneStage {
 
 impl SuzanneStage {
     /// Uploads the model (`--model`, else the shipped Suzanne) with both kinds of normals.
-    pub fn new(cx: &LabContext, label: &str) -> Result<Self> {
+    pub fn new(cx: &LabContext, label: &str) -> Self {
         let suzanne;
         let model = match &cx.files.model {
             Some(file) => &file.data,
@@ -120,12 +119,12 @@ impl SuzanneStage {
             }
         };
         let matrices = SuzanneMatrices::new(Mat4::IDENTITY, view(), 4.0 / 3.0);
-        Ok(SuzanneStage {
+        SuzanneStage {
             drag: None,
             matrices: Uniforms::new(cx.gpu, &format!("{label}.matrices"), matrices),
             faces: GpuMesh::new(cx.gpu, &format!("{label}.faces"), &model.corners, None),
             smooth: GpuMesh::new(cx.gpu, &format!("{label}.smooth"), &model.smooth, None),
-        })
+        }
     }
 
     /// The VBO with these normals.

@@ -1,4 +1,7 @@
-//! Seed 004 §4.4, the model textured with unit 0 (`texture(tex, texcoord)`): the checker or the uvgrid "BMP" at the exported Smart-UV-Project coordinates.
+//! Seed 004 §4.4: the model (vertex-normal VBO) textured from unit 0, `texture(tex, texcoord)` at
+//! the exported Smart-UV-Project coordinates: the course's checker (`tex=0`) or its "BMP" texture,
+//! the uvgrid (`tex=1`, or `--texture FILE`).
+//!
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
 use crate::lab::{LabEntry, LabInfo};

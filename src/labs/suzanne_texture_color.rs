@@ -1,4 +1,6 @@
-//! Seed 004 §4.5, the texture modulated by the normal colour of 4.2 (`texture(tex, texcoord) * color`).
+//! Seed 004 §4.5: the texture of 4.4 modulated by the normal colour of 4.2, `texture(tex, texcoord)
+//! * color`.
+//!
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
 use crate::lab::{LabEntry, LabInfo};

@@ -5,6 +5,7 @@
 
 use crate::error::Result;
 use crate::geometry::obj::ObjCorner;
+use crate::gpu::Gpu;
 use crate::lab::{Input, Lab, LabContext, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, Load, Program, RenderState};
@@ -48,7 +49,7 @@ struct TexturedSuzanne {
 /// Builds the exercise.
 pub fn new(cx: &LabContext, textured: &'static Textured) -> Result<Box<dyn Lab>> {
     let name = textured.info.name;
-    let stage = SuzanneStage::new(cx, name)?;
+    let stage = SuzanneStage::new(cx, name);
     let program = Program::new(
         cx,
         name,
@@ -72,13 +73,13 @@ pub fn new(cx: &LabContext, textured: &'static Textured) -> Result<Box<dyn Lab>>
 
 impl TexturedSuzanne {
     /// Binds the matrices and the texture chosen by `tex` (glBindTexture on unit 0).
-    fn bind(&mut self, cx_gpu: &crate::Gpu) -> Result<()> {
+    fn bind(&mut self, gpu: &Gpu) -> Result<()> {
         let tex = self.params.index_of("tex").min(1);
         if self.bound != Some(tex) {
             let (texture, params) = &self.textures[tex];
-            let [texture, sampler] = texture.bind(cx_gpu, "tex", "tex_sampler", *params);
+            let [texture, sampler] = texture.bind(gpu, "tex", "tex_sampler", *params);
             self.program
-                .bind(cx_gpu, vec![self.stage.matrices.bind(), texture, sampler])?;
+                .bind(gpu, vec![self.stage.matrices.bind(), texture, sampler])?;
             self.bound = Some(tex);
         }
         Ok(())
