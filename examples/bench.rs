@@ -38,6 +38,7 @@ fn main() -> anyhow::Result<()> {
         gpu: &gpu,
         source: &source,
         format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
     };
     for entry in labs::ALL {
         if args

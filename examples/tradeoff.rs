@@ -98,6 +98,7 @@ fn main() -> anyhow::Result<()> {
         gpu: &gpu,
         source: &source,
         format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
     };
     let mut lab = (labs::PHONG.new)(&cx)?;
     let mut rows = Vec::new();

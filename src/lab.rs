@@ -61,6 +61,7 @@ pub enum Input {
 /// What a lab is built with: the device, where shaders come from, the target format
 /// (defined by the render layer, which builds programs from it).
 pub use crate::render::Context as LabContext;
+pub use crate::user_files::{UserFile, UserFiles, NO_FILES};
 
 /// One exercise, ready to draw.
 pub trait Lab {

@@ -49,6 +49,7 @@ pub mod render;
 pub mod shader;
 pub mod shell;
 pub mod tess;
+pub mod user_files;
 
 pub use error::{Error, Result};
 pub use gpu::Gpu;

@@ -580,7 +580,11 @@ fn a_bad_display_names_no_source_path() {
     let run = run_in(&dir, "phong", &[], &[("DISPLAY", ":4321")]);
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     assert!(run.stderr.contains(":4321"), "{}", run.stderr);
-    assert!(!run.stderr.contains(".cargo") && !run.stderr.contains("registry"), "{}", run.stderr);
+    assert!(
+        !run.stderr.contains(".cargo") && !run.stderr.contains("registry"),
+        "{}",
+        run.stderr
+    );
 }
 
 #[test]

@@ -1450,5 +1450,10 @@ fn f12_names_from_two_windows_do_not_collide() {
             .collect();
         (n.len() == 2).then_some(n)
     });
-    assert!(pngs.is_some(), "two F12 screenshots expected; stdout:\n{}\n{}", a.stdout(), b.stdout());
+    assert!(
+        pngs.is_some(),
+        "two F12 screenshots expected; stdout:\n{}\n{}",
+        a.stdout(),
+        b.stdout()
+    );
 }

@@ -29,6 +29,7 @@ fn build(entry: &LabEntry) -> Box<dyn Lab> {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
     };
     (entry.new)(&cx).expect("lab builds")
 }

@@ -535,6 +535,7 @@ fn mismatched_uniform_struct_is_rejected() {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
     };
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default())
@@ -558,6 +559,7 @@ fn mismatched_uniform_struct_is_rejected() {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
     };
     let err = (labs::PHONG.new)(&cx).err().expect("int Ka must be rejected");
     assert!(

@@ -8,6 +8,7 @@
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
 pub mod fly;
+pub mod glm;
 
 /// `gluPerspective(fovy, aspect, near, far)` (GL depth convention, -1..1).
 pub fn glu_perspective(fovy_degrees: f64, aspect: f64, near: f64, far: f64) -> Mat4 {

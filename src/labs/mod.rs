@@ -17,6 +17,22 @@ pub mod position_rgb;
 pub mod specular_strip;
 pub mod twist;
 
+pub mod gl_textures;
+pub mod suzanne_lit;
+pub mod suzanne_plain;
+pub mod suzanne_stage;
+pub mod suzanne_textured;
+
+pub mod suzanne_flat;
+pub mod suzanne_gouraud;
+pub mod suzanne_normal_color;
+pub mod suzanne_normal_matrix;
+pub mod suzanne_phong;
+pub mod suzanne_smooth;
+pub mod suzanne_texture;
+pub mod suzanne_texture_color;
+pub mod texparams;
+
 use crate::lab::LabEntry;
 use crate::params::{ParamSpec, Params};
 
@@ -41,6 +57,25 @@ pub static PHONG_DIR: &LabEntry = &phong_dir::ENTRY;
 /// Seed 003, LETI lab 5: Bézier strip with specular light.
 pub static SPECULAR_STRIP: &LabEntry = &specular_strip::ENTRY;
 
+/// Seed 004 §4.1, "Hello Suzanne".
+pub static SUZANNE_NORMAL_COLOR: &LabEntry = &suzanne_normal_color::ENTRY;
+/// Seed 004 §4.2, normals turned by the normal matrix.
+pub static SUZANNE_NORMAL_MATRIX: &LabEntry = &suzanne_normal_matrix::ENTRY;
+/// Seed 004 §4.3, "Smooth Suzanne".
+pub static SUZANNE_SMOOTH: &LabEntry = &suzanne_smooth::ENTRY;
+/// Seed 004 §4.4, textured model.
+pub static SUZANNE_TEXTURE: &LabEntry = &suzanne_texture::ENTRY;
+/// Seed 004 §4.5, texture times normal colour.
+pub static SUZANNE_TEXTURE_COLOR: &LabEntry = &suzanne_texture_color::ENTRY;
+/// Seed 004 §4.6, texture parameters.
+pub static TEXPARAMS: &LabEntry = &texparams::ENTRY;
+/// Seed 004 §4.7, flat shading.
+pub static SUZANNE_FLAT: &LabEntry = &suzanne_flat::ENTRY;
+/// Seed 004 §4.8, Gouraud shading.
+pub static SUZANNE_GOURAUD: &LabEntry = &suzanne_gouraud::ENTRY;
+/// Seed 004 §4.9, Phong shading.
+pub static SUZANNE_PHONG: &LabEntry = &suzanne_phong::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -53,6 +88,15 @@ pub static ALL: &[&LabEntry] = &[
     &normal_world::ENTRY,
     &phong_dir::ENTRY,
     &specular_strip::ENTRY,
+    &suzanne_normal_color::ENTRY,
+    &suzanne_normal_matrix::ENTRY,
+    &suzanne_smooth::ENTRY,
+    &suzanne_texture::ENTRY,
+    &suzanne_texture_color::ENTRY,
+    &texparams::ENTRY,
+    &suzanne_flat::ENTRY,
+    &suzanne_gouraud::ENTRY,
+    &suzanne_phong::ENTRY,
 ];
 
 /// The lab called `name`.

@@ -351,6 +351,7 @@ impl Lab for Phong {
             gpu,
             source: &source,
             format: self.format,
+            files: &crate::lab::NO_FILES,
         });
         self.drawn = self.params.index_of("shading");
         self.uniforms.value = uniforms_of(&self.params);

@@ -15,6 +15,8 @@ pub struct Context<'a> {
     pub source: &'a ShaderSource,
     /// The colour format of the targets it will draw into.
     pub format: wgpu::TextureFormat,
+    /// Files the user named for the lab to draw instead of its built-in data.
+    pub files: &'a crate::user_files::UserFiles,
 }
 
 mod frame;

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::{CommandFactory, FromArgMatches, Parser};
 
 use crate::error::Error;
-use crate::lab::LabEntry;
+use crate::lab::{LabEntry, UserFiles};
 use crate::params::{parse_finite, parse_numbers, Params};
 use crate::shader::ShaderSource;
 
@@ -50,6 +50,12 @@ pub struct Args {
     /// original; `auto` with a port-only mode (`--shading` other than phong, `--set smooth=1`).
     #[arg(long, value_name = "N|auto", value_parser = parse_tess)]
     pub tess: Option<f64>,
+    /// A Wavefront OBJ to draw instead of the lab's built-in model (labs that draw one, e.g. suzanne_*; others ignore it).
+    #[arg(long, value_name = "FILE.obj")]
+    pub model: Option<PathBuf>,
+    /// A PNG or BMP picture to use instead of the lab's picture texture (labs that sample one, e.g. suzanne_texture, texparams; others ignore it).
+    #[arg(long, value_name = "FILE")]
+    pub texture: Option<PathBuf>,
     /// In a window: draw as fast as possible (present mode Immediate, no pacing), to measure frame time.
     #[arg(long)]
     pub unpaced: bool,
@@ -121,6 +127,16 @@ impl Args {
             Some(dir) => ShaderSource::dir(dir),
             None => Ok(ShaderSource::Embedded),
         }
+    }
+
+    /// Reads and checks `--model` and `--texture` (errors name the file), printing the model's
+    /// notices (missing `vt`/`vn`, ignored elements) on stderr, one line each.
+    pub fn files(&self, entry: &LabEntry) -> Result<UserFiles, Error> {
+        let files = UserFiles::load(self.model.as_deref(), self.texture.as_deref())?;
+        for notice in files.model.iter().flat_map(|m| &m.data.notices) {
+            eprintln!("{}: {notice}", entry.info.name);
+        }
+        Ok(files)
     }
 
     /// The image or window size.

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Lab, LabContext, LabEntry};
+use crate::lab::{Lab, LabContext, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
@@ -17,13 +17,14 @@ pub(crate) fn check_png_path(path: &Path) -> Result<()> {
     crate::fsutil::check_png_path(path)
 }
 
-pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params) -> Result<(), Failure> {
+pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: &UserFiles) -> Result<(), Failure> {
     let gpu = Gpu::headless()?;
     let source = args.shader_source()?;
     let cx = LabContext {
         gpu: &gpu,
         source: &source,
         format: COLOR_FORMAT,
+        files,
     };
     let mut lab = (entry.new)(&cx)?;
     *lab.params_mut() = params;

@@ -90,8 +90,9 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
         headless::check_png_path(path)?;
     }
     args.shader_source()?;
+    let files = args.files(entry)?;
     if args.screenshot.is_some() || args.bench.is_some() {
-        headless::run(entry, &args, params)
+        headless::run(entry, &args, params, &files)
     } else if !window::has_display() {
         // No display: still do something useful.
         let path = PathBuf::from(format!("{}.png", entry.info.name));
@@ -105,9 +106,9 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
             screenshot: Some(path),
             ..args
         };
-        headless::run(entry, &args, params)
+        headless::run(entry, &args, params, &files)
     } else {
-        window::run(entry, &args, params).map_err(Failure::from)
+        window::run(entry, &args, params, files).map_err(Failure::from)
     }
 }
 

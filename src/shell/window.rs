@@ -30,7 +30,7 @@ use winit::window::{Window, WindowId};
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Lab, LabContext, LabEntry, Special};
+use crate::lab::{Input, Lab, LabContext, LabEntry, Special, UserFiles};
 use crate::offscreen::{depth_texture, save_png, Offscreen};
 use crate::params::Params;
 use crate::render::Frame;
@@ -80,7 +80,7 @@ pub fn surface_size(size: PhysicalSize<u32>) -> Option<(u32, u32)> {
 }
 
 /// Opens the lab in a window and runs until Esc or close.
-pub fn run(entry: &'static LabEntry, args: &Args, params: Params) -> Result<()> {
+pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFiles) -> Result<()> {
     let event_loop = EventLoop::new().map_err(|e| {
         Error::Surface(format!(
             "cannot open a window on DISPLAY={}: {}",
@@ -105,6 +105,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params) -> Result<()> 
         args: args.clone(),
         params: Some(params),
         source,
+        files: Arc::new(files),
         state: None,
         error: None,
     };
@@ -133,6 +134,7 @@ struct App {
     args: Args,
     params: Option<Params>,
     source: ShaderSource,
+    files: Arc<UserFiles>,
     state: Option<WindowState>,
     error: Option<Error>,
 }
@@ -149,6 +151,7 @@ fn set_fatal(fatal: &Fatal, message: String) {
 struct WindowState {
     entry: &'static LabEntry,
     source: ShaderSource,
+    files: Arc<UserFiles>,
     window: Arc<Window>,
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
@@ -276,6 +279,7 @@ impl App {
             gpu: &gpu,
             source: &self.source,
             format,
+            files: &self.files,
         })?;
         if let Some(params) = self.params.take() {
             *lab.params_mut() = params;
@@ -304,6 +308,7 @@ impl App {
         Ok(WindowState {
             entry,
             source: self.source.clone(),
+            files: self.files.clone(),
             time_offset,
             paused_clock: false,
             last_time: None,
@@ -427,6 +432,7 @@ impl WindowState {
             gpu: &self.gpu,
             source: &self.source,
             format: self.config.format,
+            files: &self.files,
         };
         match self.lab.reload(&cx) {
             Ok(()) => {

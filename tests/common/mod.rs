@@ -99,6 +99,7 @@ impl TestLab {
             gpu: gpu(),
             source: &self.source,
             format: self.format,
+            files: &shaderlab::lab::NO_FILES,
         };
         self.lab.reload(&cx)
     }
@@ -135,6 +136,7 @@ pub fn lab_with(entry: &LabEntry, source: &ShaderSource, format: wgpu::TextureFo
         gpu: gpu(),
         source,
         format,
+        files: &shaderlab::lab::NO_FILES,
     };
     TestLab {
         lab: (entry.new)(&cx).expect("lab builds"),
