@@ -683,6 +683,14 @@ impl ApplicationHandler for App {
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
+            // Another program destroyed the window (`xdotool windowclose`): nothing is left to
+            // draw into, and winit would fail on the next request about it.
+            WindowEvent::Destroyed => {
+                self.error = Some(Error::Surface(
+                    "the window was closed or destroyed by another program".into(),
+                ));
+                event_loop.exit();
+            }
             WindowEvent::Resized(size) => state.resize(size),
             WindowEvent::Occluded(occluded) => state.occluded = occluded,
             // winit invents ("synthetic") presses for keys already held when the window gets the
