@@ -2,9 +2,13 @@
 //! tests iterate. Each module names its shaders (`shaders_glsl/NAME.*`), its example
 //! (`examples/NAME.rs`) and its tests after itself.
 
+pub mod gl_light;
 pub mod glut_stage;
+pub mod immediate;
+pub mod ustc_stage;
 
 pub mod displacement;
+pub mod height;
 pub mod noise;
 pub mod normal_rgb;
 pub mod phong;
@@ -25,6 +29,9 @@ pub static NOISE: &LabEntry = &noise::ENTRY;
 /// Seed 000, exercise 5.
 pub static DISPLACEMENT: &LabEntry = &displacement::ENTRY;
 
+/// Seed 001 §1.1: a custom vertex attribute.
+pub static HEIGHT: &LabEntry = &height::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -32,6 +39,7 @@ pub static ALL: &[&LabEntry] = &[
     &phong::ENTRY,
     &noise::ENTRY,
     &displacement::ENTRY,
+    &height::ENTRY,
 ];
 
 /// The lab called `name`.
