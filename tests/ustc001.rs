@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use image::RgbImage;
-use shaderlab::lab::{Input, LabContext, LabEntry, Special};
+use shaderlab::lab::{Input, LabContext, LabEntry};
 use shaderlab::labs;
 use shaderlab::metrics::{diff_image, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -151,4 +151,65 @@ fn height_modes_feed_the_same_vertices_and_image() {
     let rotated = render(labs::HEIGHT, &[("mode", "1"), ("yangle", "50"), ("xangle", "-30")]);
     save(&rotated, "height_rotated");
     assert!(lit(&rotated) < lit(&immediate), "a turned square covers less");
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1.2 uniform_arrays
+
+#[test]
+fn uniform_arrays_matches_original() {
+    check_reference(labs::UNIFORM_ARRAYS, "default", &[]);
+}
+
+#[test]
+fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
+    use shaderlab::labs::uniform_arrays::{course_uniforms, location, UniformArraysUniforms};
+    let shader = ShaderSource::Embedded.compile("uniform_arrays.frag").expect("compiles");
+    let arrays = course_uniforms(&shader, 0).expect("mode 0");
+    let elements = course_uniforms(&shader, 1).expect("mode 1");
+    let expected = UniformArraysUniforms {
+        spec_intensity: 0.98,
+        _pad: [0.0; 3],
+        spec_color: [0.8, 0.8, 0.8, 1.0],
+        t: [[0.5, 0.0, 0.0, 0.0], [0.25, 0.0, 0.0, 0.0]],
+        colors: [[0.4, 0.4, 0.8, 1.0], [0.2, 0.2, 0.4, 1.0], [0.1, 0.1, 0.1, 1.0]],
+    };
+    assert_eq!(arrays, expected);
+    assert_eq!(elements, expected);
+    // std140: 16 bytes from one element of t (a float array) to the next.
+    let t1 = location(&shader, "UniformArrays", "t[1]").expect("t[1]");
+    assert_eq!((t1.offset, t1.stride, t1.elements), (48, 16, 1));
+    assert!(location(&shader, "UniformArrays", "t[2]").is_err());
+    assert!(location(&shader, "UniformArrays", "nope").is_err());
+
+    let image = render(labs::UNIFORM_ARRAYS, &[]);
+    let elements_image = render(labs::UNIFORM_ARRAYS, &[("mode", "1")]);
+    assert_eq!(image, elements_image, "both setter styles must give the same image");
+    // Per-fragment bands: only the four course colours (as 8-bit) and the black background.
+    let palette = [[0, 0, 0], [204, 204, 204], [102, 102, 204], [51, 51, 102], [26, 26, 26]];
+    let near = |p: [u8; 3], q: [u8; 3]| (0..3).all(|c| p[c].abs_diff(q[c]) <= 1);
+    for p in image.pixels() {
+        assert!(palette.iter().any(|&q| near(p.0, q)), "unexpected colour {:?}", p.0);
+    }
+    for (k, &colour) in palette.iter().enumerate().skip(1) {
+        let n = image.pixels().filter(|p| near(p.0, colour)).count();
+        assert!(n > 300, "band {k} {colour:?} has only {n} pixels");
+    }
+    // The specColor band faces the light: moving the light left moves it left.
+    let spec = |p: [u8; 3]| near(p, [204, 204, 204]);
+    let (x0, _, _) = centroid(&image, spec);
+    let left = render(labs::UNIFORM_ARRAYS, &[("lx", "-2")]);
+    let (x1, _, _) = centroid(&left, spec);
+    assert!(
+        x1 < x0 - 30.0,
+        "specColor band must follow the light: {x0:.0} -> {x1:.0}"
+    );
+    for (name, state) in [
+        ("uniform_arrays_rotated", &[("xangle", "30"), ("yangle", "45")][..]),
+        ("uniform_arrays_torus", &[("object", "2"), ("xangle", "60")][..]),
+    ] {
+        let img = render(labs::UNIFORM_ARRAYS, state);
+        save(&img, name);
+        assert!(lit(&img) > 20_000, "{name} shows the object");
+    }
 }

@@ -14,6 +14,7 @@ pub mod normal_rgb;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod uniform_arrays;
 
 use crate::lab::LabEntry;
 use crate::params::{ParamSpec, Params};
@@ -32,6 +33,9 @@ pub static DISPLACEMENT: &LabEntry = &displacement::ENTRY;
 /// Seed 001 §1.1: a custom vertex attribute.
 pub static HEIGHT: &LabEntry = &height::ENTRY;
 
+/// Seed 001 §1.2: uniform vectors and arrays.
+pub static UNIFORM_ARRAYS: &LabEntry = &uniform_arrays::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -40,6 +44,7 @@ pub static ALL: &[&LabEntry] = &[
     &noise::ENTRY,
     &displacement::ENTRY,
     &height::ENTRY,
+    &uniform_arrays::ENTRY,
 ];
 
 /// The lab called `name`.
