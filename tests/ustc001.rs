@@ -213,3 +213,65 @@ fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
         assert!(lit(&img) > 20_000, "{name} shows the object");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// 1.3 wave
+
+#[test]
+fn wave_matches_original() {
+    check_reference(labs::WAVE, "t0", &[("time", "0")]);
+}
+
+#[test]
+fn wave_crest_moves_with_time_and_grows_with_h() {
+    let t0 = render(labs::WAVE, &[("time", "0")]);
+    let t15 = render(labs::WAVE, &[("time", "1.5")]);
+    save(&t15, "wave_t1.5");
+    assert!(psnr(&t0, &t15).expect("size") < 25.0, "time must move the surface");
+    // The far edge (z = −2) of the surface rises and falls as h·sin(time + 3x) plus a constant:
+    // time 1.5 shifts that profile by 1.5/3 = 0.5 units towards −x, about 36 px at that depth.
+    let far_edge = |img: &RgbImage| -> Vec<f64> {
+        (0..img.width())
+            .map(|x| {
+                (0..img.height())
+                    .find(|&y| img.get_pixel(x, y).0 != [0, 0, 0])
+                    .map_or(0.0, f64::from)
+            })
+            .collect()
+    };
+    let (e0, e1) = (far_edge(&t0), far_edge(&t15));
+    // The shift s that best maps one profile onto the other (up to a constant offset).
+    let misfit = |s: i64| {
+        let d: Vec<f64> = (180..340).map(|x: i64| e1[(x + s) as usize] - e0[x as usize]).collect();
+        let m = d.iter().sum::<f64>() / d.len() as f64;
+        d.iter().map(|v| (v - m) * (v - m)).sum::<f64>()
+    };
+    let shift = (-60..=60)
+        .min_by(|&a, &b| misfit(a).total_cmp(&misfit(b)))
+        .expect("shifts");
+    assert!(
+        (-50..=-22).contains(&shift),
+        "the crest must move about 36 px left, moved {shift}"
+    );
+    // Twice the height scale doubles the far edge's swing.
+    let swing = |img: &RgbImage| {
+        let e: Vec<f64> = far_edge(img)[180..340].to_vec();
+        let m = e.iter().sum::<f64>() / e.len() as f64;
+        (e.iter().map(|y| (y - m) * (y - m)).sum::<f64>() / e.len() as f64).sqrt()
+    };
+    let low = render(labs::WAVE, &[("time", "0.75")]);
+    let high = render(labs::WAVE, &[("time", "0.75"), ("h", "0.2")]);
+    save(&high, "wave_h0.2");
+    let (a, b) = (swing(&low), swing(&high));
+    assert!(
+        b > 1.6 * a && b < 2.4 * a,
+        "h=0.2 must double the swing: {a:.1} px -> {b:.1} px"
+    );
+    let rotated = render(labs::WAVE, &[("time", "0.75"), ("yangle", "45")]);
+    save(&rotated, "wave_rotated");
+    assert!(psnr(&rotated, &low).expect("size") < 25.0);
+    // The checker: both course colours are on screen.
+    let near = |p: [u8; 3], q: [u8; 3]| (0..3).all(|c| p[c].abs_diff(q[c]) <= 1);
+    assert!(t0.pixels().filter(|p| near(p.0, [26, 102, 204])).count() > 10_000);
+    assert!(t0.pixels().filter(|p| near(p.0, [217, 230, 255])).count() > 10_000);
+}

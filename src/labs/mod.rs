@@ -14,6 +14,7 @@ pub mod normal_rgb;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod wave;
 pub mod uniform_arrays;
 
 use crate::lab::LabEntry;
@@ -36,6 +37,9 @@ pub static HEIGHT: &LabEntry = &height::ENTRY;
 /// Seed 001 §1.2: uniform vectors and arrays.
 pub static UNIFORM_ARRAYS: &LabEntry = &uniform_arrays::ENTRY;
 
+/// Seed 001 §1.3, wave-motion vertex shader.
+pub static WAVE: &LabEntry = &wave::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -45,6 +49,7 @@ pub static ALL: &[&LabEntry] = &[
     &displacement::ENTRY,
     &height::ENTRY,
     &uniform_arrays::ENTRY,
+    &wave::ENTRY,
 ];
 
 /// The lab called `name`.
