@@ -275,3 +275,54 @@ fn wave_crest_moves_with_time_and_grows_with_h() {
     assert!(t0.pixels().filter(|p| near(p.0, [26, 102, 204])).count() > 10_000);
     assert!(t0.pixels().filter(|p| near(p.0, [217, 230, 255])).count() > 10_000);
 }
+
+// ---------------------------------------------------------------------------------------------
+// 1.4 morph
+
+#[test]
+fn morph_matches_original() {
+    check_reference(labs::MORPH, "circle", &[("time", "4.712389")]);
+}
+
+#[test]
+fn morph_goes_from_circle_to_star() {
+    assert_eq!(
+        labs::morph::course_triangles(),
+        shaderlab::geometry::shapes::morph_vertices()
+    );
+    assert_eq!(labs::morph::time_uniform(1.570796), 1570.796);
+    let circle = render(labs::MORPH, &[("time", "4.712389")]);
+    let half = render(labs::MORPH, &[("time", "0")]);
+    let star = render(labs::MORPH, &[("time", "1.570796")]);
+    save(&half, "morph_half");
+    save(&star, "morph_star");
+    // White only.
+    assert!(circle.pixels().all(|p| p.0 == [0, 0, 0] || p.0 == [255, 255, 255]));
+    // Pixels per unit in the plane z = 0 seen from distance 4.
+    let ppu = 256.0 / (4.0 * (22.5f64).to_radians().tan());
+    let (c, h, s) = (lit(&circle) as f64, lit(&half) as f64, lit(&star) as f64);
+    // s = 0: the 16-gon of radius 1, 16 triangles of area sin(2π/16)/2.
+    let gon = 8.0 * (std::f64::consts::PI / 8.0).sin() * ppu * ppu;
+    assert!((c - gon).abs() < 0.02 * gon, "circle area {c} vs 16-gon {gon:.0}");
+    // s = 1: the star with inner radius 0.4: 16 triangles of sides 1 and 0.4.
+    let star_area = 16.0 * 0.5 * 0.4 * (std::f64::consts::PI / 8.0).sin() * ppu * ppu;
+    assert!(
+        (s - star_area).abs() < 0.03 * star_area,
+        "star area {s} vs {star_area:.0}"
+    );
+    assert!(h < c && h > s, "the half-way shape lies between: {s} < {h} < {c}");
+    // The star's points stay at radius 1, its notches come in: along the diagonal at 22.5°
+    // (an odd rim point) the circle is lit at radius 0.9, the star is not.
+    let at = |img: &RgbImage, r: f64, deg: f64| {
+        let a = deg.to_radians();
+        let (x, y) = (255.5 + r * ppu * a.cos(), 255.5 - r * ppu * a.sin());
+        img.get_pixel(x as u32, y as u32).0 != [0, 0, 0]
+    };
+    assert!(at(&circle, 0.9, 22.5) && !at(&star, 0.9, 22.5));
+    assert!(at(&circle, 0.9, 0.0) && at(&star, 0.9, 0.0));
+    let t05 = render(labs::MORPH, &[("time", "0.5")]);
+    assert!(
+        lit(&t05) < h as usize,
+        "time 0.5 is further towards the star than time 0"
+    );
+}

@@ -14,6 +14,7 @@ pub mod normal_rgb;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod morph;
 pub mod wave;
 pub mod uniform_arrays;
 
@@ -40,6 +41,9 @@ pub static UNIFORM_ARRAYS: &LabEntry = &uniform_arrays::ENTRY;
 /// Seed 001 §1.3, wave-motion vertex shader.
 pub static WAVE: &LabEntry = &wave::ENTRY;
 
+/// Seed 001 §1.4, morphing vertex shader.
+pub static MORPH: &LabEntry = &morph::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -50,6 +54,7 @@ pub static ALL: &[&LabEntry] = &[
     &height::ENTRY,
     &uniform_arrays::ENTRY,
     &wave::ENTRY,
+    &morph::ENTRY,
 ];
 
 /// The lab called `name`.
