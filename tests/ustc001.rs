@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use image::RgbImage;
-use shaderlab::lab::{Input, LabContext, LabEntry};
+use shaderlab::lab::{Input, LabContext, LabEntry, Special};
 use shaderlab::labs;
 use shaderlab::metrics::{diff_image, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -118,6 +118,105 @@ fn centroid(image: &RgbImage, pick: impl Fn([u8; 3]) -> bool) -> (f64, f64, usiz
         }
     }
     (sx / n.max(1) as f64, sy / n.max(1) as f64, n)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared parts: the GL light block, glBegin emulation, the camera
+
+#[test]
+fn gl_light_block_has_specs_values_and_keys() {
+    use shaderlab::labs::gl_light::{key_step, state, BUMP, COURSE};
+    use shaderlab::params::Params;
+    let s = state(&COURSE, &Params::new(COURSE.params));
+    let p = s.front_light_product[0];
+    let close = |a: [f32; 4], b: [f32; 4]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-6);
+    assert!(close(p.ambient, [0.04, 0.06, 0.16, 1.0]), "{:?}", p.ambient);
+    assert!(close(p.diffuse, [0.2, 0.3, 0.8, 1.0]));
+    assert!(close(p.specular, [1.0; 4]));
+    assert_eq!(s.light_source[0].position, [2.0, 2.0, 2.0, 1.0]);
+    assert_eq!(s.front_material.shininess, 40.0);
+    let b = state(&BUMP, &Params::new(BUMP.params));
+    assert_eq!(b.front_light_product[0].diffuse, [0.9, 0.7, 0.5, 1.0]);
+    assert_eq!(b.front_light_product[0].ambient[..3], [0.0; 3]);
+    assert_eq!(b.light_source[0].position, [1.5, 1.5, -2.0, 1.0]);
+    // Keys: arrows, PageUp/PageDown, h/H within [1, 128].
+    let mut params = Params::new(COURSE.params);
+    for _ in 0..30 {
+        let (name, delta) = key_step(&COURSE, Input::Key('H')).expect("H is a light key");
+        params.step(name, delta);
+    }
+    assert_eq!(params.f("shininess"), 128.0);
+    for _ in 0..30 {
+        let (name, delta) = key_step(&COURSE, Input::Key('h')).expect("h is a light key");
+        params.step(name, delta);
+    }
+    assert_eq!(params.f("shininess"), 1.0);
+    assert_eq!(key_step(&COURSE, Input::Special(Special::Left)), Some(("lx", -0.25)));
+    assert_eq!(key_step(&COURSE, Input::Special(Special::Up)), Some(("ly", 0.25)));
+    assert_eq!(key_step(&COURSE, Input::Special(Special::PageUp)), Some(("lz", 0.25)));
+    assert_eq!(key_step(&BUMP, Input::Special(Special::Down)), Some(("bly", -0.25)));
+    assert_eq!(key_step(&BUMP, Input::Special(Special::PageDown)), Some(("blz", -0.25)));
+    assert_eq!(key_step(&BUMP, Input::Key('h')), None);
+}
+
+#[test]
+fn gl_light_block_layout_matches_std140() {
+    // The nested structs' offsets, which the block check (top-level members) does not see.
+    let shader = ShaderSource::Embedded.compile("uniform_arrays.frag").expect("compiles");
+    let module = &shader.module;
+    let offsets = |name: &str| -> Vec<(String, u32)> {
+        let ty = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .expect(name)
+            .1;
+        match &ty.inner {
+            naga::TypeInner::Struct { members, .. } => members
+                .iter()
+                .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                .collect(),
+            _ => panic!("{name} is a struct"),
+        }
+    };
+    let names = |v: Vec<(String, u32)>| {
+        v.into_iter()
+            .map(|(n, o)| format!("{n}@{o}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    assert_eq!(
+        names(offsets("MaterialParameters")),
+        "emission@0 ambient@16 diffuse@32 specular@48 shininess@64"
+    );
+    assert_eq!(
+        names(offsets("GlLight")),
+        "LightSource@0 FrontMaterial@64 FrontLightProduct@144"
+    );
+    assert_eq!(std::mem::size_of::<shaderlab::labs::gl_light::GlLightUniforms>(), 192);
+    assert_eq!(
+        std::mem::offset_of!(shaderlab::labs::gl_light::MaterialParameters, shininess),
+        64
+    );
+}
+
+#[test]
+fn immediate_mode_latches_current_attributes() {
+    use shaderlab::labs::immediate::Immediate;
+    let mut prim = Immediate::begin([0.0f32; 2]);
+    prim.attrib(|v| v[1] = 7.0);
+    prim.vertex(|v| v[0] = 1.0);
+    prim.vertex(|v| v[0] = 2.0);
+    prim.attrib(|v| v[1] = -1.0);
+    prim.vertex(|v| v[0] = 3.0);
+    assert_eq!(prim.end(), vec![[1.0, 7.0], [2.0, 7.0], [3.0, -1.0]]);
+}
+
+#[test]
+fn look_at_divides_like_glu() {
+    let m = shaderlab::camera::glu_look_at(glam::Vec3::new(0.0, 1.0, 4.0), glam::Vec3::ZERO, glam::Vec3::Y);
+    let r = 17.0f32.sqrt();
+    assert_eq!((m.z_axis.z, m.y_axis.z), (4.0 / r, 1.0 / r));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -324,5 +423,53 @@ fn morph_goes_from_circle_to_star() {
     assert!(
         lit(&t05) < h as usize,
         "time 0.5 is further towards the star than time 0"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1.5 particles
+
+#[test]
+fn particles_matches_original() {
+    check_reference(labs::PARTICLES, "t0.25", &[("time", "0.25")]);
+}
+
+#[test]
+fn particles_rise_then_fall() {
+    let points = labs::particles::course_points();
+    assert_eq!(points.len(), 2000);
+    assert!(points.iter().all(|p| p.position == [0.0, -1.0, 0.0]));
+    let colour = [255, 204, 76]; // vec4(1.0, 0.8, 0.3, 1.0) as GL writes it (0.3·255 = 76.5 → 76)
+    let shots: Vec<(f64, RgbImage)> = [0.25, 1.0, 2.0]
+        .iter()
+        .map(|&t| (t, render(labs::PARTICLES, &[("time", &t.to_string())])))
+        .collect();
+    let mut heights = Vec::new();
+    for (t, img) in &shots {
+        save(img, &format!("particles_t{t}"));
+        assert!(
+            img.pixels().all(|p| p.0 == [0, 0, 0] || p.0 == colour),
+            "one colour only"
+        );
+        let (_, y, n) = centroid(img, |p| p == colour);
+        assert!(n > 300, "t={t}: {n} particles visible");
+        heights.push(y);
+    }
+    // Image rows grow downwards: the cloud is higher at t = 1 than at 0.25, and lower at 2.
+    assert!(heights[1] < heights[0] - 30.0, "particles must rise: {heights:?}");
+    assert!(heights[2] > heights[1] + 60.0, "then fall: {heights:?}");
+    // The apex of y(t) = −1 + 2t − t² (vy ≈ 2) is ~1 unit above the start after ~1 s.
+    // r restarts at t = 0: everything on the start point.
+    let mut lab = lab(labs::PARTICLES);
+    set(lab.as_mut(), &[("time", "1")]);
+    assert!(lab.input(Input::Key('r')));
+    assert_eq!(lab.params().f64("time"), 0.0);
+    let start = shot(lab.as_mut());
+    assert!(lit(&start) <= 2, "at t = 0 all particles share one pixel");
+    let side = render(labs::PARTICLES, &[("time", "1"), ("xangle", "60")]);
+    save(&side, "particles_side");
+    assert!(
+        psnr(&side, &shots[1].1).expect("size") < 30.0,
+        "xangle turns the fountain"
     );
 }

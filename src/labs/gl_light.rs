@@ -228,37 +228,3 @@ impl GlLight {
         self.uniforms.upload(gpu);
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn course_products_are_specs() {
-        let s = state(&COURSE, &Params::new(COURSE.params));
-        let p = s.front_light_product[0];
-        let close = |a: [f32; 4], b: [f32; 4]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-6);
-        assert!(close(p.ambient, [0.04, 0.06, 0.16, 1.0]), "{:?}", p.ambient);
-        assert!(close(p.diffuse, [0.2, 0.3, 0.8, 1.0]));
-        assert!(close(p.specular, [1.0; 4]));
-        assert_eq!(s.light_source[0].position, [2.0, 2.0, 2.0, 1.0]);
-        assert_eq!(s.front_material.shininess, 40.0);
-        let b = state(&BUMP, &Params::new(BUMP.params));
-        assert_eq!(b.front_light_product[0].diffuse, [0.9, 0.7, 0.5, 1.0]);
-        assert_eq!(b.light_source[0].position, [1.5, 1.5, -2.0, 1.0]);
-    }
-
-    #[test]
-    fn keys_step_and_clamp_shininess() {
-        let mut params = Params::new(COURSE.params);
-        for _ in 0..30 {
-            let (name, delta) = key_step(&COURSE, Input::Key('H')).expect("H is a light key");
-            params.step(name, delta);
-        }
-        assert_eq!(params.f("shininess"), 128.0);
-        assert_eq!(key_step(&COURSE, Input::Special(Special::Left)), Some(("lx", -STEP)));
-        assert_eq!(key_step(&COURSE, Input::Special(Special::PageUp)), Some(("lz", STEP)));
-        assert_eq!(key_step(&BUMP, Input::Special(Special::Down)), Some(("bly", -STEP)));
-        assert_eq!(key_step(&BUMP, Input::Key('h')), None);
-    }
-}

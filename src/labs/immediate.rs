@@ -35,19 +35,3 @@ impl<V: Copy> Immediate<V> {
         self.vertices
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn vertices_latch_the_current_attributes() {
-        let mut prim = Immediate::begin([0.0f32; 2]);
-        prim.attrib(|v| v[1] = 7.0);
-        prim.vertex(|v| v[0] = 1.0);
-        prim.vertex(|v| v[0] = 2.0);
-        prim.attrib(|v| v[1] = -1.0);
-        prim.vertex(|v| v[0] = 3.0);
-        assert_eq!(prim.end(), vec![[1.0, 7.0], [2.0, 7.0], [3.0, -1.0]]);
-    }
-}

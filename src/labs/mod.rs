@@ -9,14 +9,15 @@ pub mod ustc_stage;
 
 pub mod displacement;
 pub mod height;
+pub mod morph;
 pub mod noise;
 pub mod normal_rgb;
+pub mod particles;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
-pub mod morph;
-pub mod wave;
 pub mod uniform_arrays;
+pub mod wave;
 
 use crate::lab::LabEntry;
 use crate::params::{ParamSpec, Params};
@@ -44,6 +45,9 @@ pub static WAVE: &LabEntry = &wave::ENTRY;
 /// Seed 001 §1.4, morphing vertex shader.
 pub static MORPH: &LabEntry = &morph::ENTRY;
 
+/// Seed 001 §1.5, particle-system vertex shader.
+pub static PARTICLES: &LabEntry = &particles::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -55,6 +59,7 @@ pub static ALL: &[&LabEntry] = &[
     &uniform_arrays::ENTRY,
     &wave::ENTRY,
     &morph::ENTRY,
+    &particles::ENTRY,
 ];
 
 /// The lab called `name`.

@@ -105,7 +105,12 @@ impl UstcStage {
 
     /// Writes the Transform block for a `width` x `height` viewport.
     pub fn upload(&mut self, gpu: &Gpu, params: &Params, width: u32, height: u32) {
-        self.transform.value = TransformUniforms::new(self.modelview(params), Self::projection(width, height));
+        self.upload_with(gpu, params, Self::projection(width, height));
+    }
+
+    /// Writes the Transform block with the given (wgpu-depth) projection.
+    pub fn upload_with(&mut self, gpu: &Gpu, params: &Params, projection: Mat4) {
+        self.transform.value = TransformUniforms::new(self.modelview(params), projection);
         self.transform.upload(gpu);
     }
 
