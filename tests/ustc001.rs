@@ -473,3 +473,62 @@ fn particles_rise_then_fall() {
         "xangle turns the fountain"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// 1.6 toon
+
+#[test]
+fn toon_matches_original() {
+    check_reference(labs::TOON, "default", &[]);
+}
+
+#[test]
+fn toon_has_the_three_course_colours_blended_at_edges() {
+    let image = render(labs::TOON, &[]);
+    // Every colour is a blend of yellow (1,1,0), red (1,0,0) and black: blue is 0 and green
+    // never exceeds red.
+    for p in image.pixels() {
+        let [r, g, b] = p.0;
+        assert!(b == 0 && g <= r, "not a blend of the course colours: {:?}", p.0);
+    }
+    let lit_px = lit(&image) as f64;
+    let count = |pick: &dyn Fn([u8; 3]) -> bool| image.pixels().filter(|p| pick(p.0)).count() as f64;
+    let yellow = count(&|p| p == [255, 255, 0]);
+    let red = count(&|p| p == [255, 0, 0]);
+    // The pure course colours cover most of the object; blends only at band edges.
+    assert!(
+        yellow > 0.1 * lit_px && red > 0.1 * lit_px,
+        "yellow {yellow} red {red} of {lit_px}"
+    );
+    assert!(
+        yellow + red > 0.6 * lit_px,
+        "blends must be the minority: {yellow} + {red} of {lit_px}"
+    );
+    // Yellow faces the light at (2, 2, 2): upper right of red.
+    let (yx, yy, _) = centroid(&image, |p| p == [255, 255, 0]);
+    let (rx, ry, _) = centroid(&image, |p| p == [255, 0, 0]);
+    assert!(
+        yx > rx && yy < ry,
+        "yellow ({yx:.0},{yy:.0}) must be up-right of red ({rx:.0},{ry:.0})"
+    );
+    // Moving the light to the left moves the yellow side left.
+    let left = render(labs::TOON, &[("lx", "-2")]);
+    let (lx, _, _) = centroid(&left, |p| p == [255, 255, 0]);
+    assert!(lx < yx - 40.0, "yellow must follow the light: {yx:.0} -> {lx:.0}");
+    // The sphere: its silhouette vertices are mostly outside the 0.1 band, but dark (blended
+    // towards black) pixels exist near the rim.
+    let sphere = render(labs::TOON, &[("object", "1")]);
+    save(&sphere, "toon_sphere");
+    assert!(
+        sphere.pixels().any(|p| p.0[0] > 0 && p.0[0] < 200),
+        "some blend towards black"
+    );
+    for (name, state) in [
+        ("toon_rotated", &[("xangle", "30"), ("yangle", "45")][..]),
+        ("toon_torus", &[("object", "2"), ("xangle", "60")][..]),
+    ] {
+        let img = render(labs::TOON, state);
+        save(&img, name);
+        assert!(lit(&img) > 20_000, "{name} shows the object");
+    }
+}

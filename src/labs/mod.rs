@@ -16,6 +16,7 @@ pub mod particles;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod toon;
 pub mod uniform_arrays;
 pub mod wave;
 
@@ -48,6 +49,9 @@ pub static MORPH: &LabEntry = &morph::ENTRY;
 /// Seed 001 §1.5, particle-system vertex shader.
 pub static PARTICLES: &LabEntry = &particles::ENTRY;
 
+/// Seed 001 §1.6, toon (non-photorealistic) shading.
+pub static TOON: &LabEntry = &toon::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -60,6 +64,7 @@ pub static ALL: &[&LabEntry] = &[
     &wave::ENTRY,
     &morph::ENTRY,
     &particles::ENTRY,
+    &toon::ENTRY,
 ];
 
 /// The lab called `name`.
