@@ -236,7 +236,7 @@ fn height_modes_feed_the_same_vertices_and_image() {
     );
     let immediate = render(labs::HEIGHT, &[("mode", "0")]);
     let arrays = render(labs::HEIGHT, &[("mode", "1")]);
-    assert_eq!(immediate, arrays, "mode 0 and mode 1 must give the same image");
+    assert!(immediate == arrays, "mode 0 and mode 1 must give the same image");
     // Red at the top, blue at the bottom.
     let top = mean(&immediate, (200, 110, 310, 120));
     let bottom = mean(&immediate, (200, 395, 310, 405));
@@ -283,7 +283,7 @@ fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
 
     let image = render(labs::UNIFORM_ARRAYS, &[]);
     let elements_image = render(labs::UNIFORM_ARRAYS, &[("mode", "1")]);
-    assert_eq!(image, elements_image, "both setter styles must give the same image");
+    assert!(image == elements_image, "both setter styles must give the same image");
     // Per-fragment bands: only the four course colours (as 8-bit) and the black background.
     let palette = [[0, 0, 0], [204, 204, 204], [102, 102, 204], [51, 51, 102], [26, 26, 26]];
     let near = |p: [u8; 3], q: [u8; 3]| (0..3).all(|c| p[c].abs_diff(q[c]) <= 1);
@@ -531,4 +531,138 @@ fn toon_has_the_three_course_colours_blended_at_edges() {
         save(&img, name);
         assert!(lit(&img) > 20_000, "{name} shows the object");
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1.7 phong_vertex, 1.8 phong_fragment
+
+#[test]
+fn phong_vertex_matches_original() {
+    check_reference(labs::PHONG_VERTEX, "default", &[]);
+}
+
+#[test]
+fn phong_fragment_matches_original() {
+    check_reference(labs::PHONG_FRAGMENT, "default", &[]);
+}
+
+/// The highlight on the teapot's body: pixels whose red channel exceeds `threshold` (without
+/// specular, red is at most 0.04 + 0.2 = 0.24, i.e. 61), within the body's middle (not the
+/// handle or spout).
+fn highlight_pixels(image: &RgbImage, threshold: u8) -> Vec<(u32, u32, u8)> {
+    image
+        .enumerate_pixels()
+        .filter(|(x, y, p)| (180..400).contains(x) && (180..360).contains(y) && p.0[0] > threshold)
+        .map(|(x, y, p)| (x, y, p.0[0]))
+        .collect()
+}
+
+#[test]
+fn per_fragment_highlight_is_rounder_and_brighter_than_per_vertex() {
+    let vertex = render(labs::PHONG_VERTEX, &[]);
+    let fragment = render(labs::PHONG_FRAGMENT, &[]);
+    let (hv, hf) = (highlight_pixels(&vertex, 150), highlight_pixels(&fragment, 150));
+    assert!(!hv.is_empty() && !hf.is_empty(), "both have a highlight");
+    // Brighter: per fragment the peak (between vertices) is reached, so its white core is large;
+    // per vertex only the colours at the vertices are, interpolated linearly in between.
+    let white = |h: &[(u32, u32, u8)]| h.iter().filter(|p| p.2 >= 250).count();
+    assert!(
+        white(&hf) > 10 * white(&hv).max(1),
+        "{} vs {} white pixels",
+        white(&hf),
+        white(&hv)
+    );
+    // Rounder: the core of the per-fragment highlight is a disc: its pixels' mean squared
+    // distance from their centre is that of a disc of the same area (compactness 1); the
+    // per-vertex core follows the triangles.
+    let compactness = |h: &[(u32, u32, u8)]| {
+        let n = h.len() as f64;
+        let (cx, cy) = h
+            .iter()
+            .fold((0.0, 0.0), |(a, b), p| (a + f64::from(p.0) / n, b + f64::from(p.1) / n));
+        let r2 = h
+            .iter()
+            .map(|p| (f64::from(p.0) - cx).powi(2) + (f64::from(p.1) - cy).powi(2))
+            .sum::<f64>()
+            / n;
+        // A disc of n pixels has a mean squared radius of n / (2π).
+        n / (2.0 * std::f64::consts::PI * r2)
+    };
+    let (cv, cf) = (
+        compactness(&highlight_pixels(&vertex, 230)),
+        compactness(&highlight_pixels(&fragment, 230)),
+    );
+    println!("highlight core compactness: per vertex {cv:.3}, per fragment {cf:.3}");
+    assert!(
+        cf > 0.98,
+        "per-fragment highlight must be a round blob, compactness {cf:.3}"
+    );
+    assert!(cv < cf - 0.05, "per fragment must be rounder: {cf:.3} vs {cv:.3}");
+    // Same light, same place: the highlights' centres are close.
+    let (vx, vy, _) = centroid(&vertex, |p| p[0] > 150);
+    let (fx, fy, _) = centroid(&fragment, |p| p[0] > 150);
+    assert!(
+        (vx - fx).abs() < 25.0 && (vy - fy).abs() < 25.0,
+        "({vx:.0},{vy:.0}) vs ({fx:.0},{fy:.0})"
+    );
+    // Shininess 120 and the light on the left: a smaller highlight on the left.
+    let shiny = render(labs::PHONG_FRAGMENT, &[("shininess", "120"), ("lx", "-2")]);
+    save(&shiny, "phong_fragment_shiny");
+    let hs = highlight_pixels(&shiny, 150);
+    let (sx, _, _) = centroid(&shiny, |p| p[0] > 150);
+    assert!(
+        hs.len() < hf.len(),
+        "shininess 120 narrows the highlight: {} vs {}",
+        hs.len(),
+        hf.len()
+    );
+    assert!(sx < fx - 50.0, "the highlight follows the light: {fx:.0} -> {sx:.0}");
+    for lab in [labs::PHONG_VERTEX, labs::PHONG_FRAGMENT] {
+        for (name, state) in [
+            ("rotated", &[("xangle", "30"), ("yangle", "45")][..]),
+            ("sphere", &[("object", "1")][..]),
+        ] {
+            let img = render(lab, state);
+            save(&img, &format!("{}_{name}", lab.info.name));
+            assert!(lit(&img) > 20_000);
+        }
+    }
+}
+
+#[test]
+fn compare_draws_per_vertex_left_and_per_fragment_right() {
+    let [(lx, ly, side), (rx, _, _)] = labs::modified_phong::compare_viewports(512, 512);
+    assert_eq!((lx, ly, side, rx), (0, 128, 256, 256));
+    let a = render(labs::PHONG_VERTEX, &[("compare", "1")]);
+    let b = render(labs::PHONG_FRAGMENT, &[("compare", "1")]);
+    save(&a, "phong_compare");
+    assert!(a == b, "compare draws the same picture from either lab");
+    // Each half is the default scene at half size (a square viewport of 256): compare with
+    // each lab's own image rendered at 256x256.
+    let small = |entry: &LabEntry| {
+        let mut lab = lab(entry);
+        to_rgb(&shaderlab::shell::screenshot(gpu(), lab.as_mut(), 256, 256).expect("screenshot"))
+    };
+    let left = image::imageops::crop_imm(&a, 0, 128, 256, 256).to_image();
+    let right = image::imageops::crop_imm(&a, 256, 128, 256, 256).to_image();
+    // The same up to a few edge pixels (the viewport offset changes window-coordinate rounding).
+    let (sv, sf) = (small(labs::PHONG_VERTEX), small(labs::PHONG_FRAGMENT));
+    let (lv, rf) = (psnr(&left, &sv).expect("size"), psnr(&right, &sf).expect("size"));
+    assert!(
+        lv > 45.0 && rf > 45.0,
+        "halves vs the labs at 256x256: {lv:.1} dB, {rf:.1} dB"
+    );
+    assert!(
+        psnr(&left, &sf).expect("size") < lv,
+        "the left half is the per-vertex one"
+    );
+    // Outside the two squares: the black clear.
+    assert!(image::imageops::crop_imm(&a, 0, 0, 512, 128)
+        .to_image()
+        .pixels()
+        .all(|p| p.0 == [0, 0, 0]));
+    // Key c toggles it.
+    let mut lab = lab(labs::PHONG_FRAGMENT);
+    assert!(lab.input(Input::Key('c')));
+    assert!(lab.params().on("compare"));
 }

@@ -5,6 +5,7 @@
 pub mod gl_light;
 pub mod glut_stage;
 pub mod immediate;
+pub mod modified_phong;
 pub mod ustc_stage;
 
 pub mod displacement;
@@ -16,6 +17,8 @@ pub mod particles;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod phong_fragment;
+pub mod phong_vertex;
 pub mod toon;
 pub mod uniform_arrays;
 pub mod wave;
@@ -52,6 +55,12 @@ pub static PARTICLES: &LabEntry = &particles::ENTRY;
 /// Seed 001 §1.6, toon (non-photorealistic) shading.
 pub static TOON: &LabEntry = &toon::ENTRY;
 
+/// Seed 001 §1.7, modified Phong per vertex.
+pub static PHONG_VERTEX: &LabEntry = &phong_vertex::ENTRY;
+
+/// Seed 001 §1.8, modified Phong per fragment.
+pub static PHONG_FRAGMENT: &LabEntry = &phong_fragment::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -65,6 +74,8 @@ pub static ALL: &[&LabEntry] = &[
     &morph::ENTRY,
     &particles::ENTRY,
     &toon::ENTRY,
+    &phong_vertex::ENTRY,
+    &phong_fragment::ENTRY,
 ];
 
 /// The lab called `name`.
