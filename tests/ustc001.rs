@@ -666,3 +666,44 @@ fn compare_draws_per_vertex_left_and_per_fragment_right() {
     assert!(lab.input(Input::Key('c')));
     assert!(lab.params().on("compare"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// 1.9 texture
+
+#[test]
+fn texture_matches_original() {
+    check_reference(labs::TEXTURE, "default", &[]);
+}
+
+#[test]
+fn texture_shows_the_uvgrid_on_the_teapot() {
+    let (vertices, indices) = labs::texture::textured_teapot();
+    assert_eq!(vertices.len(), 32 * 64);
+    assert!(indices.iter().all(|&i| (i as usize) < vertices.len()));
+    let image = render(labs::TEXTURE, &[]);
+    // The uvgrid's colours only: white lines, the dark disc, and (i, j, 96) ramps: blue is 96
+    // off the lines and the disc (linear filtering blends at their edges).
+    let lit_px: Vec<[u8; 3]> = image.pixels().map(|p| p.0).filter(|p| *p != [0, 0, 0]).collect();
+    let ramp = lit_px.iter().filter(|p| p[2] == 96).count();
+    // One-texel lines, minified and filtered: whitish rather than white.
+    let lines = lit_px.iter().filter(|p| p.iter().all(|&c| c > 200)).count();
+    let disc = lit_px.iter().filter(|p| *p == &[16, 16, 16]).count();
+    assert!(
+        ramp as f64 > 0.5 * lit_px.len() as f64,
+        "mostly the (i, j, 96) ramp: {ramp} of {}",
+        lit_px.len()
+    );
+    assert!(lines > 200 && disc > 200, "grid lines {lines} and discs {disc} visible");
+    // Every patch holds the whole image: red (s) and green (t) both span the range.
+    let max = |c: usize| lit_px.iter().filter(|p| p[2] == 96).map(|p| p[c]).max().unwrap_or(0);
+    let min = |c: usize| lit_px.iter().filter(|p| p[2] == 96).map(|p| p[c]).min().unwrap_or(255);
+    assert!(max(0) > 220 && min(0) < 40 && max(1) > 220 && min(1) < 40);
+    for (name, state) in [
+        ("texture_rotated", &[("xangle", "30"), ("yangle", "45")][..]),
+        ("texture_top", &[("xangle", "70"), ("yangle", "-30")][..]),
+    ] {
+        let img = render(labs::TEXTURE, state);
+        save(&img, name);
+        assert!(lit(&img) > 20_000 && psnr(&img, &image).expect("size") < 25.0, "{name}");
+    }
+}

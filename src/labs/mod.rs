@@ -17,6 +17,7 @@ pub mod particles;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod texture;
 pub mod phong_fragment;
 pub mod phong_vertex;
 pub mod toon;
@@ -61,6 +62,9 @@ pub static PHONG_VERTEX: &LabEntry = &phong_vertex::ENTRY;
 /// Seed 001 §1.8, modified Phong per fragment.
 pub static PHONG_FRAGMENT: &LabEntry = &phong_fragment::ENTRY;
 
+/// Seed 001 §1.9, texture mapping with a sampler.
+pub static TEXTURE: &LabEntry = &texture::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -76,6 +80,7 @@ pub static ALL: &[&LabEntry] = &[
     &toon::ENTRY,
     &phong_vertex::ENTRY,
     &phong_fragment::ENTRY,
+    &texture::ENTRY,
 ];
 
 /// The lab called `name`.
