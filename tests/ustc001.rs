@@ -707,3 +707,123 @@ fn texture_shows_the_uvgrid_on_the_teapot() {
         assert!(lit(&img) > 20_000 && psnr(&img, &image).expect("size") < 25.0, "{name}");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// 1.10 envmap
+
+#[test]
+fn envmap_matches_original() {
+    check_reference(labs::ENVMAP, "sphere", &[("object", "1")]);
+}
+
+/// Which cube face a colour is from (base colour or its half, the orientation quadrant).
+fn face_of(p: [u8; 3]) -> Option<&'static str> {
+    let faces: [(&str, [u8; 3]); 6] = [
+        ("+X", [230, 60, 60]),
+        ("-X", [60, 230, 230]),
+        ("+Y", [60, 230, 60]),
+        ("-Y", [230, 60, 230]),
+        ("+Z", [60, 60, 230]),
+        ("-Z", [230, 230, 60]),
+    ];
+    let near = |a: [u8; 3], b: [u8; 3]| (0..3).all(|c| a[c].abs_diff(b[c]) <= 12);
+    faces
+        .iter()
+        .find(|(_, c)| near(p, *c) || near(p, c.map(|v| v / 2)))
+        .map(|(name, _)| *name)
+}
+
+/// The face most of the pixels in a rectangle show.
+fn dominant_face(image: &RgbImage, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> Option<&'static str> {
+    let mut counts = std::collections::HashMap::new();
+    for y in y0..y1 {
+        for x in x0..x1 {
+            if let Some(f) = face_of(image.get_pixel(x, y).0) {
+                *counts.entry(f).or_insert(0) += 1;
+            }
+        }
+    }
+    counts.into_iter().max_by_key(|(_, n)| *n).map(|(f, _)| f)
+}
+
+#[test]
+fn envmap_reflects_the_faces_in_the_right_directions() {
+    let sphere = render(labs::ENVMAP, &[("object", "1")]);
+    // The sphere's radius on screen: 1 unit at distance 4 is 154.5 px; its silhouette is at
+    // about 150 px. The middle reflects back towards the eye (+Z), the top upwards (+Y), the
+    // right to +X, the left to −X, the bottom to −Y; near the rim the ray grazes on to −Z.
+    let c = 256u32;
+    assert_eq!(
+        dominant_face(&sphere, (c - 10, c - 10, c + 10, c + 10)),
+        Some("+Z"),
+        "centre"
+    );
+    assert_eq!(
+        dominant_face(&sphere, (c - 10, c - 120, c + 10, c - 100)),
+        Some("+Y"),
+        "top"
+    );
+    assert_eq!(
+        dominant_face(&sphere, (c - 10, c + 100, c + 10, c + 120)),
+        Some("-Y"),
+        "bottom"
+    );
+    assert_eq!(
+        dominant_face(&sphere, (c + 100, c - 10, c + 120, c + 10)),
+        Some("+X"),
+        "right"
+    );
+    assert_eq!(
+        dominant_face(&sphere, (c - 120, c - 10, c - 100, c + 10)),
+        Some("-X"),
+        "left"
+    );
+    // The outermost lit pixel of each row: mostly the yellow −Z face behind the sphere.
+    let rim: Vec<Option<&str>> = (c - 60..c + 60)
+        .filter_map(|y| {
+            (0..512)
+                .rev()
+                .find(|&x| sphere.get_pixel(x, y).0 != [0, 0, 0])
+                .map(|x| (x, y))
+        })
+        .map(|(x, y)| face_of(sphere.get_pixel(x - 1, y).0))
+        .collect();
+    let behind = rim.iter().filter(|f| **f == Some("-Z")).count();
+    assert!(
+        behind * 3 > rim.len() * 2,
+        "rim: {behind} of {} rows show -Z",
+        rim.len()
+    );
+    // Turning the sphere keeps the directions (the reflection is computed in world space);
+    // turning the teapot changes its reflection.
+    let turned = render(labs::ENVMAP, &[("object", "1"), ("yangle", "90")]);
+    assert_eq!(
+        dominant_face(&turned, (c - 10, c - 10, c + 10, c + 10)),
+        Some("+Z"),
+        "turned centre"
+    );
+    assert_eq!(
+        dominant_face(&turned, (c + 100, c - 10, c + 120, c + 10)),
+        Some("+X"),
+        "turned right"
+    );
+    let teapot = render(labs::ENVMAP, &[("object", "0")]);
+    let teapot_rotated = render(labs::ENVMAP, &[("object", "0"), ("xangle", "30"), ("yangle", "45")]);
+    let torus = render(labs::ENVMAP, &[("object", "2"), ("xangle", "60")]);
+    save(&teapot, "envmap_teapot");
+    save(&teapot_rotated, "envmap_teapot_rotated");
+    save(&torus, "envmap_torus");
+    assert!(psnr(&teapot, &teapot_rotated).expect("size") < 20.0);
+    // The tilted torus faces the eye with its ring: the near (lower) part of the ring
+    // reflects downwards (−Y), its far part back towards the eye (+Z).
+    assert_eq!(
+        dominant_face(&torus, (246, 200, 266, 215)),
+        Some("-Y"),
+        "torus near part"
+    );
+    assert_eq!(
+        dominant_face(&torus, (200, 140, 230, 170)),
+        Some("+Z"),
+        "torus far part"
+    );
+}

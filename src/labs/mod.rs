@@ -17,6 +17,7 @@ pub mod particles;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod envmap;
 pub mod texture;
 pub mod phong_fragment;
 pub mod phong_vertex;
@@ -65,6 +66,9 @@ pub static PHONG_FRAGMENT: &LabEntry = &phong_fragment::ENTRY;
 /// Seed 001 §1.9, texture mapping with a sampler.
 pub static TEXTURE: &LabEntry = &texture::ENTRY;
 
+/// Seed 001 §1.10, cube-map environment (reflection) map.
+pub static ENVMAP: &LabEntry = &envmap::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -81,6 +85,7 @@ pub static ALL: &[&LabEntry] = &[
     &phong_vertex::ENTRY,
     &phong_fragment::ENTRY,
     &texture::ENTRY,
+    &envmap::ENTRY,
 ];
 
 /// The lab called `name`.
