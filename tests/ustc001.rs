@@ -827,3 +827,150 @@ fn envmap_reflects_the_faces_in_the_right_directions() {
         "torus far part"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// 1.11 bump, 1.12 normmap
+
+#[test]
+fn bump_matches_original() {
+    check_reference(labs::BUMP, "default", &[]);
+}
+
+#[test]
+fn normmap_matches_original() {
+    check_reference(labs::NORMMAP, "default", &[]);
+}
+
+/// Luminance-weighted centre of an image.
+fn bright_centre(image: &RgbImage) -> (f64, f64) {
+    let (mut sx, mut sy, mut sw) = (0.0, 0.0, 0.0);
+    for (x, y, p) in image.enumerate_pixels() {
+        let w = f64::from(p.0[0]) + f64::from(p.0[1]) + f64::from(p.0[2]);
+        sx += w * f64::from(x);
+        sy += w * f64::from(y);
+        sw += w;
+    }
+    (sx / sw, sy / sw)
+}
+
+#[test]
+fn bump_shading_moves_with_the_light() {
+    let image = render(labs::BUMP, &[]);
+    // Diffuse colour (0.9, 0.7, 0.5) times Kd: every lit pixel keeps those proportions.
+    for p in image.pixels().filter(|p| p.0[0] > 60) {
+        let [r, g, b] = p.0.map(f64::from);
+        assert!(
+            (g / r - 0.7 / 0.9).abs() < 0.05 && (b / r - 0.5 / 0.9).abs() < 0.06,
+            "{:?}",
+            p.0
+        );
+    }
+    // The light is upper right: the lit side of every bump faces it. Within one bump (the quad
+    // has 4x4, each 2.5/4 units wide), the upper-right quarter outshines the lower-left one.
+    let (bx, by) = bright_centre(&image);
+    assert!(
+        bx > 256.0 && by < 256.0,
+        "brightness leans to the light, upper right: ({bx:.0}, {by:.0})"
+    );
+    let left = render(labs::BUMP, &[("blx", "-1.5"), ("bly", "-0.5")]);
+    save(&left, "bump_light_left");
+    let (lx, ly) = bright_centre(&left);
+    assert!(
+        lx < bx - 15.0 && ly > by + 10.0,
+        "brightness follows the light: ({bx:.0},{by:.0}) -> ({lx:.0},{ly:.0})"
+    );
+    // Per fragment, the shading is the egg-crate normal lit from the light: predict the red
+    // channel from SPEC's formulas (quad facing the eye at distance 4, tangent frame = eye
+    // axes) and compare. Each image matches its own light, not the other one.
+    let model = |light: [f64; 3]| {
+        let ppu = 256.0 / (4.0 * (22.5f64).to_radians().tan());
+        let a = 2.0 * std::f64::consts::PI * 4.0 / 256.0;
+        move |x: u32, y: u32| -> Option<f64> {
+            let (px, py) = ((f64::from(x) + 0.5 - 256.0) / ppu, (256.0 - f64::from(y) - 0.5) / ppu);
+            if px.abs() > 1.2 || py.abs() > 1.2 {
+                return None;
+            }
+            let (u, v) = ((px + 1.25) / 2.5 * 256.0, (py + 1.25) / 2.5 * 256.0);
+            let n = [
+                -0.8 * (a * u).cos() * (a * v).sin(),
+                -0.8 * (a * u).sin() * (a * v).cos(),
+                1.0,
+            ];
+            let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            // L is normalized per vertex and interpolated across the quad's two triangles
+            // (v0 v1 v2), (v0 v2 v3), split along the diagonal y = x.
+            let at = |cx: f64, cy: f64| {
+                let l = [light[0] - cx, light[1] - cy, light[2] + 4.0];
+                l.map(|c| c / len(l))
+            };
+            let c = 1.25;
+            let (w1, w2, w3, far) = if py <= px {
+                // v0 (-c,-c), v1 (c,-c), v2 (c,c): x = -c + 2c(w1 + w2), y = -c + 2c·w2.
+                let w2 = (py + c) / (2.0 * c);
+                ((px + c) / (2.0 * c) - w2, w2, 0.0, at(c, -c))
+            } else {
+                // v0 (-c,-c), v2 (c,c), v3 (-c,c): x = -c + 2c·w2, y = -c + 2c(w2 + w3).
+                let w2 = (px + c) / (2.0 * c);
+                (0.0, w2, (py + c) / (2.0 * c) - w2, at(-c, c))
+            };
+            let (l0, l2) = (at(-c, -c), at(c, c));
+            let w0 = 1.0 - w1 - w2 - w3;
+            let l: [f64; 3] = std::array::from_fn(|k| w0 * l0[k] + w2 * l2[k] + (w1 + w3) * far[k]);
+            let kd = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / (len(n) * len(l));
+            Some(255.0 * 0.9 * kd.max(0.0))
+        }
+    };
+    let error = |img: &RgbImage, light: [f64; 3]| {
+        let predict = model(light);
+        let (mut sum, mut n) = (0.0, 0.0);
+        for (x, y, p) in img.enumerate_pixels() {
+            if let Some(red) = predict(x, y) {
+                sum += (f64::from(p.0[0]) - red).abs();
+                n += 1.0;
+            }
+        }
+        sum / n
+    };
+    let (right_light, left_light) = ([1.5, 1.5, -2.0], [-1.5, -0.5, -2.0]);
+    let (e_rr, e_rl) = (error(&image, right_light), error(&image, left_light));
+    let (e_ll, e_lr) = (error(&left, left_light), error(&left, right_light));
+    println!("bump model error (red, 0-255): default {e_rr:.1} (other light {e_rl:.1}); light_left {e_ll:.1} (other {e_lr:.1})");
+    assert!(
+        e_rr < 2.0 && e_ll < 2.0,
+        "the shading is the normal map lit by the light"
+    );
+    assert!(e_rl > 5.0 * e_rr && e_lr > 5.0 * e_ll, "and it moves with the light");
+    // Key: ← moves the light left.
+    let mut lab = lab(labs::BUMP);
+    assert!(lab.input(Input::Special(Special::Left)));
+    assert_eq!(lab.params().f("blx"), 1.25);
+    for (name, state) in [
+        ("bump_tilted", &[("xangle", "-50")][..]),
+        ("bump_rotated", &[("xangle", "-30"), ("yangle", "35")][..]),
+    ] {
+        let img = render(labs::BUMP, state);
+        save(&img, name);
+        assert!(
+            lit(&img) > 20_000 && lit(&img) < lit(&image),
+            "{name}: a turned quad covers less"
+        );
+    }
+}
+
+#[test]
+fn normmap_matches_bump_up_to_quantization() {
+    for state in [
+        &[][..],
+        &[("xangle", "-50")][..],
+        &[("blx", "-1.5"), ("bly", "-0.5")][..],
+    ] {
+        let a = render(labs::BUMP, state);
+        let b = render(labs::NORMMAP, state);
+        let db = psnr(&a, &b).expect("size");
+        println!("normmap vs bump at {state:?}: {db:.1} dB");
+        assert!(
+            db > 35.0 && db.is_finite(),
+            "normmap must match bump up to quantization ({db:.1} dB)"
+        );
+    }
+}

@@ -17,6 +17,8 @@ pub mod particles;
 pub mod phong;
 mod plain;
 pub mod position_rgb;
+pub mod normmap;
+pub mod bump;
 pub mod envmap;
 pub mod texture;
 pub mod phong_fragment;
@@ -69,6 +71,12 @@ pub static TEXTURE: &LabEntry = &texture::ENTRY;
 /// Seed 001 §1.10, cube-map environment (reflection) map.
 pub static ENVMAP: &LabEntry = &envmap::ENTRY;
 
+/// Seed 001 §1.11, tangent-space bump mapping.
+pub static BUMP: &LabEntry = &bump::ENTRY;
+
+/// Seed 001 §1.12, normalization cube map.
+pub static NORMMAP: &LabEntry = &normmap::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -86,6 +94,8 @@ pub static ALL: &[&LabEntry] = &[
     &phong_fragment::ENTRY,
     &texture::ENTRY,
     &envmap::ENTRY,
+    &bump::ENTRY,
+    &normmap::ENTRY,
 ];
 
 /// The lab called `name`.
