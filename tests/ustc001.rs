@@ -974,3 +974,171 @@ fn normmap_matches_bump_up_to_quantization() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The acceptance contract: every state of SPEC §1, by name, as `--set` would set it
+
+/// SPEC §1's states: (effect, state, assignments).
+const STATES: &[(&str, &str, &[(&str, &str)])] = &[
+    ("height", "immediate", &[("mode", "0")]),
+    ("height", "arrays", &[("mode", "1")]),
+    (
+        "height",
+        "rotated",
+        &[("mode", "1"), ("yangle", "50"), ("xangle", "-30")],
+    ),
+    ("uniform_arrays", "default", &[]),
+    ("uniform_arrays", "elements", &[("mode", "1")]),
+    ("uniform_arrays", "rotated", &[("xangle", "30"), ("yangle", "45")]),
+    ("uniform_arrays", "torus", &[("object", "2"), ("xangle", "60")]),
+    ("wave", "t0", &[("time", "0")]),
+    ("wave", "t1.5", &[("time", "1.5")]),
+    ("wave", "h0.2", &[("time", "0.75"), ("h", "0.2")]),
+    ("wave", "rotated", &[("time", "0.75"), ("yangle", "45")]),
+    ("morph", "circle", &[("time", "4.712389")]),
+    ("morph", "half", &[("time", "0")]),
+    ("morph", "star", &[("time", "1.570796")]),
+    ("morph", "t0.5", &[("time", "0.5")]),
+    ("particles", "t0.25", &[("time", "0.25")]),
+    ("particles", "t1", &[("time", "1")]),
+    ("particles", "t2", &[("time", "2")]),
+    ("particles", "side", &[("time", "1"), ("xangle", "60")]),
+    ("toon", "default", &[]),
+    ("toon", "rotated", &[("xangle", "30"), ("yangle", "45")]),
+    ("toon", "sphere", &[("object", "1")]),
+    ("toon", "torus", &[("object", "2"), ("xangle", "60")]),
+    ("phong_vertex", "default", &[]),
+    ("phong_vertex", "rotated", &[("xangle", "30"), ("yangle", "45")]),
+    ("phong_vertex", "sphere", &[("object", "1")]),
+    ("phong_vertex", "shiny", &[("shininess", "120"), ("lx", "-2")]),
+    ("phong_fragment", "default", &[]),
+    ("phong_fragment", "rotated", &[("xangle", "30"), ("yangle", "45")]),
+    ("phong_fragment", "sphere", &[("object", "1")]),
+    ("phong_fragment", "shiny", &[("shininess", "120"), ("lx", "-2")]),
+    ("texture", "default", &[]),
+    ("texture", "rotated", &[("xangle", "30"), ("yangle", "45")]),
+    ("texture", "top", &[("xangle", "70"), ("yangle", "-30")]),
+    ("envmap", "sphere", &[("object", "1")]),
+    ("envmap", "teapot", &[("object", "0")]),
+    (
+        "envmap",
+        "teapot_rotated",
+        &[("object", "0"), ("xangle", "30"), ("yangle", "45")],
+    ),
+    ("envmap", "torus", &[("object", "2"), ("xangle", "60")]),
+    ("bump", "default", &[]),
+    ("bump", "tilted", &[("xangle", "-50")]),
+    ("bump", "light_left", &[("blx", "-1.5"), ("bly", "-0.5")]),
+    ("bump", "rotated", &[("xangle", "-30"), ("yangle", "35")]),
+    ("normmap", "default", &[]),
+    ("normmap", "tilted", &[("xangle", "-50")]),
+    ("normmap", "light_left", &[("blx", "-1.5"), ("bly", "-0.5")]),
+];
+
+#[test]
+fn every_spec_state_renders_by_its_parameters() {
+    let names = [
+        "height",
+        "uniform_arrays",
+        "wave",
+        "morph",
+        "particles",
+        "toon",
+        "phong_vertex",
+        "phong_fragment",
+        "texture",
+        "envmap",
+        "bump",
+        "normmap",
+    ];
+    // The twelve effects are in the one list, in SPEC order, after seed 000's.
+    let listed: Vec<&str> = labs::ALL.iter().map(|e| e.info.name).collect();
+    let at = listed.iter().position(|n| *n == "height").expect("height listed");
+    assert_eq!(&listed[at..at + 12], &names[..]);
+    for name in names {
+        let entry = labs::find(name).expect("listed");
+        assert_eq!(entry.info.size, (512, 512), "{name}: SPEC's size");
+        let states: Vec<_> = STATES.iter().filter(|s| s.0 == name).collect();
+        assert!(states.len() >= 3, "{name}: SPEC's states");
+        let mut seen = Vec::new();
+        for (_, state, assignments) in states {
+            // The shell checks the values against the declaration before a GPU is opened.
+            let mut params = (entry.params)();
+            for (k, v) in assignments.iter() {
+                params
+                    .set_str(k, v)
+                    .unwrap_or_else(|e| panic!("{name} {state}: {k}={v}: {e}"));
+            }
+            let image = render(entry, assignments);
+            save(&image, &format!("state_{name}_{state}"));
+            assert!(lit(&image) > 500, "{name} {state} draws something");
+            seen.push(image);
+        }
+        // Distinct states give distinct pictures (except the feeding/setter modes, which must not).
+        let same_by_design = matches!(name, "height" | "uniform_arrays");
+        if !same_by_design {
+            for i in 0..seen.len() {
+                for j in i + 1..seen.len() {
+                    assert!(seen[i] != seen[j], "{name}: states {i} and {j} look the same");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn vertex_types_are_checked_against_the_shaders_inputs() {
+    use shaderlab::render::{Program, RenderState};
+    let cx = LabContext {
+        gpu: gpu(),
+        source: &ShaderSource::Embedded,
+        format: COLOR_FORMAT,
+    };
+    // GLUT's vertex (position, normal) cannot feed `attribute float height`.
+    let err =
+        Program::<shaderlab::mesh::Vertex>::new(&cx, "t", "height.vert", "pass_color.frag", RenderState::default())
+            .err()
+            .expect("a missing attribute is an error")
+            .to_string();
+    assert!(err.contains("height"), "{err}");
+    let err = Program::<shaderlab::mesh::Vertex>::new(&cx, "t", "bump.vert", "bump.frag", RenderState::default())
+        .err()
+        .expect("a missing attribute is an error")
+        .to_string();
+    assert!(err.contains("objTangent"), "{err}");
+}
+
+#[test]
+fn every_001_shader_translates_to_valid_wgsl() {
+    let files = [
+        "height.vert",
+        "pass_color.frag",
+        "uniform_arrays.vert",
+        "uniform_arrays.frag",
+        "wave.vert",
+        "morph.vert",
+        "particles.vert",
+        "particles.frag",
+        "toon.vert",
+        "phong_vertex.vert",
+        "phong_fragment.vert",
+        "phong_fragment.frag",
+        "texture.vert",
+        "texture.frag",
+        "envmap.vert",
+        "envmap.frag",
+        "bump.vert",
+        "bump.frag",
+        "normmap.frag",
+    ];
+    for file in files {
+        let shader = ShaderSource::Embedded
+            .compile(file)
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
+        let wgsl = shader.to_wgsl().unwrap_or_else(|e| panic!("{file}: {e}"));
+        let module = naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{file}: WGSL does not parse: {e}"));
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{file}: WGSL does not validate: {e:?}"));
+    }
+}
