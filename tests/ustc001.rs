@@ -389,7 +389,8 @@ fn morph_goes_from_circle_to_star() {
         labs::morph::course_triangles(),
         shaderlab::geometry::shapes::morph_vertices()
     );
-    assert_eq!(labs::morph::time_uniform(1.570796), 1570.796);
+    assert_eq!(labs::morph::time_uniform(0.5), 500.0);
+    assert_eq!(labs::morph::time_uniform(1.25), 1250.0);
     let circle = render(labs::MORPH, &[("time", "4.712389")]);
     let half = render(labs::MORPH, &[("time", "0")]);
     let star = render(labs::MORPH, &[("time", "1.570796")]);
@@ -978,8 +979,11 @@ fn normmap_matches_bump_up_to_quantization() {
 // ---------------------------------------------------------------------------------------------
 // The acceptance contract: every state of SPEC §1, by name, as `--set` would set it
 
-/// SPEC §1's states: (effect, state, assignments).
-const STATES: &[(&str, &str, &[(&str, &str)])] = &[
+/// One state: (effect, state, assignments).
+type State = (&'static str, &'static str, &'static [(&'static str, &'static str)]);
+
+/// SPEC §1's states.
+const STATES: &[State] = &[
     ("height", "immediate", &[("mode", "0")]),
     ("height", "arrays", &[("mode", "1")]),
     (
