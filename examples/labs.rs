@@ -32,7 +32,10 @@ fn main() {
                 names.join(" ")
             );
         } else {
-            println!("{} ({}, {} {}, {}x{})", info.name, info.lecture, info.title, info.label, info.size.0, info.size.1);
+            println!(
+                "{} ({}, {} {}, {}x{})",
+                info.name, info.lecture, info.title, info.label, info.size.0, info.size.1
+            );
             println!("  keys: {keys}");
             println!("  parameters: {}\n", names.join(" "));
         }

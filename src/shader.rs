@@ -966,6 +966,10 @@ pub struct RustType {
     pub vector: bool,
     /// The outer array's length, for `[[T; W]; N]`.
     pub count: Option<usize>,
+    /// A `#[repr(C)]` struct laid out as std140 (or an array of them), declared with
+    /// [`glsl_struct!`](crate::glsl_struct): it feeds a GLSL struct member, checked by offset
+    /// here and member by member where the struct itself is declared.
+    pub composite: bool,
 }
 
 impl RustType {
@@ -995,7 +999,9 @@ impl RustType {
 
 impl std::fmt::Display for RustType {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let inner = if self.vector {
+        let inner = if self.composite {
+            "(a std140 struct)".to_owned()
+        } else if self.vector {
             format!("[{}; {}]", self.scalar.rust(), self.width)
         } else {
             self.scalar.rust().to_owned()
@@ -1019,20 +1025,47 @@ pub trait GlslType {
 macro_rules! glsl_types {
     ($($t:ty => $kind:ident),*) => {$(
         impl GlslType for $t {
-            const RUST_TYPE: RustType = RustType { scalar: ScalarKind::$kind, width: 1, vector: false, count: None };
+            const RUST_TYPE: RustType = RustType { scalar: ScalarKind::$kind, width: 1, vector: false, count: None, composite: false };
         }
         glsl_types!(@vec $t, $kind, 2, 3, 4);
     )*};
     (@vec $t:ty, $kind:ident, $($w:literal),*) => {$(
         impl GlslType for [$t; $w] {
-            const RUST_TYPE: RustType = RustType { scalar: ScalarKind::$kind, width: $w, vector: true, count: None };
+            const RUST_TYPE: RustType = RustType { scalar: ScalarKind::$kind, width: $w, vector: true, count: None, composite: false };
         }
         impl<const N: usize> GlslType for [[$t; $w]; N] {
-            const RUST_TYPE: RustType = RustType { scalar: ScalarKind::$kind, width: $w, vector: true, count: Some(N) };
+            const RUST_TYPE: RustType = RustType { scalar: ScalarKind::$kind, width: $w, vector: true, count: Some(N), composite: false };
         }
     )*};
 }
 glsl_types!(f32 => F32, i32 => I32, u32 => U32, f64 => F64);
+
+/// Declares a `#[repr(C)]` struct that mirrors a GLSL struct inside a uniform block (e.g.
+/// `gl_LightSourceParameters`), so that it and arrays of it can be fields of a
+/// [`uniform_block!`](crate::uniform_block) struct.
+#[macro_export]
+macro_rules! glsl_struct {
+    ($ty:ty) => {
+        impl $crate::shader::GlslType for $ty {
+            const RUST_TYPE: $crate::shader::RustType = $crate::shader::RustType {
+                scalar: $crate::shader::ScalarKind::F32,
+                width: 1,
+                vector: false,
+                count: None,
+                composite: true,
+            };
+        }
+        impl<const N: usize> $crate::shader::GlslType for [$ty; N] {
+            const RUST_TYPE: $crate::shader::RustType = $crate::shader::RustType {
+                scalar: $crate::shader::ScalarKind::F32,
+                width: 1,
+                vector: false,
+                count: Some(N),
+                composite: true,
+            };
+        }
+    };
+}
 
 /// The memory form of the field a closure `|s: &S| &s.field` picks (used by
 /// [`uniform_block!`](crate::uniform_block); the closure is never called).
@@ -1105,7 +1138,10 @@ pub fn check_layout<T: UniformBlock>(rust_name: &str, block: &BlockLayout) -> Re
                 member.name, field.offset, block.name, member.offset
             ));
         }
-        let fits = member.ty.is_some_and(|ty| field.ty.feeds(&ty));
+        let fits = match &member.ty {
+            Some(ty) => !field.ty.composite && field.ty.feeds(ty),
+            None => field.ty.composite,
+        };
         if !fits {
             let hint = match &member.ty {
                 Some(ty) => format!("use {}", ty.rust_suggestion()),

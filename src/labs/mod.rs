@@ -2,14 +2,21 @@
 //! tests iterate. Each module names its shaders (`shaders_glsl/NAME.*`), its example
 //! (`examples/NAME.rs`) and its tests after itself.
 
+pub mod gl_light;
 pub mod glut_stage;
+pub mod immediate;
+pub mod modified_phong;
+pub mod ustc_stage;
 
 pub mod displacement;
 pub mod double_vision;
+pub mod height;
 pub mod lecture12;
+pub mod morph;
 pub mod noise;
 pub mod normal_rgb;
 pub mod normal_world;
+pub mod particles;
 pub mod phong;
 pub mod phong_dir;
 mod plain;
@@ -23,6 +30,11 @@ pub mod suzanne_plain;
 pub mod suzanne_stage;
 pub mod suzanne_textured;
 
+pub mod bump;
+pub mod envmap;
+pub mod normmap;
+pub mod phong_fragment;
+pub mod phong_vertex;
 pub mod suzanne_flat;
 pub mod suzanne_gouraud;
 pub mod suzanne_normal_color;
@@ -32,6 +44,10 @@ pub mod suzanne_smooth;
 pub mod suzanne_texture;
 pub mod suzanne_texture_color;
 pub mod texparams;
+pub mod texture;
+pub mod toon;
+pub mod uniform_arrays;
+pub mod wave;
 
 use crate::lab::LabEntry;
 use crate::params::{ParamSpec, Params};
@@ -76,6 +92,42 @@ pub static SUZANNE_GOURAUD: &LabEntry = &suzanne_gouraud::ENTRY;
 /// Seed 004 §4.9, Phong shading.
 pub static SUZANNE_PHONG: &LabEntry = &suzanne_phong::ENTRY;
 
+/// Seed 001 §1.1: a custom vertex attribute.
+pub static HEIGHT: &LabEntry = &height::ENTRY;
+
+/// Seed 001 §1.2: uniform vectors and arrays.
+pub static UNIFORM_ARRAYS: &LabEntry = &uniform_arrays::ENTRY;
+
+/// Seed 001 §1.3, wave-motion vertex shader.
+pub static WAVE: &LabEntry = &wave::ENTRY;
+
+/// Seed 001 §1.4, morphing vertex shader.
+pub static MORPH: &LabEntry = &morph::ENTRY;
+
+/// Seed 001 §1.5, particle-system vertex shader.
+pub static PARTICLES: &LabEntry = &particles::ENTRY;
+
+/// Seed 001 §1.6, toon (non-photorealistic) shading.
+pub static TOON: &LabEntry = &toon::ENTRY;
+
+/// Seed 001 §1.7, modified Phong per vertex.
+pub static PHONG_VERTEX: &LabEntry = &phong_vertex::ENTRY;
+
+/// Seed 001 §1.8, modified Phong per fragment.
+pub static PHONG_FRAGMENT: &LabEntry = &phong_fragment::ENTRY;
+
+/// Seed 001 §1.9, texture mapping with a sampler.
+pub static TEXTURE: &LabEntry = &texture::ENTRY;
+
+/// Seed 001 §1.10, cube-map environment (reflection) map.
+pub static ENVMAP: &LabEntry = &envmap::ENTRY;
+
+/// Seed 001 §1.11, tangent-space bump mapping.
+pub static BUMP: &LabEntry = &bump::ENTRY;
+
+/// Seed 001 §1.12, normalization cube map.
+pub static NORMMAP: &LabEntry = &normmap::ENTRY;
+
 /// Every lab, in lecture order.
 pub static ALL: &[&LabEntry] = &[
     &position_rgb::ENTRY,
@@ -83,6 +135,18 @@ pub static ALL: &[&LabEntry] = &[
     &phong::ENTRY,
     &noise::ENTRY,
     &displacement::ENTRY,
+    &height::ENTRY,
+    &uniform_arrays::ENTRY,
+    &wave::ENTRY,
+    &morph::ENTRY,
+    &particles::ENTRY,
+    &toon::ENTRY,
+    &phong_vertex::ENTRY,
+    &phong_fragment::ENTRY,
+    &texture::ENTRY,
+    &envmap::ENTRY,
+    &bump::ENTRY,
+    &normmap::ENTRY,
     &twist::ENTRY,
     &double_vision::ENTRY,
     &normal_world::ENTRY,
