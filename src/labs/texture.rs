@@ -8,9 +8,10 @@
 use glam::Vec3;
 
 use crate::error::Result;
+use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
 use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
-use crate::mesh::{teapot_texcoords, Mesh};
+use crate::mesh::Mesh;
 use crate::params::Params;
 use crate::render::{sampler, Bind, Frame, GpuMesh, Load, Program, RenderState, SamplerDesc, Texture};
 
