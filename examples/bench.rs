@@ -41,7 +41,11 @@ fn main() -> anyhow::Result<()> {
         files: &shaderlab::lab::NO_FILES,
     };
     for entry in labs::ALL {
-        if args.only.as_ref().is_some_and(|o| !entry.info.name.contains(o.as_str())) {
+        if args
+            .only
+            .as_ref()
+            .is_some_and(|o| !entry.info.name.contains(o.as_str()))
+        {
             continue;
         }
         let mut lab = (entry.new)(&cx)?;

@@ -11,13 +11,16 @@
 //! ```
 //!
 //! Shader errors print as `path:line:column: message` with the line and a caret, and exit 1.
+//! Output files are written whole (a temporary file renamed into place), and never over the
+//! input: `-o` naming the input file, through any path, is refused with exit status 2.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::Parser;
-use shaderlab::shader::{compile_text, embedded_source, stage_of};
+use shaderlab::fsutil::{check_output_path, same_file, write_atomic};
+use shaderlab::shader::compile_file;
 
 /// Translate GLSL 450 shaders to WGSL with naga.
 #[derive(Parser, Debug)]
@@ -54,22 +57,47 @@ fn legacy(vert: &Path, frag: &Path) -> anyhow::Result<String> {
     Ok(out)
 }
 
+/// A mistake in the command line (exit status 2).
+#[derive(Debug)]
+struct Usage(String);
+
+impl std::fmt::Display for Usage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Usage {}
+
+/// Refuses an output that is the input itself, or a directory, or in a missing directory.
+fn check_output(input: &Path, output: &Path) -> anyhow::Result<()> {
+    if same_file(input, output) {
+        return Err(Usage(format!(
+            "{} is the input file {}; refusing to overwrite the GLSL source with WGSL (choose another -o, e.g. {}.wgsl)",
+            output.display(),
+            input.display(),
+            input.file_name().unwrap_or_default().to_string_lossy()
+        ))
+        .into());
+    }
+    check_output_path(output).map_err(|e| match e {
+        shaderlab::Error::Param(message) => Usage(message).into(),
+        e => lib(e),
+    })
+}
+
+/// A library error as one message (its Display already names the cause).
+fn lib(e: shaderlab::Error) -> anyhow::Error {
+    anyhow::anyhow!("{e}")
+}
+
 /// Reads, splices, validates and translates one file.
 fn translate(path: &Path) -> anyhow::Result<String> {
-    let name = path.to_string_lossy();
-    let stage = stage_of(&name)?;
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let resolve = |include: &str| -> shaderlab::Result<(String, String)> {
-        let local = dir.join(include);
-        match std::fs::read_to_string(&local) {
-            Ok(t) => Ok((local.display().to_string(), t)),
-            Err(_) => embedded_source(include)
-                .map(|t| (format!("shaders_glsl/{include}"), t.to_owned()))
-                .ok_or_else(|| shaderlab::Error::ShaderNotFound(local.display().to_string())),
-        }
-    };
-    Ok(compile_text(&name, &text, stage, &resolve)?.to_wgsl()?)
+    compile_file(path).and_then(|shader| shader.to_wgsl()).map_err(lib)
+}
+
+fn write(path: &Path, text: &str) -> anyhow::Result<()> {
+    write_atomic(path, |w| w.write_all(text.as_bytes())).map_err(lib)
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
@@ -88,21 +116,33 @@ fn run(args: &Args) -> anyhow::Result<()> {
         if files.is_empty() {
             bail!("no .vert, .frag or .comp files in {}", dir.display());
         }
-        for file in files {
-            let wgsl = translate(&file)?;
-            let out = out_dir.join(format!(
-                "{}.wgsl",
-                file.file_name().unwrap_or_default().to_string_lossy()
-            ));
-            std::fs::write(&out, wgsl).with_context(|| format!("cannot write {}", out.display()))?;
+        let outputs: Vec<PathBuf> = files
+            .iter()
+            .map(|file| {
+                out_dir.join(format!(
+                    "{}.wgsl",
+                    file.file_name().unwrap_or_default().to_string_lossy()
+                ))
+            })
+            .collect();
+        for out in &outputs {
+            for file in &files {
+                check_output(file, out)?;
+            }
+        }
+        for (file, out) in files.iter().zip(&outputs) {
+            write(out, &translate(file)?)?;
             eprintln!("{} -> {}", file.display(), out.display());
         }
         return Ok(());
     }
     let file = args.file.as_deref().context("no input file")?;
+    if let Some(out) = &args.output {
+        check_output(file, out)?;
+    }
     let wgsl = translate(file)?;
     match &args.output {
-        Some(out) => std::fs::write(out, wgsl).with_context(|| format!("cannot write {}", out.display()))?,
+        Some(out) => write(out, &wgsl)?,
         None => print!("{wgsl}"),
     }
     Ok(())
@@ -114,7 +154,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("glsl2wgsl: error: {e:#}");
-            ExitCode::from(1)
+            ExitCode::from(if e.is::<Usage>() { 2 } else { 1 })
         }
     }
 }

@@ -3,17 +3,20 @@
 //! sphere and the torus, measures frame time (GPU timestamps where available, else wall time) and
 //! the error against the exact f64 ray-cast reference (RMSE, maximum per-pixel error, silhouette
 //! error), and writes `tradeoff.csv` and `tradeoff.svg` (error against time, Pareto front marked).
+//! Both are written whole (a temporary file renamed into place): an interrupted or failed run
+//! leaves the previous ones as they were.
 
-use std::io::Write;
-use std::path::PathBuf;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Parser;
 use plotters::prelude::*;
 use shaderlab::exact::{image_error, silhouette_error, ExactScene, Shape, Specular};
+use shaderlab::fsutil::{check_output_path, write_atomic};
+use shaderlab::lab::LabContext;
 use shaderlab::metrics::mask;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::lab::LabContext;
 use shaderlab::shader::ShaderSource;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu, Object};
@@ -72,6 +75,11 @@ const H: u32 = 360;
 fn main() -> anyhow::Result<()> {
     let args = Args::parse();
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let csv = args.out.join("tradeoff.csv");
+    let svg = args.out.join("tradeoff.svg");
+    // Before the half-minute sweep, not after it.
+    check_output_path(&csv)?;
+    check_output_path(&svg)?;
     let gpu = Gpu::headless()?;
     let levels: &[u32] = if args.quick {
         &[4, 8, 16, 32, 64]
@@ -146,9 +154,7 @@ fn main() -> anyhow::Result<()> {
         }
     }
     mark_pareto(&mut rows);
-    let csv = args.out.join("tradeoff.csv");
     write_csv(&rows, &csv)?;
-    let svg = args.out.join("tradeoff.svg");
     chart(&rows, &svg)?;
     println!("wrote {} and {}", csv.display(), svg.display());
     for shape in ["sphere", "torus"] {
@@ -173,15 +179,11 @@ fn mark_pareto(rows: &mut [Row]) {
     }
 }
 
-fn write_csv(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
-    let mut f = std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
-    writeln!(
-        f,
-        "shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto"
-    )?;
+fn write_csv(rows: &[Row], path: &Path) -> anyhow::Result<()> {
+    let mut text = String::from("shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto\n");
     for r in rows {
         writeln!(
-            f,
+            text,
             "{},{},{},{},{:.4},{:.4},{},{:.4},{}",
             r.shape,
             r.shading.name(),
@@ -194,6 +196,7 @@ fn write_csv(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
             r.pareto
         )?;
     }
+    write_atomic(path, |w| w.write_all(text.as_bytes()))?;
     Ok(())
 }
 
@@ -206,8 +209,16 @@ fn color(shading: Shading) -> RGBColor {
     }
 }
 
-fn chart(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
-    let root = SVGBackend::new(path, (1200, 520)).into_drawing_area();
+/// Draws the chart into memory, then writes it whole.
+fn chart(rows: &[Row], path: &Path) -> anyhow::Result<()> {
+    let mut svg = String::new();
+    draw_chart(rows, &mut svg)?;
+    write_atomic(path, |w| w.write_all(svg.as_bytes()))?;
+    Ok(())
+}
+
+fn draw_chart(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
+    let root = SVGBackend::with_string(svg, (1200, 520)).into_drawing_area();
     root.fill(&WHITE)?;
     let panels = root.split_evenly((1, 2));
     for (panel, shape) in panels.iter().zip(["sphere", "torus"]) {

@@ -5,15 +5,9 @@
 //! [`Lab::params_mut`], and asks the lab to [`render`](Lab::render) into a [`Frame`]. A lab never
 //! sees winit, and no lab knows another.
 
-use std::path::{Path, PathBuf};
-
 use crate::error::Result;
-use crate::geometry::images::{load_image, Image};
-use crate::geometry::obj::{load_obj, ObjModel};
-use crate::gpu::Gpu;
 use crate::params::Params;
 use crate::render::Frame;
-use crate::shader::ShaderSource;
 
 /// What identifies an exercise.
 #[derive(Debug)]
@@ -64,87 +58,10 @@ pub enum Input {
     Drag(i32, i32),
 }
 
-/// What a lab is built with.
-pub struct LabContext<'a> {
-    /// The device.
-    pub gpu: &'a Gpu,
-    /// Where shader files come from.
-    pub source: &'a ShaderSource,
-    /// The colour format of the targets it will draw into.
-    pub format: wgpu::TextureFormat,
-    /// Files the user named for the lab to draw instead of its built-in data.
-    pub files: &'a UserFiles,
-}
-
-/// Files named on the command line (`--model`, `--texture`), already read and checked, for the
-/// labs that draw a model or a picture texture; a lab that has no use for one ignores it.
-#[derive(Clone, Debug, Default)]
-pub struct UserFiles {
-    /// `--model FILE.obj`: a Wavefront OBJ, parsed.
-    pub model: Option<UserFile<ObjModel>>,
-    /// `--texture FILE`: a PNG or BMP, decoded, its top row first (the lab decides the upload
-    /// order).
-    pub texture: Option<UserFile<Image>>,
-    /// `--texture NAME=FILE` (repeatable): pictures for the texture called NAME in the lab's
-    /// shaders, decoded like `texture`, in command-line order.
-    pub named_textures: Vec<(String, UserFile<Image>)>,
-    /// Positional `FILES...` of a lab that declares them ([`crate::params::FileArgs`]), e.g.
-    /// a user's shaders: paths only, the lab reads them (again on live reload).
-    pub inputs: Vec<PathBuf>,
-}
-
-/// A file the user named, and what was read from it.
-#[derive(Clone, Debug)]
-pub struct UserFile<T> {
-    /// The file, for messages about what is found later (e.g. a texture too large for the GPU).
-    pub path: PathBuf,
-    /// Its content.
-    pub data: T,
-}
-
-/// No files: every lab draws its own data (tests, the bench, labs building parts lazily).
-pub static NO_FILES: UserFiles = UserFiles {
-    model: None,
-    texture: None,
-    named_textures: Vec::new(),
-    inputs: Vec::new(),
-};
-
-impl UserFiles {
-    /// Reads and checks the files; errors name the file (and the line, for an OBJ).
-    pub fn load(model: Option<&Path>, texture: Option<&Path>) -> Result<UserFiles> {
-        fn read<T>(path: Option<&Path>, load: fn(&Path) -> Result<T>) -> Result<Option<UserFile<T>>> {
-            path.map(|path| {
-                load(path).map(|data| UserFile {
-                    path: path.to_path_buf(),
-                    data,
-                })
-            })
-            .transpose()
-        }
-        Ok(UserFiles {
-            model: read(model, load_obj)?,
-            texture: read(texture, load_image)?,
-            named_textures: Vec::new(),
-            inputs: Vec::new(),
-        })
-    }
-
-    /// Reads `--texture NAME=FILE` pictures (errors name the file).
-    pub fn load_named_textures(&mut self, named: &[(String, PathBuf)]) -> Result<()> {
-        for (name, path) in named {
-            let data = load_image(path)?;
-            self.named_textures.push((
-                name.clone(),
-                UserFile {
-                    path: path.clone(),
-                    data,
-                },
-            ));
-        }
-        Ok(())
-    }
-}
+/// What a lab is built with: the device, where shaders come from, the target format
+/// (defined by the render layer, which builds programs from it).
+pub use crate::render::Context as LabContext;
+pub use crate::user_files::{UserFile, UserFiles, NO_FILES};
 
 /// One exercise, ready to draw.
 pub trait Lab {

@@ -35,23 +35,23 @@
 
 pub mod camera;
 pub mod error;
-pub mod exact;
+pub mod fsutil;
 pub mod geometry;
 pub mod gpu;
 pub mod lab;
 pub mod legacy;
 pub mod labs;
-pub mod mesh;
-pub mod metrics;
-pub mod noise;
 pub mod offscreen;
 pub mod params;
 pub mod render;
 pub mod shader;
 pub mod shell;
-pub mod tess;
+pub mod study;
+pub mod user_files;
 
-pub use lab::{Lab, LabEntry};
-pub use tess::Object;
 pub use error::{Error, Result};
+pub use geometry::{mesh, tess};
 pub use gpu::Gpu;
+pub use lab::{Lab, LabEntry};
+pub use study::{exact, metrics, noise};
+pub use tess::Object;

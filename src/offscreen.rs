@@ -202,16 +202,75 @@ pub fn to_rgb(image: &image::RgbaImage) -> image::RgbImage {
     image::DynamicImage::ImageRgba8(image.clone()).to_rgb8()
 }
 
-/// Writes an RGB PNG.
+/// Writes an RGB PNG. The path is checked first ([`check_png_path`](crate::fsutil::check_png_path):
+/// a `.png` name, not a directory, in a directory that exists), then the file is written
+/// all at once ([`write_atomic`](crate::fsutil::write_atomic)): a failure leaves an existing
+/// file as it was.
 pub fn save_png(image: &image::RgbaImage, path: &Path) -> Result<()> {
-    to_rgb(image).save(path).map_err(|source| match source {
-        image::ImageError::IoError(source) => Error::Io {
-            path: path.to_owned(),
-            source,
-        },
-        source => Error::Image {
-            path: path.to_owned(),
-            source,
-        },
+    crate::fsutil::check_png_path(path)?;
+    let rgb = to_rgb(image);
+    crate::fsutil::write_atomic(path, |out| {
+        use image::ImageEncoder;
+        image::codecs::png::PngEncoder::new(out)
+            .write_image(rgb.as_raw(), rgb.width(), rgb.height(), image::ExtendedColorType::Rgb8)
+            .map_err(|e| match e {
+                image::ImageError::IoError(e) => e,
+                e => std::io::Error::other(e),
+            })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fs;
+
+    fn test_dir(name: &str) -> crate::fsutil::ScratchDir {
+        crate::fsutil::ScratchDir::new(&format!("offscreen-{name}"))
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn save_png_refuses_other_formats_and_keeps_the_file() {
+        let dir = test_dir("formats");
+        let image = image::RgbaImage::from_pixel(4, 3, image::Rgba([10, 20, 30, 255]));
+        for name in ["x.jpg", "x.bmp", "x.gif", "x.tiff", "x"] {
+            let path = dir.join(name);
+            fs::write(&path, b"a holiday photo").unwrap();
+            let err = save_png(&image, &path).unwrap_err();
+            assert!(matches!(err, Error::Param(_)), "{name}: {err:?}");
+            assert!(
+                err.to_string().contains("only PNG is written; use a .png name"),
+                "{name}: {err}"
+            );
+            assert_eq!(fs::read(&path).unwrap(), b"a holiday photo", "{name} was touched");
+        }
+        assert_eq!(names(&dir), ["x", "x.bmp", "x.gif", "x.jpg", "x.tiff"]);
+    }
+
+    #[test]
+    fn save_png_writes_replaces_and_rejects_directories() {
+        let dir = test_dir("write");
+        let image = image::RgbaImage::from_pixel(4, 3, image::Rgba([10, 20, 30, 255]));
+        let path = dir.join("shot.PNG");
+        fs::write(&path, b"old").unwrap();
+        save_png(&image, &path).unwrap();
+        let back = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(back.dimensions(), (4, 3));
+        assert_eq!(back.get_pixel(1, 1).0, [10, 20, 30]);
+        assert_eq!(names(&dir), ["shot.PNG"]);
+        fs::create_dir(dir.join("d.png")).unwrap();
+        let err = save_png(&image, &dir.join("d.png")).unwrap_err();
+        assert!(err.to_string().contains("is a directory"), "{err}");
+        let err = save_png(&image, &dir.join("missing/x.png")).unwrap_err();
+        assert!(err.to_string().contains("does not exist"), "{err}");
+    }
 }

@@ -107,7 +107,11 @@ fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
             .and_then(|v| names.get(*v as usize))
             .map(|s| s.to_string())
             .unwrap_or_default(),
-        _ => values.iter().map(|v| format!("{}", *v as f32)).collect::<Vec<_>>().join(","),
+        _ => values
+            .iter()
+            .map(|v| format!("{}", *v as f32))
+            .collect::<Vec<_>>()
+            .join(","),
     }
 }
 
@@ -301,11 +305,9 @@ impl Params {
             }
         }
         let values = parse_numbers(text).map_err(|e| match self.specs[i].kind {
-            Kind::Choice(names) => Error::Param(format!(
-                "unknown {name} `{}`; valid: {}",
-                text.trim(),
-                names.join(", ")
-            )),
+            Kind::Choice(names) => {
+                Error::Param(format!("unknown {name} `{}`; valid: {}", text.trim(), names.join(", ")))
+            }
             _ => Error::Param(format!("parameter `{name}`: {e}")),
         })?;
         self.set(name, &values)
@@ -460,7 +462,10 @@ mod tests {
         assert!(p.set_str("object", "1.5").is_err());
         assert!(p.set_str("fixpos", "2").is_err());
         let e = p.set_str("nope", "1").unwrap_err().to_string();
-        assert!(e.contains("unknown parameter `nope`") && e.contains("ka, light, object, fixpos"), "{e}");
+        assert!(
+            e.contains("unknown parameter `nope`") && e.contains("ka, light, object, fixpos"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -201,7 +201,7 @@ fn unwritable_screenshot_path() {
         &["--screenshot", "/nonexistent/x.png"],
         &[],
         1,
-        &["phong: error: /nonexistent/x.png: No such file or directory"],
+        &["phong: error: /nonexistent/x.png: the directory /nonexistent does not exist"],
     );
 }
 
@@ -264,7 +264,11 @@ fn port_options_reject_bad_values() {
         &[],
     );
     assert_eq!(run.code, Some(2), "{}", run.stderr);
-    assert!(run.stderr.contains("--shading applies to phong"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("position_rgb has no shading models"),
+        "{}",
+        run.stderr
+    );
     let run = run_in(
         &dir,
         "displacement",
@@ -303,4 +307,297 @@ fn port_options_work_from_the_command_line() {
     );
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     assert!(dir.join("g.png").is_file() && dir.join("s.png").is_file());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Nothing a user types loses a file (issue 9)
+
+/// The names in `dir`, sorted (to see that no temporary file was left behind).
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn screenshot_refuses_other_formats_and_keeps_the_file() {
+    let dir = test_dir("screenshot_jpg");
+    std::fs::write(dir.join("x.jpg"), b"a holiday photo").unwrap();
+    for name in ["x.jpg", "x.bmp", "x"] {
+        let run = run_in(&dir, "phong", &["--screenshot", name], &[]);
+        assert_eq!(run.code, Some(2), "{name}: {}", run.stderr);
+        assert!(
+            run.stderr
+                .contains(&format!("phong: error: {name}: only PNG is written; use a .png name")),
+            "{name}: {}",
+            run.stderr
+        );
+    }
+    assert_eq!(std::fs::read(dir.join("x.jpg")).unwrap(), b"a holiday photo");
+    assert_eq!(names_in(&dir), ["x.jpg", "xdg"]);
+}
+
+#[test]
+fn screenshot_into_a_directory_says_so() {
+    let dir = test_dir("screenshot_dir");
+    std::fs::create_dir(dir.join("shots.png")).unwrap();
+    let run = run_in(&dir, "phong", &["--screenshot", "shots.png"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stderr.contains("shots.png: is a directory"), "{}", run.stderr);
+    assert_eq!(names_in(&dir), ["shots.png", "xdg"]);
+    assert!(names_in(&dir.join("shots.png")).is_empty());
+}
+
+/// A copy of the shaders in `dir/shaders` with `line` inserted after `#version` in phong.frag.
+fn shaders_with(dir: &Path, line: &str) -> String {
+    let shaders = dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let text = std::fs::read_to_string(&frag).unwrap();
+    std::fs::write(
+        &frag,
+        text.replacen("#version 450\n", &format!("#version 450\n{line}\n"), 1),
+    )
+    .unwrap();
+    shaders.to_str().unwrap().to_owned()
+}
+
+#[test]
+fn includes_cannot_reach_outside_the_shader_directory() {
+    for (include, phrase) in [
+        ("/etc/passwd", "/etc/passwd is an absolute path"),
+        ("/dev/zero", "/dev/zero is an absolute path"),
+        (
+            "../../../../../../../../etc/passwd",
+            "lies outside the shader directory",
+        ),
+    ] {
+        let dir = test_dir("include_outside");
+        let shaders = shaders_with(&dir, &format!("#include \"{include}\""));
+        let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+        assert_eq!(run.code, Some(1), "{include}: {}", run.stderr);
+        assert!(run.stderr.contains("phong.frag:2:1: cannot include"), "{}", run.stderr);
+        assert!(run.stderr.contains(phrase), "{include}: {}", run.stderr);
+        assert!(
+            !run.stderr.contains("root:"),
+            "{include}: leaked a file:\n{}",
+            run.stderr
+        );
+        assert!(!dir.join("out.png").exists());
+    }
+}
+
+#[test]
+fn unclear_loader_cases_get_clear_messages() {
+    for (what, line, phrase) in [
+        (
+            "self",
+            "#include \"phong.frag\"",
+            "phong.frag:2:1: phong.frag includes itself",
+        ),
+        ("comment", "#include \"safe_math.glsl\" // helpers", ""),
+        (
+            "junk",
+            "#include \"safe_math.glsl\" junk",
+            "unexpected `junk` after #include",
+        ),
+    ] {
+        let dir = test_dir("loader_messages");
+        let shaders = shaders_with(&dir, line);
+        let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+        if phrase.is_empty() {
+            assert_eq!(run.code, Some(0), "{what}: {}", run.stderr);
+        } else {
+            assert_eq!(run.code, Some(1), "{what}: {}", run.stderr);
+            assert!(run.stderr.contains(phrase), "{what}: {}", run.stderr);
+        }
+    }
+    // An empty file: named, and called empty.
+    let dir = test_dir("loader_empty");
+    let shaders = shaders_with(&dir, "");
+    std::fs::write(Path::new(&shaders).join("phong.frag"), "").unwrap();
+    let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("shaders/phong.frag: the file is empty; a fragment shader needs"),
+        "{}",
+        run.stderr
+    );
+    // A member of another type than the Rust struct's.
+    let dir = test_dir("loader_int_ka");
+    let shaders = shaders_with(&dir, "");
+    let params = Path::new(&shaders).join("phong_params.glsl");
+    let text = std::fs::read_to_string(&params).unwrap();
+    std::fs::write(&params, text.replace("float Ka;", "int Ka;")).unwrap();
+    let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("`ka: f32` does not fit GLSL block PhongParams member `int Ka`"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.join("out.png").exists());
+}
+
+#[test]
+fn glsl2wgsl_refuses_to_overwrite_its_input() {
+    let dir = test_dir("glsl2wgsl_same_file");
+    common::copy_shaders(&dir.join("shaders"));
+    std::fs::create_dir(dir.join("shaders/sub")).unwrap();
+    let frag = dir.join("shaders/phong.frag");
+    let original = std::fs::read(&frag).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&frag, dir.join("link.wgsl")).unwrap();
+    for out in [
+        "shaders/phong.frag",
+        "shaders/sub/../phong.frag",
+        "./shaders/phong.frag",
+        "link.wgsl",
+    ] {
+        if !dir.join(out).exists() {
+            continue;
+        }
+        let run = run_in(&dir, "glsl2wgsl", &["shaders/phong.frag", "-o", out], &[]);
+        assert_eq!(run.code, Some(2), "-o {out}: {}", run.stderr);
+        assert!(
+            run.stderr.contains("refusing to overwrite the GLSL source with WGSL"),
+            "-o {out}: {}",
+            run.stderr
+        );
+        assert_eq!(std::fs::read(&frag).unwrap(), original, "-o {out} changed the source");
+    }
+    // A different file is fine, and written whole.
+    let run = run_in(&dir, "glsl2wgsl", &["shaders/phong.frag", "-o", "phong.wgsl"], &[]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(std::fs::read_to_string(dir.join("phong.wgsl"))
+        .unwrap()
+        .contains("fn main"));
+    assert!(
+        !names_in(&dir).iter().any(|n| n.contains(".tmp-")),
+        "{:?}",
+        names_in(&dir)
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 9: a hostile-input sweep's defects, each reproduced here.
+
+#[test]
+fn negative_numbers_after_a_space_parse() {
+    let dir = test_dir("negative_numbers");
+    for args in [
+        &["--rotate", "-30,0,0", "--screenshot", "a.png"][..],
+        &["--time", "-5", "--screenshot", "b.png"],
+        &["--set", "xangle=-45", "--screenshot", "c.png"],
+    ] {
+        let run = run_in(&dir, "noise", args, &[]);
+        assert_eq!(run.code, Some(0), "{args:?}: {}", run.stderr);
+    }
+    // Still validated.
+    let run = run_in(&dir, "phong", &["--size", "-1x5"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stderr.contains("expected WxH"), "{}", run.stderr);
+}
+
+#[test]
+fn a_closed_or_full_stdout_is_an_error_not_a_panic() {
+    use std::process::Stdio;
+    let dir = test_dir("closed_stdout");
+    // `phong --bench 5 | true`: the reader is gone before the line is written.
+    let mut child = Command::new(example("phong"))
+        .args(["--bench", "5"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env("XDG_RUNTIME_DIR", dir.join("xdg"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run phong");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked") && err.contains("stdout"), "{err}");
+    // `> /dev/full`
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let out = Command::new(example("phong"))
+            .args(["--bench", "5"])
+            .current_dir(&dir)
+            .env_remove("DISPLAY")
+            .env("XDG_RUNTIME_DIR", dir.join("xdg"))
+            .stdout(full)
+            .output()
+            .expect("run phong");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn usage_errors_come_before_any_rendering() {
+    let dir = test_dir("usage_first");
+    let started = std::time::Instant::now();
+    let run = run_in(&dir, "phong", &["--bench", "100000", "--set", "Kx=1"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(run.stdout.is_empty(), "nothing may be benchmarked: {}", run.stdout);
+    assert!(started.elapsed().as_secs() < 10, "the error must come first");
+    let run = run_in(&dir, "phong", &["--set", "Ka=2,3"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(
+        !run.stderr.contains("writing a screenshot instead"),
+        "validated before falling back: {}",
+        run.stderr
+    );
+}
+
+#[test]
+fn shaders_flag_naming_a_file_says_so() {
+    let dir = test_dir("shaders_file");
+    std::fs::write(dir.join("afile"), "x").unwrap();
+    let run = run_in(&dir, "phong", &["--shaders", "afile", "--screenshot", "x.png"], &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(run.stderr.contains("is not a directory"), "{}", run.stderr);
+}
+
+#[test]
+fn wayland_only_sessions_fall_back_to_a_screenshot_with_a_hint() {
+    let dir = test_dir("wayland_only");
+    let run = run_in(&dir, "phong", &[], &[("WAYLAND_DISPLAY", "wayland-0")]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(run.stderr.contains("WAYLAND_DISPLAY is set"), "{}", run.stderr);
+    assert!(dir.join("phong.png").is_file());
+}
+
+#[test]
+fn a_bad_display_names_no_source_path() {
+    let dir = test_dir("bad_display");
+    let run = run_in(&dir, "phong", &[], &[("DISPLAY", ":4321")]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(run.stderr.contains(":4321"), "{}", run.stderr);
+    assert!(
+        !run.stderr.contains(".cargo") && !run.stderr.contains("registry"),
+        "{}",
+        run.stderr
+    );
+}
+
+#[test]
+fn no_runtime_dir_prints_no_mesa_warnings() {
+    let dir = test_dir("no_xdg");
+    let out = Command::new(example("phong"))
+        .args(["--screenshot", "x.png"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .expect("run phong");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
 }

@@ -23,7 +23,6 @@ use image::RgbImage;
 use shaderlab::labs;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
 
-
 mod common;
 
 use common::example;
@@ -1183,7 +1182,11 @@ fn input_storm_keeps_values_in_range_and_the_window_responsive() {
         model.key(c);
     }
     let expected_title = model.lab.title();
-    let expected_summary = expected_title.split(" | ").nth(2).expect("a summary in the title").to_owned();
+    let expected_summary = expected_title
+        .split(" | ")
+        .nth(2)
+        .expect("a summary in the title")
+        .to_owned();
 
     let names: Vec<String> = storm.iter().map(|&c| keysym(c)).collect();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
@@ -1400,4 +1403,57 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     .expect("the original shader must come back");
     let p = psnr(&before, &after).expect("same size");
     assert!(p > 40.0, "after the fix the picture is the original again: {p:.1} dB");
+}
+
+/// Issue 9, items 4 and 10: a window destroyed by another program (`xdotool windowclose`) ends
+/// the lab with one clear message and status 1, not a panic inside winit; a window resized past
+/// what the GPU can draw says so once and keeps drawing, without a flood of validation errors.
+#[test]
+fn hostile_window_managers_get_clear_answers() {
+    let x = Xvfb::start("hostile_windows");
+    let mut lab = x.launch("normal_rgb", &[], &[]);
+    lab.first_frame();
+    let limit = 8192 * 2 + 100; // beyond lavapipe's 16384 texels
+    let _ = lab.resize(limit, 300);
+    sleep_ms(1500);
+    let err = lab.stderr();
+    assert!(
+        err.matches("larger than the GPU can draw").count() <= 1 && !err.contains("Validation Error"),
+        "an oversized window: {err}"
+    );
+    lab.assert_alive();
+    let _ = x.xdotool_output(&["windowclose", &lab.window]);
+    let status = lab.wait_exit(Duration::from_secs(10));
+    let err = lab.stderr();
+    println!("window closed by another program: {status}\n{err}");
+    assert_eq!(status.code(), Some(1), "{err}");
+    assert!(err.contains("closed or destroyed by another program"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+/// Issue 9, item 8: F12 names carry the process id, so two windows writing screenshots into one
+/// folder in the same second never overwrite each other.
+#[test]
+fn f12_names_from_two_windows_do_not_collide() {
+    let x = Xvfb::start("f12_two_windows");
+    let a = x.launch("position_rgb", &[], &[]);
+    a.first_frame();
+    let b = x.launch("position_rgb", &[], &[]);
+    b.first_frame();
+    a.keys(&["F12"]);
+    b.keys(&["F12"]);
+    let pngs = poll(Duration::from_secs(10), || {
+        let n: Vec<_> = std::fs::read_dir(&x.dir)
+            .ok()?
+            .filter_map(|e| e.ok())
+            .filter(|e| e.path().extension().is_some_and(|x| x == "png"))
+            .collect();
+        (n.len() == 2).then_some(n)
+    });
+    assert!(
+        pngs.is_some(),
+        "two F12 screenshots expected; stdout:\n{}\n{}",
+        a.stdout(),
+        b.stdout()
+    );
 }

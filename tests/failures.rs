@@ -7,8 +7,8 @@ mod common;
 use common::*;
 use glam::{Mat3, Vec3};
 use image::RgbImage;
-use shaderlab::labs::{self, NOISE_PERIOD};
 use shaderlab::exact::{image_error, ExactScene, Shape};
+use shaderlab::labs::{self, NOISE_PERIOD};
 use shaderlab::metrics::{luma_stats, mask, psnr};
 use shaderlab::shader::ShaderSource;
 use shaderlab::Object;
@@ -34,7 +34,8 @@ fn noise_at(time: f64, wrap: bool) -> RgbImage {
     let mut lab = lab(labs::NOISE);
     lab.set_object(Object::Sphere);
     lab.set_time(time);
-    lab.set("wrap_time", &[if wrap { 1.0 } else { 0.0 }]).expect("wrap_time");
+    lab.set("wrap_time", &[if wrap { 1.0 } else { 0.0 }])
+        .expect("wrap_time");
     lab.rgb(640, 360)
 }
 
@@ -262,7 +263,13 @@ fn degenerate_inputs_never_reach_the_image_as_nan() {
         }
     }
     // Every exercise on every object, including the teapot's degenerate poles: all finite.
-    for entry in [labs::POSITION_RGB, labs::NORMAL_RGB, labs::PHONG, labs::NOISE, labs::DISPLACEMENT] {
+    for entry in [
+        labs::POSITION_RGB,
+        labs::NORMAL_RGB,
+        labs::PHONG,
+        labs::NOISE,
+        labs::DISPLACEMENT,
+    ] {
         let mut lab = lab_with(entry, &ShaderSource::Embedded, wgpu::TextureFormat::Rgba32Float);
         for object in Object::ALL {
             lab.set_object(object);
@@ -291,7 +298,15 @@ fn displacement_cracks_and_the_smooth_variant() {
     }
     // The smooth variant renders, and differs from the cracked one where the cracks were (at
     // t = 1 the cube's faces are lit and the original shows dark gaps between them).
-    let render = |smooth: f32| render(labs::DISPLACEMENT, Object::Cube, [30.0, 45.0, 0.0], 1.0, &[("smooth", &[smooth])]);
+    let render = |smooth: f32| {
+        render(
+            labs::DISPLACEMENT,
+            Object::Cube,
+            [30.0, 45.0, 0.0],
+            1.0,
+            &[("smooth", &[smooth])],
+        )
+    };
     let (cracked, smooth) = (render(0.0), render(1.0));
     let p = psnr(&cracked, &smooth).expect("size");
     println!("cube at t = 1, cracked vs smooth: PSNR {p:.1} dB");

@@ -108,10 +108,22 @@ fn phong_sphere_highlight_follows_the_light() {
         "sphere must be mirror-symmetric"
     );
     // Moving the light right moves the highlight right; up moves it up.
-    let right = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[2.0, 1.0, 1.0])]);
+    let right = render(
+        labs::PHONG,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("lightPosition", &[2.0, 1.0, 1.0])],
+    );
     let (rx, _) = highlight(&right, 2.0);
     assert!(rx > hx + 10.0, "highlight must move right: {hx:.1} -> {rx:.1}");
-    let down = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[0.0, -1.0, 1.0])]);
+    let down = render(
+        labs::PHONG,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("lightPosition", &[0.0, -1.0, 1.0])],
+    );
     let (_, dy) = highlight(&down, 2.0);
     assert!(dy > hy + 10.0, "highlight must move down: {hy:.1} -> {dy:.1}");
     // The object's colour is orange: red > green > blue in the lit region.
@@ -133,14 +145,21 @@ fn phong_coefficients_move_the_image() {
     let dim = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Kd", &[0.5])]);
     let side = (250, 200, 280, 230);
     assert!(mean_color(&dim, side, Some(PHONG_BG))[0] < mean_color(&base, side, Some(PHONG_BG))[0] - 20.0);
-    let green = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("diffuseColor", &[0.0, 1.0, 0.0])]);
+    let green = render(
+        labs::PHONG,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("diffuseColor", &[0.0, 1.0, 0.0])],
+    );
     let g = mean_color(&green, side, Some(PHONG_BG));
     assert!(
         g[1] > g[0] + 50.0,
         "a green diffuse colour must turn the sphere green: {g:?}"
     );
     // Ambient only: a flat colour Ka * ambientColor (0.1 * 0.1 -> 3/255) on the dark side.
-    let flat = render(labs::PHONG, 
+    let flat = render(
+        labs::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -161,7 +180,13 @@ fn phong_light_marker_appears_in_front_of_the_camera() {
     // (528.6, 41.0) with a radius of about 8 pixels.
     let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
     assert_eq!(base.get_pixel(528, 41).0, PHONG_BG);
-    let moved = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("lightPosition", &[1.2, 0.8, -2.5])]);
+    let moved = render(
+        labs::PHONG,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("lightPosition", &[1.2, 0.8, -2.5])],
+    );
     assert_eq!(moved.get_pixel(528, 41).0, [255, 255, 255], "white marker at the light");
     let white = moved
         .enumerate_pixels()
@@ -173,12 +198,24 @@ fn phong_light_marker_appears_in_front_of_the_camera() {
 #[test]
 fn phong_camera_moves_the_view() {
     let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
-    let closer = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("camera", &[0.0, 0.0, 3.0])]);
+    let closer = render(
+        labs::PHONG,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("camera", &[0.0, 0.0, 3.0])],
+    );
     assert!(
         coverage(&closer, PHONG_BG) > 2.0 * coverage(&base, PHONG_BG),
         "a closer camera makes the sphere bigger"
     );
-    let left = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("camera", &[-1.0, 0.0, 5.0])]);
+    let left = render(
+        labs::PHONG,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("camera", &[-1.0, 0.0, 5.0])],
+    );
     let (x0, _, x1, _) = bounding_box(&left, PHONG_BG).expect("visible");
     assert!((x0 + x1) / 2 > 330, "moving the camera left moves the sphere right");
 }
@@ -201,20 +238,33 @@ fn noise_statistics_and_time() {
     assert!(psnr(&t0, &t1).expect("size") < 25.0, "time must change the pattern");
     assert!((mean1 - mean).abs() < 0.1 && var1 > 0.01);
     // Shade (1,0,0) keeps only red.
-    let red = render(labs::NOISE, Object::Sphere, [0.0; 3], 0.0, &[("shade", &[1.0, 0.0, 0.0])]);
+    let red = render(
+        labs::NOISE,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("shade", &[1.0, 0.0, 0.0])],
+    );
     assert!(red.pixels().all(|p| p[1] == 0 && p[2] == 0));
     assert!(red.pixels().any(|p| p[0] > 100));
 }
 
 #[test]
 fn displacement_grows_the_silhouette() {
-    let flat = render(labs::DISPLACEMENT, 
+    let flat = render(
+        labs::DISPLACEMENT,
         Object::Sphere,
         [0.0; 3],
         0.0,
         &[("displacement", &[0.0]), ("shade", &[1.0, 1.0, 1.0])],
     );
-    let full = render(labs::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[1.0])]);
+    let full = render(
+        labs::DISPLACEMENT,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("displacement", &[1.0])],
+    );
     // With no displacement the silhouette is the sphere's; its pixels are drawn even where
     // the noise is dark, so measure shape from depth-independent coverage: any non-black pixel
     // or the sphere's own disc.
@@ -234,7 +284,13 @@ fn displacement_grows_the_silhouette() {
     let (hx0, hy0, hx1, hy1) = bbox(&half);
     let half_size = (hx1 - hx0) + (hy1 - hy0);
     assert!(half_size > (fx1 - fx0) + (fy1 - fy0) && half_size < grown);
-    let over = render(labs::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[("displacement", &[3.0])]);
+    let over = render(
+        labs::DISPLACEMENT,
+        Object::Sphere,
+        [0.0; 3],
+        0.0,
+        &[("displacement", &[3.0])],
+    );
     assert_eq!(
         psnr(&over, &full),
         Some(f64::INFINITY),

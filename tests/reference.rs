@@ -5,9 +5,9 @@
 mod common;
 
 use common::*;
+use shaderlab::lab::LabEntry;
 use shaderlab::labs;
 use shaderlab::metrics::{diff_image, psnr};
-use shaderlab::lab::LabEntry;
 use shaderlab::Object;
 
 const MIN_PSNR: f64 = 35.0;

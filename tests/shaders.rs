@@ -17,12 +17,12 @@ use std::process::{Command, Output};
 use common::{gpu, output_dir};
 
 use shaderlab::lab::{LabContext, LabEntry};
+use shaderlab::labs;
 use shaderlab::labs::glut_stage::TransformUniforms;
 use shaderlab::labs::phong::PhongUniforms;
-use shaderlab::render::{Program, RenderState, Uniforms};
-use shaderlab::labs;
 use shaderlab::metrics::{coverage, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
+use shaderlab::render::{Program, RenderState, Uniforms};
 use shaderlab::shader::{check_layout, embedded_names, embedded_source, ShaderSource};
 use shaderlab::{Error, Object};
 
@@ -538,13 +538,34 @@ fn mismatched_uniform_struct_is_rejected() {
         files: &shaderlab::lab::NO_FILES,
     };
     let mut program =
-        Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default()).unwrap();
-    let transform = Uniforms::new(gpu(), "t", TransformUniforms::new(glam::Mat4::IDENTITY, glam::Mat4::IDENTITY));
+        Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default())
+            .unwrap();
+    let transform = Uniforms::new(
+        gpu(),
+        "t",
+        TransformUniforms::new(glam::Mat4::IDENTITY, glam::Mat4::IDENTITY),
+    );
     let bad = Uniforms::new(gpu(), "bad", <BadPhongUniforms as bytemuck::Zeroable>::zeroed());
     match program.bind(gpu(), vec![transform.bind(), bad.bind()]) {
         Err(Error::Binding(message)) => assert_layout_message(Error::Layout(message)),
         other => panic!("binding must reject the struct, got {:?}", other.err()),
     }
+    // A member's type counts, not only its offset: `int Ka` in an edited copy is refused.
+    let copy = ShaderCopy::new("int_ka");
+    let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
+    std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
+    let source = copy.source();
+    let cx = LabContext {
+        gpu: gpu(),
+        source: &source,
+        format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
+    };
+    let err = (labs::PHONG.new)(&cx).err().expect("int Ka must be rejected");
+    assert!(
+        matches!(&err, Error::Binding(m) if m.contains("field `ka: f32` does not fit GLSL block PhongParams member `int Ka` (use i32)")),
+        "{err}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -8,7 +8,9 @@ mod common;
 use shaderlab::labs;
 
 fn snapshot(name: &str) -> image::RgbImage {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots").join(format!("{name}.png"));
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/snapshots")
+        .join(format!("{name}.png"));
     image::open(&path)
         .unwrap_or_else(|e| {
             panic!(
@@ -22,7 +24,8 @@ fn snapshot(name: &str) -> image::RgbImage {
 fn check(name: &str, entry: &shaderlab::LabEntry, set: &[(&str, &str)]) {
     let mut lab = common::lab(entry);
     for (key, value) in set {
-        lab.set_str(key, value).unwrap_or_else(|e| panic!("{name}: {key}={value}: {e}"));
+        lab.set_str(key, value)
+            .unwrap_or_else(|e| panic!("{name}: {key}={value}: {e}"));
     }
     let actual = lab.rgb(640, 360);
     let expected = snapshot(name);
@@ -30,13 +33,22 @@ fn check(name: &str, entry: &shaderlab::LabEntry, set: &[(&str, &str)]) {
         let out = common::output_dir().join(format!("{name}.actual.png"));
         let _ = actual.save(&out);
         let differing = actual.pixels().zip(expected.pixels()).filter(|(a, b)| a != b).count();
-        panic!("{name}: {differing} pixels differ from the snapshot (port's image in {})", out.display());
+        panic!(
+            "{name}: {differing} pixels differ from the snapshot (port's image in {})",
+            out.display()
+        );
     }
 }
 
 #[test]
 fn every_lab_and_object_is_unchanged() {
-    for entry in [labs::POSITION_RGB, labs::NORMAL_RGB, labs::PHONG, labs::NOISE, labs::DISPLACEMENT] {
+    for entry in [
+        labs::POSITION_RGB,
+        labs::NORMAL_RGB,
+        labs::PHONG,
+        labs::NOISE,
+        labs::DISPLACEMENT,
+    ] {
         for object in ["cube", "sphere", "torus", "teapot"] {
             let name = format!("{}_{object}", entry.info.name);
             let mut set = vec![("object", object), ("xangle", "30"), ("yangle", "45"), ("zangle", "10")];
@@ -54,14 +66,28 @@ fn port_only_modes_are_unchanged() {
         check(
             &format!("phong_torus_{shading}"),
             labs::PHONG,
-            &[("object", "torus"), ("xangle", "20"), ("yangle", "30"), ("shading", shading)],
+            &[
+                ("object", "torus"),
+                ("xangle", "20"),
+                ("yangle", "30"),
+                ("shading", shading),
+            ],
         );
     }
-    check("phong_sphere_tess_auto", labs::PHONG, &[("object", "sphere"), ("tess", "-1")]);
+    check(
+        "phong_sphere_tess_auto",
+        labs::PHONG,
+        &[("object", "sphere"), ("tess", "-1")],
+    );
     check(
         "phong_teapot_keys",
         labs::PHONG,
-        &[("Ka", "0.3"), ("shininess", "8"), ("lightPosition", "1,2,3"), ("camera", "0.5,0,4.5")],
+        &[
+            ("Ka", "0.3"),
+            ("shininess", "8"),
+            ("lightPosition", "1,2,3"),
+            ("camera", "0.5,0,4.5"),
+        ],
     );
     check(
         "displacement_teapot_smooth",
@@ -73,5 +99,9 @@ fn port_only_modes_are_unchanged() {
         labs::DISPLACEMENT,
         &[("object", "sphere"), ("tess", "40"), ("time", "2.5")],
     );
-    check("noise_torus_shade", labs::NOISE, &[("object", "torus"), ("shade", "1,0.5,0.25"), ("time", "100")]);
+    check(
+        "noise_torus_shade",
+        labs::NOISE,
+        &[("object", "torus"), ("shade", "1,0.5,0.25"), ("time", "100")],
+    );
 }

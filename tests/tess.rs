@@ -7,11 +7,11 @@ mod common;
 
 use common::*;
 use glam::Vec3;
-use shaderlab::labs::glut_stage::{GlutStage, StageConfig, PARAMS_000};
-use shaderlab::labs;
-use shaderlab::params::Params;
 use shaderlab::exact::{silhouette_error, ExactScene, Shape};
+use shaderlab::labs;
+use shaderlab::labs::glut_stage::{GlutStage, StageConfig, PARAMS_000};
 use shaderlab::metrics::mask;
+use shaderlab::params::Params;
 use shaderlab::Object;
 
 const SS: u32 = 4;

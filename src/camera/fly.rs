@@ -144,6 +144,51 @@ impl FlyCamera {
     }
 }
 
+/// A start state of the camera as SPEC §3 names its states: what `initializeGL` leaves
+/// (or the bare constructor, `preset`), then `up` × move(Up), `forward` × move(Forward),
+/// `right` × move(Right) (negative counts move Down, Back, Left), then one
+/// `rotate(yaw, pitch)` if either is non-zero.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FlyStart {
+    /// Skip `initializeGL`'s `rotate(30, 0)` and three `move(Left)` (the constructor camera).
+    pub preset: bool,
+    /// Steps of move(Up) (negative: Down).
+    pub up: i32,
+    /// Steps of move(Forward) (negative: Back).
+    pub forward: i32,
+    /// Steps of move(Right) (negative: Left).
+    pub right: i32,
+    /// Yaw change of the final rotate, degrees.
+    pub yaw: f32,
+    /// Pitch change of the final rotate, degrees (the pitch clamp applies).
+    pub pitch: f32,
+}
+
+impl FlyCamera {
+    /// The camera in a [`FlyStart`] state, the operations applied in SPEC §3's order.
+    pub fn from_start(start: &FlyStart) -> FlyCamera {
+        let mut camera = FlyCamera::new();
+        if !start.preset {
+            camera.initialize_gl();
+        }
+        let steps = [
+            (start.up, Move::Up, Move::Down),
+            (start.forward, Move::Forward, Move::Back),
+            (start.right, Move::Right, Move::Left),
+        ];
+        for (count, positive, negative) in steps {
+            let direction = if count < 0 { negative } else { positive };
+            for _ in 0..count.unsigned_abs() {
+                camera.move_(direction);
+            }
+        }
+        if start.yaw != 0.0 || start.pitch != 0.0 {
+            camera.rotate(start.yaw, start.pitch);
+        }
+        camera
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -229,5 +274,46 @@ mod tests {
         assert!((near.z / near.w + 1.0).abs() < 1e-5 && (far.z / far.w - 1.0).abs() < 1e-5);
         assert_eq!(c.projection(0.0), Mat4::IDENTITY);
         assert_eq!(c.projection(f32::NAN), Mat4::IDENTITY);
+    }
+
+    #[test]
+    fn start_states_follow_spec_order() {
+        let mut init = FlyCamera::new();
+        init.initialize_gl();
+        assert_eq!(FlyCamera::from_start(&FlyStart::default()), init);
+        assert_eq!(
+            FlyCamera::from_start(&FlyStart {
+                preset: true,
+                ..FlyStart::default()
+            }),
+            FlyCamera::new()
+        );
+        // "above": up=2 pitch=-30.
+        let above = FlyCamera::from_start(&FlyStart {
+            up: 2,
+            pitch: -30.0,
+            ..FlyStart::default()
+        });
+        assert!(close(above.position, Vec3::new(-1.299038, 1.0, 2.25), 1e-5));
+        assert!((above.front.y + 0.5).abs() < 1e-6 && above.yaw == -60.0);
+        // "closer": forward=3 yaw=-10: the moves use the front before the rotation.
+        let closer = FlyCamera::from_start(&FlyStart {
+            forward: 3,
+            yaw: -10.0,
+            ..FlyStart::default()
+        });
+        assert!(close(closer.position, init.position + 1.5 * init.front, 1e-6));
+        assert_eq!(closer.yaw, -70.0);
+        // Negative counts go the other way; the pitch clamp holds.
+        let back = FlyCamera::from_start(&FlyStart {
+            preset: true,
+            forward: -2,
+            right: -1,
+            up: -1,
+            pitch: 120.0,
+            ..FlyStart::default()
+        });
+        assert_eq!(back.position, Vec3::new(-0.5, -0.5, 4.0));
+        assert_eq!(back.pitch, 89.0);
     }
 }

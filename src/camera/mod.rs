@@ -8,6 +8,7 @@
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
 pub mod fly;
+pub mod glm;
 
 /// `gluPerspective(fovy, aspect, near, far)` (GL depth convention, -1..1).
 pub fn glu_perspective(fovy_degrees: f64, aspect: f64, near: f64, far: f64) -> Mat4 {
@@ -34,10 +35,21 @@ pub fn gl_to_wgpu_depth(projection: Mat4) -> Mat4 {
     fix * projection
 }
 
+/// GLU's `normalize`: each component divided by the length (not multiplied by its reciprocal,
+/// which differs in the last bit), a zero vector left as it is.
+fn glu_normalize(v: Vec3) -> Vec3 {
+    let r = (v.x * v.x + v.y * v.y + v.z * v.z).sqrt();
+    if r == 0.0 {
+        v
+    } else {
+        Vec3::new(v.x / r, v.y / r, v.z / r)
+    }
+}
+
 /// `gluLookAt(eye, center, up)`, as SGI's GLU computes it (in float).
 pub fn glu_look_at(eye: Vec3, center: Vec3, up: Vec3) -> Mat4 {
-    let forward = (center - eye).normalize_or_zero();
-    let side = forward.cross(up).normalize_or_zero();
+    let forward = glu_normalize(center - eye);
+    let side = glu_normalize(forward.cross(up));
     let up = side.cross(forward);
     let rotation = Mat4::from_cols(
         Vec4::new(side.x, up.x, -forward.x, 0.0),
@@ -120,6 +132,15 @@ mod tests {
         let v = Vec4::new(0.3, -0.7, -4.0, 1.0);
         let (a, b) = (p * v, q * v);
         assert_eq!((a.x, a.y, a.w), (b.x, b.y, b.w));
+    }
+
+    #[test]
+    fn look_at_normalizes_by_division_as_glu() {
+        // gluLookAt((0,1,4), 0, y): forward = (0,-1,-4)/sqrt(17), divided in float as GLU does.
+        let m = glu_look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO, Vec3::Y);
+        let r = 17.0f32.sqrt();
+        assert_eq!(m.z_axis.z, 4.0 / r);
+        assert_eq!(m.y_axis.z, 1.0 / r);
     }
 
     #[test]

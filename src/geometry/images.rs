@@ -217,14 +217,28 @@ pub fn mip_chain(level0: &Image) -> Vec<Image> {
 /// file decides itself whether to flip. Errors name the file: [`Error::Io`] if it cannot be
 /// opened or read, [`Error::Image`] if it is not a decodable PNG/BMP.
 pub fn load_image(path: &Path) -> Result<Image> {
-    let io = |source| Error::Io {
+    let bytes = std::fs::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
-    };
-    let reader = image::ImageReader::open(path)
-        .map_err(io)?
+    })?;
+    decode_image(path, &bytes)
+}
+
+/// Decodes the bytes of a PNG or BMP file as [`load_image`] does (a picture compiled into the
+/// program, e.g. `assets/uvgrid.bmp`); `path` names it in errors and, when the content says
+/// nothing, its extension gives the format.
+pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
-        .map_err(io)?;
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if reader.format().is_none() {
+        if let Ok(format) = image::ImageFormat::from_path(path) {
+            reader.set_format(format);
+        }
+    }
     let decoded = reader.decode().map_err(|source| Error::Image {
         path: path.to_path_buf(),
         source,

@@ -1,7 +1,11 @@
-//! CPU-side data of the lecture ports (SPEC seeds 001–004), no GPU code: the procedural
-//! textures and their mipmaps ([`images`]), Wavefront OBJ models ([`obj`]) and the lectures'
-//! hand-made meshes ([`shapes`]).
+//! Geometry on the CPU, no GPU code: the general [`mesh`] types, GLUT's solids bit for bit
+//! ([`glut`]) and their tessellation levels ([`tess`]), Wavefront OBJ models ([`obj`]), the
+//! procedural textures and their mipmaps ([`images`]) and the lectures' hand-made meshes
+//! ([`shapes`]).
 
+pub mod glut;
 pub mod images;
+pub mod mesh;
 pub mod obj;
 pub mod shapes;
+pub mod tess;

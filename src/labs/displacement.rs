@@ -24,7 +24,8 @@ pub static INFO: LabInfo = LabInfo {
     label: "displacement",
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
-    keys: "[ / ]: displacement ∓0.01; R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock",
+    keys:
+        "[ / ]: displacement ∓0.01; R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock",
 };
 
 /// The list entry.
@@ -54,9 +55,25 @@ crate::uniform_block!(DisplacementUniforms, "DisplacementParams", {
 });
 
 const OWN: &[ParamSpec] = &[
-    ParamSpec::real("shade", &[1.0, 1.0, 1.0], -1e30, 1e30, "colour of the noise (R/r G/g B/b, keys within 0..1)"),
-    ParamSpec::real("displacement", &[0.5], -1e30, 1e30, "strength ([ / ], keys within 0..1; the shader clamps)"),
-    ParamSpec::flag("smooth", &[0.0], "port: weld shared vertices and average normals (no cracks)"),
+    ParamSpec::real(
+        "shade",
+        &[1.0, 1.0, 1.0],
+        -1e30,
+        1e30,
+        "colour of the noise (R/r G/g B/b, keys within 0..1)",
+    ),
+    ParamSpec::real(
+        "displacement",
+        &[0.5],
+        -1e30,
+        1e30,
+        "strength ([ / ], keys within 0..1; the shader clamps)",
+    ),
+    ParamSpec::flag(
+        "smooth",
+        &[0.0],
+        "port: weld shared vertices and average normals (no cracks)",
+    ),
 ];
 
 fn params() -> Params {

@@ -67,8 +67,20 @@ pub struct StageConfig {
 /// normal-matrix study knobs.
 pub const PARAMS_000: &[ParamSpec] = &[
     ParamSpec::choice("object", &[3.0], OBJECTS_000, "object drawn (keys 1-4)"),
-    ParamSpec::real("xangle", &[0.0], -36000.0, 36000.0, "glRotatef about x, degrees (mouse: vertical drag)"),
-    ParamSpec::real("yangle", &[0.0], -36000.0, 36000.0, "glRotatef about y, degrees (mouse: horizontal drag)"),
+    ParamSpec::real(
+        "xangle",
+        &[0.0],
+        -36000.0,
+        36000.0,
+        "glRotatef about x, degrees (mouse: vertical drag)",
+    ),
+    ParamSpec::real(
+        "yangle",
+        &[0.0],
+        -36000.0,
+        36000.0,
+        "glRotatef about y, degrees (mouse: horizontal drag)",
+    ),
     ParamSpec::real("zangle", &[0.0], -36000.0, 36000.0, "glRotatef about z, degrees"),
     ParamSpec::int(
         "tess",
@@ -77,7 +89,13 @@ pub const PARAMS_000: &[ParamSpec] = &[
         512.0,
         "port: tessellation level 3-512; 0 = GLUT's (auto in a port-only mode), -1 = auto",
     ),
-    ParamSpec::real("scale", &[1.0, 1.0, 1.0], -100.0, 100.0, "port study: glScalef after the rotations"),
+    ParamSpec::real(
+        "scale",
+        &[1.0, 1.0, 1.0],
+        -100.0,
+        100.0,
+        "port study: glScalef after the rotations",
+    ),
     ParamSpec::flag(
         "naive_nm",
         &[0.0],
@@ -88,7 +106,12 @@ pub const PARAMS_000: &[ParamSpec] = &[
 /// Seed 000's window title: `Lab05-N label | object | summary`, then the port-only modes
 /// (`extra`, e.g. the shading model) and the tessellation when it is not GLUT's.
 pub fn title_000(info: &LabInfo, params: &Params, summary: &str, extra: &str) -> String {
-    let mut title = format!("{} {} | {} | {summary}{extra}", info.title, info.label, params.text("object"));
+    let mut title = format!(
+        "{} {} | {} | {summary}{extra}",
+        info.title,
+        info.label,
+        params.text("object")
+    );
     match params.f64("tess") as i64 {
         0 => {}
         -1 => title.push_str(" | tess auto"),

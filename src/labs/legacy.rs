@@ -343,7 +343,7 @@ impl LegacyLab {
                 Some(o) => {
                     let mesh = tess::mesh(o, level);
                     let uv = if o == Object::Teapot {
-                        crate::mesh::teapot_texcoords(level)
+                        crate::geometry::glut::teapot_texcoords(level)
                     } else {
                         Vec::new()
                     };

@@ -42,7 +42,13 @@ pub struct NoiseUniforms {
 }
 crate::uniform_block!(NoiseUniforms, "NoiseParams", { shade: "shade", time: "time" });
 
-const OWN: &[ParamSpec] = &[ParamSpec::real("shade", &[1.0, 1.0, 1.0], -1e30, 1e30, "colour of the noise (R/r G/g B/b, keys within 0..1)")];
+const OWN: &[ParamSpec] = &[ParamSpec::real(
+    "shade",
+    &[1.0, 1.0, 1.0],
+    -1e30,
+    1e30,
+    "colour of the noise (R/r G/g B/b, keys within 0..1)",
+)];
 
 fn params() -> Params {
     let mut p = Params::new(OWN);

@@ -92,15 +92,39 @@ const PHONG: usize = 2;
 const ANY: f64 = f32::MAX as f64;
 
 const OWN: &[ParamSpec] = &[
-    ParamSpec::real("lightPosition", &[0.0, 1.0, 1.0], -ANY, ANY, "light, eye space (X/Y/Z x/y/z, ±50)"),
+    ParamSpec::real(
+        "lightPosition",
+        &[0.0, 1.0, 1.0],
+        -ANY,
+        ANY,
+        "light, eye space (X/Y/Z x/y/z, ±50)",
+    ),
     ParamSpec::real("Ka", &[0.1], -ANY, ANY, "ambient coefficient (< >, keys within 0..1)"),
     ParamSpec::real("ambientColor", &[0.1, 0.1, 0.1], -ANY, ANY, "ambient colour"),
     ParamSpec::real("Kd", &[1.0], -ANY, ANY, "diffuse coefficient ([ ], keys within 0..1)"),
-    ParamSpec::real("diffuseColor", &[1.0, 0.5, 0.0], -ANY, ANY, "diffuse colour (R/G/B r/g/b, keys within 0..1)"),
+    ParamSpec::real(
+        "diffuseColor",
+        &[1.0, 0.5, 0.0],
+        -ANY,
+        ANY,
+        "diffuse colour (R/G/B r/g/b, keys within 0..1)",
+    ),
     ParamSpec::real("Ks", &[1.0], -ANY, ANY, "specular coefficient ({ }, keys within 0..1)"),
     ParamSpec::real("specularColor", &[1.0, 1.0, 1.0], -ANY, ANY, "specular colour"),
-    ParamSpec::real("shininess", &[32.0], -ANY, ANY, "specular exponent (H/h, keys within 6..200)"),
-    ParamSpec::real("camera", &[0.0, 0.0, 5.0], -ANY, ANY, "eye position; the view looks down -z (W/A/S/D, ±50)"),
+    ParamSpec::real(
+        "shininess",
+        &[32.0],
+        -ANY,
+        ANY,
+        "specular exponent (H/h, keys within 6..200)",
+    ),
+    ParamSpec::real(
+        "camera",
+        &[0.0, 0.0, 5.0],
+        -ANY,
+        ANY,
+        "eye position; the view looks down -z (W/A/S/D, ±50)",
+    ),
     ParamSpec::choice(
         "shading",
         &[PHONG as f64],
@@ -133,7 +157,12 @@ struct Phong {
     marker_mesh: GpuMesh<Vertex>,
 }
 
-fn build_model(cx: &LabContext, stage: &GlutStage, uniforms: &Uniforms<PhongUniforms>, model: usize) -> Result<Program<Vertex>> {
+fn build_model(
+    cx: &LabContext,
+    stage: &GlutStage,
+    uniforms: &Uniforms<PhongUniforms>,
+    model: usize,
+) -> Result<Program<Vertex>> {
     let (name, vert, frag) = MODELS[model];
     let mut program = Program::new(cx, &format!("phong.{name}"), vert, frag, RenderState::default())?;
     program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
@@ -333,8 +362,10 @@ impl Lab for Phong {
         let faithful = self.drawn == PHONG;
         // Drawn with the modelview reset: glLoadIdentity(); glTranslatef(light).
         let light = Vec3::from_array(self.params.v3("lightPosition"));
-        self.marker_transform.value =
-            TransformUniforms::new(Mat4::from_translation(light), self.stage.projection(frame.width, frame.height));
+        self.marker_transform.value = TransformUniforms::new(
+            Mat4::from_translation(light),
+            self.stage.projection(frame.width, frame.height),
+        );
         self.marker_transform.upload(gpu);
         let mesh = self
             .stage

@@ -59,7 +59,11 @@ impl<V: VertexType> GpuMesh<V> {
         let vertex_bytes: &[u8] = bytemuck::cast_slice(vertices);
         // wgpu refuses zero-sized vertex buffers: an empty mesh keeps one unused vertex.
         let padding = [0u8; 16];
-        let contents = if vertex_bytes.is_empty() { &padding[..] } else { vertex_bytes };
+        let contents = if vertex_bytes.is_empty() {
+            &padding[..]
+        } else {
+            vertex_bytes
+        };
         let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}.vertices")),
             contents,

@@ -4,6 +4,21 @@
 //! shader's inputs), [`Texture`] and samplers, and [`Frame`] (where one frame is recorded).
 //! Nothing here knows a lab or winit.
 
+use crate::gpu::Gpu;
+use crate::shader::ShaderSource;
+
+/// What programs, textures and labs are built with.
+pub struct Context<'a> {
+    /// The device.
+    pub gpu: &'a Gpu,
+    /// Where shader files come from.
+    pub source: &'a ShaderSource,
+    /// The colour format of the targets it will draw into.
+    pub format: wgpu::TextureFormat,
+    /// Files the user named for the lab to draw instead of its built-in data.
+    pub files: &'a crate::user_files::UserFiles,
+}
+
 mod frame;
 mod mesh;
 mod program;

@@ -8,9 +8,9 @@
 
 use std::marker::PhantomData;
 
+use super::Context as LabContext;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::LabContext;
 use crate::offscreen::DEPTH_FORMAT;
 use crate::shader::{BlockLayout, CompiledShader, ShaderSource};
 
@@ -192,7 +192,13 @@ pub fn reflect_bindings(shaders: &[&CompiledShader]) -> Result<Vec<BindingInfo>>
                         (naga::ImageDimension::D1, _) => wgpu::TextureViewDimension::D1,
                         _ => wgpu::TextureViewDimension::CubeArray,
                     };
-                    if !matches!(class, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }) {
+                    if !matches!(
+                        class,
+                        naga::ImageClass::Sampled {
+                            kind: naga::ScalarKind::Float,
+                            multi: false
+                        }
+                    ) {
                         return Err(Error::Binding(format!(
                             "{}: texture `{}` is not a plain float texture (only texture2D/textureCube are supported)",
                             shader.path,
@@ -285,12 +291,18 @@ fn vertex_format(inner: &naga::TypeInner) -> Option<wgpu::VertexFormat> {
 /// The vertex inputs of a vertex shader's `main`.
 pub fn reflect_inputs(vertex: &CompiledShader) -> Result<Vec<VertexInput>> {
     let module = &vertex.module;
-    let Some(entry) = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Vertex) else {
+    let Some(entry) = module
+        .entry_points
+        .iter()
+        .find(|e| e.stage == naga::ShaderStage::Vertex)
+    else {
         return Err(Error::Binding(format!("{} has no vertex entry point", vertex.path)));
     };
     let mut inputs = Vec::new();
     for arg in &entry.function.arguments {
-        let Some(naga::Binding::Location { location, .. }) = &arg.binding else { continue };
+        let Some(naga::Binding::Location { location, .. }) = &arg.binding else {
+            continue;
+        };
         let name = arg.name.clone().unwrap_or_default();
         let format = vertex_format(&module.types[arg.ty].inner).ok_or_else(|| {
             Error::Binding(format!(
@@ -498,7 +510,8 @@ impl<V: VertexType> Program<V> {
         let attributes = vertex_attributes::<V>(&vertex.path, &inputs)?;
         let vs = vertex.create_module(&gpu.device, &vertex.path);
         let fs = fragment.create_module(&gpu.device, &fragment.path);
-        let (bind_group_layout, pipeline) = Self::pipeline(gpu, label, &bindings, &attributes, &vs, &fs, state, format)?;
+        let (bind_group_layout, pipeline) =
+            Self::pipeline(gpu, label, &bindings, &attributes, &vs, &fs, state, format)?;
         Ok(Built {
             vertex,
             fragment,
@@ -584,7 +597,15 @@ impl<V: VertexType> Program<V> {
 
     /// Compiles the shaders again; on failure the last good pipeline and bindings stay.
     pub fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        let built = Self::build(cx.gpu, cx.source, &self.label, &self.vert, &self.frag, self.state, self.format)?;
+        let built = Self::build(
+            cx.gpu,
+            cx.source,
+            &self.label,
+            &self.vert,
+            &self.frag,
+            self.state,
+            self.format,
+        )?;
         self.install(cx.gpu, built)
     }
 
@@ -607,14 +628,19 @@ impl<V: VertexType> Program<V> {
             let Some(r) = resources.iter().find(|r| r.name == b.name) else {
                 problems.push(format!(
                     "{files} declare{} `{}` (binding {}), which {label} does not provide",
-                    "",
-                    b.name,
-                    b.binding
+                    "", b.name, b.binding
                 ));
                 continue;
             };
             let resource = match (&b.kind, &r.resource) {
-                (BindingKind::Uniform(layout), Resource::Buffer { buffer, rust_name, check }) => {
+                (
+                    BindingKind::Uniform(layout),
+                    Resource::Buffer {
+                        buffer,
+                        rust_name,
+                        check,
+                    },
+                ) => {
                     if let Err(e) = check(rust_name, layout) {
                         problems.push(e.to_string());
                         continue;

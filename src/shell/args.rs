@@ -231,9 +231,7 @@ impl Args {
         let mut p = (entry.params)();
         // The files a lab takes declare parameters of their own (e.g. a shader's uniforms).
         p.declare_files(&self.files)?;
-        let missing = |flag: &str, what: &str| {
-            Error::Param(format!("`{flag}`: {name} has no {what}"))
-        };
+        let missing = |flag: &str, what: &str| Error::Param(format!("`{flag}`: {name} has no {what}"));
         if let Some(object) = &self.object {
             if !p.has("object") {
                 return Err(missing("--object", "objects to choose from"));

@@ -14,20 +14,7 @@ use super::{say, Args, Failure};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
 pub(crate) fn check_png_path(path: &Path) -> Result<()> {
-    let is_png = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if path.is_dir() {
-        return Err(Error::Param(format!("{}: is a directory; give a file name ending in .png", path.display())));
-    }
-    if !is_png {
-        return Err(Error::Param(format!(
-            "{}: only PNG is written; use a name ending in .png",
-            path.display()
-        )));
-    }
-    Ok(())
+    crate::fsutil::check_png_path(path)
 }
 
 pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: &UserFiles) -> Result<(), Failure> {
@@ -112,7 +99,14 @@ impl BenchResult {
 
 /// Renders `frames` frames offscreen, waiting for each (like the original's swap + glFinish).
 /// An animated lab's time advances 1/60 s per frame, as the originals' benchmarks do.
-pub fn bench(gpu: &Gpu, lab: &mut dyn Lab, frames: u32, width: u32, height: u32, gpu_time: bool) -> Result<BenchResult> {
+pub fn bench(
+    gpu: &Gpu,
+    lab: &mut dyn Lab,
+    frames: u32,
+    width: u32,
+    height: u32,
+    gpu_time: bool,
+) -> Result<BenchResult> {
     let target = Offscreen::new(gpu, width, height);
     // Warm up: the first frames compile shaders in the driver.
     for _ in 0..3 {

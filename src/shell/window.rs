@@ -82,10 +82,17 @@ pub fn surface_size(size: PhysicalSize<u32>) -> Option<(u32, u32)> {
 /// Opens the lab in a window and runs until Esc or close.
 pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFiles) -> Result<()> {
     let event_loop = EventLoop::new().map_err(|e| {
+        // winit's message names its own source file ("os error at /…/registry/…/x11/mod.rs:N:
+        // reason"): keep the reason only.
+        let message = e.to_string();
+        let reason = match message.find(" at /") {
+            Some(at) => message[at..].split_once(": ").map_or(&message[..at], |(_, r)| r),
+            None => &message,
+        };
         Error::Surface(format!(
             "cannot open a window on DISPLAY={}: {}",
             std::env::var("DISPLAY").unwrap_or_default(),
-            e.to_string().lines().next().unwrap_or("").split(" at /").next().unwrap_or("")
+            reason.lines().next().unwrap_or("")
         ))
     })?;
     event_loop.set_control_flow(ControlFlow::Poll);
@@ -701,6 +708,14 @@ impl ApplicationHandler for App {
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
+            // Another program destroyed the window (`xdotool windowclose`): nothing is left to
+            // draw into, and winit would fail on the next request about it.
+            WindowEvent::Destroyed => {
+                self.error = Some(Error::Surface(
+                    "the window was closed or destroyed by another program".into(),
+                ));
+                event_loop.exit();
+            }
             WindowEvent::Resized(size) => state.resize(size),
             WindowEvent::Occluded(occluded) => state.occluded = occluded,
             // winit invents ("synthetic") presses for keys already held when the window gets the

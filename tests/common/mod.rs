@@ -18,7 +18,9 @@ pub fn gpu() -> &'static Gpu {
     static GPU: OnceLock<Gpu> = OnceLock::new();
     GPU.get_or_init(|| match Gpu::headless() {
         Ok(gpu) => gpu,
-        Err(e) => panic!("GPU tests need an adapter (on Debian/Ubuntu: sudo apt-get install -y mesa-vulkan-drivers): {e}"),
+        Err(e) => {
+            panic!("GPU tests need an adapter (on Debian/Ubuntu: sudo apt-get install -y mesa-vulkan-drivers): {e}")
+        }
     })
 }
 
@@ -47,7 +49,10 @@ impl TestLab {
     }
     /// A parameter's values as f32.
     pub fn get(&self, name: &str) -> Option<Vec<f32>> {
-        self.lab.params().get(name).map(|v| v.iter().map(|x| *x as f32).collect())
+        self.lab
+            .params()
+            .get(name)
+            .map(|v| v.iter().map(|x| *x as f32).collect())
     }
     /// A parameter's value as text.
     pub fn text(&self, name: &str) -> String {

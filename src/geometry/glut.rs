@@ -49,28 +49,7 @@
 //! `torus(0.5,1,24,24)`, `torus(0.2,3,5,9)`, `teapot(1,8)` and the positions
 //! of `teapot(0.7,8)`.
 
-use bytemuck::{Pod, Zeroable};
-use std::collections::HashMap;
-
-/// One vertex: object-space position and normal, as freeglut passes them to GL.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct Vertex {
-    /// Object-space position (`glVertexPointer`).
-    pub position: [f32; 3],
-    /// Object-space normal (`glNormalPointer`), as freeglut computes it.
-    pub normal: [f32; 3],
-}
-
-/// An indexed triangle list.
-#[derive(Clone, Debug, Default)]
-pub struct Mesh {
-    /// The vertex array, in freeglut's order.
-    pub vertices: Vec<Vertex>,
-    /// Three indices per triangle, in the order GL rasterises them (see the
-    /// module docs; the teapot's triangles are clockwise, see [`Mesh::teapot`]).
-    pub indices: Vec<u32>,
-}
+use super::mesh::{Mesh, Vertex};
 
 impl Mesh {
     /// freeglut 3.4.0's `GLUT_SOLID_N_SUBDIV`: vertices per patch edge of the
@@ -335,124 +314,6 @@ impl Mesh {
             }
         }
 
-        Mesh { vertices, indices }
-    }
-
-    /// Number of triangles (`indices.len() / 3`).
-    pub fn triangle_count(&self) -> usize {
-        self.indices.len() / 3
-    }
-
-    /// Axis-aligned bounds (min, max) of the positions.
-    ///
-    /// An empty mesh gives `([0.0; 3], [0.0; 3])`; NaN coordinates are ignored.
-    pub fn bounds(&self) -> ([f32; 3], [f32; 3]) {
-        if self.vertices.is_empty() {
-            return ([0.0; 3], [0.0; 3]);
-        }
-        let mut lo = [f32::INFINITY; 3];
-        let mut hi = [f32::NEG_INFINITY; 3];
-        for v in &self.vertices {
-            for k in 0..3 {
-                lo[k] = lo[k].min(v.position[k]);
-                hi[k] = hi[k].max(v.position[k]);
-            }
-        }
-        for k in 0..3 {
-            if lo[k] > hi[k] {
-                lo[k] = 0.0;
-                hi[k] = 0.0;
-            }
-        }
-        (lo, hi)
-    }
-
-    /// A copy with vertices that share a position welded into one, normals
-    /// averaged and renormalised; used for crack-free displacement.
-    ///
-    /// * "Share a position" means: within `eps = 1e-6 * (largest finite
-    ///   |coordinate|)` (Euclidean), i.e. a few float ulps. An exact match is
-    ///   not enough: freeglut's teapot evaluates some shared patch edges from
-    ///   the same control points listed in opposite order (the bottom patch's
-    ///   last row is the body's last row reversed), so the two copies of such
-    ///   an edge differ by 1-2 ulps and an exact weld would leave cracks.
-    ///   Distinct vertices of these meshes are orders of magnitude further
-    ///   apart. Clustering is greedy: a vertex joins the first earlier
-    ///   representative within `eps`, else it becomes a representative.
-    /// * The welded normal is the plain (unweighted) average of the normals of
-    ///   the vertices merged into it, renormalised. If that sum is (nearly)
-    ///   zero or not finite, the representative's own normal is kept.
-    /// * The representative (first occurrence) keeps its position; vertices
-    ///   keep the order of their first occurrence; every triangle is kept (so
-    ///   `triangle_count` is unchanged), even ones whose corners collapse.
-    pub fn welded(&self) -> Mesh {
-        let max_abs = self
-            .vertices
-            .iter()
-            .flat_map(|v| v.position)
-            .filter(|c| c.is_finite())
-            .fold(0.0f64, |m, c| m.max(f64::from(c).abs()));
-        let eps = (max_abs * 1e-6).max(f64::from(f32::MIN_POSITIVE));
-        let cell_of = |p: [f32; 3]| p.map(|c| (f64::from(c) / eps).floor() as i64);
-
-        let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-        let mut remap = Vec::with_capacity(self.vertices.len());
-        let mut vertices: Vec<Vertex> = Vec::new();
-        let mut sums: Vec<[f64; 3]> = Vec::new();
-        for v in &self.vertices {
-            let cell = cell_of(v.position);
-            let mut found = None;
-            'search: for dx in -1i64..=1 {
-                for dy in -1i64..=1 {
-                    for dz in -1i64..=1 {
-                        let key = [
-                            cell[0].saturating_add(dx),
-                            cell[1].saturating_add(dy),
-                            cell[2].saturating_add(dz),
-                        ];
-                        let Some(ids) = grid.get(&key) else { continue };
-                        for &id in ids {
-                            let q = vertices[id as usize].position;
-                            let d2: f64 = (0..3)
-                                .map(|k| {
-                                    let d = f64::from(v.position[k]) - f64::from(q[k]);
-                                    d * d
-                                })
-                                .sum();
-                            if d2 <= eps * eps || v.position == q {
-                                found = Some(id);
-                                break 'search;
-                            }
-                        }
-                    }
-                }
-            }
-            let id = match found {
-                Some(id) => id,
-                None => {
-                    let id = vertices.len() as u32;
-                    vertices.push(*v);
-                    sums.push([0.0; 3]);
-                    grid.entry(cell).or_default().push(id);
-                    id
-                }
-            };
-            for (acc, &c) in sums[id as usize].iter_mut().zip(&v.normal) {
-                *acc += f64::from(c);
-            }
-            remap.push(id);
-        }
-        for (v, s) in vertices.iter_mut().zip(&sums) {
-            let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
-            if len.is_finite() && len > 1e-12 {
-                v.normal = [(s[0] / len) as f32, (s[1] / len) as f32, (s[2] / len) as f32];
-            }
-        }
-        let indices = self
-            .indices
-            .iter()
-            .map(|&i| remap.get(i as usize).copied().unwrap_or(i))
-            .collect();
         Mesh { vertices, indices }
     }
 }
@@ -816,32 +677,32 @@ const TEAPOT_CP: [[f32; 3]; 129] = [
 ];
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn sub(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    pub(crate) fn sub(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
         [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
     }
-    fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    pub(crate) fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
         [
             a[1] * b[2] - a[2] * b[1],
             a[2] * b[0] - a[0] * b[2],
             a[0] * b[1] - a[1] * b[0],
         ]
     }
-    fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
+    pub(crate) fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
-    fn len(a: [f32; 3]) -> f32 {
+    pub(crate) fn len(a: [f32; 3]) -> f32 {
         dot(a, a).sqrt()
     }
 
-    fn check_indices(m: &Mesh) {
+    pub(crate) fn check_indices(m: &Mesh) {
         assert_eq!(m.indices.len() % 3, 0);
         assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
     }
 
-    fn check_unit_normals(m: &Mesh, tol: f32) {
+    pub(crate) fn check_unit_normals(m: &Mesh, tol: f32) {
         for (i, v) in m.vertices.iter().enumerate() {
             let l = len(v.normal);
             assert!((l - 1.0).abs() < tol, "vertex {i}: |n| = {l} ({v:?})");
@@ -849,7 +710,7 @@ mod tests {
     }
 
     /// dot(face normal, sum of the corner normals) > 0 for every triangle.
-    fn check_outward(m: &Mesh) {
+    pub(crate) fn check_outward(m: &Mesh) {
         for (t, tri) in m.indices.chunks_exact(3).enumerate() {
             let [a, b, c] = [0, 1, 2].map(|k| m.vertices[tri[k] as usize]);
             let face = cross(sub(b.position, a.position), sub(c.position, a.position));
@@ -1151,45 +1012,6 @@ mod tests {
     }
 
     // ------------------------------------------------------------- welded
-
-    #[test]
-    fn welded_cube() {
-        let m = Mesh::cube(1.5);
-        let w = m.welded();
-        assert_eq!(w.vertices.len(), 8);
-        assert_eq!(w.triangle_count(), 12);
-        check_indices(&w);
-        let k = 1.0 / 3.0f32.sqrt();
-        for v in &w.vertices {
-            for c in 0..3 {
-                assert!((v.normal[c] - v.position[c].signum() * k).abs() < 1e-6);
-            }
-        }
-    }
-
-    #[test]
-    fn welded_other_shapes() {
-        // sphere and torus have no duplicated positions
-        let s = Mesh::sphere(1.0, 24, 24);
-        assert_eq!(s.welded().vertices.len(), s.vertices.len());
-        let t = Mesh::torus(0.5, 1.0, 24, 24);
-        assert_eq!(t.welded().vertices.len(), t.vertices.len());
-        // the teapot's patch seams weld exactly: no two welded vertices are
-        // closer than 1e-6 (so displacement cannot open cracks)
-        let m = Mesh::teapot(1.0, 8);
-        let w = m.welded();
-        assert_eq!(w.triangle_count(), m.triangle_count());
-        check_indices(&w);
-        assert!(w.vertices.len() < m.vertices.len());
-        check_unit_normals(&w, 1e-5);
-        for (i, a) in w.vertices.iter().enumerate() {
-            for b in &w.vertices[i + 1..] {
-                assert!(len(sub(a.position, b.position)) > 1e-6, "{a:?} {b:?}");
-            }
-        }
-    }
-
-    // ----------------------------------------------------------- clamping
 
     #[test]
     fn minimum_counts_clamp() {

@@ -29,7 +29,15 @@
 //! [`silhouette_error`] (how far, in pixels, wrongly covered or uncovered pixels lie from the
 //! exact silhouette) and [`image_error`] (RMSE, maximum error and PSNR).
 
+mod kdtree;
+mod roots;
+mod vec3;
+
 use image::RgbImage;
+
+use kdtree::{kd_build, kd_nearest};
+use roots::real_roots;
+use vec3::*;
 
 /// `gluPerspective`'s vertical field of view, degrees.
 const FOVY_DEGREES: f64 = 45.0;
@@ -341,45 +349,6 @@ fn silhouette_points(tracer: &Tracer, x0: f64, y0: f64) -> Vec<[f64; 2]> {
     points
 }
 
-/// Arranges `points` as an implicit 2-d tree: the median (on x at even depths, y at odd) in the
-/// middle, the smaller half before it, the larger after.
-fn kd_build(points: &mut [[f64; 2]], depth: usize) {
-    if points.len() <= 1 {
-        return;
-    }
-    let axis = depth % 2;
-    let mid = points.len() / 2;
-    points.select_nth_unstable_by(mid, |a, b| a[axis].total_cmp(&b[axis]));
-    let (left, right) = points.split_at_mut(mid);
-    kd_build(left, depth + 1);
-    kd_build(&mut right[1..], depth + 1);
-}
-
-/// Lowers `best` (a squared distance) to the squared distance from `q` to the nearest point of
-/// a tree built by [`kd_build`] if that is nearer.
-fn kd_nearest(points: &[[f64; 2]], depth: usize, q: [f64; 2], best: &mut f64) {
-    if points.is_empty() {
-        return;
-    }
-    let mid = points.len() / 2;
-    let p = points[mid];
-    let d2 = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-    if d2 < *best {
-        *best = d2;
-    }
-    let axis = depth % 2;
-    let diff = q[axis] - p[axis];
-    let (near, far) = if diff < 0.0 {
-        (&points[..mid], &points[mid + 1..])
-    } else {
-        (&points[mid + 1..], &points[..mid])
-    };
-    kd_nearest(near, depth + 1, q, best);
-    if diff * diff < *best {
-        kd_nearest(far, depth + 1, q, best);
-    }
-}
-
 /// Accuracy of an image against the exact one.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImageError {
@@ -558,120 +527,6 @@ fn torus_normal(p: [f64; 3]) -> [f64; 3] {
     normalize(sub(p, centre))
 }
 
-/// `c[0] + c[1] x + c[2] x² + ...` by Horner's rule.
-fn poly_eval(c: &[f64], x: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &ci| acc * x + ci)
-}
-
-/// The real roots in `[a, b]` of the polynomial `c` (ascending coefficients, degree at most 4,
-/// nonzero leading coefficient), sorted, into `out`; returns how many. Between consecutive
-/// roots of the derivative (found the same way) the polynomial is monotonic, so a sign change
-/// there brackets exactly one root. With `first_only`, stops at the smallest. A root where the
-/// polynomial only touches zero counts only if it evaluates to exactly zero.
-fn real_roots(c: &[f64], a: f64, b: f64, first_only: bool, out: &mut [f64; 4]) -> usize {
-    let n = c.len() - 1;
-    if n == 0 {
-        return 0;
-    }
-    if n == 1 {
-        let x = -c[0] / c[1];
-        if x >= a && x <= b {
-            out[0] = x;
-            return 1;
-        }
-        return 0;
-    }
-    let mut dc = [0.0; 4];
-    for i in 0..n {
-        dc[i] = (i + 1) as f64 * c[i + 1];
-    }
-    let dc = &dc[..n];
-    let mut crit = [0.0; 4];
-    let m = real_roots(dc, a, b, false, &mut crit);
-    let mut count = 0;
-    let mut x0 = a;
-    let mut f0 = poly_eval(c, a);
-    if f0 == 0.0 {
-        out[0] = a;
-        count = 1;
-        if first_only {
-            return 1;
-        }
-    }
-    let ends = crit[..m].iter().map(|&x| (x, true)).chain(std::iter::once((b, false)));
-    for (x1, critical) in ends {
-        if x1 <= x0 && critical {
-            continue;
-        }
-        let f1 = poly_eval(c, x1);
-        let root = if f1 == 0.0 {
-            Some(x1)
-        } else if f0 != 0.0 && (f0 < 0.0) != (f1 < 0.0) {
-            Some(refine_root(c, dc, x0, x1, f0))
-        } else {
-            None
-        };
-        if let Some(x) = root {
-            if count < out.len() && (count == 0 || x > out[count - 1]) {
-                out[count] = x;
-                count += 1;
-                if first_only {
-                    return count;
-                }
-            }
-        }
-        x0 = x1;
-        f0 = f1;
-    }
-    count
-}
-
-/// The root of `c` (derivative `dc`) in `[lo, hi]`, where `c(lo)` has the sign of `flo` and
-/// `c(hi)` the other: Newton's method kept inside the shrinking bracket, bisecting whenever a
-/// Newton step would leave it or shrink it too slowly (`rtsafe`).
-fn refine_root(c: &[f64], dc: &[f64], mut lo: f64, mut hi: f64, flo: f64) -> f64 {
-    let negative_lo = flo < 0.0;
-    let mut x = 0.5 * (lo + hi);
-    let mut step_old = hi - lo;
-    let mut step = step_old;
-    let mut f = poly_eval(c, x);
-    let mut df = poly_eval(dc, x);
-    for _ in 0..200 {
-        if f == 0.0 {
-            return x;
-        }
-        if (f < 0.0) == negative_lo {
-            lo = x;
-        } else {
-            hi = x;
-        }
-        let newton_outside = ((x - hi) * df - f) * ((x - lo) * df - f) > 0.0;
-        if newton_outside || (2.0 * f).abs() > (step_old * df).abs() || df == 0.0 {
-            step_old = step;
-            step = 0.5 * (hi - lo);
-            let next = lo + step;
-            if next <= lo || next >= hi {
-                return next;
-            }
-            x = next;
-        } else {
-            step_old = step;
-            step = f / df;
-            let next = x - step;
-            if next == x {
-                return x;
-            }
-            x = next;
-        }
-        if step.abs() <= f64::EPSILON * x.abs().max(f64::MIN_POSITIVE) {
-            return x;
-        }
-        f = poly_eval(c, x);
-        df = poly_eval(dc, x);
-    }
-    x
-}
-
 // ----------------------------------------------------------------------------- small helpers
 
 /// `f(0), f(1), ..., f(n-1)`, computed on all cores (scoped threads taking small blocks of
@@ -711,43 +566,6 @@ fn par_map<T: Send, F: Fn(usize) -> T + Sync>(n: usize, f: F) -> Vec<T> {
         slots[i] = Some(value);
     }
     slots.into_iter().map(|v| v.expect("every index computed")).collect()
-}
-
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// `a / |a|` (NaN for the zero vector, as GLSL's `normalize` is undefined there).
-fn normalize(a: [f64; 3]) -> [f64; 3] {
-    scale(a, 1.0 / norm(a))
-}
-
-fn mul(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
-}
-
-fn mul_transposed(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|j| m[0][j] * v[0] + m[1][j] * v[1] + m[2][j] * v[2])
-}
-
-fn mat_mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
 #[cfg(test)]

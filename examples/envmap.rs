@@ -1,0 +1,4 @@
+//! `cargo run --release --example envmap`: Seed 001 §1.10, cube-map environment (reflection) map. Run with `--help` for the command line.
+fn main() -> std::process::ExitCode {
+    shaderlab::shell::main(shaderlab::labs::ENVMAP)
+}

@@ -1,0 +1,4 @@
+//! `cargo run --release --example texparams`: seed 004 §4.6, texture parameters. Run with `--help` for the command line.
+fn main() -> std::process::ExitCode {
+    shaderlab::shell::main(shaderlab::labs::TEXPARAMS)
+}

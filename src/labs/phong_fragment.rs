@@ -1,0 +1,28 @@
+//! Seed 001 `phong_fragment` (SPEC §1.8): the course's modified Phong (Blinn) lighting; N, L and E are interpolated and the lighting is computed per fragment: the highlight is round.
+//! See [`super::modified_phong`] for the light, the keys and `compare` (both halves side by side).
+
+use crate::error::Result;
+use crate::lab::{Lab, LabContext, LabEntry, LabInfo};
+
+use super::modified_phong::{self, Shading};
+
+/// Seed 001, §1.8.
+pub static INFO: LabInfo = LabInfo {
+    name: "phong_fragment",
+    title: "ref001",
+    label: "modified Phong, per fragment",
+    lecture: "001 USTC GLSL (III)",
+    size: (512, 512),
+    keys: modified_phong::KEYS,
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params: modified_phong::params,
+    new,
+};
+
+fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
+    modified_phong::new(cx, &INFO, Shading::Fragment)
+}

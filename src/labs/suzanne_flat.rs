@@ -1,0 +1,34 @@
+//! Seed 004 §4.7, flat shading (pinned): the Gouraud shaders with `flat` interpolation on the
+//! face-normal VBO, one colour per triangle, lit at its first vertex.
+//!
+//! Keys: see [`super::suzanne_lit`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
+
+use crate::lab::{LabEntry, LabInfo};
+use crate::params::{ParamSpec, Params};
+
+use super::suzanne_lit::{self, Lit, SHADINGS};
+
+/// Seed 004 §4.7.
+pub static INFO: LabInfo = LabInfo {
+    name: "suzanne_flat",
+    title: "OpenGL III",
+    label: "Flat shading",
+    lecture: "004 OpenGL III – Basic Shaders",
+    size: (640, 480),
+    keys: suzanne_lit::KEYS,
+};
+
+const SHADING: &[ParamSpec] = &[ParamSpec::choice("shading", &[0.0], SHADINGS, "shading model (1/2/3)")];
+
+fn params() -> Params {
+    suzanne_lit::params(SHADING)
+}
+
+static LIT: Lit = Lit { info: &INFO, params };
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params,
+    new: |cx| suzanne_lit::new(cx, &LIT),
+};

@@ -1,0 +1,34 @@
+//! Seed 004 §4.9, Phong shading: the same lighting evaluated per fragment with the interpolated,
+//! renormalized normal; highlights stay sharp.
+//!
+//! Keys: see [`super::suzanne_lit`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
+
+use crate::lab::{LabEntry, LabInfo};
+use crate::params::{ParamSpec, Params};
+
+use super::suzanne_lit::{self, Lit, SHADINGS};
+
+/// Seed 004 §4.9.
+pub static INFO: LabInfo = LabInfo {
+    name: "suzanne_phong",
+    title: "OpenGL III",
+    label: "Phong shading",
+    lecture: "004 OpenGL III – Basic Shaders",
+    size: (640, 480),
+    keys: suzanne_lit::KEYS,
+};
+
+const SHADING: &[ParamSpec] = &[ParamSpec::choice("shading", &[2.0], SHADINGS, "shading model (1/2/3)")];
+
+fn params() -> Params {
+    suzanne_lit::params(SHADING)
+}
+
+static LIT: Lit = Lit { info: &INFO, params };
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params,
+    new: |cx| suzanne_lit::new(cx, &LIT),
+};

@@ -1,0 +1,34 @@
+//! Seed 004 §4.3, "Smooth Suzanne": the shaders of 4.2 on the vertex-normal VBO (each vertex the
+//! normalized sum of the normals of its faces), so the colours blend across faces instead of one
+//! per triangle.
+//!
+//! Keys: left drag rotates (0.5° per pixel).
+
+use crate::lab::{LabEntry, LabInfo};
+
+use super::suzanne_plain::{self, Plain};
+use super::suzanne_stage::Normals;
+
+/// Seed 004 §4.3.
+pub static INFO: LabInfo = LabInfo {
+    name: "suzanne_smooth",
+    title: "OpenGL III",
+    label: "smooth",
+    lecture: "004 OpenGL III – Basic Shaders",
+    size: (640, 480),
+    keys: "left drag rotates (0.5° per pixel)",
+};
+
+static PLAIN: Plain = Plain {
+    info: &INFO,
+    vert: "suzanne_normal_matrix.vert",
+    frag: "suzanne_normal_color.frag",
+    normals: Normals::Vertex,
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params: suzanne_plain::params,
+    new: |cx| suzanne_plain::new(cx, &PLAIN),
+};
