@@ -394,3 +394,102 @@ fn time_runs_when_the_shaders_declare_it() {
     assert!(image.get_pixel(320, 180).0[0] > 100, "{:?}", image.get_pixel(320, 180));
     assert!(lab.params().has("gl_LightSource[0].position"));
 }
+
+/// The hand port at `state`, and `legacy` on the same GLSL 1.10 files at the equivalent state.
+fn versus_hand_port(
+    entry: &shaderlab::LabEntry,
+    files: [&str; 2],
+    port_state: &[(&str, &str)],
+    legacy_state: &[(&str, &str)],
+) -> f64 {
+    let mut port = common::lab(entry);
+    for (k, v) in port_state {
+        port.lab
+            .params_mut()
+            .set_str(k, v)
+            .unwrap_or_else(|e| panic!("{}: {k}={v}: {e}", entry.info.name));
+    }
+    let expected = port.rgb(512, 512);
+    let mut app = legacy(vec![fixture(files[0]), fixture(files[1])], &[]);
+    for (k, v) in legacy_state {
+        if app.params().has(k) {
+            app.params_mut().set_str(k, v).unwrap();
+        }
+    }
+    let image = render(app.as_mut(), 512, 512);
+    psnr(&image, &expected).expect("same size")
+}
+
+#[test]
+fn builtin_state_shaders_match_their_hand_ports() {
+    use shaderlab::labs;
+    let mut worst = f64::INFINITY;
+    let light = |x: &'static str| -> (&'static str, &'static str) { ("gl_LightSource[0].position", x) };
+    let states: [(&str, &[(&str, &str)], Vec<(&str, &str)>); 4] = [
+        ("default", &[], vec![]),
+        (
+            "rotated",
+            &[("xangle", "30"), ("yangle", "45")],
+            vec![("xangle", "30"), ("yangle", "45")],
+        ),
+        ("sphere", &[("object", "sphere")], vec![("object", "sphere")]),
+        (
+            "shiny",
+            &[("shininess", "120"), ("lx", "-2")],
+            vec![("gl_FrontMaterial.shininess", "120"), light("-2,2,2,1")],
+        ),
+    ];
+    for (entry, files) in [
+        (labs::PHONG_VERTEX, ["seed001/phong_vertex.vert", "seed001/pass.frag"]),
+        (
+            labs::PHONG_FRAGMENT,
+            ["seed001/phong_fragment.vert", "seed001/phong_fragment.frag"],
+        ),
+        (labs::TOON, ["seed001/toon.vert", "seed001/pass.frag"]),
+    ] {
+        for (state, port, extra) in &states {
+            if entry.info.name == "toon" && *state == "shiny" {
+                continue;
+            }
+            let mut set: Vec<(&str, &str)> = SEED001.to_vec();
+            set.extend(extra.iter().copied());
+            let db = versus_hand_port(entry, files, port, &set);
+            println!("{} {state}: {db:.1} dB against the hand port", entry.info.name);
+            assert!(db >= 60.0, "{} {state}: {db:.1} dB", entry.info.name);
+            worst = worst.min(db);
+        }
+    }
+    for (state, twisting) in [("default", "4.25"), ("none", "0"), ("neg", "-2"), ("strong", "8")] {
+        let db = versus_hand_port(
+            labs::TWIST,
+            ["seed002/twist.vert", "seed002/twist.frag"],
+            &[("twisting", twisting)],
+            &[("object", "grid"), ("twisting", twisting), ("color", "0.5,9,0.5")],
+        );
+        println!("twist {state}: {db:.1} dB against the hand port");
+        assert!(db >= 60.0, "twist {state}: {db:.1} dB");
+        worst = worst.min(db);
+    }
+    // normal_world turns Rz·Ry·Rx, the legacy stage Rx·Ry·Rz: states about one axis.
+    for (state, port, angles) in [("default", vec![], "0,0,0"), ("below", vec![("rx", "-70")], "-70,0,0")] {
+        let [x, y, z]: [&str; 3] = angles.split(',').collect::<Vec<_>>().try_into().unwrap();
+        let db = versus_hand_port(
+            labs::NORMAL_WORLD,
+            ["seed002/normal_world.vert", "seed002/normal_world.frag"],
+            &port,
+            &[
+                ("object", "teapot"),
+                ("fovy", "60"),
+                ("near", "0.1"),
+                ("camera", "0,0,5"),
+                ("xangle", x),
+                ("yangle", y),
+                ("zangle", z),
+            ],
+        );
+        println!("normal_world {state}: {db:.1} dB against the hand port");
+        assert!(db >= 60.0, "normal_world {state}: {db:.1} dB");
+        worst = worst.min(db);
+    }
+    println!("worst {worst:.1} dB");
+}
