@@ -204,7 +204,6 @@ fn bind_all(
     translation: Translation,
     vs: &CompiledShader,
     files: &UserFiles,
-    params: &Params,
 ) -> Result<(Bound, Vec<Bind>)> {
     for (name, _) in &files.named_textures {
         if !translation.samplers.iter().any(|s| &s.name == name) {
@@ -253,7 +252,6 @@ fn bind_all(
     }
     let base = base_params();
     let uniform_params = translation.param_names(&|n| base.has(n));
-    let _ = params;
     Ok((
         Bound {
             translation,
@@ -273,7 +271,7 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         names: &["VERT", "FRAG"],
         declare,
     });
-    let (bound, binds) = bind_all(cx.gpu, translation, &vs, cx.files, &params)?;
+    let (bound, binds) = bind_all(cx.gpu, translation, &vs, cx.files)?;
     let mut program = Program::from_shaders(cx.gpu, "legacy", vs, fs, RenderState::default(), cx.format)?;
     program.bind(cx.gpu, binds)?;
     let stage = GlutStage::new(
@@ -465,7 +463,7 @@ impl Lab for LegacyLab {
                 }
             }
         }
-        let (bound, binds) = bind_all(cx.gpu, translation, &vs, &self.user_files, &params)?;
+        let (bound, binds) = bind_all(cx.gpu, translation, &vs, &self.user_files)?;
         self.program.set_shaders_and_bind(cx.gpu, vs, fs, binds)?;
         self.bound = bound;
         self.params = params;

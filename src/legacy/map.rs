@@ -36,6 +36,8 @@ impl LegacySource {
                 }
             }
         })?;
+        // A byte-order mark is not GLSL.
+        let text = text.strip_prefix('\u{feff}').map(str::to_owned).unwrap_or(text);
         Ok(LegacySource::new(path.display().to_string(), text))
     }
 
