@@ -207,9 +207,9 @@ impl Xvfb {
             .to_rgb8()
     }
 
-    /// Windows named Lab05 on this display (all labs' titles start with it).
+    /// Windows named Lab05 (all seed-000 labs' titles start with it) or legacy on this display.
     fn windows(&self) -> HashSet<String> {
-        self.xdotool_output(&["search", "--name", "^Lab05"])
+        self.xdotool_output(&["search", "--name", "^(Lab05|legacy)"])
             .map(|s| s.lines().map(str::to_owned).collect())
             .unwrap_or_default()
     }
@@ -1456,4 +1456,68 @@ fn f12_names_from_two_windows_do_not_collide() {
         a.stdout(),
         b.stdout()
     );
+}
+
+/// Issue 13: `legacy VERT FRAG` in a window: the user's GLSL 1.10 files reload live wherever
+/// they are (a good edit shows, a broken one names its file and line and keeps the last good
+/// pipeline), the `1`-`4` keys choose the object, and Esc quits cleanly.
+#[test]
+fn legacy_window_reloads_the_users_files() {
+    let x = Xvfb::start("legacy_window");
+    let dir = x.dir.join("course");
+    std::fs::create_dir_all(&dir).expect("course dir");
+    let (vert, frag) = (dir.join("mine.vert"), dir.join("mine.frag"));
+    std::fs::write(
+        &vert,
+        "varying vec3 n;\nvoid main() { n = gl_Normal; gl_Position = ftransform(); }\n",
+    )
+    .expect("vert");
+    let red = "varying vec3 n;\nvoid main() {\n    gl_FragColor = vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    std::fs::write(&frag, red).expect("frag");
+    let mut lab = x.launch(
+        "legacy",
+        &[
+            vert.to_str().expect("utf-8"),
+            frag.to_str().expect("utf-8"),
+            "--object",
+            "sphere",
+        ],
+        &[],
+    );
+    lab.first_frame();
+    let is = |image: &RgbImage, want: [f64; 3]| {
+        let m = object_mean(image);
+        (0..3).all(|k| (m[k] - want[k]).abs() < 10.0)
+    };
+    let before = lab.settled();
+    assert!(is(&before, [255.0, 0.0, 0.0]), "{:?}", object_mean(&before));
+    assert!(lab.title().contains("mine.vert + mine.frag"), "{}", lab.title());
+
+    std::fs::write(
+        &frag,
+        red.replace("vec4(1.0, 0.0, 0.0, 1.0)", "vec4(0.0, 1.0, 0.0, 1.0)"),
+    )
+    .expect("edit");
+    poll(Duration::from_secs(5), || {
+        is(&lab.capture(), [0.0, 255.0, 0.0]).then_some(())
+    })
+    .unwrap_or_else(|| panic!("the edit never showed; stderr:\n{}", lab.stderr()));
+
+    std::fs::write(&frag, red.replace("gl_FragColor = ", "gl_FragColor = oops + ")).expect("break");
+    lab.wait_title_contains("SHADER ERROR");
+    poll(Duration::from_secs(5), || {
+        lab.stderr().contains("mine.frag:3:").then_some(())
+    })
+    .unwrap_or_else(|| panic!("no `mine.frag:3:` on stderr:\n{}", lab.stderr()));
+    sleep_ms(300);
+    assert!(
+        is(&lab.capture(), [0.0, 255.0, 0.0]),
+        "the last good pipeline keeps running"
+    );
+
+    lab.keys(&["1"]);
+    lab.wait_title("the cube", |t| t.contains("| cube"));
+    lab.escape();
+    let status = lab.wait_exit(Duration::from_secs(5));
+    assert!(status.success(), "{status}; stderr:\n{}", lab.stderr());
 }
