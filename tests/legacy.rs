@@ -420,12 +420,19 @@ fn versus_hand_port(
     psnr(&image, &expected).expect("same size")
 }
 
+/// A named state: the hand port's assignments and legacy's extra ones.
+type State = (
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    Vec<(&'static str, &'static str)>,
+);
+
 #[test]
 fn builtin_state_shaders_match_their_hand_ports() {
     use shaderlab::labs;
     let mut worst = f64::INFINITY;
     let light = |x: &'static str| -> (&'static str, &'static str) { ("gl_LightSource[0].position", x) };
-    let states: [(&str, &[(&str, &str)], Vec<(&str, &str)>); 4] = [
+    let states: [State; 4] = [
         ("default", &[], vec![]),
         (
             "rotated",

@@ -199,12 +199,7 @@ fn picture(s: &legacy::Sampler, first_2d: bool, files: &UserFiles) -> Result<Ima
     }
 }
 
-fn bind_all(
-    gpu: &Gpu,
-    translation: Translation,
-    vs: &CompiledShader,
-    files: &UserFiles,
-) -> Result<(Bound, Vec<Bind>)> {
+fn bind_all(gpu: &Gpu, translation: Translation, vs: &CompiledShader, files: &UserFiles) -> Result<(Bound, Vec<Bind>)> {
     for (name, _) in &files.named_textures {
         if !translation.samplers.iter().any(|s| &s.name == name) {
             let have: Vec<&str> = translation.samplers.iter().map(|s| s.name.as_str()).collect();
