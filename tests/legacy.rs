@@ -146,6 +146,9 @@ fn seed001_builtin_state_shaders_render_specs_references() {
             "seed001/phong_fragment.frag",
         ),
         ("toon", "seed001/toon.vert", "seed001/pass.frag"),
+        // The teapot's texture coordinates and the default picture (SPEC's uvgrid, REPEAT,
+        // LINEAR, no mipmaps: what §1.9 pins).
+        ("texture", "seed001/texture.vert", "seed001/texture.frag"),
     ] {
         let mut app = legacy(vec![fixture(vert), fixture(frag)], &[]);
         // The toon shader reads no material: only the parameters its shaders declare.
@@ -499,4 +502,48 @@ fn builtin_state_shaders_match_their_hand_ports() {
         worst = worst.min(db);
     }
     println!("worst {worst:.1} dB");
+}
+
+#[test]
+fn seed001_envmap_samples_the_default_cube_faces() {
+    // §1.10 state `sphere`: the model matrix is the identity, the eye (0,0,4); the cube map is
+    // SPEC's six faces (the default picture of a samplerCube).
+    let mut app = legacy(
+        vec![fixture("seed001/envmap.vert"), fixture("seed001/envmap.frag")],
+        &[
+            ("object", "sphere"),
+            ("near", "0.1"),
+            ("modelMatrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1"),
+            ("eyeWorld", "0,0,4"),
+        ],
+    );
+    let image = render(app.as_mut(), 512, 512);
+    let db = psnr(&image, &seed_reference("001_envmap_sphere")).expect("same size");
+    println!("001 envmap sphere: {db:.1} dB");
+    if db < 40.0 {
+        image.save("/tmp/legacy_001_envmap.png").ok();
+    }
+    assert!(db >= 40.0, "001 envmap: {db:.1} dB");
+}
+
+#[test]
+fn seed002_double_vision_translates_its_sampler_named_texture() {
+    // §2.2 names its sampler `texture`, a built-in function from GLSL 1.30 on (SPEC §6.2 #3):
+    // the translation renames it, `--texture texture=FILE` still names it as the user does.
+    let t = shaderlab::legacy::Translation::from_files(
+        &fixture("seed002/double_vision.vert"),
+        &fixture("seed002/double_vision.frag"),
+    )
+    .expect("translates");
+    let (_, fs) = t.compile().expect("naga accepts it");
+    assert_eq!(t.samplers[0].name, "texture");
+    assert_eq!(t.samplers[0].glsl, "sl_texture");
+    assert!(t
+        .fragment
+        .output
+        .text
+        .contains("texture(sampler2D(sl_texture, sl_texture_sampler), left_tex_coord)"));
+    assert!(fs.to_wgsl().expect("WGSL").contains("sl_texture"));
+    let names: Vec<&str> = t.params(&|_| false).iter().map(|p| p.name).collect();
+    assert_eq!(names, ["left_separation", "right_separation"]);
 }
