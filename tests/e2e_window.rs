@@ -207,9 +207,10 @@ impl Xvfb {
             .to_rgb8()
     }
 
-    /// Windows named Lab05 (all seed-000 labs' titles start with it) or legacy on this display.
+    /// Windows of labs on this display: every lab's title starts with its original's
+    /// (`Lab05-N`, `ref001`…`ref003`, `OpenGL III`), or with `legacy`.
     fn windows(&self) -> HashSet<String> {
-        self.xdotool_output(&["search", "--name", "^(Lab05|legacy)"])
+        self.xdotool_output(&["search", "--name", "^(Lab05|ref00|OpenGL III|legacy)"])
             .map(|s| s.lines().map(str::to_owned).collect())
             .unwrap_or_default()
     }
@@ -1520,4 +1521,65 @@ fn legacy_window_reloads_the_users_files() {
     lab.escape();
     let status = lab.wait_exit(Duration::from_secs(5));
     assert!(status.success(), "{status}; stderr:\n{}", lab.stderr());
+
+/// Issues 10–12: every lab of the list besides seed 000's (tested above) opens a window of its
+/// original's size and title, draws, matches its offscreen picture where nothing moves, and
+/// quits on Esc with status 0.
+#[test]
+fn every_lecture_lab_opens_draws_and_quits() {
+    let x = Xvfb::start("every_lab");
+    for entry in shaderlab::labs::ALL.iter().skip(5) {
+        let name = entry.info.name;
+        let mut lab = x.launch(name, &[], &[]);
+        let frame = poll(Duration::from_secs(10), || {
+            let image = lab.capture();
+            let drawn = image.pixels().any(|p| p.0 != background(&image));
+            drawn.then_some(image)
+        })
+        .unwrap_or_else(|| panic!("{name}: nothing drawn within 10 s; stderr:\n{}", lab.stderr()));
+        assert_eq!(frame.dimensions(), entry.info.size, "{name}: the original's size");
+        assert!(
+            lab.title().starts_with(entry.info.title),
+            "{name}: title `{}`",
+            lab.title()
+        );
+        let animated = (entry.params)().has("time");
+        if !animated {
+            let mut offscreen = common::lab(entry);
+            let (w, h) = entry.info.size;
+            let expected = offscreen.rgb(w, h);
+            let window = lab.settled();
+            let db = psnr(&window, &expected).expect("same size");
+            println!("{name}: window against offscreen {db:.1} dB");
+            assert!(
+                db >= 40.0,
+                "{name}: the window shows {db:.1} dB from the offscreen picture"
+            );
+        }
+        lab.escape();
+    }
+}
+
+/// The lecture labs' keys reach them through a real window: a character key, a special key
+/// (arrows, Page Up) and a shifted one, each showing in the title.
+#[test]
+fn lecture_keys_work_in_a_window() {
+    let x = Xvfb::start("lecture_keys");
+    let mut twist = x.launch("twist", &[], &[]);
+    twist.first_frame();
+    twist.keys(&["plus"]);
+    twist.wait_title_contains("twisting=4.5");
+    twist.escape();
+    let mut bump = x.launch("bump", &[], &[]);
+    bump.first_frame();
+    bump.keys(&["Left", "Prior"]);
+    bump.wait_title_contains("blx=1.25");
+    bump.wait_title_contains("blz=-1.75");
+    bump.escape();
+    let mut suzanne = x.launch("suzanne_phong", &[], &[]);
+    suzanne.first_frame();
+    suzanne.keys(&["1", "A"]);
+    suzanne.wait_title_contains("flat");
+    suzanne.wait_title_contains("ka=0.25");
+    suzanne.escape();
 }

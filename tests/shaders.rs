@@ -619,3 +619,88 @@ fn lab_set_unknown_name_is_param_error() {
     lab.set("Ka", &[0.2]).expect("valid name");
     assert_eq!(lab.get("Ka"), Some(vec![0.2]));
 }
+
+/// Issue 8: bindings are matched by GLSL name in both directions, and vertex inputs by name and
+/// type; every mismatch is a typed error naming both sides.
+#[test]
+fn bindings_and_vertex_inputs_are_checked_by_name() {
+    use shaderlab::render::{Bind, SamplerDesc, Texture};
+    let source = ShaderSource::Embedded;
+    let cx = LabContext {
+        gpu: gpu(),
+        source: &source,
+        format: COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
+    };
+    let mut program =
+        Program::<shaderlab::mesh::Vertex>::new(&cx, "check", "phong.vert", "phong.frag", RenderState::default())
+            .expect("phong builds");
+    let transform = Uniforms::new(
+        gpu(),
+        "t",
+        TransformUniforms::new(glam::Mat4::IDENTITY, glam::Mat4::IDENTITY),
+    );
+    // A block the shaders declare and nobody provides.
+    let err = program
+        .bind(gpu(), vec![transform.bind()])
+        .expect_err("PhongParams missing");
+    assert!(
+        matches!(&err, Error::Binding(m) if m.contains("PhongParams") && m.contains("does not provide")),
+        "{err}"
+    );
+    // A resource the shaders do not declare.
+    let phong = Uniforms::new(gpu(), "p", <PhongUniforms as bytemuck::Zeroable>::zeroed());
+    let texture = Texture::new(gpu(), "x", 1, 1, 1, &[vec![0, 0, 0, 255]]);
+    let sampler = shaderlab::render::sampler(gpu(), "s", &SamplerDesc::default());
+    let err = program
+        .bind(
+            gpu(),
+            vec![
+                transform.bind(),
+                phong.bind(),
+                Bind::texture("tex", &texture),
+                Bind::sampler("texSampler", &sampler),
+            ],
+        )
+        .expect_err("extra bindings");
+    assert!(
+        matches!(&err, Error::Binding(m) if m.contains("`tex`") && m.contains("do not declare")),
+        "{err}"
+    );
+    // The right kind under the right name binds.
+    program
+        .bind(gpu(), vec![transform.bind(), phong.bind()])
+        .expect("binds");
+    // A vertex type without the shader's input.
+    #[repr(C)]
+    #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+    struct OnlyPosition {
+        position: [f32; 3],
+    }
+    shaderlab::vertex_type!(OnlyPosition, { position: "vertex_position" => Float32x3 });
+    let err = Program::<OnlyPosition>::new(&cx, "check", "phong.vert", "phong.frag", RenderState::default())
+        .err()
+        .expect("vertex_normal has no attribute");
+    assert!(
+        matches!(&err, Error::Binding(m) if m.contains("vertex_normal") && m.contains("OnlyPosition")),
+        "{err}"
+    );
+    // An attribute of the wrong type.
+    #[repr(C)]
+    #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+    struct WrongNormal {
+        position: [f32; 3],
+        normal: [f32; 4],
+    }
+    shaderlab::vertex_type!(WrongNormal, {
+        position: "vertex_position" => Float32x3,
+        normal: "vertex_normal" => Float32x4,
+    });
+    let err = Program::<WrongNormal>::new(&cx, "check", "phong.vert", "phong.frag", RenderState::default())
+        .err()
+        .expect("vec3 input fed by Float32x4");
+    assert!(
+        matches!(&err, Error::Binding(m) if m.contains("vertex_normal") && m.contains("Float32x4")),
+        "{err}"
+    );
+}

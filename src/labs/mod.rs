@@ -6,6 +6,7 @@ pub mod gl_light;
 pub mod glut_stage;
 pub mod immediate;
 pub mod modified_phong;
+pub mod tangent_bump;
 pub mod ustc_stage;
 
 pub mod displacement;

@@ -11,7 +11,7 @@ use crate::geometry::images;
 use crate::lab::{Lab, LabContext, LabEntry, LabInfo};
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
-use super::bump;
+use super::tangent_bump;
 
 /// Seed 001, §1.12.
 pub static INFO: LabInfo = LabInfo {
@@ -20,13 +20,13 @@ pub static INFO: LabInfo = LabInfo {
     label: "normalization cube map",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: bump::KEYS,
+    keys: tangent_bump::KEYS,
 };
 
 /// The list entry.
 pub static ENTRY: LabEntry = LabEntry {
     info: &INFO,
-    params: bump::params,
+    params: tangent_bump::params,
     new,
 };
 
@@ -49,5 +49,5 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         Bind::texture("normMap", &cube),
         Bind::sampler("normMapSampler", &sampler),
     ];
-    bump::build(cx, &INFO, "normmap.frag", Some(unit1))
+    tangent_bump::build(cx, &INFO, "normmap.frag", Some(unit1))
 }

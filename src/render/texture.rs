@@ -111,7 +111,10 @@ pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
         mag_filter: desc.mag,
         min_filter: desc.min,
         mipmap_filter: desc.mipmap.unwrap_or(wgpu::MipmapFilterMode::Nearest),
-        // GL's non-mipmapped minification filters read the base level only.
+        // GL's non-mipmapped minification filters read the base level only. Clamping the LOD
+        // to 0 also moves the magnification/minification switch, which matters only where the
+        // two filters differ on a texture with mip levels: there, bind a view of level 0 alone
+        // with `mipmap: Some(..)` instead (see `labs::gl_textures`).
         lod_max_clamp: if desc.mipmap.is_some() { 32.0 } else { 0.0 },
         ..Default::default()
     })

@@ -1,5 +1,5 @@
 //! The shell: the command line every example shares, the offscreen paths (`--screenshot`,
-//! `--bench`) and the window. It drives any [`Lab`] through its [`LabEntry`] and never names an
+//! `--bench`) and the window. It drives any [`Lab`](crate::lab::Lab) through its [`LabEntry`] and never names an
 //! exercise.
 //!
 //! Usage errors exit with status 2 and say what is valid; they are found before anything is

@@ -104,7 +104,7 @@ pub struct ExactScene {
 }
 
 impl Default for ExactScene {
-    /// The Phong exercise's defaults ([`crate::effects::phong::PhongUniforms::default`]) with
+    /// The Phong exercise's defaults (the `phong` lab's parameter defaults) with
     /// the sphere, no rotation and the camera at (0, 0, 5).
     fn default() -> Self {
         ExactScene {
