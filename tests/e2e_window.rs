@@ -1521,6 +1521,7 @@ fn legacy_window_reloads_the_users_files() {
     lab.escape();
     let status = lab.wait_exit(Duration::from_secs(5));
     assert!(status.success(), "{status}; stderr:\n{}", lab.stderr());
+}
 
 /// Issues 10–12: every lab of the list besides seed 000's (tested above) opens a window of its
 /// original's size and title, draws, matches its offscreen picture where nothing moves, and
