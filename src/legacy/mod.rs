@@ -108,7 +108,10 @@ impl Translated {
     fn combine(&self, found: &[(Range<usize>, String)]) -> Error {
         let errors: Vec<Error> = found
             .iter()
-            .map(|(range, message)| self.error_at(range.start, range.len().max(1), message))
+            // The user's `main` is `sl_main` in the translation: name it as the user does.
+            .map(|(range, message)| {
+                self.error_at(range.start, range.len().max(1), &message.replace("'sl_main'", "'main'"))
+            })
             .collect();
         let mut errors = errors.into_iter();
         let Some(first) = errors.next() else {
