@@ -139,20 +139,10 @@ pub struct GlutStage {
 }
 
 impl GlutStage {
-    /// A stage with GLUT's meshes at their default levels uploaded.
+    /// A stage with no mesh built yet: [`GlutStage::prepare`] builds the drawn one on first use
+    /// (building all four up front cost every start ~0.5 ms for objects never drawn).
     pub fn new(gpu: &Gpu, label: &str, config: StageConfig) -> Self {
-        let meshes = Object::ALL
-            .into_iter()
-            .map(|o| {
-                let mesh = GpuMesh::new(
-                    gpu,
-                    &format!("mesh.{}", o.name()),
-                    &o.mesh().vertices,
-                    Some(&o.mesh().indices),
-                );
-                ((o, tess::glut_level(o), false), mesh)
-            })
-            .collect();
+        let meshes = HashMap::new();
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
         GlutStage {
             config,

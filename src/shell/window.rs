@@ -187,18 +187,8 @@ struct WindowState {
 }
 
 impl App {
-    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
-        let entry = self.entry;
-        let (width, height) = self.args.size(entry);
-        let attributes = Window::default_attributes()
-            .with_title(format!("{} {}", entry.info.title, entry.info.label))
-            .with_inner_size(PhysicalSize::new(width, height));
-        let window = Arc::new(
-            event_loop
-                .create_window(attributes)
-                .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
-        );
-        let instance = Gpu::new_instance();
+    /// A surface for `window` and a device that can present to it, from `instance`.
+    fn connect(instance: wgpu::Instance, window: &Arc<Window>) -> Result<(Gpu, wgpu::Surface<'static>)> {
         let surface = match instance.create_surface(window.clone()) {
             Ok(surface) => surface,
             // With no usable driver at all wgpu only says "Failed to create surface for any
@@ -213,6 +203,31 @@ impl App {
             }
         };
         let gpu = pollster::block_on(Gpu::new(instance, Some(&surface)))?;
+        Ok((gpu, surface))
+    }
+
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
+        let entry = self.entry;
+        let (width, height) = self.args.size(entry);
+        let attributes = Window::default_attributes()
+            .with_title(format!("{} {}", entry.info.title, entry.info.label))
+            .with_inner_size(PhysicalSize::new(width, height));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
+        );
+        // The primary backends first, GL only where they cannot draw into this window.
+        let (gpu, surface) = match Self::connect(Gpu::new_instance(), &window) {
+            Err(e @ (Error::NoAdapter(_) | Error::Surface(_))) => match Gpu::fallback_instance() {
+                Some(gl) => Self::connect(gl, &window).map_err(|fallback| match fallback {
+                    Error::NoAdapter(_) | Error::Surface(_) => e,
+                    other => other,
+                })?,
+                None => return Err(e),
+            },
+            result => result?,
+        };
         // Before anything can fail on the device: wgpu panics on errors nobody handles.
         let fatal: Fatal = Arc::new(Mutex::new(None));
         let lost = fatal.clone();
