@@ -104,6 +104,12 @@ pub const PARAMS_000: &[ParamSpec] = &[
          outside_first = outside faces first, then the others",
     ),
     ParamSpec::flag(
+        "cull",
+        &[0.0],
+        "port, NOT exact: back-face culling, outside faces only (faster; a silhouette pixel may \
+         change, and open or displaced meshes lose faces that show)",
+    ),
+    ParamSpec::flag(
         "naive_nm",
         &[0.0],
         "port study: normals by the modelview's 3x3 instead of its inverse transpose",
@@ -171,19 +177,24 @@ impl GlutStage {
         }
     }
 
-    /// The faces a lab's program draws for the current object, by the `faces` parameter: in
-    /// `auto`, outside faces first for the objects in `split` ([`Faces::OutsideFirst`]: the
-    /// same pixels, fewer fragments shaded; each lab lists the objects where it measured
-    /// faster) and every face in mesh order for the others.
+    /// The faces a lab's program draws for the current object. With `cull` on, the outside
+    /// faces only ([`Faces::OutsideOnly`], back-face culling: not exact, an opt-in). Otherwise by
+    /// the `faces` parameter: in `auto`, outside faces first for the objects in `split`
+    /// ([`Faces::OutsideFirst`]: the same pixels, fewer fragments shaded; each lab lists the
+    /// objects where it measured faster) and every face in mesh order for the others.
     pub fn faces(params: &Params, split: &[Object]) -> Faces {
         let object = Self::object(params);
+        let winding = Self::outside_winding(object);
+        if params.on("cull") {
+            return Faces::OutsideOnly(winding);
+        }
         let outside_first = match params.text("faces").as_str() {
             "mesh" => false,
             "outside_first" => true,
             _ => split.contains(&object),
         };
         if outside_first {
-            Faces::OutsideFirst(Self::outside_winding(object))
+            Faces::OutsideFirst(winding)
         } else {
             Faces::AsStated
         }
