@@ -168,6 +168,9 @@ struct WindowState {
     /// Frames still to draw for a lab that is not animated (input, resize, reload).
     dirty: u32,
     unpaced: bool,
+    /// With `--unpaced`: frames drawn since `counted_since` (the frame-time report).
+    counted: u32,
+    counted_since: Instant,
     cursor: (i32, i32),
     buttons: u32,
     /// The window has no area: nothing to draw.
@@ -329,6 +332,8 @@ impl App {
             last_time: None,
             dirty: 2,
             unpaced: self.args.unpaced,
+            counted: 0,
+            counted_since: Instant::now(),
             minimised: surface_size(size).is_none(),
             window,
             surface,
@@ -583,7 +588,28 @@ impl WindowState {
         }
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
+        if self.unpaced {
+            self.report_frame_time();
+        }
         Ok(())
+    }
+
+    /// With `--unpaced`: every 2 s, one line on stderr with the mean time per frame drawn and
+    /// presented (`NAME: window N frames in S s: ms_per_frame=X`), to compare with the original.
+    fn report_frame_time(&mut self) {
+        self.counted += 1;
+        let elapsed = self.counted_since.elapsed();
+        if elapsed >= Duration::from_secs(2) {
+            let secs = elapsed.as_secs_f64();
+            eprintln!(
+                "{}: window {} frames in {secs:.2} s: ms_per_frame={:.3}",
+                self.name(),
+                self.counted,
+                secs * 1000.0 / f64::from(self.counted)
+            );
+            self.counted = 0;
+            self.counted_since = Instant::now();
+        }
     }
 
     /// Whether the lab's clock runs (an animated lab, not paused with Space).
