@@ -9,6 +9,8 @@
 
 mod args;
 mod headless;
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+mod shm;
 pub mod window;
 
 use std::io::Write;

@@ -38,6 +38,31 @@ use crate::shader::ShaderSource;
 
 use super::Args;
 
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+use super::shm::ShmPresenter as Presenter;
+
+/// No shared-memory presenter on this platform: always the swapchain.
+#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
+struct Presenter {
+    color: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    width: u32,
+    height: u32,
+}
+
+#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
+impl Presenter {
+    fn new(_: &Gpu, _: &Arc<Window>, _: u32, _: u32) -> std::result::Result<Self, String> {
+        Err("no shared-memory presenter on this platform".into())
+    }
+    fn resize(&mut self, _: &Gpu, _: u32, _: u32) -> std::result::Result<(), String> {
+        Ok(())
+    }
+    fn present(&mut self, _: &Gpu, _: wgpu::CommandEncoder, _: bool) -> std::result::Result<(), String> {
+        Ok(())
+    }
+}
+
 /// Frames per second when the monitor does not say its refresh rate.
 const DEFAULT_REFRESH_HZ: f64 = 60.0;
 
@@ -168,6 +193,8 @@ struct WindowState {
     /// Frames still to draw for a lab that is not animated (input, resize, reload).
     dirty: u32,
     unpaced: bool,
+    /// Presenting through X shared memory (CPU adapters under X11), else the swapchain.
+    shm: Option<Presenter>,
     /// With `--unpaced`: frames drawn since `counted_since` (the frame-time report).
     counted: u32,
     counted_since: Instant,
@@ -287,6 +314,22 @@ impl App {
             surface.configure(&gpu.device, &config)
         })?;
         let depth = depth_texture(&gpu.device, config.width, config.height);
+        // A CPU adapter under X11 presents through shared memory; anything else, or a
+        // presenter that cannot start, keeps the swapchain (said with SHADERLAB_PRESENT=shm).
+        let shm = if format == wgpu::TextureFormat::Bgra8Unorm {
+            Presenter::new(&gpu, &window, config.width, config.height)
+        } else {
+            Err(format!("the window's format is {format:?}"))
+        };
+        let shm = match shm {
+            Ok(p) => Some(p),
+            Err(why) => {
+                if std::env::var("SHADERLAB_PRESENT").as_deref() == Ok("shm") {
+                    eprintln!("{}: presenting with the swapchain: {why}", entry.info.name);
+                }
+                None
+            }
+        };
         if size.width > max || size.height > max {
             eprintln!(
                 "{}: the window ({}x{}) is larger than the GPU can draw ({max}x{max}); drawing the part that fits",
@@ -332,6 +375,7 @@ impl App {
             last_time: None,
             dirty: 2,
             unpaced: self.args.unpaced,
+            shm,
             counted: 0,
             counted_since: Instant::now(),
             minimised: surface_size(size).is_none(),
@@ -425,6 +469,12 @@ impl WindowState {
         self.config.height = height.min(max);
         self.surface.configure(&self.gpu.device, &self.config);
         self.depth = depth_texture(&self.gpu.device, self.config.width, self.config.height);
+        if let Some(shm) = &mut self.shm {
+            if let Err(why) = shm.resize(&self.gpu, self.config.width, self.config.height) {
+                eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+                self.shm = None;
+            }
+        }
     }
 
     /// A `Lost` surface must be created again from the window, then configured.
@@ -524,6 +574,9 @@ impl WindowState {
         self.next_frame = (self.next_frame + self.frame_interval).max(now);
         self.tick();
         self.dirty = self.dirty.saturating_sub(1);
+        if self.shm.is_some() {
+            return self.redraw_shm();
+        }
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
@@ -588,6 +641,50 @@ impl WindowState {
         }
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
+        if self.unpaced {
+            self.report_frame_time();
+        }
+        Ok(())
+    }
+
+    /// A frame drawn offscreen and shown through X shared memory; on failure the swapchain
+    /// takes over from the next frame.
+    fn redraw_shm(&mut self) -> Result<()> {
+        let Some(shm) = self.shm.as_mut() else { return Ok(()) };
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("window.frame"),
+        });
+        let rendered = {
+            let mut frame = Frame {
+                gpu: &self.gpu,
+                encoder: &mut encoder,
+                color: &shm.color,
+                depth: &shm.depth_view,
+                width: shm.width,
+                height: shm.height,
+                timestamps: None,
+            };
+            self.lab.render(&mut frame)
+        };
+        if let Err(e) = rendered {
+            eprintln!("{}: {e}", self.entry.info.name);
+        }
+        self.window.pre_present_notify();
+        // Drawing as fast as possible keeps one frame in flight (shown while the next renders).
+        let presented = shm.present(&self.gpu, encoder, self.unpaced);
+        if let Some(e) = self.lab.take_error() {
+            eprintln!("{}: {e}", self.name());
+            self.shader_error = true;
+            self.update_title();
+        }
+        if let Err(why) = presented {
+            eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+            self.shm = None;
+            self.dirty = 2;
+        }
+        if let Some(e) = self.fatal_error() {
+            return Err(e);
+        }
         if self.unpaced {
             self.report_frame_time();
         }
