@@ -1,6 +1,8 @@
 //! `cargo run --release --example tradeoff -- --out DIR`: speed against accuracy for the Phong
 //! exercise. Sweeps shading model (flat, Gouraud, Phong, Blinn-Phong) x tessellation level for the
-//! sphere and the torus, measures frame time (GPU timestamps where available, else wall time) and
+//! sphere and the torus, plus Phong with back-face culling (`--set cull=1`, the opt-in that is not
+//! byte-identical; its `changed_px` counts the pixels it changes against the same configuration
+//! drawn whole), measures frame time (GPU timestamps where available, else wall time) and
 //! the error against the exact f64 ray-cast reference (RMSE, maximum per-pixel error, silhouette
 //! error), and writes `tradeoff.csv` and `tradeoff.svg` (error against time, Pareto front marked).
 //! Both are written whole (a temporary file renamed into place): an interrupted or failed run
@@ -66,6 +68,10 @@ struct Row {
     rmse: f64,
     max: u8,
     silhouette_px: f64,
+    /// Back-face culling on (`cull=1`).
+    cull: bool,
+    /// Pixels that differ from the same configuration without culling (0 without culling).
+    changed_px: usize,
     pareto: bool,
 }
 
@@ -87,7 +93,7 @@ fn main() -> anyhow::Result<()> {
         &[4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192]
     };
     let shapes = [(Object::Sphere, Shape::Sphere), (Object::Torus, Shape::Torus)];
-    let total = shapes.len() * Shading::ALL.len() * levels.len();
+    let total = shapes.len() * (Shading::ALL.len() + 1) * levels.len();
     eprintln!(
         "adapter: {}; {total} configurations, {} frames each, {W}x{H}",
         gpu.describe(),
@@ -124,32 +130,51 @@ fn main() -> anyhow::Result<()> {
             };
             for &level in levels {
                 lab.params_mut().set("tess", &[f64::from(level)])?;
-                let timing = bench(&gpu, lab.as_mut(), args.frames, W, H, true)?;
-                let image = to_rgb(&screenshot(&gpu, lab.as_mut(), W, H)?);
-                let err = image_error(exact_img, &image)?;
-                let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H)?;
-                let triangles = shaderlab::tess::mesh(object, level).triangle_count();
-                let ms = timing.gpu_ms.unwrap_or(timing.ms_per_frame);
-                done += 1;
-                eprintln!(
-                    "[{done:>3}/{total}] {:<6} {:<7} level {level:>3} ({triangles:>6} triangles): {ms:.3} ms, RMSE {:.2}, max {}, silhouette {:.2} px",
-                    object.name(),
-                    shading.name(),
-                    err.rmse,
-                    err.max,
-                    sil.max_px
-                );
-                rows.push(Row {
-                    shape: object.name(),
-                    shading,
-                    level,
-                    triangles,
-                    ms,
-                    rmse: err.rmse,
-                    max: err.max,
-                    silhouette_px: sil.max_px,
-                    pareto: false,
-                });
+                // Phong is also measured with back-face culling, against its own whole image.
+                let culls: &[bool] = if shading == Shading::Phong {
+                    &[false, true]
+                } else {
+                    &[false]
+                };
+                let mut whole: Option<image::RgbImage> = None;
+                for &cull in culls {
+                    lab.params_mut().set("cull", &[if cull { 1.0 } else { 0.0 }])?;
+                    let timing = bench(&gpu, lab.as_mut(), args.frames, W, H, true)?;
+                    let image = to_rgb(&screenshot(&gpu, lab.as_mut(), W, H)?);
+                    let err = image_error(exact_img, &image)?;
+                    let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H)?;
+                    let triangles = shaderlab::tess::mesh(object, level).triangle_count();
+                    let ms = timing.gpu_ms.unwrap_or(timing.ms_per_frame);
+                    let changed_px = whole
+                        .as_ref()
+                        .map_or(0, |w| w.pixels().zip(image.pixels()).filter(|(a, b)| a != b).count());
+                    done += 1;
+                    eprintln!(
+                        "[{done:>3}/{total}] {:<6} {:<7}{} level {level:>3} ({triangles:>6} triangles): {ms:.3} ms, RMSE {:.2}, max {}, silhouette {:.2} px{}",
+                        object.name(),
+                        shading.name(),
+                        if cull { " cull" } else { "" },
+                        err.rmse,
+                        err.max,
+                        sil.max_px,
+                        if cull { format!(", {changed_px} px changed by culling") } else { String::new() }
+                    );
+                    rows.push(Row {
+                        shape: object.name(),
+                        shading,
+                        level,
+                        triangles,
+                        ms,
+                        rmse: err.rmse,
+                        max: err.max,
+                        silhouette_px: sil.max_px,
+                        cull,
+                        changed_px,
+                        pareto: false,
+                    });
+                    whole.get_or_insert(image);
+                }
+                lab.params_mut().set("cull", &[0.0])?;
             }
         }
     }
@@ -161,7 +186,16 @@ fn main() -> anyhow::Result<()> {
         let front: Vec<String> = rows
             .iter()
             .filter(|r| r.shape == shape && r.pareto)
-            .map(|r| format!("{} {} ({:.2} ms, RMSE {:.2})", r.shading.name(), r.level, r.ms, r.rmse))
+            .map(|r| {
+                let cull = if r.cull { " cull" } else { "" };
+                format!(
+                    "{}{cull} {} ({:.2} ms, RMSE {:.2})",
+                    r.shading.name(),
+                    r.level,
+                    r.ms,
+                    r.rmse
+                )
+            })
             .collect();
         println!("{shape} Pareto front: {}", front.join("; "));
     }
@@ -180,11 +214,13 @@ fn mark_pareto(rows: &mut [Row]) {
 }
 
 fn write_csv(rows: &[Row], path: &Path) -> anyhow::Result<()> {
-    let mut text = String::from("shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto\n");
+    let mut text = String::from(
+        "shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto,cull,changed_px\n",
+    );
     for r in rows {
         writeln!(
             text,
-            "{},{},{},{},{:.4},{:.4},{},{:.4},{}",
+            "{},{},{},{},{:.4},{:.4},{},{:.4},{},{},{}",
             r.shape,
             r.shading.name(),
             r.level,
@@ -193,7 +229,9 @@ fn write_csv(rows: &[Row], path: &Path) -> anyhow::Result<()> {
             r.rmse,
             r.max,
             r.silhouette_px,
-            r.pareto
+            r.pareto,
+            r.cull,
+            r.changed_px
         )?;
     }
     write_atomic(path, |w| w.write_all(text.as_bytes()))?;
@@ -248,13 +286,22 @@ fn draw_chart(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
             let col = color(shading);
             let pts: Vec<(f64, f64)> = mine
                 .iter()
-                .filter(|r| r.shading == shading)
+                .filter(|r| r.shading == shading && !r.cull)
                 .map(|r| (r.ms, r.rmse.max(min_rmse)))
                 .collect();
             c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, col.filled())))?
                 .label(shading.name())
                 .legend(move |(x, y)| Circle::new((x + 10, y), 4, col.filled()));
         }
+        let col = color(Shading::Phong);
+        let culled: Vec<(f64, f64)> = mine
+            .iter()
+            .filter(|r| r.cull)
+            .map(|r| (r.ms, r.rmse.max(min_rmse)))
+            .collect();
+        c.draw_series(culled.iter().map(|&p| Circle::new(p, 5, col.stroke_width(2))))?
+            .label("phong, cull=1 (not exact)")
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, col.stroke_width(2)));
         let mut front: Vec<(f64, f64)> = mine
             .iter()
             .filter(|r| r.pareto)

@@ -17,14 +17,51 @@ pub struct Gpu {
 }
 
 impl Gpu {
-    /// A new instance honouring `WGPU_BACKEND` and friends; by default every backend is tried.
+    /// A new instance honouring `WGPU_BACKEND` and friends. Without `WGPU_BACKEND` it holds the
+    /// primary backends (Vulkan, Metal, DX12) only: starting the GL backend as well (EGL and
+    /// its driver) costs ~7 ms of every start on lavapipe; [`Gpu::fallback_instance`] is GL.
     pub fn new_instance() -> wgpu::Instance {
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
+        let mut desc = Self::descriptor();
+        if std::env::var_os("WGPU_BACKEND").is_none() {
+            desc.backends = wgpu::Backends::PRIMARY;
+        }
+        wgpu::Instance::new(desc)
     }
 
-    /// A context with no window (offscreen rendering, tests, benchmarks).
+    /// The instance to try when [`Gpu::new_instance`] finds no adapter: GL, unless
+    /// `WGPU_BACKEND` chose the backends already (then there is nothing else to try).
+    pub fn fallback_instance() -> Option<wgpu::Instance> {
+        if std::env::var_os("WGPU_BACKEND").is_some() {
+            return None;
+        }
+        let mut desc = Self::descriptor();
+        desc.backends = wgpu::Backends::GL;
+        Some(wgpu::Instance::new(desc))
+    }
+
+    /// wgpu's options from the environment, less the validation of indirect draws: shaderlab
+    /// draws nothing indirectly, and that validation builds compute pipelines at device
+    /// creation (~2.5 ms of every start on lavapipe). `WGPU_VALIDATION_INDIRECT_CALL=1` turns
+    /// it back on.
+    fn descriptor() -> wgpu::InstanceDescriptor {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.flags.remove(wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL);
+        desc.with_env()
+    }
+
+    /// A context with no window (offscreen rendering, tests, benchmarks): the primary backends
+    /// first, GL if they have no adapter.
     pub fn headless() -> Result<Self> {
-        pollster::block_on(Self::new(Self::new_instance(), None))
+        match pollster::block_on(Self::new(Self::new_instance(), None)) {
+            Err(Error::NoAdapter(first)) => match Self::fallback_instance() {
+                Some(gl) => pollster::block_on(Self::new(gl, None)).map_err(|e| match e {
+                    Error::NoAdapter(_) => Error::NoAdapter(first),
+                    e => e,
+                }),
+                None => Err(Error::NoAdapter(first)),
+            },
+            result => result,
+        }
     }
 
     /// A context whose adapter can present to `surface` (if given).

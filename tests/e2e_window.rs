@@ -1584,3 +1584,51 @@ fn lecture_keys_work_in_a_window() {
     suzanne.wait_title_contains("ka=0.25");
     suzanne.escape();
 }
+
+// ---------------------------------------------------------------------------------------------
+// Presentation through X shared memory
+// ---------------------------------------------------------------------------------------------
+
+/// On lavapipe under X11 the window presents through MIT-SHM (src/shell/shm.rs); the swapchain
+/// stays as the fallback (`SHADERLAB_PRESENT=swapchain`). Both must show exactly the pixels of
+/// `--screenshot`, and the shared-memory path must say it is in use (`SHADERLAB_PRESENT=shm`
+/// prints why when it is not).
+#[test]
+fn shared_memory_and_swapchain_windows_show_the_screenshot_pixels() {
+    let x = Xvfb::start("shm_present");
+    for (name, args) in [
+        ("position_rgb", ["--object", "torus", "--rotate", "30,45,0"]),
+        ("phong", ["--object", "teapot", "--rotate", "20,-30,0"]),
+    ] {
+        let png = x.dir.join(format!("{name}_screenshot.png"));
+        let status = Command::new(example(name))
+            .args(args)
+            .arg("--screenshot")
+            .arg(&png)
+            .stdout(Stdio::null())
+            .status()
+            .expect("run --screenshot");
+        assert!(status.success(), "{name} --screenshot failed");
+        let expected = image::open(&png).expect("screenshot PNG").to_rgb8();
+        for present in ["shm", "swapchain"] {
+            let mut lab = x.launch(name, &args, &[("SHADERLAB_PRESENT", present)]);
+            lab.first_frame();
+            let shown = lab.settled();
+            lab.save(&shown, &format!("{name}_{present}"));
+            lab.assert_alive();
+            let differing = shown.pixels().zip(expected.pixels()).filter(|(a, b)| a != b).count();
+            assert_eq!(
+                (shown.dimensions(), differing),
+                (expected.dimensions(), 0),
+                "{name}: the window presented with {present} differs from --screenshot in {differing} pixels"
+            );
+            assert!(
+                !lab.stderr().contains("presenting with the swapchain"),
+                "{name}: SHADERLAB_PRESENT={present} did not present as asked:\n{}",
+                lab.stderr()
+            );
+            lab.assert_clean();
+            lab.escape();
+        }
+    }
+}

@@ -13,7 +13,7 @@ use crate::gpu::Gpu;
 use crate::lab::{Input, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
-use crate::render::{GpuMesh, Uniforms};
+use crate::render::{Faces, GpuMesh, Uniforms};
 use crate::tess::{self, Object};
 
 /// The shared transform block of `transform.glsl`: the GL 2.0 built-in matrices.
@@ -96,6 +96,19 @@ pub const PARAMS_000: &[ParamSpec] = &[
         100.0,
         "port study: glScalef after the rotations",
     ),
+    ParamSpec::choice(
+        "faces",
+        &[0.0],
+        &["auto", "mesh", "outside_first"],
+        "port, same pixels: face order; auto = the lab's measured choice per object, mesh = GL's, \
+         outside_first = outside faces first, then the others",
+    ),
+    ParamSpec::flag(
+        "cull",
+        &[0.0],
+        "port, NOT exact: back-face culling, outside faces only (faster; a silhouette pixel may \
+         change, and open or displaced meshes lose faces that show)",
+    ),
     ParamSpec::flag(
         "naive_nm",
         &[0.0],
@@ -132,20 +145,10 @@ pub struct GlutStage {
 }
 
 impl GlutStage {
-    /// A stage with GLUT's meshes at their default levels uploaded.
+    /// A stage with no mesh built yet: [`GlutStage::prepare`] builds the drawn one on first use
+    /// (building all four up front cost every start ~0.5 ms for objects never drawn).
     pub fn new(gpu: &Gpu, label: &str, config: StageConfig) -> Self {
-        let meshes = Object::ALL
-            .into_iter()
-            .map(|o| {
-                let mesh = GpuMesh::new(
-                    gpu,
-                    &format!("mesh.{}", o.name()),
-                    &o.mesh().vertices,
-                    Some(&o.mesh().indices),
-                );
-                ((o, tess::glut_level(o), false), mesh)
-            })
-            .collect();
+        let meshes = HashMap::new();
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
         GlutStage {
             config,
@@ -163,6 +166,38 @@ impl GlutStage {
             .into_iter()
             .find(|o| o.name() == name)
             .unwrap_or(Object::Teapot)
+    }
+
+    /// How the object's outside faces are wound seen from outside: GLUT's cube, sphere and
+    /// torus counter-clockwise, its teapot clockwise (see [`crate::mesh::Mesh::teapot`]).
+    pub fn outside_winding(object: Object) -> wgpu::FrontFace {
+        match object {
+            Object::Teapot => wgpu::FrontFace::Cw,
+            _ => wgpu::FrontFace::Ccw,
+        }
+    }
+
+    /// The faces a lab's program draws for the current object. With `cull` on, the outside
+    /// faces only ([`Faces::OutsideOnly`], back-face culling: not exact, an opt-in). Otherwise by
+    /// the `faces` parameter: in `auto`, outside faces first for the objects in `split`
+    /// ([`Faces::OutsideFirst`]: the same pixels, fewer fragments shaded; each lab lists the
+    /// objects where it measured faster) and every face in mesh order for the others.
+    pub fn faces(params: &Params, split: &[Object]) -> Faces {
+        let object = Self::object(params);
+        let winding = Self::outside_winding(object);
+        if params.on("cull") {
+            return Faces::OutsideOnly(winding);
+        }
+        let outside_first = match params.text("faces").as_str() {
+            "mesh" => false,
+            "outside_first" => true,
+            _ => split.contains(&object),
+        };
+        if outside_first {
+            Faces::OutsideFirst(winding)
+        } else {
+            Faces::AsStated
+        }
     }
 
     /// The GLUT programs' input: keys `1`-`4` choose the object; a left-button drag rotates by

@@ -28,8 +28,8 @@ mod uniforms;
 pub use frame::{Frame, Load};
 pub use mesh::{GpuMesh, VertexAttr, VertexType};
 pub use program::{
-    reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Program, RenderState, Resource,
-    VertexInput,
+    reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Faces, Program, RenderState,
+    Resource, VertexInput,
 };
 pub use texture::{sampler, SamplerDesc, Texture};
 pub use uniforms::Uniforms;

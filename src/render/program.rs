@@ -29,6 +29,38 @@ pub struct RenderState {
     pub depth_test: bool,
     /// Blending (none in the labs).
     pub blend: Option<wgpu::BlendState>,
+    /// Which faces a draw covers and in which order (triangles only; see [`Faces`]).
+    pub faces: Faces,
+}
+
+/// Which faces of a triangle mesh a program draws, and in which order.
+///
+/// [`Faces::OutsideFirst`] is a speed-up that keeps every pixel: with the depth test
+/// (`GL_LESS`) the colour a pixel ends with is that of the nearest fragment whatever order the
+/// triangles are drawn in, except at exact depth ties, where the first one drawn wins. Drawn
+/// outside (viewer-facing) faces first, the inside faces they hide fail the early depth test
+/// instead of being shaded. It costs a second pass over the geometry (vertex shading and
+/// triangle setup twice), so it pays only where fragments are dear: labs choose it per program
+/// and object by measurement. Without the depth test the order is the image, so it draws as
+/// stated then.
+///
+/// The winding each variant takes is how the mesh's outside faces are wound seen from outside:
+/// GLUT's cube, sphere and torus are counter-clockwise ([`wgpu::FrontFace::Ccw`]), its teapot
+/// clockwise ([`wgpu::FrontFace::Cw`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Faces {
+    /// Every face in mesh order, culled as [`RenderState::cull_mode`] says (GL's way).
+    #[default]
+    AsStated,
+    /// The faces wound this way first, then the others: two draws of the same mesh, each
+    /// culling one winding. Exact except at exact depth ties (see the type). Only for programs
+    /// with the depth test and no culling of their own.
+    OutsideFirst(wgpu::FrontFace),
+    /// Only the faces wound this way (back-face culling). NOT exact: right only for closed
+    /// meshes seen from outside, and even there a silhouette pixel may change where an inside
+    /// face covered a pixel centre the outside faces miss; open or displaced meshes lose faces
+    /// that show.
+    OutsideOnly(wgpu::FrontFace),
 }
 
 impl Default for RenderState {
@@ -40,6 +72,7 @@ impl Default for RenderState {
             front_face: wgpu::FrontFace::Ccw,
             depth_test: true,
             blend: None,
+            faces: Faces::AsStated,
         }
     }
 }
@@ -55,6 +88,36 @@ impl RenderState {
         RenderState {
             depth_test: false,
             ..self
+        }
+    }
+
+    /// With another choice of faces (see [`Faces`]).
+    pub fn faces(self, faces: Faces) -> Self {
+        RenderState { faces, ..self }
+    }
+
+    /// The culling of each draw, in order, that `faces` asks for with this state.
+    fn culls(&self) -> Vec<Option<wgpu::Face>> {
+        use wgpu::PrimitiveTopology as T;
+        let triangles = matches!(self.topology, T::TriangleList | T::TriangleStrip);
+        // Culling `Back` keeps the faces wound as `front_face`.
+        let keep = |winding: wgpu::FrontFace| {
+            if winding == self.front_face {
+                wgpu::Face::Back
+            } else {
+                wgpu::Face::Front
+            }
+        };
+        let other = |face: wgpu::Face| match face {
+            wgpu::Face::Back => wgpu::Face::Front,
+            wgpu::Face::Front => wgpu::Face::Back,
+        };
+        match self.faces {
+            Faces::OutsideFirst(w) if triangles && self.cull_mode.is_none() && self.depth_test => {
+                vec![Some(keep(w)), Some(other(keep(w)))]
+            }
+            Faces::OutsideOnly(w) if triangles => vec![Some(keep(w))],
+            _ => vec![self.cull_mode],
         }
     }
 }
@@ -355,12 +418,27 @@ fn vertex_attributes<V: VertexType>(path: &str, inputs: &[VertexInput]) -> Resul
     }
 }
 
+/// Pipelines by their culling.
+type PipelineCache = Vec<(Option<wgpu::Face>, wgpu::RenderPipeline)>;
+
 struct Built {
     vertex: CompiledShader,
     fragment: CompiledShader,
     bindings: Vec<BindingInfo>,
     bind_group_layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::RenderPipeline,
+    stages: Stages,
+    /// Every pipeline built so far, by culling (a program switches between them).
+    cache: PipelineCache,
+    /// Drawn in order, one per culling of [`RenderState::culls`].
+    pipelines: Vec<wgpu::RenderPipeline>,
+}
+
+/// What pipelines are made of, kept to make them again with other culling.
+struct Stages {
+    layout: wgpu::PipelineLayout,
+    attributes: Vec<wgpu::VertexAttribute>,
+    vs: wgpu::ShaderModule,
+    fs: wgpu::ShaderModule,
 }
 
 /// What the shell and tests can do with any program, whatever its vertex type.
@@ -510,28 +588,31 @@ impl<V: VertexType> Program<V> {
         let attributes = vertex_attributes::<V>(&vertex.path, &inputs)?;
         let vs = vertex.create_module(&gpu.device, &vertex.path);
         let fs = fragment.create_module(&gpu.device, &fragment.path);
-        let (bind_group_layout, pipeline) =
-            Self::pipeline(gpu, label, &bindings, &attributes, &vs, &fs, state, format)?;
+        let (bind_group_layout, stages, cache) =
+            Self::pipelines(gpu, label, &bindings, attributes, vs, fs, state, format)?;
+        let pipelines = Self::in_order(&cache, state);
         Ok(Built {
             vertex,
             fragment,
             bindings,
             bind_group_layout,
-            pipeline,
+            stages,
+            cache,
+            pipelines,
         })
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn pipeline(
+    fn pipelines(
         gpu: &Gpu,
         label: &str,
         bindings: &[BindingInfo],
-        attributes: &[wgpu::VertexAttribute],
-        vs: &wgpu::ShaderModule,
-        fs: &wgpu::ShaderModule,
+        attributes: Vec<wgpu::VertexAttribute>,
+        vs: wgpu::ShaderModule,
+        fs: wgpu::ShaderModule,
         state: RenderState,
         format: wgpu::TextureFormat,
-    ) -> Result<(wgpu::BindGroupLayout, wgpu::RenderPipeline)> {
+    ) -> Result<(wgpu::BindGroupLayout, Stages, PipelineCache)> {
         let device = &gpu.device;
         let entries: Vec<_> = bindings.iter().map(layout_entry).collect();
         gpu.checked(label, || {
@@ -544,55 +625,116 @@ impl<V: VertexType> Program<V> {
                 bind_group_layouts: &[Some(&bind_group_layout)],
                 immediate_size: 0,
             });
-            let buffers = [Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<V>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
+            let stages = Stages {
+                layout,
                 attributes,
-            })];
-            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&format!("{label}.pipeline")),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: vs,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    buffers: if attributes.is_empty() { &[] } else { &buffers },
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: fs,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format,
-                        blend: state.blend,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                primitive: wgpu::PrimitiveState {
-                    topology: state.topology,
-                    front_face: state.front_face,
-                    cull_mode: state.cull_mode,
-                    ..Default::default()
-                },
-                // Every pass has a depth attachment; without GL_DEPTH_TEST the pipeline neither
-                // tests nor writes it.
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(state.depth_test),
-                    depth_compare: Some(if state.depth_test {
-                        wgpu::CompareFunction::Less // GL_LESS, GL's default
-                    } else {
-                        wgpu::CompareFunction::Always
-                    }),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                multiview_mask: None,
-                cache: None,
-            });
-            (bind_group_layout, pipeline)
+                vs,
+                fs,
+            };
+            let pipelines = Self::make_pipelines(gpu, label, &stages, state, format, &[]);
+            (bind_group_layout, stages, pipelines)
         })
+    }
+
+    /// The pipelines `state` asks for that `cache` lacks (one per culling of
+    /// [`RenderState::culls`]); the caller checks for validation errors.
+    fn make_pipelines(
+        gpu: &Gpu,
+        label: &str,
+        stages: &Stages,
+        state: RenderState,
+        format: wgpu::TextureFormat,
+        cache: &[(Option<wgpu::Face>, wgpu::RenderPipeline)],
+    ) -> PipelineCache {
+        let buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<V>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &stages.attributes,
+        })];
+        state
+            .culls()
+            .into_iter()
+            .filter(|cull| !cache.iter().any(|(c, _)| c == cull))
+            .map(|cull_mode| {
+                let name = match cull_mode {
+                    Some(face) => format!("{label}.pipeline.cull_{face:?}"),
+                    None => format!("{label}.pipeline"),
+                };
+                let pipeline = gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(&name),
+                    layout: Some(&stages.layout),
+                    vertex: wgpu::VertexState {
+                        module: &stages.vs,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        buffers: if stages.attributes.is_empty() { &[] } else { &buffers },
+                    },
+                    fragment: Some(wgpu::FragmentState {
+                        module: &stages.fs,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState {
+                            format,
+                            blend: state.blend,
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })],
+                    }),
+                    primitive: wgpu::PrimitiveState {
+                        topology: state.topology,
+                        front_face: state.front_face,
+                        cull_mode,
+                        ..Default::default()
+                    },
+                    // Every pass has a depth attachment; without GL_DEPTH_TEST the pipeline neither
+                    // tests nor writes it.
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: DEPTH_FORMAT,
+                        depth_write_enabled: Some(state.depth_test),
+                        depth_compare: Some(if state.depth_test {
+                            wgpu::CompareFunction::Less // GL_LESS, GL's default
+                        } else {
+                            wgpu::CompareFunction::Always
+                        }),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    multiview_mask: None,
+                    cache: None,
+                });
+                (cull_mode, pipeline)
+            })
+            .collect()
+    }
+
+    /// The pipelines `state` draws with, in order, from `cache` (which holds them all).
+    fn in_order(cache: &[(Option<wgpu::Face>, wgpu::RenderPipeline)], state: RenderState) -> Vec<wgpu::RenderPipeline> {
+        state
+            .culls()
+            .iter()
+            .filter_map(|cull| cache.iter().find(|(c, _)| c == cull).map(|(_, p)| p.clone()))
+            .collect()
+    }
+
+    /// Switches which faces are drawn (see [`Faces`]); builds the pipelines it needs, if any.
+    pub fn set_faces(&mut self, gpu: &Gpu, faces: Faces) -> Result<()> {
+        if self.state.faces == faces {
+            return Ok(());
+        }
+        let state = self.state.faces(faces);
+        let built = &mut self.built;
+        let new = gpu.checked(&self.label, || {
+            Self::make_pipelines(gpu, &self.label, &built.stages, state, self.format, &built.cache)
+        })?;
+        built.cache.extend(new);
+        built.pipelines = Self::in_order(&built.cache, state);
+        self.state = state;
+        Ok(())
+    }
+
+    /// The faces drawn (see [`Faces`]).
+    pub fn faces(&self) -> Faces {
+        self.state.faces
     }
 
     /// Compiles the shaders again; on failure the last good pipeline and bindings stay.
@@ -732,18 +874,20 @@ impl<V: VertexType> Program<V> {
         let fs = module(format!("{}.frag.wgsl", self.label), fragment_wgsl)?;
         let inputs = reflect_inputs(&self.built.vertex)?;
         let attributes = vertex_attributes::<V>(&self.built.vertex.path, &inputs)?;
-        let (layout, pipeline) = Self::pipeline(
+        let (layout, stages, cache) = Self::pipelines(
             gpu,
             &format!("{}.wgsl", self.label),
             &self.built.bindings,
-            &attributes,
-            &vs,
-            &fs,
+            attributes,
+            vs,
+            fs,
             self.state,
             self.format,
         )?;
         self.built.bind_group_layout = layout;
-        self.built.pipeline = pipeline;
+        self.built.stages = stages;
+        self.built.pipelines = Self::in_order(&cache, self.state);
+        self.built.cache = cache;
         if !self.resources.is_empty() {
             self.bind_group = Some(Self::bind_group(gpu, &self.label, &self.built, &self.resources)?);
         }
@@ -755,12 +899,15 @@ impl<V: VertexType> Program<V> {
         self.draw_range(pass, mesh, 0..mesh.count());
     }
 
-    /// Draws `range` of `mesh`'s vertices (or indices).
+    /// Draws `range` of `mesh`'s vertices (or indices): once, or front faces then back faces
+    /// (see [`Faces`]).
     pub fn draw_range(&self, pass: &mut wgpu::RenderPass<'_>, mesh: &GpuMesh<V>, range: std::ops::Range<u32>) {
-        pass.set_pipeline(&self.built.pipeline);
-        if let Some(group) = &self.bind_group {
-            pass.set_bind_group(0, group, &[]);
+        for pipeline in &self.built.pipelines {
+            pass.set_pipeline(pipeline);
+            if let Some(group) = &self.bind_group {
+                pass.set_bind_group(0, group, &[]);
+            }
+            mesh.draw_range(pass, range.clone());
         }
-        mesh.draw_range(pass, range);
     }
 }

@@ -10,6 +10,8 @@ use super::program::{Bind, Resource};
 pub struct Uniforms<U: UniformBlock> {
     /// The value uploaded by [`Uniforms::upload`].
     pub value: U,
+    /// What the buffer holds (the value last written to it).
+    uploaded: U,
     buffer: wgpu::Buffer,
 }
 
@@ -23,12 +25,23 @@ impl<U: UniformBlock> Uniforms<U> {
             mapped_at_creation: false,
         });
         gpu.queue.write_buffer(&buffer, 0, bytemuck::bytes_of(&value));
-        Uniforms { value, buffer }
+        Uniforms {
+            value,
+            uploaded: value,
+            buffer,
+        }
     }
 
-    /// Writes the value to the buffer (before the pass that reads it).
-    pub fn upload(&self, gpu: &Gpu) {
+    /// Makes the buffer hold the value (before the pass that reads it). Labs call it every
+    /// frame, as the originals call `glUniform*`; like GL drivers, which skip a uniform update
+    /// that changes nothing, it writes only bytes that differ from what the buffer holds: each
+    /// `write_buffer` costs a staging buffer, a copy and its clean-up.
+    pub fn upload(&mut self, gpu: &Gpu) {
+        if bytemuck::bytes_of(&self.value) == bytemuck::bytes_of(&self.uploaded) {
+            return;
+        }
         gpu.queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(&self.value));
+        self.uploaded = self.value;
     }
 
     /// The binding of this block, by its GLSL block name, with the layout check.

@@ -9,6 +9,8 @@
 
 mod args;
 mod headless;
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+mod shm;
 pub mod window;
 
 use std::io::Write;
@@ -58,11 +60,27 @@ fn ensure_runtime_dir() {
     }
 }
 
+/// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` orders the GPUs so that the one
+/// driving the display comes first: to know it, it connects to the X server (and Wayland) twice
+/// while the adapters are listed, ~25 ms of every start under Xvfb. An offscreen run
+/// (`--screenshot`, `--bench`) draws into no display, so it skips the layer, unless the user
+/// steers it (`MESA_VK_DEVICE_SELECT`, or `NODEVICE_SELECT` set either way).
+fn skip_display_device_select() {
+    if std::env::var_os("MESA_VK_DEVICE_SELECT").is_some() || std::env::var_os("NODEVICE_SELECT").is_some() {
+        return;
+    }
+    // SAFETY: called from main before any other thread exists (argument parsing starts none).
+    unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+}
+
 /// Entry point of every example: parses arguments, then renders offscreen or opens a window.
 pub fn main(entry: &'static LabEntry) -> ExitCode {
     ensure_runtime_dir();
     let name = entry.info.name;
     let args = Args::parse_for(entry);
+    if args.screenshot.is_some() || args.bench.is_some() {
+        skip_display_device_select();
+    }
     let result = run(entry, args);
     if let Ok(dir) = std::env::var("XDG_RUNTIME_DIR") {
         if dir.contains("shaderlab-runtime-") {

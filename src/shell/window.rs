@@ -38,6 +38,31 @@ use crate::shader::ShaderSource;
 
 use super::Args;
 
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+use super::shm::ShmPresenter as Presenter;
+
+/// No shared-memory presenter on this platform: always the swapchain.
+#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
+struct Presenter {
+    color: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    width: u32,
+    height: u32,
+}
+
+#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
+impl Presenter {
+    fn new(_: &Gpu, _: &Arc<Window>, _: u32, _: u32) -> std::result::Result<Self, String> {
+        Err("no shared-memory presenter on this platform".into())
+    }
+    fn resize(&mut self, _: &Gpu, _: u32, _: u32) -> std::result::Result<(), String> {
+        Ok(())
+    }
+    fn present(&mut self, _: &Gpu, _: wgpu::CommandEncoder, _: bool) -> std::result::Result<(), String> {
+        Ok(())
+    }
+}
+
 /// Frames per second when the monitor does not say its refresh rate.
 const DEFAULT_REFRESH_HZ: f64 = 60.0;
 
@@ -169,6 +194,11 @@ struct WindowState {
     /// Frames still to draw for a lab that is not animated (input, resize, reload).
     dirty: u32,
     unpaced: bool,
+    /// Presenting through X shared memory (CPU adapters under X11), else the swapchain.
+    shm: Option<Presenter>,
+    /// With `--unpaced`: frames drawn since `counted_since` (the frame-time report).
+    counted: u32,
+    counted_since: Instant,
     cursor: (i32, i32),
     buttons: u32,
     /// The window has no area: nothing to draw.
@@ -188,18 +218,8 @@ struct WindowState {
 }
 
 impl App {
-    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
-        let entry = self.entry;
-        let (width, height) = self.args.size(entry);
-        let attributes = Window::default_attributes()
-            .with_title(format!("{} {}", entry.info.title, entry.info.label))
-            .with_inner_size(PhysicalSize::new(width, height));
-        let window = Arc::new(
-            event_loop
-                .create_window(attributes)
-                .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
-        );
-        let instance = Gpu::new_instance();
+    /// A surface for `window` and a device that can present to it, from `instance`.
+    fn connect(instance: wgpu::Instance, window: &Arc<Window>) -> Result<(Gpu, wgpu::Surface<'static>)> {
         let surface = match instance.create_surface(window.clone()) {
             Ok(surface) => surface,
             // With no usable driver at all wgpu only says "Failed to create surface for any
@@ -214,6 +234,31 @@ impl App {
             }
         };
         let gpu = pollster::block_on(Gpu::new(instance, Some(&surface)))?;
+        Ok((gpu, surface))
+    }
+
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
+        let entry = self.entry;
+        let (width, height) = self.args.size(entry);
+        let attributes = Window::default_attributes()
+            .with_title(format!("{} {}", entry.info.title, entry.info.label))
+            .with_inner_size(PhysicalSize::new(width, height));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
+        );
+        // The primary backends first, GL only where they cannot draw into this window.
+        let (gpu, surface) = match Self::connect(Gpu::new_instance(), &window) {
+            Err(e @ (Error::NoAdapter(_) | Error::Surface(_))) => match Gpu::fallback_instance() {
+                Some(gl) => Self::connect(gl, &window).map_err(|fallback| match fallback {
+                    Error::NoAdapter(_) | Error::Surface(_) => e,
+                    other => other,
+                })?,
+                None => return Err(e),
+            },
+            result => result?,
+        };
         // Before anything can fail on the device: wgpu panics on errors nobody handles.
         let fatal: Fatal = Arc::new(Mutex::new(None));
         let lost = fatal.clone();
@@ -270,6 +315,22 @@ impl App {
             surface.configure(&gpu.device, &config)
         })?;
         let depth = depth_texture(&gpu.device, config.width, config.height);
+        // A CPU adapter under X11 presents through shared memory; anything else, or a
+        // presenter that cannot start, keeps the swapchain (said with SHADERLAB_PRESENT=shm).
+        let shm = if format == wgpu::TextureFormat::Bgra8Unorm {
+            Presenter::new(&gpu, &window, config.width, config.height)
+        } else {
+            Err(format!("the window's format is {format:?}"))
+        };
+        let shm = match shm {
+            Ok(p) => Some(p),
+            Err(why) => {
+                if std::env::var("SHADERLAB_PRESENT").as_deref() == Ok("shm") {
+                    eprintln!("{}: presenting with the swapchain: {why}", entry.info.name);
+                }
+                None
+            }
+        };
         if size.width > max || size.height > max {
             eprintln!(
                 "{}: the window ({}x{}) is larger than the GPU can draw ({max}x{max}); drawing the part that fits",
@@ -326,6 +387,9 @@ impl App {
             last_time: None,
             dirty: 2,
             unpaced: self.args.unpaced,
+            shm,
+            counted: 0,
+            counted_since: Instant::now(),
             minimised: surface_size(size).is_none(),
             window,
             surface,
@@ -430,6 +494,12 @@ impl WindowState {
         self.config.height = height.min(max);
         self.surface.configure(&self.gpu.device, &self.config);
         self.depth = depth_texture(&self.gpu.device, self.config.width, self.config.height);
+        if let Some(shm) = &mut self.shm {
+            if let Err(why) = shm.resize(&self.gpu, self.config.width, self.config.height) {
+                eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+                self.shm = None;
+            }
+        }
     }
 
     /// A `Lost` surface must be created again from the window, then configured.
@@ -529,6 +599,9 @@ impl WindowState {
         self.next_frame = (self.next_frame + self.frame_interval).max(now);
         self.tick();
         self.dirty = self.dirty.saturating_sub(1);
+        if self.shm.is_some() {
+            return self.redraw_shm();
+        }
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
@@ -593,7 +666,72 @@ impl WindowState {
         }
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
+        if self.unpaced {
+            self.report_frame_time();
+        }
         Ok(())
+    }
+
+    /// A frame drawn offscreen and shown through X shared memory; on failure the swapchain
+    /// takes over from the next frame.
+    fn redraw_shm(&mut self) -> Result<()> {
+        let Some(shm) = self.shm.as_mut() else { return Ok(()) };
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("window.frame"),
+        });
+        let rendered = {
+            let mut frame = Frame {
+                gpu: &self.gpu,
+                encoder: &mut encoder,
+                color: &shm.color,
+                depth: &shm.depth_view,
+                width: shm.width,
+                height: shm.height,
+                timestamps: None,
+            };
+            self.lab.render(&mut frame)
+        };
+        if let Err(e) = rendered {
+            eprintln!("{}: {e}", self.entry.info.name);
+        }
+        self.window.pre_present_notify();
+        // Drawing as fast as possible keeps one frame in flight (shown while the next renders).
+        let presented = shm.present(&self.gpu, encoder, self.unpaced);
+        if let Some(e) = self.lab.take_error() {
+            eprintln!("{}: {e}", self.name());
+            self.shader_error = true;
+            self.update_title();
+        }
+        if let Err(why) = presented {
+            eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+            self.shm = None;
+            self.dirty = 2;
+        }
+        if let Some(e) = self.fatal_error() {
+            return Err(e);
+        }
+        if self.unpaced {
+            self.report_frame_time();
+        }
+        Ok(())
+    }
+
+    /// With `--unpaced`: every 2 s, one line on stderr with the mean time per frame drawn and
+    /// presented (`NAME: window N frames in S s: ms_per_frame=X`), to compare with the original.
+    fn report_frame_time(&mut self) {
+        self.counted += 1;
+        let elapsed = self.counted_since.elapsed();
+        if elapsed >= Duration::from_secs(2) {
+            let secs = elapsed.as_secs_f64();
+            eprintln!(
+                "{}: window {} frames in {secs:.2} s: ms_per_frame={:.3}",
+                self.name(),
+                self.counted,
+                secs * 1000.0 / f64::from(self.counted)
+            );
+            self.counted = 0;
+            self.counted_since = Instant::now();
+        }
     }
 
     /// Whether the lab's clock runs (an animated lab, not paused with Space).

@@ -1,0 +1,439 @@
+//! Presenting through X shared memory (MIT-SHM) for CPU adapters.
+//!
+//! lavapipe's X11 swapchain (Mesa 22) sends every frame through the X socket (`PutImage`,
+//! ~0.8 ms for 640x360 on the test machine), while the original's GL driver puts its frames
+//! through shared memory. For a CPU adapter under X11 the window can do the same: the lab draws
+//! into an offscreen `Bgra8Unorm` target, the frame is copied into a System V shared memory
+//! segment the X server has attached, and one `ShmPutImage` shows it. Two segments take turns,
+//! so the server shows one frame while the next is drawn; a segment is written again only after
+//! the server's completion event for it. The pixels are the ones the swapchain would show (same
+//! format, same pipelines).
+//!
+//! Anything else (another adapter type, Wayland, no MIT-SHM, a remote server, a visual that is
+//! not 24-bit BGRX) keeps the swapchain, and so does `SHADERLAB_PRESENT=swapchain`. A presenter
+//! that fails while drawing hands back to the swapchain too.
+
+use std::sync::Arc;
+
+use winit::raw_window_handle::{HasWindowHandle, RawWindowHandle};
+use winit::window::Window;
+use x11rb::connection::{Connection, RequestConnection};
+use x11rb::protocol::shm::{self, ConnectionExt as _};
+use x11rb::protocol::xproto::{self, ConnectionExt as _};
+use x11rb::rust_connection::RustConnection;
+
+use crate::gpu::Gpu;
+use crate::offscreen::depth_texture;
+
+/// The colour format the presenter draws in: bytes B, G, R, A, which is a little-endian X
+/// server's 32-bit pixel `0x00RRGGBB` for a 24-bit TrueColor visual.
+pub(super) const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Bgra8Unorm;
+
+/// A System V shared memory segment attached here and by the X server.
+struct Segment {
+    seg: shm::Seg,
+    addr: *mut u8,
+    size: usize,
+}
+
+/// The offscreen target and the shared memory a frame goes through.
+pub(super) struct ShmPresenter {
+    conn: RustConnection,
+    window: xproto::Window,
+    gc: xproto::Gcontext,
+    depth: u8,
+    /// Colour target (drawn by the lab) and depth.
+    pub color: wgpu::TextureView,
+    /// Depth target.
+    pub depth_view: wgpu::TextureView,
+    texture: wgpu::Texture,
+    /// A readback buffer for the next frame (two take turns while a frame is in flight).
+    spare: Option<wgpu::Buffer>,
+    /// A frame drawn and copied to a readback buffer but not shown yet (unpaced drawing).
+    in_flight: Option<InFlight>,
+    /// Bytes per row of the readback and of the image in the segment (a multiple of 256).
+    stride: u32,
+    /// Target size.
+    pub width: u32,
+    /// Target size.
+    pub height: u32,
+    /// Two segments in turn, whether the server may still be reading each, and the next one.
+    segments: [Segment; 2],
+    pending: [bool; 2],
+    next: usize,
+}
+
+/// A frame on its way: its readback buffer, its submission and its size.
+struct InFlight {
+    buffer: wgpu::Buffer,
+    submission: wgpu::SubmissionIndex,
+    width: u32,
+    height: u32,
+    stride: u32,
+}
+
+/// Why the presenter is not used (said once on stderr with `SHADERLAB_PRESENT=shm`).
+type Why = String;
+
+fn x<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> Why + '_ {
+    move |e| format!("{what}: {e}")
+}
+
+impl ShmPresenter {
+    /// A presenter for `window` if this adapter, display and visual allow it; otherwise why not.
+    pub(super) fn new(gpu: &Gpu, window: &Arc<Window>, width: u32, height: u32) -> Result<Self, Why> {
+        match std::env::var("SHADERLAB_PRESENT").as_deref() {
+            Ok("swapchain") => return Err("SHADERLAB_PRESENT=swapchain".into()),
+            Ok("shm") => {}
+            _ if gpu.adapter.get_info().device_type != wgpu::DeviceType::Cpu => {
+                return Err("the adapter is not a CPU one".into())
+            }
+            _ => {}
+        }
+        let window_id = match window.window_handle().map_err(x("window handle"))?.as_raw() {
+            RawWindowHandle::Xlib(h) => h.window as u32,
+            RawWindowHandle::Xcb(h) => h.window.get(),
+            _ => return Err("not an X11 window".into()),
+        };
+        let (conn, _) = x11rb::connect(None).map_err(x("connecting to the X server"))?;
+        if conn
+            .extension_information(shm::X11_EXTENSION_NAME)
+            .map_err(x("MIT-SHM"))?
+            .is_none()
+        {
+            return Err("the X server has no MIT-SHM".into());
+        }
+        conn.shm_query_version()
+            .map_err(x("MIT-SHM"))?
+            .reply()
+            .map_err(x("MIT-SHM"))?;
+        let geometry = conn
+            .get_geometry(window_id)
+            .map_err(x("window geometry"))?
+            .reply()
+            .map_err(x("window geometry"))?;
+        let attributes = conn
+            .get_window_attributes(window_id)
+            .map_err(x("window attributes"))?
+            .reply()
+            .map_err(x("window attributes"))?;
+        let setup = conn.setup();
+        if setup.image_byte_order != xproto::ImageOrder::LSB_FIRST {
+            return Err("the X server is big-endian".into());
+        }
+        let depth = geometry.depth;
+        let format_ok = setup
+            .pixmap_formats
+            .iter()
+            .any(|f| f.depth == depth && f.bits_per_pixel == 32 && f.scanline_pad == 32);
+        let visual_ok = setup
+            .roots
+            .iter()
+            .flat_map(|screen| &screen.allowed_depths)
+            .filter(|d| d.depth == depth)
+            .flat_map(|d| &d.visuals)
+            .any(|v| {
+                v.visual_id == attributes.visual
+                    && v.class == xproto::VisualClass::TRUE_COLOR
+                    && (v.red_mask, v.green_mask, v.blue_mask) == (0xff0000, 0xff00, 0xff)
+            });
+        if !(format_ok && visual_ok && (depth == 24 || depth == 32)) {
+            return Err(format!("the window's visual (depth {depth}) is not 32-bit BGRX"));
+        }
+        let gc = conn.generate_id().map_err(x("X ids"))?;
+        conn.create_gc(gc, window_id, &xproto::CreateGCAux::new().graphics_exposures(0))
+            .map_err(x("GC"))?
+            .check()
+            .map_err(x("GC"))?;
+        let (texture, color, depth_view, readback, stride) = targets(gpu, width, height);
+        let size = stride as usize * height as usize;
+        let segments = match Segment::new(&conn, size).and_then(|a| match Segment::new(&conn, size) {
+            Ok(b) => Ok([a, b]),
+            Err(e) => {
+                a.release(&conn);
+                Err(e)
+            }
+        }) {
+            Ok(s) => s,
+            Err(e) => {
+                let _ = conn.free_gc(gc);
+                let _ = conn.flush();
+                return Err(e);
+            }
+        };
+        Ok(ShmPresenter {
+            conn,
+            window: window_id,
+            gc,
+            depth,
+            color,
+            depth_view,
+            texture,
+            spare: Some(readback),
+            in_flight: None,
+            stride,
+            width,
+            height,
+            segments,
+            pending: [false; 2],
+            next: 0,
+        })
+    }
+
+    /// Waits for the server's completion event of segment `k` (errors of earlier puts too).
+    fn wait_for(&mut self, k: usize) -> Result<(), Why> {
+        while self.pending[k] {
+            let event = self.conn.wait_for_event().map_err(x("X events"))?;
+            self.handle(event)?;
+        }
+        Ok(())
+    }
+
+    /// Notes a completion; an X error is the presenter's failure.
+    fn handle(&mut self, event: x11rb::protocol::Event) -> Result<(), Why> {
+        match event {
+            x11rb::protocol::Event::ShmCompletion(done) => {
+                for (k, segment) in self.segments.iter().enumerate() {
+                    if segment.seg == done.shmseg {
+                        self.pending[k] = false;
+                    }
+                }
+                Ok(())
+            }
+            x11rb::protocol::Event::Error(e) => Err(format!("the X server refused a frame: {e:?}")),
+            _ => Ok(()),
+        }
+    }
+
+    /// Follows a resize: new targets and, if the frame no longer fits, a new segment.
+    pub(super) fn resize(&mut self, gpu: &Gpu, width: u32, height: u32) -> Result<(), Why> {
+        self.flush(gpu)?;
+        let (texture, color, depth_view, readback, stride) = targets(gpu, width, height);
+        let needed = stride as usize * height as usize;
+        for k in 0..2 {
+            if needed > self.segments[k].size {
+                self.wait_for(k)?;
+                let segment = Segment::new(&self.conn, needed)?;
+                std::mem::replace(&mut self.segments[k], segment).release(&self.conn);
+            }
+        }
+        (self.texture, self.color, self.depth_view) = (texture, color, depth_view);
+        self.spare = Some(readback);
+        (self.stride, self.width, self.height) = (stride, width, height);
+        Ok(())
+    }
+
+    /// Finishes a frame the lab recorded into `encoder` (drawing into [`Self::color`]): copies
+    /// it to a readback buffer and submits it. With `pipelined` the frame stays in flight and the
+    /// one before it is shown now, while this one renders (one frame of latency, for drawing as
+    /// fast as possible); otherwise it is shown before this returns.
+    pub(super) fn present(&mut self, gpu: &Gpu, mut encoder: wgpu::CommandEncoder, pipelined: bool) -> Result<(), Why> {
+        let (width, height, stride) = (self.width, self.height, self.stride);
+        let buffer = match self.spare.take() {
+            Some(buffer) => buffer,
+            None => targets_buffer(gpu, stride, height),
+        };
+        encoder.copy_texture_to_buffer(
+            self.texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(stride),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        let submission = gpu.queue.submit([encoder.finish()]);
+        let frame = InFlight {
+            buffer,
+            submission,
+            width,
+            height,
+            stride,
+        };
+        if let Some(previous) = self.in_flight.replace(frame) {
+            self.show(gpu, previous)?;
+        }
+        if !pipelined {
+            self.flush(gpu)?;
+        }
+        Ok(())
+    }
+
+    /// Shows the frame still in flight, if any.
+    pub(super) fn flush(&mut self, gpu: &Gpu) -> Result<(), Why> {
+        match self.in_flight.take() {
+            Some(frame) => self.show(gpu, frame),
+            None => Ok(()),
+        }
+    }
+
+    /// Waits for `frame`, copies it into the free segment and puts it in the window.
+    fn show(&mut self, gpu: &Gpu, frame: InFlight) -> Result<(), Why> {
+        let k = self.next;
+        self.wait_for(k)?;
+        let bytes = frame.stride as usize * frame.height as usize;
+        if bytes > self.segments[k].size {
+            return Err("a frame larger than its segment".into());
+        }
+        let slice = frame.buffer.slice(..bytes as u64);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        gpu.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(frame.submission.clone()),
+                timeout: None,
+            })
+            .map_err(x("waiting for the frame"))?;
+        {
+            let view = slice.get_mapped_range().map_err(x("reading the frame"))?;
+            // SAFETY: the segment is `size >= bytes` bytes mapped here for the presenter's
+            // life, and its completion event says the server has finished reading it.
+            let dst = unsafe { std::slice::from_raw_parts_mut(self.segments[k].addr, bytes) };
+            dst.copy_from_slice(&view);
+        }
+        frame.buffer.unmap();
+        self.conn
+            .shm_put_image(
+                self.window,
+                self.gc,
+                (frame.stride / 4) as u16,
+                frame.height as u16,
+                0,
+                0,
+                frame.width as u16,
+                frame.height as u16,
+                0,
+                0,
+                self.depth,
+                xproto::ImageFormat::Z_PIXMAP.into(),
+                true,
+                self.segments[k].seg,
+                0,
+            )
+            .map_err(x("ShmPutImage"))?;
+        self.conn.flush().map_err(x("X"))?;
+        self.pending[k] = true;
+        self.next = 1 - k;
+        while let Some(event) = self.conn.poll_for_event().map_err(x("X events"))? {
+            self.handle(event)?;
+        }
+        if (frame.width, frame.height) == (self.width, self.height) && self.spare.is_none() {
+            self.spare = Some(frame.buffer);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for ShmPresenter {
+    fn drop(&mut self) {
+        for k in 0..2 {
+            let _ = self.wait_for(k);
+            let segment = std::mem::replace(
+                &mut self.segments[k],
+                Segment {
+                    seg: 0,
+                    addr: std::ptr::null_mut(),
+                    size: 0,
+                },
+            );
+            segment.release(&self.conn);
+        }
+        let _ = self.conn.free_gc(self.gc);
+        let _ = self.conn.flush();
+    }
+}
+
+/// The colour texture (`FORMAT`, copyable), its view, a depth view, and a readback buffer with
+/// its row stride.
+fn targets(
+    gpu: &Gpu,
+    width: u32,
+    height: u32,
+) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView, wgpu::Buffer, u32) {
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("shaderlab.shm.color"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let depth = depth_texture(&gpu.device, width, height);
+    let stride = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    (texture, color, depth, targets_buffer(gpu, stride, height), stride)
+}
+
+/// A readback buffer for `height` rows of `stride` bytes.
+fn targets_buffer(gpu: &Gpu, stride: u32, height: u32) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("shaderlab.shm.readback"),
+        size: stride as u64 * height as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    })
+}
+
+impl Segment {
+    /// A private segment of `size` bytes, attached here and by the server, and marked for
+    /// removal at once (it goes away when both have detached, even if the process dies).
+    fn new(conn: &RustConnection, size: usize) -> Result<Self, Why> {
+        // SAFETY: plain System V calls; every failure is checked and undone.
+        unsafe {
+            let id = libc::shmget(libc::IPC_PRIVATE, size, libc::IPC_CREAT | 0o600);
+            if id < 0 {
+                return Err(format!("shmget: {}", std::io::Error::last_os_error()));
+            }
+            let addr = libc::shmat(id, std::ptr::null(), 0);
+            if addr as isize == -1 {
+                let e = std::io::Error::last_os_error();
+                libc::shmctl(id, libc::IPC_RMID, std::ptr::null_mut());
+                return Err(format!("shmat: {e}"));
+            }
+            let attached = conn.generate_id().map_err(x("X ids")).and_then(|seg| {
+                conn.shm_attach(seg, id as u32, false)
+                    .map_err(x("ShmAttach"))?
+                    .check()
+                    .map_err(x("ShmAttach (is the X server on another machine?)"))?;
+                Ok(seg)
+            });
+            libc::shmctl(id, libc::IPC_RMID, std::ptr::null_mut());
+            match attached {
+                Ok(seg) => Ok(Segment {
+                    seg,
+                    addr: addr.cast(),
+                    size,
+                }),
+                Err(e) => {
+                    libc::shmdt(addr);
+                    Err(e)
+                }
+            }
+        }
+    }
+
+    /// Detaches the server and this process.
+    fn release(self, conn: &RustConnection) {
+        if self.addr.is_null() {
+            return;
+        }
+        let _ = conn.shm_detach(self.seg);
+        let _ = conn.flush();
+        // SAFETY: `addr` came from shmat and is not used after this.
+        unsafe {
+            libc::shmdt(self.addr.cast());
+        }
+    }
+}

@@ -1,0 +1,136 @@
+//! Drawing outside faces first (`render::Faces::OutsideFirst`, the seed-000 labs' `faces`
+//! parameter) is a speed-up, not a change of picture: with `GL_LESS` the nearest fragment wins
+//! whatever the draw order, except at exact depth ties. This renders every seed-000 lab and
+//! object at many pseudo-random rotations (and times) both ways and requires the bytes to match.
+//!
+//! Ties do happen where a mesh has coincident faces: with `smooth=1` (welded, then displaced)
+//! the teapot's patches meet in faces at the same depth, and one state of 24 tried showed one
+//! pixel changed (displacement, teapot, smooth, angles 109.86/176.60/83.75, time 3). No lab's
+//! `auto` draws that mesh outside first; it is left out here.
+
+mod common;
+
+use shaderlab::labs;
+use shaderlab::Object;
+
+/// A small deterministic generator (xorshift64*), so a failure names a reproducible state.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn angle(&mut self) -> f32 {
+        (self.next() * 360.0) as f32
+    }
+}
+
+/// Renders one state with the faces in mesh order and outside first (one lab, switching its
+/// pipelines as the window would) and requires the same bytes.
+fn both_ways(lab: &mut common::TestLab, object: Object, angles: [f32; 3], time: f32, extra: &[(&str, &str)]) {
+    let entry = lab.lab.info();
+    lab.set_object(object);
+    lab.set_angles(angles);
+    lab.set_time(f64::from(time));
+    for (k, v) in extra {
+        lab.set_str(k, v).expect("parameter");
+    }
+    let mut images = Vec::new();
+    for faces in ["mesh", "outside_first"] {
+        lab.set_str("faces", faces).expect("faces");
+        images.push(lab.rgb(640, 360));
+    }
+    let differing = images[0]
+        .pixels()
+        .zip(images[1].pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing,
+        0,
+        "{} {} angles {angles:?} time {time} {extra:?}: {differing} pixels differ between mesh order and outside faces first",
+        entry.name,
+        object.name()
+    );
+}
+
+#[test]
+fn outside_faces_first_changes_no_pixel() {
+    let mut rng = Rng(0x5EED_0000_0000_0014);
+    let mut checked = 0;
+    for entry in [
+        labs::POSITION_RGB,
+        labs::NORMAL_RGB,
+        labs::PHONG,
+        labs::NOISE,
+        labs::DISPLACEMENT,
+    ] {
+        let mut lab = common::lab(entry);
+        for object in [Object::Cube, Object::Sphere, Object::Torus, Object::Teapot] {
+            both_ways(&mut lab, object, [0.0; 3], 0.0, &[]);
+            both_ways(&mut lab, object, [30.0, 45.0, 0.0], 0.0, &[]);
+            checked += 2;
+            for _ in 0..16 {
+                let angles = [rng.angle(), rng.angle(), rng.angle()];
+                let time = (rng.next() * 20.0) as f32;
+                both_ways(&mut lab, object, angles, time, &[]);
+                checked += 1;
+            }
+        }
+    }
+    // The port-only modes that change the mesh or the shaders.
+    let (mut displacement, mut noise, mut phong) = (
+        common::lab(labs::DISPLACEMENT),
+        common::lab(labs::NOISE),
+        common::lab(labs::PHONG),
+    );
+    for _ in 0..4 {
+        let angles = [rng.angle(), rng.angle(), rng.angle()];
+        both_ways(&mut displacement, Object::Torus, angles, 3.0, &[("smooth", "1")]);
+        both_ways(&mut noise, Object::Sphere, angles, 1.0, &[("tess", "40")]);
+        for shading in ["flat", "gouraud", "blinn"] {
+            both_ways(&mut phong, Object::Torus, angles, 0.0, &[("shading", shading)]);
+        }
+        checked += 5;
+    }
+    assert_eq!(checked, 5 * 4 * 18 + 4 * 5);
+}
+
+/// `cull=1` (back-face culling) is an opt-in that is NOT exact: off by default, and on the closed
+/// objects seen from outside it changes at most a few silhouette pixels, while the open teapot
+/// shows its inside through the gaps and changes more.
+#[test]
+fn culling_is_opt_in_and_changes_only_silhouette_pixels_of_closed_meshes() {
+    let mut rng = Rng(0x5EED_0000_0000_C011);
+    for entry in [labs::POSITION_RGB, labs::PHONG, labs::NOISE] {
+        let mut lab = common::lab(entry);
+        assert_eq!(
+            lab.text("cull"),
+            "0",
+            "{}: culling must be off by default",
+            entry.info.name
+        );
+        for object in [Object::Cube, Object::Sphere, Object::Torus] {
+            for _ in 0..4 {
+                let angles = [rng.angle(), rng.angle(), rng.angle()];
+                lab.set_object(object);
+                lab.set_angles(angles);
+                lab.set_str("cull", "0").expect("cull");
+                let full = lab.rgb(640, 360);
+                lab.set_str("cull", "1").expect("cull");
+                let culled = lab.rgb(640, 360);
+                lab.set_str("cull", "0").expect("cull");
+                let differing = full.pixels().zip(culled.pixels()).filter(|(a, b)| a != b).count();
+                assert!(
+                    differing <= 64,
+                    "{} {} {angles:?}: culling changed {differing} pixels",
+                    entry.info.name,
+                    object.name()
+                );
+            }
+        }
+    }
+}
