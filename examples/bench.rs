@@ -28,6 +28,7 @@ struct Args {
 }
 
 fn main() -> anyhow::Result<()> {
+    shaderlab::shell::ensure_runtime_dir();
     let args = Args::parse();
     let gpu = Gpu::headless()?;
     println!("adapter: {}; {} frames per case", gpu.describe(), args.frames);

@@ -149,6 +149,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
 }
 
 fn main() -> ExitCode {
+    shaderlab::shell::ensure_runtime_dir();
     let args = Args::parse();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,

@@ -79,6 +79,7 @@ const W: u32 = 640;
 const H: u32 = 360;
 
 fn main() -> anyhow::Result<()> {
+    shaderlab::shell::ensure_runtime_dir();
     let args = Args::parse();
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let csv = args.out.join("tradeoff.csv");

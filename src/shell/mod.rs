@@ -41,22 +41,28 @@ impl From<Error> for Failure {
 }
 
 /// Mesa prints two warnings on every run when `XDG_RUNTIME_DIR` is unset, which makes a
-/// newcomer's first, successful run look broken: give the process a private one instead.
-fn ensure_runtime_dir() {
+/// newcomer's first, successful run look broken: give the process a private one instead
+/// (`$TMP/shaderlab-runtime-PID`, mode 0700). Call it first thing in `main`, before any thread
+/// starts; the lab examples do it through [`main`], the other examples call it themselves.
+pub fn ensure_runtime_dir() {
     if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| !d.is_empty()) {
         return;
     }
-    let dir = std::env::temp_dir().join(format!("shaderlab-runtime-{}", std::process::id()));
-    #[cfg(unix)]
-    let made = {
-        use std::os::unix::fs::DirBuilderExt;
-        std::fs::DirBuilder::new().mode(0o700).create(&dir).is_ok()
-    };
-    #[cfg(not(unix))]
-    let made = std::fs::create_dir(&dir).is_ok();
-    if made {
-        // SAFETY: called first thing in main, before any other thread exists.
-        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    // One directory per user, reused by every run (nothing to clean up), and used only if it
+    // is ours alone. Only where Mesa runs (and `libc` is a dependency).
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    {
+        use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
+        // SAFETY: getuid has no preconditions.
+        let uid = unsafe { libc::getuid() };
+        let dir = std::env::temp_dir().join(format!("shaderlab-runtime-{uid}"));
+        let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+        let ours = std::fs::symlink_metadata(&dir)
+            .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o777 == 0o700);
+        if ours {
+            // SAFETY: called first thing in main, before any other thread exists.
+            unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+        }
     }
 }
 
@@ -82,11 +88,6 @@ pub fn main(entry: &'static LabEntry) -> ExitCode {
         skip_display_device_select();
     }
     let result = run(entry, args);
-    if let Ok(dir) = std::env::var("XDG_RUNTIME_DIR") {
-        if dir.contains("shaderlab-runtime-") {
-            let _ = std::fs::remove_dir_all(dir);
-        }
-    }
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
