@@ -87,24 +87,28 @@ pub trait Lab {
     }
     /// The window title: the original's, then the lab's state.
     fn title(&self) -> String {
-        let info = self.info();
-        let p = self.params();
-        let state: Vec<String> = p
-            .specs()
-            .iter()
-            .filter(|s| p.get(s.name) != Some(s.default))
-            .map(|s| format!("{}={}", s.name, p.text(s.name)))
-            .collect();
-        if state.is_empty() {
-            format!("{} {}", info.title, info.label)
-        } else {
-            format!("{} {} | {}", info.title, info.label, state.join(" "))
-        }
+        params_title(self.info(), self.params())
     }
     /// An error found while drawing that the window should show once (e.g. a model whose
     /// shader is broken); `None` when all is well.
     fn take_error(&mut self) -> Option<crate::Error> {
         None
+    }
+}
+
+/// The default window title: the original's title and the lab's label, then every parameter
+/// that differs from its default (`ref002 2D twisting | twisting=4.5`).
+pub fn params_title(info: &LabInfo, p: &Params) -> String {
+    let state: Vec<String> = p
+        .specs()
+        .iter()
+        .filter(|s| p.get(s.name) != Some(s.default))
+        .map(|s| format!("{}={}", s.name, p.text(s.name)))
+        .collect();
+    if state.is_empty() {
+        format!("{} {}", info.title, info.label)
+    } else {
+        format!("{} {} | {}", info.title, info.label, state.join(" "))
     }
 }
 

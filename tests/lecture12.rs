@@ -2,42 +2,16 @@
 //! Each effect's first state against the reference image of the original GL program, and
 //! pixel statistics of other SPEC states that a wrong port would break.
 
-use std::sync::OnceLock;
+mod common;
 
+use common::{build, seed_reference as reference, shot};
 use image::RgbImage;
-use shaderlab::lab::{Input, LabContext, LabEntry, Special};
+use shaderlab::lab::{Input, LabEntry, Special};
 use shaderlab::labs;
 use shaderlab::metrics::{bounding_box, highlight, mean_color, psnr};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
-use shaderlab::{Gpu, Lab};
+use shaderlab::Lab;
 
-const REFERENCES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/reference/seeds/");
 const BLACK: [u8; 3] = [0, 0, 0];
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| match Gpu::headless() {
-        Ok(gpu) => gpu,
-        Err(e) => panic!("GPU tests need an adapter (lavapipe): {e}"),
-    })
-}
-
-fn build(entry: &LabEntry) -> Box<dyn Lab> {
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-    };
-    (entry.new)(&cx).expect("lab builds")
-}
-
-fn shot(lab: &mut dyn Lab) -> RgbImage {
-    let (w, h) = lab.info().size;
-    to_rgb(&shaderlab::shell::screenshot(gpu(), lab, w, h).expect("screenshot"))
-}
 
 /// Renders `entry` at its default size with `key=value` parameters (as `--set` does).
 fn render(entry: &LabEntry, set: &[(&str, &str)]) -> RgbImage {
@@ -52,13 +26,6 @@ fn render(entry: &LabEntry, set: &[(&str, &str)]) -> RgbImage {
         .join("_");
     let _ = image.save(std::env::temp_dir().join(format!("l002_{name}.png")));
     image
-}
-
-fn reference(name: &str) -> RgbImage {
-    let path = format!("{REFERENCES}{name}");
-    image::open(&path)
-        .unwrap_or_else(|e| panic!("reference {path} missing or unreadable ({e}); it is never generated"))
-        .to_rgb8()
 }
 
 fn check_reference(entry: &LabEntry, file: &str) -> RgbImage {

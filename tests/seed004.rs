@@ -6,58 +6,19 @@
 //! Run alone with `cargo test --release --test seed004`. Images the tests render are written to
 //! `target/test-output/seed004/` for people to look at.
 
+mod common;
+
+use common::{build as lab, example, render_state as render, seed_reference as reference, shot};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
 
 use image::RgbImage;
 use shaderlab::geometry::images;
-use shaderlab::lab::{Input, LabContext, LabEntry, Special, NO_FILES};
+use shaderlab::lab::{Input, LabEntry, Special};
 use shaderlab::labs::{self, gl_textures};
 use shaderlab::metrics::{diff_image, mean_color, psnr};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
-use shaderlab::{Gpu, Lab};
 
 const MIN_PSNR: f64 = 40.0;
-
-/// The shared headless GPU. No adapter is a failure, never a skip.
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| match Gpu::headless() {
-        Ok(gpu) => gpu,
-        Err(e) => panic!("GPU tests need an adapter (lavapipe: `apt-get install mesa-vulkan-drivers`): {e}"),
-    })
-}
-
-/// A lab with the built-in shaders and data.
-fn lab(entry: &LabEntry) -> Box<dyn Lab> {
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
-    (entry.new)(&cx).unwrap_or_else(|e| panic!("{} builds: {e}", entry.info.name))
-}
-
-/// One frame of `lab` at its default size.
-fn shot(lab: &mut dyn Lab) -> RgbImage {
-    let (w, h) = lab.info().size;
-    to_rgb(&shaderlab::shell::screenshot(gpu(), lab, w, h).expect("screenshot"))
-}
-
-/// `entry` rendered at a state given as `key=value` assignments (as `--set` takes them).
-fn render(entry: &LabEntry, state: &[(&str, &str)]) -> RgbImage {
-    let mut lab = lab(entry);
-    for (key, value) in state {
-        lab.params_mut()
-            .set_str(key, value)
-            .unwrap_or_else(|e| panic!("{}: {key}={value}: {e}", entry.info.name));
-    }
-    shot(lab.as_mut())
-}
 
 /// Where the tests leave their images.
 fn output_dir() -> PathBuf {
@@ -68,19 +29,6 @@ fn output_dir() -> PathBuf {
 
 fn save(image: &RgbImage, name: &str) {
     image.save(output_dir().join(name)).expect("write a test image");
-}
-
-/// `/work/shared/reference/seeds/004_<effect>_<state>.png`.
-fn reference(name: &str) -> RgbImage {
-    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/reference/seeds/")).join(name);
-    image::open(&path)
-        .unwrap_or_else(|e| {
-            panic!(
-                "reference {} missing or unreadable ({e}); references come from the reference renderer and are never written by tests",
-                path.display()
-            )
-        })
-        .to_rgb8()
 }
 
 /// Renders `entry` at its first state and compares it with the reference `004_<name>.png`.
@@ -541,37 +489,6 @@ fn keys_and_mouse_follow_spec() {
         [1, 1, 3, 0],
         "w, W cycle the wraps, m the four MIN filters, M the two MAG filters"
     );
-}
-
-/// `target/<profile>/examples/NAME`, built once per test binary with the test's own profile.
-fn example(name: &str) -> PathBuf {
-    static BUILT: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    let dir = BUILT.get_or_init(|| {
-        let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-        let profile_dir = exe
-            .parent()
-            .and_then(Path::parent)
-            .ok_or_else(|| format!("no target directory above {}", exe.display()))?;
-        if let Some(cargo) = std::env::var_os("CARGO") {
-            let mut build = Command::new(cargo);
-            build.current_dir(env!("CARGO_MANIFEST_DIR")).args(["build", "--quiet"]);
-            for example in ["suzanne_normal_color", "suzanne_texture", "texparams"] {
-                build.args(["--example", example]);
-            }
-            if profile_dir.file_name().is_some_and(|n| n == "release") {
-                build.arg("--release");
-            }
-            let status = build.status().map_err(|e| format!("cannot run cargo: {e}"))?;
-            if !status.success() {
-                return Err(format!("building the examples failed ({status})"));
-            }
-        }
-        Ok(profile_dir.join("examples"))
-    });
-    match dir {
-        Ok(dir) => dir.join(name),
-        Err(e) => panic!("{e}"),
-    }
 }
 
 /// What a run of an example printed and how it ended.

@@ -3,8 +3,10 @@
 //! wrong port would break. Images are written to `target/test-output/ustc001/` for people to
 //! look at.
 
+mod common;
+
+use common::{build as lab, gpu, render_state as render, set_state as set, shot};
 use std::path::PathBuf;
-use std::sync::OnceLock;
 
 use image::RgbImage;
 use shaderlab::lab::{Input, LabContext, LabEntry, Special};
@@ -12,48 +14,8 @@ use shaderlab::labs;
 use shaderlab::metrics::{diff_image, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
-use shaderlab::{Gpu, Lab};
 
 const MIN_PSNR: f64 = 40.0;
-
-/// The shared headless GPU. No adapter is a failure, never a skip.
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| match Gpu::headless() {
-        Ok(gpu) => gpu,
-        Err(e) => panic!("GPU tests need an adapter (lavapipe: apt install mesa-vulkan-drivers): {e}"),
-    })
-}
-
-fn lab(entry: &LabEntry) -> Box<dyn Lab> {
-    let cx = LabContext {
-        gpu: gpu(),
-        source: &ShaderSource::Embedded,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-    };
-    (entry.new)(&cx).unwrap_or_else(|e| panic!("{} builds: {e}", entry.info.name))
-}
-
-fn set(lab: &mut dyn Lab, state: &[(&str, &str)]) {
-    for (name, value) in state {
-        lab.params_mut()
-            .set_str(name, value)
-            .unwrap_or_else(|e| panic!("{}: {name}={value}: {e}", lab.info().name));
-    }
-}
-
-fn shot(lab: &mut dyn Lab) -> RgbImage {
-    let (w, h) = lab.info().size;
-    to_rgb(&shaderlab::shell::screenshot(gpu(), lab, w, h).expect("screenshot"))
-}
-
-/// Renders `entry` at a state (`key=value` pairs on top of the defaults).
-fn render(entry: &LabEntry, state: &[(&str, &str)]) -> RgbImage {
-    let mut lab = lab(entry);
-    set(lab.as_mut(), state);
-    shot(lab.as_mut())
-}
 
 fn output_dir() -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/test-output/ustc001");

@@ -133,12 +133,71 @@ pub fn title_000(info: &LabInfo, params: &Params, summary: &str, extra: &str) ->
     title
 }
 
+/// Keys `1`-`4` of the GLUT programs: cube, sphere, torus, teapot, for a lab with an `object`
+/// choice that names them (seed 000's and seed 001's orders both do). Returns whether it acted.
+pub fn object_key(params: &mut Params, input: Input) -> bool {
+    match input {
+        Input::Key(c @ '1'..='4') if params.has("object") => {
+            let object = OBJECTS_BY_KEY[(c as u8 - b'1') as usize];
+            params.set_str("object", object.name()).is_ok()
+        }
+        _ => false,
+    }
+}
+
+/// The GLUT programs' mouse: a left press remembers the cursor; each motion event with the button
+/// down turns yangle by ±2° (horizontal) and xangle by ±1° (vertical), sign by direction. Like
+/// the originals, a coordinate that was 0 at the press does not turn (their `if (xMotion)`).
+/// Angles are kept in float, as the originals' globals are, and bounded to [0, 360).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GlutMouse {
+    motion: (i32, i32),
+}
+
+impl GlutMouse {
+    /// Handles a press or a drag; returns whether the angles changed.
+    pub fn input(&mut self, params: &mut Params, input: Input) -> bool {
+        match input {
+            Input::Press(x, y) => {
+                self.motion = (x, y);
+                false
+            }
+            Input::Drag(x, y) => {
+                let sign = |a: i32, b: i32| match a.cmp(&b) {
+                    std::cmp::Ordering::Less => -1.0,
+                    std::cmp::Ordering::Greater => 1.0,
+                    std::cmp::Ordering::Equal => 0.0,
+                };
+                let (xm, ym) = &mut self.motion;
+                let mut angles = [params.f("xangle"), params.f("yangle")];
+                if *xm != 0 {
+                    angles[1] += 2.0 * sign(x, *xm);
+                    *xm = x;
+                }
+                if *ym != 0 {
+                    angles[0] += sign(y, *ym);
+                    *ym = y;
+                }
+                // Keep angles bounded (a long drag session must not lose float precision).
+                params.put("xangle", &[f64::from(angles[0].rem_euclid(360.0))]);
+                params.put("yangle", &[f64::from(angles[1].rem_euclid(360.0))]);
+                if params.has("zangle") {
+                    let z = params.f("zangle").rem_euclid(360.0);
+                    params.put("zangle", &[f64::from(z)]);
+                }
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
 /// Object, rotation, mouse, meshes and the Transform block.
 pub struct GlutStage {
     config: StageConfig,
     /// Where the eye is (a lab may move it, e.g. Phong's W/A/S/D).
     pub eye: Vec3,
-    motion: (i32, i32),
+    mouse: GlutMouse,
     meshes: HashMap<(Object, u32, bool), GpuMesh<Vertex>>,
     /// The Transform block of the object.
     pub transform: Uniforms<TransformUniforms>,
@@ -153,7 +212,7 @@ impl GlutStage {
         GlutStage {
             config,
             eye: config.eye,
-            motion: (0, 0),
+            mouse: GlutMouse::default(),
             meshes,
             transform: Uniforms::new(gpu, &format!("{label}.transform"), identity),
         }
@@ -200,47 +259,10 @@ impl GlutStage {
         }
     }
 
-    /// The GLUT programs' input: keys `1`-`4` choose the object; a left-button drag rotates by
-    /// ±2° of yangle per horizontal event and ±1° of xangle per vertical one. Like the
-    /// originals, a coordinate that was 0 at the press does not rotate (their `if (xMotion)`).
+    /// The GLUT programs' input: keys `1`-`4` choose the object, the left button drags
+    /// ([`GlutMouse`]).
     pub fn input(&mut self, params: &mut Params, input: Input) -> bool {
-        match input {
-            Input::Key(c @ '1'..='4') => {
-                let object = OBJECTS_BY_KEY[(c as u8 - b'1') as usize];
-                params.set_str("object", object.name()).is_ok()
-            }
-            Input::Press(x, y) => {
-                self.motion = (x, y);
-                false
-            }
-            Input::Drag(x, y) => {
-                let (xm, ym) = &mut self.motion;
-                let mut angles = [params.f("xangle"), params.f("yangle")];
-                if *xm != 0 {
-                    angles[1] += match x.cmp(xm) {
-                        std::cmp::Ordering::Less => -2.0,
-                        std::cmp::Ordering::Greater => 2.0,
-                        std::cmp::Ordering::Equal => 0.0,
-                    };
-                    *xm = x;
-                }
-                if *ym != 0 {
-                    angles[0] += match y.cmp(ym) {
-                        std::cmp::Ordering::Less => -1.0,
-                        std::cmp::Ordering::Greater => 1.0,
-                        std::cmp::Ordering::Equal => 0.0,
-                    };
-                    *ym = y;
-                }
-                // Keep angles bounded (a long drag session must not lose float precision).
-                params.put("xangle", &[f64::from(angles[0].rem_euclid(360.0))]);
-                params.put("yangle", &[f64::from(angles[1].rem_euclid(360.0))]);
-                let z = params.f("zangle").rem_euclid(360.0);
-                params.put("zangle", &[f64::from(z)]);
-                true
-            }
-            _ => false,
-        }
+        object_key(params, input) || self.mouse.input(params, input)
     }
 
     /// The tessellation level drawn for the object in a viewport `height` rows high. GLUT's by

@@ -352,13 +352,18 @@ impl Lab for Phong {
     }
     fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
         let gpu = frame.gpu;
-        let source = self.source.clone();
-        self.ensure_model(&LabContext {
-            gpu,
-            source: &source,
-            format: self.format,
-            files: &crate::lab::NO_FILES,
-        });
+        if self.models.contains_key(&self.params.index_of("shading")) {
+            self.cycling = false;
+        } else {
+            // Only when a model is still to be built (the context borrows the source).
+            let source = self.source.clone();
+            self.ensure_model(&LabContext {
+                gpu,
+                source: &source,
+                format: self.format,
+                files: &crate::lab::NO_FILES,
+            });
+        }
         self.drawn = self.params.index_of("shading");
         self.uniforms.value = uniforms_of(&self.params);
         self.uniforms.upload(gpu);

@@ -34,7 +34,7 @@ use crate::camera::fly::{FlyCamera, FlyStart, Move};
 use crate::camera::gl_to_wgpu_depth;
 use crate::error::Result;
 use crate::geometry::shapes::{bezier_strip, StripVertex};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo, Special};
+use crate::lab::{params_title, Input, Lab, LabContext, LabEntry, LabInfo, Special};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -272,20 +272,7 @@ impl Lab for SpecularStrip {
         self.program.reload(cx)
     }
     fn title(&self) -> String {
-        let base = {
-            let p = &self.params;
-            let state: Vec<String> = p
-                .specs()
-                .iter()
-                .filter(|s| p.get(s.name) != Some(s.default))
-                .map(|s| format!("{}={}", s.name, p.text(s.name)))
-                .collect();
-            if state.is_empty() {
-                format!("{} {}", INFO.title, INFO.label)
-            } else {
-                format!("{} {} | {}", INFO.title, INFO.label, state.join(" "))
-            }
-        };
+        let base = params_title(&INFO, &self.params);
         let c = &self.camera;
         if *c == FlyCamera::from_start(&start_of(&self.params)) {
             base

@@ -17,7 +17,7 @@ use crate::params::{ParamSpec, Params};
 use crate::render::{GpuMesh, Uniforms};
 use crate::tess::Object;
 
-use super::glut_stage::TransformUniforms;
+use super::glut_stage::{object_key, GlutMouse, TransformUniforms};
 
 /// Seed 001's object numbering.
 pub const OBJECTS_001: &[&str] = &["teapot", "sphere", "torus", "cube"];
@@ -58,7 +58,7 @@ const PERSPECTIVE: (f64, f64, f64) = (45.0, 0.1, 100.0);
 pub struct UstcStage {
     /// The eye of `gluLookAt(eye, (0,0,0), (0,1,0))`.
     pub eye: Vec3,
-    motion: (i32, i32),
+    mouse: GlutMouse,
     /// The Transform block (`gl_ModelViewMatrix`, `gl_ModelViewProjectionMatrix`, `gl_NormalMatrix`).
     pub transform: Uniforms<TransformUniforms>,
 }
@@ -69,7 +69,7 @@ impl UstcStage {
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
         UstcStage {
             eye,
-            motion: (0, 0),
+            mouse: GlutMouse::default(),
             transform: Uniforms::new(gpu, &format!("{label}.transform"), identity),
         }
     }
@@ -118,38 +118,7 @@ impl UstcStage {
     /// left-button drag turns yangle by ±2° per horizontal motion event and xangle by ±1° per
     /// vertical one. Like the GLUT originals, a coordinate that was 0 at the press does not turn.
     pub fn input(&mut self, params: &mut Params, input: Input) -> bool {
-        match input {
-            Input::Key(c @ '1'..='4') if params.has("object") => {
-                let name = ["cube", "sphere", "torus", "teapot"][(c as u8 - b'1') as usize];
-                params.set_str("object", name).is_ok()
-            }
-            Input::Press(x, y) => {
-                self.motion = (x, y);
-                false
-            }
-            Input::Drag(x, y) => {
-                let (xm, ym) = &mut self.motion;
-                let sign = |a: i32, b: i32| match a.cmp(&b) {
-                    std::cmp::Ordering::Less => -1.0,
-                    std::cmp::Ordering::Greater => 1.0,
-                    std::cmp::Ordering::Equal => 0.0,
-                };
-                let (mut xangle, mut yangle) = (params.f64("xangle"), params.f64("yangle"));
-                if *xm != 0 {
-                    yangle += 2.0 * sign(x, *xm);
-                    *xm = x;
-                }
-                if *ym != 0 {
-                    xangle += sign(y, *ym);
-                    *ym = y;
-                }
-                // Bounded angles: a long drag session must not lose float precision.
-                params.put("xangle", &[xangle.rem_euclid(360.0)]);
-                params.put("yangle", &[yangle.rem_euclid(360.0)]);
-                true
-            }
-            _ => false,
-        }
+        object_key(params, input) || self.mouse.input(params, input)
     }
 }
 

@@ -238,3 +238,46 @@ pub fn copy_shaders(dir: &Path) {
         std::fs::write(dir.join(name), text).expect("write a shader copy");
     }
 }
+
+/// A lab at its defaults, with the built-in shaders and data, as the shell holds it.
+pub fn build(entry: &LabEntry) -> Box<dyn Lab> {
+    lab(entry).lab
+}
+
+/// Sets `key=value` assignments as `--set` takes them (a state of SPEC on top of the defaults).
+pub fn set_state(lab: &mut dyn Lab, state: &[(&str, &str)]) {
+    for (key, value) in state {
+        lab.params_mut()
+            .set_str(key, value)
+            .unwrap_or_else(|e| panic!("{}: {key}={value}: {e}", lab.info().name));
+    }
+}
+
+/// One frame of `lab` at its default size.
+pub fn shot(lab: &mut dyn Lab) -> RgbImage {
+    let (w, h) = lab.info().size;
+    to_rgb(&shaderlab::shell::screenshot(gpu(), lab, w, h).expect("screenshot"))
+}
+
+/// `entry` rendered at its default size at a state given as `key=value` assignments.
+pub fn render_state(entry: &LabEntry, state: &[(&str, &str)]) -> RgbImage {
+    let mut lab = build(entry);
+    set_state(lab.as_mut(), state);
+    shot(lab.as_mut())
+}
+
+/// An image of the original programs of seeds 001–004 (`../shared/reference/seeds/NAME`); a
+/// missing one fails the test (they come from the reference renderer, never from the tests).
+pub fn seed_reference(name: &str) -> RgbImage {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/reference/seeds")
+        .join(name);
+    image::open(&path)
+        .unwrap_or_else(|e| {
+            panic!(
+                "reference {} missing or unreadable ({e}); references come from the original programs and are never written by the tests",
+                path.display()
+            )
+        })
+        .to_rgb8()
+}
