@@ -4,10 +4,8 @@
 //!
 //! GL picks the magnification filter where the level of detail λ ≤ 0 and the minification
 //! filter where λ > 0, also for the non-mipmapped minification filters `GL_NEAREST` and
-//! `GL_LINEAR`, which then read level 0. A wgpu sampler clamped to level 0 (`lod_max_clamp`
-//! 0) clamps λ itself and so never minifies; here such a texture is sampled through a view of
-//! level 0 alone with an unclamped sampler, so λ — and GL's switch point between the two
-//! filters — stays GL's.
+//! `GL_LINEAR`, which then read level 0: `render::Texture::view_for` binds level 0 alone for
+//! those, with the level of detail unclamped, so GL's switch point stays GL's.
 
 use std::path::Path;
 
@@ -74,11 +72,6 @@ impl TexParams {
         mag_linear: true,
     };
 
-    /// Whether the MIN filter reads the mipmaps.
-    pub fn mipmapped(&self) -> bool {
-        matches!(self.min, MinFilter::LinearMipmapNearest | MinFilter::LinearMipmapLinear)
-    }
-
     fn sampler_desc(&self) -> SamplerDesc {
         use wgpu::{AddressMode, FilterMode, MipmapFilterMode};
         let wrap = |clamp| {
@@ -96,25 +89,24 @@ impl TexParams {
             }
         };
         let (min, mipmap) = match self.min {
-            MinFilter::LinearMipmapNearest => (FilterMode::Linear, MipmapFilterMode::Nearest),
-            MinFilter::LinearMipmapLinear => (FilterMode::Linear, MipmapFilterMode::Linear),
-            // Level 0 comes from the view (see the module doc); λ stays unclamped.
-            MinFilter::Nearest => (FilterMode::Nearest, MipmapFilterMode::Nearest),
-            MinFilter::Linear => (FilterMode::Linear, MipmapFilterMode::Nearest),
+            MinFilter::LinearMipmapNearest => (FilterMode::Linear, Some(MipmapFilterMode::Nearest)),
+            MinFilter::LinearMipmapLinear => (FilterMode::Linear, Some(MipmapFilterMode::Linear)),
+            // Level 0 alone: `view_for` binds it.
+            MinFilter::Nearest => (FilterMode::Nearest, None),
+            MinFilter::Linear => (FilterMode::Linear, None),
         };
         SamplerDesc {
             wrap: [wrap(self.clamp[0]), wrap(self.clamp[1]), AddressMode::Repeat],
             mag: filter(self.mag_linear),
             min,
-            mipmap: Some(mipmap),
+            mipmap,
         }
     }
 }
 
-/// A 2D texture with its `glGenerateMipmap` levels, and the same texture seen as level 0 alone.
+/// A 2D texture with its `glGenerateMipmap` levels.
 pub struct GlTexture {
     texture: Texture,
-    base_level: Texture,
 }
 
 impl GlTexture {
@@ -132,33 +124,16 @@ impl GlTexture {
         }
         let levels: Vec<Vec<u8>> = images::mip_chain(image).into_iter().map(|level| level.rgba).collect();
         let texture = Texture::new(gpu, label, image.width, image.height, 1, &levels);
-        let base_level = Texture {
-            texture: texture.texture.clone(),
-            view: texture.texture.create_view(&wgpu::TextureViewDescriptor {
-                label: Some(&format!("{label}.level0")),
-                base_mip_level: 0,
-                mip_level_count: Some(1),
-                ..Default::default()
-            }),
-            dimension: texture.dimension,
-        };
-        Ok(GlTexture { texture, base_level })
+        Ok(GlTexture { texture })
     }
 
     /// The texture bound to the GLSL `texture2D` called `texture` and a sampler with `params`
     /// bound to the `sampler` called `sampler_name`.
     pub fn bind(&self, gpu: &Gpu, texture: &str, sampler_name: &str, params: TexParams) -> [Bind; 2] {
-        let levels = if params.mipmapped() {
-            &self.texture
-        } else {
-            &self.base_level
-        };
+        let desc = params.sampler_desc();
         [
-            Bind::texture(texture, levels),
-            Bind::sampler(
-                sampler_name,
-                &sampler(gpu, &format!("{texture}.sampler"), &params.sampler_desc()),
-            ),
+            Bind::texture_for(texture, &self.texture, &desc),
+            Bind::sampler(sampler_name, &sampler(gpu, &format!("{texture}.sampler"), &desc)),
         ]
     }
 }

@@ -213,6 +213,15 @@ impl Bind {
         }
     }
 
+    /// A texture bound to the `texture2D`/`textureCube` called `name`, seen as a sampler with
+    /// `desc` reads it ([`Texture::view_for`](super::Texture::view_for)).
+    pub fn texture_for(name: &str, texture: &super::Texture, desc: &super::SamplerDesc) -> Bind {
+        Bind {
+            name: name.to_owned(),
+            resource: Resource::Texture(texture.view_for(desc).clone(), texture.dimension),
+        }
+    }
+
     /// A sampler bound to the GLSL `sampler` called `name`.
     pub fn sampler(name: &str, sampler: &wgpu::Sampler) -> Bind {
         Bind {

@@ -10,6 +10,9 @@ pub struct Texture {
     pub texture: wgpu::Texture,
     /// A view of all its levels (and faces).
     pub view: wgpu::TextureView,
+    /// A view of level 0 alone (and all faces): what GL's non-mipmapped minification filters
+    /// read. See [`Texture::view_for`].
+    pub base_view: wgpu::TextureView,
     /// `D2` or `Cube`.
     pub dimension: wgpu::TextureViewDimension,
 }
@@ -67,10 +70,32 @@ impl Texture {
             dimension: Some(dimension),
             ..Default::default()
         });
+        let base_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some(&format!("{label}.level0")),
+            dimension: Some(dimension),
+            base_mip_level: 0,
+            mip_level_count: Some(1),
+            ..Default::default()
+        });
         Texture {
             texture,
             view,
+            base_view,
             dimension,
+        }
+    }
+}
+
+impl Texture {
+    /// The view a sampler with `desc` reads, as GL does: all levels for a mipmapped
+    /// minification filter, level 0 alone for `GL_NEAREST`/`GL_LINEAR`. Restricting the view,
+    /// not clamping the sampler's level of detail, keeps λ — and with it GL's switch between the
+    /// magnification and the minification filter — as GL computes it.
+    pub fn view_for(&self, desc: &SamplerDesc) -> &wgpu::TextureView {
+        if desc.mipmap.is_some() {
+            &self.view
+        } else {
+            &self.base_view
         }
     }
 }
@@ -84,7 +109,8 @@ pub struct SamplerDesc {
     pub mag: wgpu::FilterMode,
     /// Minification filter within a level.
     pub min: wgpu::FilterMode,
-    /// Between levels: `None` for GL's NEAREST / LINEAR (level 0 only), else the
+    /// Between levels: `None` for GL's NEAREST / LINEAR (level 0 only: bind
+    /// [`Texture::view_for`] this description), else the
     /// `*_MIPMAP_NEAREST` / `*_MIPMAP_LINEAR` choice.
     pub mipmap: Option<wgpu::MipmapFilterMode>,
 }
@@ -110,12 +136,9 @@ pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
         address_mode_w: desc.wrap[2],
         mag_filter: desc.mag,
         min_filter: desc.min,
+        // Without mipmaps GL reads level 0 only: the texture's view does that (`view_for`), so
+        // the level of detail stays unclamped and GL's mag/min switch point is kept.
         mipmap_filter: desc.mipmap.unwrap_or(wgpu::MipmapFilterMode::Nearest),
-        // GL's non-mipmapped minification filters read the base level only. Clamping the LOD
-        // to 0 also moves the magnification/minification switch, which matters only where the
-        // two filters differ on a texture with mip levels: there, bind a view of level 0 alone
-        // with `mipmap: Some(..)` instead (see `labs::gl_textures`).
-        lod_max_clamp: if desc.mipmap.is_some() { 32.0 } else { 0.0 },
         ..Default::default()
     })
 }
