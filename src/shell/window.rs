@@ -63,6 +63,19 @@ impl Presenter {
     }
 }
 
+/// Says once per window that it is larger than the device can draw (the surface is clamped to
+/// the device's limit); returns whether it has been said.
+fn too_large(name: &str, size: PhysicalSize<u32>, max: u32, said: bool) -> bool {
+    let large = size.width > max || size.height > max;
+    if large && !said {
+        eprintln!(
+            "{name}: the window ({}x{}) is larger than the GPU can draw ({max}x{max}); drawing the part that fits",
+            size.width, size.height
+        );
+    }
+    said || large
+}
+
 /// Frames per second when the monitor does not say its refresh rate.
 const DEFAULT_REFRESH_HZ: f64 = 60.0;
 
@@ -194,6 +207,8 @@ struct WindowState {
     /// Frames still to draw for a lab that is not animated (input, resize, reload).
     dirty: u32,
     unpaced: bool,
+    /// Whether the window was said to be larger than the device can draw.
+    said_too_large: bool,
     /// Presenting through X shared memory (CPU adapters under X11), else the swapchain.
     shm: Option<Presenter>,
     /// With `--unpaced`: frames drawn since `counted_since` (the frame-time report).
@@ -331,12 +346,7 @@ impl App {
                 None
             }
         };
-        if size.width > max || size.height > max {
-            eprintln!(
-                "{}: the window ({}x{}) is larger than the GPU can draw ({max}x{max}); drawing the part that fits",
-                entry.info.name, size.width, size.height
-            );
-        }
+        let said_too_large = too_large(entry.info.name, size, max, false);
         let mut lab = (entry.new)(&LabContext {
             gpu: &gpu,
             source: &self.source,
@@ -387,6 +397,7 @@ impl App {
             last_time: None,
             dirty: 2,
             unpaced: self.args.unpaced,
+            said_too_large,
             shm,
             counted: 0,
             counted_since: Instant::now(),
@@ -490,6 +501,7 @@ impl WindowState {
         self.minimised = false;
         self.dirty = 2;
         let max = self.gpu.device.limits().max_texture_dimension_2d;
+        self.said_too_large = too_large(self.entry.info.name, size, max, self.said_too_large);
         self.config.width = width.min(max);
         self.config.height = height.min(max);
         self.surface.configure(&self.gpu.device, &self.config);
