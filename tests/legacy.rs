@@ -70,8 +70,10 @@ fn reference(path: &Path) -> RgbImage {
         .to_rgb8()
 }
 
-fn shared(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared").join(rel)
+/// A reference image kept in the repository (`tests/reference/`, copied from the original
+/// programs' renders in `../shared/reference/`): the tests read nothing outside the repository.
+fn in_tests(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests").join(rel)
 }
 
 /// labref.c's uniforms and state per exercise (lab 3: camera (0,0,5), clear (0.05,0.1,0.2)).
@@ -105,7 +107,7 @@ fn seed000_course_shaders_render_the_originals_images() {
             state.push(("object", object));
             app.params_mut().set_str("object", object).unwrap();
             let image = render(app.as_mut(), 640, 360);
-            let path = shared(&format!("reference/lab{lab}_{object}_x0_y0_t0.png"));
+            let path = in_tests(&format!("reference/lab{lab}_{object}_x0_y0_t0.png"));
             let db = psnr(&image, &reference(&path)).expect("same size");
             println!("lab{lab} {object}: {db:.1} dB");
             if db < 40.0 {
@@ -133,7 +135,7 @@ const SEED001: &[(&str, &str)] = &[
 ];
 
 fn seed_reference(name: &str) -> RgbImage {
-    reference(&shared(&format!("reference/seeds/{name}.png")))
+    reference(&in_tests(&format!("reference/seeds/{name}.png")))
 }
 
 #[test]
@@ -242,7 +244,7 @@ fn command_line_runs_a_course_pair_with_its_uniforms() {
     let (code, out, err) = run(&args);
     assert_eq!(code, 0, "{out}{err}");
     let image = image::open(&png).unwrap().to_rgb8();
-    let db = psnr(&image, &reference(&shared("reference/lab3_torus_x0_y0_t0.png"))).unwrap();
+    let db = psnr(&image, &reference(&in_tests("reference/lab3_torus_x0_y0_t0.png"))).unwrap();
     assert!(db >= 40.0, "{db:.1} dB");
 
     // --help lists the shaders' uniforms by name.

@@ -30,7 +30,7 @@ fn save(image: &RgbImage, name: &str) {
 /// The port's image of a reference state against the original's; returns the PSNR.
 fn check_reference(entry: &LabEntry, state_name: &str, state: &[(&str, &str)]) -> f64 {
     let name = format!("001_{}_{state_name}", entry.info.name);
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/reference/seeds/").to_owned() + &name + ".png";
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/reference/seeds/").to_owned() + &name + ".png";
     let expected = image::open(&path)
         .unwrap_or_else(|e| {
             panic!("reference {path} missing or unreadable ({e}); references come from the original and are never written by tests")

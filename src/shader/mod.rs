@@ -66,6 +66,12 @@ impl ShaderSource {
     }
 
     /// `shaders_glsl/` of the source tree, when running from a checkout (for live reload).
+    ///
+    /// The path is fixed when the library is compiled, on purpose: an example run from a checkout
+    /// reloads that checkout's files. After the checkout is moved or renamed, the next build
+    /// re-runs `build.rs`, whose embedded list then names the new paths, so the library is
+    /// recompiled and this names the new folder; a binary left from before the move finds no
+    /// folder here and runs on its embedded shaders (no live reload) instead of failing.
     pub fn source_tree() -> Option<Self> {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl");
         dir.is_dir().then_some(ShaderSource::Dir(dir))
@@ -684,6 +690,53 @@ impl CompiledShader {
 mod loader_tests {
     use super::*;
     use std::fs;
+
+    /// Issue 23: a moved checkout once embedded no file at all. Every file of the checkout's
+    /// `shaders_glsl/` is embedded with its current text, and every shader name quoted in
+    /// `src/labs/` is among them.
+    #[test]
+    fn every_shader_file_and_every_name_the_labs_use_is_embedded() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut on_disk: Vec<String> = fs::read_dir(root.join("shaders_glsl"))
+            .expect("shaders_glsl/")
+            .map(|e| e.expect("entry").file_name().into_string().expect("UTF-8 name"))
+            .collect();
+        on_disk.sort();
+        let embedded: Vec<&str> = embedded_names().collect();
+        assert_eq!(embedded, on_disk, "the embedded list is the folder's files");
+        for name in &on_disk {
+            let text = fs::read_to_string(root.join("shaders_glsl").join(name)).expect("shader text");
+            assert_eq!(embedded_source(name), Some(text.as_str()), "{name}: embedded text is stale");
+        }
+        let mut used = Vec::new();
+        let mut stack = vec![root.join("src/labs")];
+        while let Some(dir) = stack.pop() {
+            for entry in fs::read_dir(&dir).expect("src/labs") {
+                let path = entry.expect("entry").path();
+                if path.is_dir() {
+                    stack.push(path);
+                    continue;
+                }
+                let text = fs::read_to_string(&path).expect("lab source");
+                // Quoted plain names only (`"toon.vert"`): `legacy/default.vert` is a user file.
+                for suffix in [".vert\"", ".frag\"", ".glsl\""] {
+                    for (end, _) in text.match_indices(suffix) {
+                        let head = &text[..end];
+                        let start = head
+                            .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.'))
+                            .unwrap_or(0);
+                        if head[start..].starts_with('"') && end > start + 1 {
+                            used.push(format!("{}{}", &head[start + 1..], &suffix[..5]));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(used.len() >= 40, "the scan finds the labs' shader names ({} found)", used.len());
+        for name in &used {
+            assert!(embedded_source(name).is_some(), "{name} is named by a lab but not embedded");
+        }
+    }
 
     /// A copy of the built-in shaders in a fresh directory.
     fn shader_dir(name: &str) -> crate::fsutil::ScratchDir {

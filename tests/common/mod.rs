@@ -266,11 +266,11 @@ pub fn render_state(entry: &LabEntry, state: &[(&str, &str)]) -> RgbImage {
     shot(lab.as_mut())
 }
 
-/// An image of the original programs of seeds 001–004 (`../shared/reference/seeds/NAME`); a
+/// An image of the original programs of seeds 001–004 (`tests/reference/seeds/NAME`, copied from `../shared/reference/seeds`); a
 /// missing one fails the test (they come from the reference renderer, never from the tests).
 pub fn seed_reference(name: &str) -> RgbImage {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference/seeds")
+        .join("tests/reference/seeds")
         .join(name);
     image::open(&path)
         .unwrap_or_else(|e| {
