@@ -210,24 +210,128 @@ pub fn mip_chain(level0: &Image) -> Vec<Image> {
     chain
 }
 
+/// The largest picture file read (64 MiB); a full 8192×8192 RGBA PNG without any compression
+/// is 256 MiB, but real pictures of that size compress far below this.
+pub const MAX_IMAGE_FILE_BYTES: u64 = 64 << 20;
+
+/// The widest and tallest picture taken (16384 texels a side): wgpu's default
+/// `max_texture_dimension_2d`, which every device offers. A device with a smaller limit is
+/// checked when the texture is made ([`crate::render::check_texture_size`]).
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The most texels a picture may have (64 Mi, e.g. 8192×8192: 256 MiB as RGBA8, and about a
+/// third more with its mipmaps), so that a small file claiming a huge size in its header (a
+/// decompression bomb) is refused before anything is decoded or allocated.
+pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
+
+/// The most memory the decoder may allocate for one picture (its own buffers; the RGBA8 copy
+/// is bounded by [`MAX_IMAGE_PIXELS`]).
+const MAX_DECODE_ALLOC: u64 = 512 << 20;
+
 /// Reads a PNG or BMP file (format guessed from its content) as a one-layer RGBA8 [`Image`].
+///
+/// The file must be a regular file of at most [`MAX_IMAGE_FILE_BYTES`]
+/// ([`crate::fsutil::read_user_file`]); its size is read from its header and checked against
+/// [`MAX_IMAGE_SIDE`] and [`MAX_IMAGE_PIXELS`] before anything is decoded.
 ///
 /// Rows come in the decoder's order, the picture's top row first (a BMP's bottom-up storage is
 /// undone by the decoder); a port that wants GL's "first row uploaded = t ≈ 0" for a picture
-/// file decides itself whether to flip. Errors name the file: [`Error::Io`] if it cannot be
-/// opened or read, [`Error::Image`] if it is not a decodable PNG/BMP.
+/// file decides itself whether to flip. Errors name the file and say in plain words what is
+/// wrong ([`Error::Io`]): missing, unreadable, too large a file, not a PNG or BMP, too many
+/// pixels, damaged or cut short.
 pub fn load_image(path: &Path) -> Result<Image> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = crate::fsutil::read_user_file(path, MAX_IMAGE_FILE_BYTES, "pictures")?;
     decode_image(path, &bytes)
+}
+
+fn bad_picture(path: &Path, message: String) -> Error {
+    Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, message),
+    }
+}
+
+/// The size a PNG's or BMP's header claims, read without a decoder: (width, height), or `None`
+/// if the header is too short to say. A BMP's negative height (rows stored top down) counts
+/// as its absolute value; a negative width stays negative (the decoder refuses it).
+fn header_size(format: image::ImageFormat, bytes: &[u8]) -> Option<(i64, i64)> {
+    let be = |at: usize| Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    let le32 = |at: usize| Some(i32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    let le16 = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?));
+    match format {
+        // Signature (8), IHDR length (4) and type (4), then width and height.
+        image::ImageFormat::Png if bytes.get(12..16) == Some(b"IHDR") => {
+            Some((i64::from(be(16)?), i64::from(be(20)?)))
+        }
+        // File header (14), then the info header: its size, then width and height, 16-bit in
+        // the old 12-byte BITMAPCOREHEADER, 32-bit signed in the others.
+        image::ImageFormat::Bmp => match le32(14)? {
+            12 => Some((i64::from(le16(18)?), i64::from(le16(20)?))),
+            _ => Some((i64::from(le32(18)?), i64::from(le32(22)?).abs())),
+        },
+        _ => None,
+    }
+}
+
+/// Refuses a picture whose size is empty or beyond [`MAX_IMAGE_SIDE`] or [`MAX_IMAGE_PIXELS`].
+fn check_size(path: &Path, name: &str, (width, height): (i64, i64)) -> Result<()> {
+    if width <= 0 || height <= 0 {
+        return Err(bad_picture(
+            path,
+            format!("the {name} header says {width}x{height} pixels; a picture needs at least 1x1"),
+        ));
+    }
+    let side = i64::from(MAX_IMAGE_SIDE);
+    if width > side || height > side {
+        return Err(bad_picture(
+            path,
+            format!(
+                "the picture is {width}x{height} pixels; textures are limited to {MAX_IMAGE_SIDE} pixels a side"
+            ),
+        ));
+    }
+    let pixels = (width * height) as u64;
+    if pixels > MAX_IMAGE_PIXELS {
+        return Err(bad_picture(
+            path,
+            format!(
+                "the picture is {width}x{height} pixels ({pixels} pixels); pictures are limited to {MAX_IMAGE_PIXELS} pixels ({} as RGBA, e.g. 8192x8192)",
+                crate::fsutil::human_bytes(MAX_IMAGE_PIXELS * 4)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// What went wrong while decoding, in plain words (`size` once the header has been read).
+fn decode_error(path: &Path, name: &str, size: Option<(u32, u32)>, e: image::ImageError) -> Error {
+    use image::error::{ImageError as E, LimitErrorKind};
+    let of = size.map(|(w, h)| format!(" ({w}x{h} pixels)")).unwrap_or_default();
+    let message = match e {
+        E::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
+            format!("the {name} file{of} ends early: it is cut short or damaged")
+        }
+        E::IoError(io) => format!("reading the {name} file{of}: {io}"),
+        E::Limits(limit) => match limit.kind() {
+            LimitErrorKind::InsufficientMemory => format!(
+                "decoding the {name} file{of} would need more than {} of memory",
+                crate::fsutil::human_bytes(MAX_DECODE_ALLOC)
+            ),
+            _ => format!(
+                "the {name} file{of} is too large: textures are limited to {MAX_IMAGE_SIDE} pixels a side and {MAX_IMAGE_PIXELS} pixels"
+            ),
+        },
+        E::Unsupported(u) => format!("a {name} file{of} of a kind that cannot be read: {u}"),
+        e => format!("not a valid {name} file{of}: {e}"),
+    };
+    bad_picture(path, message)
 }
 
 /// Decodes the bytes of a PNG or BMP file as [`load_image`] does (a picture compiled into the
 /// program, e.g. `assets/uvgrid.bmp`); `path` names it in errors and, when the content says
 /// nothing, its extension gives the format.
 pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
+    use image::ImageDecoder;
     let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|source| Error::Io {
@@ -239,10 +343,31 @@ pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
             reader.set_format(format);
         }
     }
-    let decoded = reader.decode().map_err(|source| Error::Image {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let format = match reader.format() {
+        Some(f @ (image::ImageFormat::Png | image::ImageFormat::Bmp)) => f,
+        _ => {
+            return Err(bad_picture(
+                path,
+                "not a PNG or BMP picture (its first bytes are neither's signature)".into(),
+            ))
+        }
+    };
+    let name = if format == image::ImageFormat::Png { "PNG" } else { "BMP" };
+    // Refuse from the header, before a decoder allocates anything for the picture.
+    if let Some(size) = header_size(format, bytes) {
+        check_size(path, name, size)?;
+    }
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(MAX_DECODE_ALLOC);
+    reader.limits(limits);
+    let decoder = reader.into_decoder().map_err(|e| decode_error(path, name, None, e))?;
+    let (width, height) = decoder.dimensions();
+    // The decoder's own reading of the header decides (also where the quick look above could not).
+    check_size(path, name, (i64::from(width), i64::from(height)))?;
+    let decoded =
+        image::DynamicImage::from_decoder(decoder).map_err(|e| decode_error(path, name, Some((width, height)), e))?;
     let rgba = decoded.to_rgba8();
     Ok(Image {
         width: rgba.width(),
@@ -466,7 +591,8 @@ mod tests {
         std::fs::write(&junk, b"not an image at all").unwrap();
         let err = load_image(&junk).unwrap_err();
         assert!(
-            matches!(err, Error::Image { .. }) && err.to_string().contains("junk.png"),
+            matches!(err, Error::Io { .. })
+                && err.to_string().contains("junk.png: not a PNG or BMP picture"),
             "{err}"
         );
         std::fs::remove_dir_all(&dir).ok();
