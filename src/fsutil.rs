@@ -540,6 +540,160 @@ mod tests {
     }
 
     #[test]
+    fn temp_names_are_short_so_any_target_name_works() {
+        let dir = test_dir("long");
+        // 255 bytes, the longest name ext4 and most file systems take.
+        let name = format!("{}.png", "a".repeat(251));
+        write_atomic(&dir.join(&name), |w| w.write_all(b"1")).unwrap();
+        assert_eq!(entries(&dir), [name.clone()]);
+        check_writable(&dir.join(&name)).unwrap();
+        assert_eq!(entries(&dir), [name], "the writability probe left a file");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_dangling_link_is_written_through_to_its_target() {
+        let dir = test_dir("dangling");
+        fs::create_dir(dir.join("real")).unwrap();
+        // Relative to the link's directory, and through a chain of two links.
+        std::os::unix::fs::symlink("real/shot.png", dir.join("inner.png")).unwrap();
+        std::os::unix::fs::symlink("inner.png", dir.join("outer.png")).unwrap();
+        write_atomic(&dir.join("outer.png"), |w| w.write_all(b"picture")).unwrap();
+        for link in ["inner.png", "outer.png"] {
+            assert!(
+                fs::symlink_metadata(dir.join(link)).unwrap().file_type().is_symlink(),
+                "{link} was replaced by a file"
+            );
+        }
+        assert_eq!(fs::read(dir.join("real/shot.png")).unwrap(), b"picture");
+        assert_eq!(entries(&dir.join("real")), ["shot.png"]);
+        // A link loop is an error, not a hang, and writes nothing.
+        std::os::unix::fs::symlink("loop_b", dir.join("loop_a")).unwrap();
+        std::os::unix::fs::symlink("loop_a", dir.join("loop_b")).unwrap();
+        let err = write_atomic(&dir.join("loop_a"), |w| w.write_all(b"x")).unwrap_err();
+        assert!(err.to_string().contains("symbolic links"), "{err}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn hard_links_are_broken_by_design_and_the_mode_and_owner_kept() {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        let dir = test_dir("hard");
+        let a = dir.join("a.png");
+        fs::write(&a, b"old").unwrap();
+        fs::set_permissions(&a, fs::Permissions::from_mode(0o604)).unwrap();
+        fs::hard_link(&a, dir.join("b.png")).unwrap();
+        let before = fs::metadata(&a).unwrap();
+        write_atomic(&a, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(fs::read(&a).unwrap(), b"new");
+        // The other name keeps the old file: atomic replacement makes a new one.
+        assert_eq!(fs::read(dir.join("b.png")).unwrap(), b"old");
+        let after = fs::metadata(&a).unwrap();
+        assert_eq!(after.permissions().mode() & 0o777, 0o604);
+        assert_eq!((after.uid(), after.gid()), (before.uid(), before.gid()));
+    }
+
+    #[test]
+    fn user_files_must_be_regular_and_within_the_cap() {
+        let dir = test_dir("user_files");
+        let ok = dir.join("ok.txt");
+        fs::write(&ok, b"12345").unwrap();
+        assert_eq!(read_user_file(&ok, 5, "notes").unwrap(), b"12345");
+        let err = read_user_file(&ok, 4, "notes").unwrap_err().to_string();
+        assert!(
+            err.ends_with("ok.txt: 5 bytes (5 bytes); notes are limited to 4 bytes (4 bytes)"),
+            "{err}"
+        );
+        // A sparse file claiming 1 GiB is refused from its size, without reading it.
+        let big = dir.join("big.frag");
+        File::create(&big).unwrap().set_len(1 << 30).unwrap();
+        let err = read_user_file(&big, 1 << 20, "shader files").unwrap_err().to_string();
+        assert!(
+            err.ends_with("big.frag: 1073741824 bytes (1 GiB); shader files are limited to 1048576 bytes (1 MiB)"),
+            "{err}"
+        );
+        let err = read_user_file(&dir, 10, "pictures").unwrap_err().to_string();
+        assert!(err.contains("a directory; pictures must be regular files"), "{err}");
+        let err = read_user_file(&dir.join("missing"), 10, "pictures").unwrap_err();
+        assert!(
+            matches!(&err, Error::Io { source, .. } if source.kind() == io::ErrorKind::NotFound),
+            "{err:?}"
+        );
+        #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+        {
+            // A FIFO: opening it would block; it is refused before that.
+            let fifo = dir.join("fifo");
+            let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+            // SAFETY: a valid C string.
+            assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+            let err = read_user_file(&fifo, 10, "OBJ models").unwrap_err().to_string();
+            assert!(err.contains("not a regular file (a device, pipe or socket); OBJ models must be regular files"), "{err}");
+        }
+    }
+
+    #[test]
+    fn human_sizes() {
+        assert_eq!(human_bytes(5), "5 bytes");
+        assert_eq!(human_bytes(1 << 20), "1 MiB");
+        assert_eq!(human_bytes(64 << 20), "64 MiB");
+        assert_eq!(human_bytes(3 << 29), "1.5 GiB");
+    }
+
+    /// The directory `signal_child` writes into, set by the test that runs it.
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    const SIGNAL_CHILD_DIR: &str = "SHADERLAB_TEST_SIGNAL_CHILD_DIR";
+
+    /// Not a test of its own: the child process of
+    /// `a_signal_while_writing_removes_the_temp_file`, stuck half-way through a write.
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    #[test]
+    #[ignore = "the child of a_signal_while_writing_removes_the_temp_file"]
+    fn signal_child() {
+        let Some(dir) = std::env::var_os(SIGNAL_CHILD_DIR) else {
+            return;
+        };
+        let _ = write_atomic(&Path::new(&dir).join("shot.png"), |w| {
+            w.write_all(&[7; 100_000])?;
+            w.flush()?;
+            loop {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+        });
+    }
+
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    #[test]
+    fn a_signal_while_writing_removes_the_temp_file() {
+        use std::os::unix::process::ExitStatusExt;
+        use std::process::{Command, Stdio};
+        for signal in [libc::SIGTERM, libc::SIGINT] {
+            let dir = test_dir(&format!("signal{signal}"));
+            let mut child = Command::new(std::env::current_exe().unwrap())
+                .args(["--exact", "fsutil::tests::signal_child", "--ignored", "--test-threads=1"])
+                .env(SIGNAL_CHILD_DIR, &*dir)
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .unwrap();
+            let start = std::time::Instant::now();
+            while entries(&dir).is_empty() {
+                assert!(
+                    start.elapsed().as_secs() < 60,
+                    "the child never started writing"
+                );
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            // Let it get into its writer (the temp file exists from before that).
+            std::thread::sleep(std::time::Duration::from_millis(100));
+            // SAFETY: a plain kill of our own child.
+            assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+            let status = child.wait().unwrap();
+            assert_eq!(status.signal(), Some(signal), "{status:?}");
+            assert!(entries(&dir).is_empty(), "left behind: {:?}", entries(&dir));
+        }
+    }
+
+    #[test]
     fn same_file_sees_through_other_paths() {
         let dir = test_dir("same");
         let a = dir.join("a.frag");
