@@ -322,6 +322,11 @@ fn decode_error(path: &Path, name: &str, size: Option<(u32, u32)>, e: image::Ima
             ),
         },
         E::Unsupported(u) => format!("a {name} file{of} of a kind that cannot be read: {u}"),
+        E::Decoding(d) => {
+            // The decoder's own words, without its "Format error decoding Png:" preamble.
+            let why = std::error::Error::source(&d).map_or_else(|| d.to_string(), |s| s.to_string());
+            format!("not a valid {name} file{of}: {why}")
+        }
         e => format!("not a valid {name} file{of}: {e}"),
     };
     bad_picture(path, message)
@@ -338,31 +343,40 @@ pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
             path: path.to_path_buf(),
             source,
         })?;
-    if reader.format().is_none() {
+    let from_content = reader.format().is_some();
+    if !from_content {
         if let Ok(format) = image::ImageFormat::from_path(path) {
             reader.set_format(format);
         }
     }
+    let not_a_picture = || {
+        bad_picture(
+            path,
+            "not a PNG or BMP picture (its first bytes are neither's signature)".into(),
+        )
+    };
     let format = match reader.format() {
         Some(f @ (image::ImageFormat::Png | image::ImageFormat::Bmp)) => f,
-        _ => {
-            return Err(bad_picture(
-                path,
-                "not a PNG or BMP picture (its first bytes are neither's signature)".into(),
-            ))
-        }
+        _ => return Err(not_a_picture()),
     };
     let name = if format == image::ImageFormat::Png { "PNG" } else { "BMP" };
     // Refuse from the header, before a decoder allocates anything for the picture.
-    if let Some(size) = header_size(format, bytes) {
+    let header = header_size(format, bytes);
+    if let Some(size) = header {
         check_size(path, name, size)?;
     }
+    // Checked above: positive and at most MAX_IMAGE_SIDE.
+    let header = header.map(|(w, h)| (w as u32, h as u32));
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_IMAGE_SIDE);
     limits.max_image_height = Some(MAX_IMAGE_SIDE);
     limits.max_alloc = Some(MAX_DECODE_ALLOC);
     reader.limits(limits);
-    let decoder = reader.into_decoder().map_err(|e| decode_error(path, name, None, e))?;
+    let decoder = reader.into_decoder().map_err(|e| match e {
+        // Only the name said PNG or BMP, and the decoder does not recognise the content either.
+        image::ImageError::Decoding(_) if !from_content => not_a_picture(),
+        e => decode_error(path, name, header, e),
+    })?;
     let (width, height) = decoder.dimensions();
     // The decoder's own reading of the header decides (also where the quick look above could not).
     check_size(path, name, (i64::from(width), i64::from(height)))?;
@@ -566,6 +580,117 @@ mod tests {
             rgba: vec![0; 3],
         };
         assert_eq!(mip_chain(&broken), vec![broken.clone()]);
+    }
+
+    /// A PNG of `width`x`height` (grey, colour type 0; RGB, 2) whose IHDR says so but which has
+    /// no pixel data: what a decompression bomb looks like before its data.
+    fn png_header(width: u32, height: u32, colour: u8) -> Vec<u8> {
+        fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+            let mut c = (data.len() as u32).to_be_bytes().to_vec();
+            c.extend_from_slice(kind);
+            c.extend_from_slice(data);
+            c.extend_from_slice(&crc32(&c[4..]).to_be_bytes());
+            c
+        }
+        // PNG's CRC-32 (ISO 3309), bit by bit.
+        fn crc32(bytes: &[u8]) -> u32 {
+            let mut crc = !0u32;
+            for &b in bytes {
+                crc ^= u32::from(b);
+                for _ in 0..8 {
+                    crc = if crc & 1 == 1 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+                }
+            }
+            !crc
+        }
+        let mut ihdr = width.to_be_bytes().to_vec();
+        ihdr.extend_from_slice(&height.to_be_bytes());
+        ihdr.extend_from_slice(&[8, colour, 0, 0, 0]);
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        png.extend(chunk(b"IHDR", &ihdr));
+        png.extend(chunk(b"IEND", &[]));
+        png
+    }
+
+    /// A 24-bit BMP of `width`x`height` with `pixels` as its data.
+    fn bmp(width: i32, height: i32, pixels: &[u8]) -> Vec<u8> {
+        let mut b = b"BM".to_vec();
+        b.extend_from_slice(&(54 + pixels.len() as u32).to_le_bytes());
+        b.extend_from_slice(&[0; 4]);
+        b.extend_from_slice(&54u32.to_le_bytes());
+        b.extend_from_slice(&40u32.to_le_bytes());
+        b.extend_from_slice(&width.to_le_bytes());
+        b.extend_from_slice(&height.to_le_bytes());
+        b.extend_from_slice(&1u16.to_le_bytes());
+        b.extend_from_slice(&24u16.to_le_bytes());
+        b.extend_from_slice(&[0; 24]);
+        b.extend_from_slice(pixels);
+        b
+    }
+
+    fn decode_err(name: &str, bytes: &[u8]) -> String {
+        decode_image(Path::new(name), bytes).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn picture_sizes_are_refused_from_the_header() {
+        // 22600² grey: 510 MB decoded, 2 GB as RGBA; refused before any decoding.
+        assert_eq!(
+            decode_err("bomb.png", &png_header(22600, 22600, 0)),
+            "bomb.png: the picture is 22600x22600 pixels; textures are limited to 16384 pixels a side"
+        );
+        assert_eq!(
+            decode_err("wide.png", &png_header(16385, 1, 0)),
+            "wide.png: the picture is 16385x1 pixels; textures are limited to 16384 pixels a side"
+        );
+        // 13000² RGB: within the side limit, but 676 MB as RGBA.
+        assert_eq!(
+            decode_err("big.png", &png_header(13000, 13000, 2)),
+            "big.png: the picture is 13000x13000 pixels (169000000 pixels); pictures are limited to \
+             67108864 pixels (256 MiB as RGBA, e.g. 8192x8192)"
+        );
+        assert_eq!(
+            decode_err("zero.bmp", &bmp(0, 2, &[])),
+            "zero.bmp: the BMP header says 0x2 pixels; a picture needs at least 1x1"
+        );
+        assert_eq!(
+            decode_err("huge.bmp", &bmp(20000, -20000, &[])),
+            "huge.bmp: the picture is 20000x20000 pixels; textures are limited to 16384 pixels a side"
+        );
+    }
+
+    #[test]
+    fn damaged_pictures_are_described_in_plain_words() {
+        // 4x2, 24-bit: rows of 12 bytes; cut after 6 of its 24 bytes of pixels.
+        let whole = bmp(4, 2, &[64; 24]);
+        let image = decode_image(Path::new("ok.bmp"), &whole).unwrap();
+        assert_eq!((image.width, image.height), (4, 2));
+        assert_eq!(
+            decode_err("cut.bmp", &whole[..60]),
+            "cut.bmp: the BMP file (4x2 pixels) ends early: it is cut short or damaged"
+        );
+        assert_eq!(
+            decode_err("junk.png", b"not a picture"),
+            "junk.png: not a PNG or BMP picture (its first bytes are neither's signature)"
+        );
+        // A header and no pixel data at all.
+        let err = decode_err("empty.png", &png_header(4, 4, 2));
+        assert!(err.starts_with("empty.png: not a valid PNG file (4x4 pixels): "), "{err}");
+    }
+
+    #[test]
+    fn picture_files_have_a_size_cap() {
+        let dir = crate::fsutil::ScratchDir::new("images-cap");
+        let big = dir.join("big.png");
+        std::fs::File::create(&big)
+            .unwrap()
+            .set_len(MAX_IMAGE_FILE_BYTES + 1)
+            .unwrap();
+        let err = load_image(&big).unwrap_err().to_string();
+        assert!(
+            err.ends_with("big.png: 67108865 bytes (64.0 MiB); pictures are limited to 67108864 bytes (64 MiB)"),
+            "{err}"
+        );
     }
 
     #[test]
