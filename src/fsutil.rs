@@ -545,7 +545,7 @@ mod tests {
         // 255 bytes, the longest name ext4 and most file systems take.
         let name = format!("{}.png", "a".repeat(251));
         write_atomic(&dir.join(&name), |w| w.write_all(b"1")).unwrap();
-        assert_eq!(entries(&dir), [name.clone()]);
+        assert_eq!(entries(&dir), std::slice::from_ref(&name));
         check_writable(&dir.join(&name)).unwrap();
         assert_eq!(entries(&dir), [name], "the writability probe left a file");
     }
@@ -627,7 +627,10 @@ mod tests {
             // SAFETY: a valid C string.
             assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
             let err = read_user_file(&fifo, 10, "OBJ models").unwrap_err().to_string();
-            assert!(err.contains("not a regular file (a device, pipe or socket); OBJ models must be regular files"), "{err}");
+            assert!(
+                err.contains("not a regular file (a device, pipe or socket); OBJ models must be regular files"),
+                "{err}"
+            );
         }
     }
 
@@ -669,7 +672,12 @@ mod tests {
         for signal in [libc::SIGTERM, libc::SIGINT] {
             let dir = test_dir(&format!("signal{signal}"));
             let mut child = Command::new(std::env::current_exe().unwrap())
-                .args(["--exact", "fsutil::tests::signal_child", "--ignored", "--test-threads=1"])
+                .args([
+                    "--exact",
+                    "fsutil::tests::signal_child",
+                    "--ignored",
+                    "--test-threads=1",
+                ])
                 .env(SIGNAL_CHILD_DIR, &*dir)
                 .stdout(Stdio::null())
                 .stderr(Stdio::null())
@@ -677,10 +685,7 @@ mod tests {
                 .unwrap();
             let start = std::time::Instant::now();
             while entries(&dir).is_empty() {
-                assert!(
-                    start.elapsed().as_secs() < 60,
-                    "the child never started writing"
-                );
+                assert!(start.elapsed().as_secs() < 60, "the child never started writing");
                 std::thread::sleep(std::time::Duration::from_millis(10));
             }
             // Let it get into its writer (the temp file exists from before that).

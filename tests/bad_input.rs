@@ -478,7 +478,9 @@ fn glsl2wgsl_refuses_to_overwrite_its_input() {
         .unwrap()
         .contains("fn main"));
     assert!(
-        !names_in(&dir).iter().any(|n| n.starts_with(".sl-") || n.contains(".tmp")),
+        !names_in(&dir)
+            .iter()
+            .any(|n| n.starts_with(".sl-") || n.contains(".tmp")),
         "{:?}",
         names_in(&dir)
     );
@@ -613,7 +615,11 @@ fn png_header(width: u32, height: u32, colour: u8) -> Vec<u8> {
         for &b in bytes {
             crc ^= u32::from(b);
             for _ in 0..8 {
-                crc = if crc & 1 == 1 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
             }
         }
         !crc
@@ -670,7 +676,11 @@ fn expect_failure_of(dir: &Path, example_name: &str, args: &[&str], code: i32, p
     let run = run_in(dir, example_name, args, &[]);
     assert_eq!(run.code, Some(code), "{args:?}: exit status\n{}", run.stderr);
     for phrase in phrases {
-        assert!(run.stderr.contains(phrase), "{args:?}: stderr lacks `{phrase}`:\n{}", run.stderr);
+        assert!(
+            run.stderr.contains(phrase),
+            "{args:?}: stderr lacks `{phrase}`:\n{}",
+            run.stderr
+        );
     }
     assert!(
         run.stderr.len() < 1000 && run.stderr.lines().count() <= 3,
@@ -698,7 +708,16 @@ fn legacy_texture_wider_than_textures_go_is_an_error_not_a_panic() {
     let run = run_in(
         &dir,
         "legacy",
-        &["t.vert", "t.frag", "--texture", "tex=w.png", "--screenshot", "o.png", "--size", "8x8"],
+        &[
+            "t.vert",
+            "t.frag",
+            "--texture",
+            "tex=w.png",
+            "--screenshot",
+            "o.png",
+            "--size",
+            "8x8",
+        ],
         &[],
     );
     assert_eq!(run.code, Some(0), "{}", run.stderr);
@@ -761,7 +780,10 @@ fn user_files_must_be_regular_files_within_a_size_cap() {
     let dir = test_dir("user_file_rule");
     legacy_texture_shaders(&dir);
     // A FIFO stands for /dev/zero and friends: not a regular file (and opening it would block).
-    let status = Command::new("mkfifo").arg(dir.join("fifo")).status().expect("run mkfifo");
+    let status = Command::new("mkfifo")
+        .arg(dir.join("fifo"))
+        .status()
+        .expect("run mkfifo");
     assert!(status.success());
     for (example_name, args, what) in [
         ("legacy", &["fifo", "t.frag"][..], "shader files"),
@@ -774,7 +796,9 @@ fn user_files_must_be_regular_files_within_a_size_cap() {
             example_name,
             &args,
             1,
-            &[&format!("fifo: not a regular file (a device, pipe or socket); {what} must be regular files")],
+            &[&format!(
+                "fifo: not a regular file (a device, pipe or socket); {what} must be regular files"
+            )],
         );
     }
     // Sparse files of 1 GiB: refused from their size, nothing read, nothing echoed.
@@ -876,7 +900,8 @@ fn a_read_only_screenshot_folder_is_found_before_the_gpu_is_opened() {
     }
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     assert!(
-        run.stderr.starts_with("phong: error: ro/x.png: cannot create a file in ro: "),
+        run.stderr
+            .starts_with("phong: error: ro/x.png: cannot create a file in ro: "),
         "{}",
         run.stderr
     );

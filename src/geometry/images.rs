@@ -260,9 +260,7 @@ fn header_size(format: image::ImageFormat, bytes: &[u8]) -> Option<(i64, i64)> {
     let le16 = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?));
     match format {
         // Signature (8), IHDR length (4) and type (4), then width and height.
-        image::ImageFormat::Png if bytes.get(12..16) == Some(b"IHDR") => {
-            Some((i64::from(be(16)?), i64::from(be(20)?)))
-        }
+        image::ImageFormat::Png if bytes.get(12..16) == Some(b"IHDR") => Some((i64::from(be(16)?), i64::from(be(20)?))),
         // File header (14), then the info header: its size, then width and height, 16-bit in
         // the old 12-byte BITMAPCOREHEADER, 32-bit signed in the others.
         image::ImageFormat::Bmp => match le32(14)? {
@@ -285,9 +283,7 @@ fn check_size(path: &Path, name: &str, (width, height): (i64, i64)) -> Result<()
     if width > side || height > side {
         return Err(bad_picture(
             path,
-            format!(
-                "the picture is {width}x{height} pixels; textures are limited to {MAX_IMAGE_SIDE} pixels a side"
-            ),
+            format!("the picture is {width}x{height} pixels; textures are limited to {MAX_IMAGE_SIDE} pixels a side"),
         ));
     }
     let pixels = (width * height) as u64;
@@ -359,7 +355,11 @@ pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
         Some(f @ (image::ImageFormat::Png | image::ImageFormat::Bmp)) => f,
         _ => return Err(not_a_picture()),
     };
-    let name = if format == image::ImageFormat::Png { "PNG" } else { "BMP" };
+    let name = if format == image::ImageFormat::Png {
+        "PNG"
+    } else {
+        "BMP"
+    };
     // Refuse from the header, before a decoder allocates anything for the picture.
     let header = header_size(format, bytes);
     if let Some(size) = header {
@@ -598,7 +598,11 @@ mod tests {
             for &b in bytes {
                 crc ^= u32::from(b);
                 for _ in 0..8 {
-                    crc = if crc & 1 == 1 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+                    crc = if crc & 1 == 1 {
+                        (crc >> 1) ^ 0xEDB8_8320
+                    } else {
+                        crc >> 1
+                    };
                 }
             }
             !crc
@@ -675,7 +679,10 @@ mod tests {
         );
         // A header and no pixel data at all.
         let err = decode_err("empty.png", &png_header(4, 4, 2));
-        assert!(err.starts_with("empty.png: not a valid PNG file (4x4 pixels): "), "{err}");
+        assert!(
+            err.starts_with("empty.png: not a valid PNG file (4x4 pixels): "),
+            "{err}"
+        );
     }
 
     #[test]
@@ -716,8 +723,7 @@ mod tests {
         std::fs::write(&junk, b"not an image at all").unwrap();
         let err = load_image(&junk).unwrap_err();
         assert!(
-            matches!(err, Error::Io { .. })
-                && err.to_string().contains("junk.png: not a PNG or BMP picture"),
+            matches!(err, Error::Io { .. }) && err.to_string().contains("junk.png: not a PNG or BMP picture"),
             "{err}"
         );
         std::fs::remove_dir_all(&dir).ok();

@@ -186,7 +186,10 @@ pub struct FilesTaken {
 pub fn files_taken(name: &str) -> FilesTaken {
     FilesTaken {
         model: name.starts_with("suzanne_"),
-        texture: matches!(name, "suzanne_texture" | "suzanne_texture_color" | "texparams" | "legacy"),
+        texture: matches!(
+            name,
+            "suzanne_texture" | "suzanne_texture_color" | "texparams" | "legacy"
+        ),
         named_textures: name == "legacy",
     }
 }
@@ -234,4 +237,39 @@ fn shade_key(p: &mut Params, key: char) -> bool {
     };
     p.step_clamped("shade", channel, delta, 0.0, 1.0);
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_labs_taking_user_files_are_the_ones_built_on_them() {
+        let with = |which: fn(FilesTaken) -> bool| -> Vec<&str> {
+            ALL.iter()
+                .map(|e| e.info.name)
+                .filter(|n| which(files_taken(n)))
+                .collect()
+        };
+        // SuzanneStage (the model) is built by suzanne_plain, suzanne_textured and suzanne_lit.
+        assert_eq!(
+            with(|t| t.model),
+            [
+                "suzanne_normal_color",
+                "suzanne_normal_matrix",
+                "suzanne_smooth",
+                "suzanne_texture",
+                "suzanne_texture_color",
+                "suzanne_flat",
+                "suzanne_gouraud",
+                "suzanne_phong"
+            ]
+        );
+        // `cx.files.texture` is read by suzanne_textured, texparams and legacy.
+        assert_eq!(
+            with(|t| t.texture),
+            ["suzanne_texture", "suzanne_texture_color", "texparams", "legacy"]
+        );
+        assert_eq!(with(|t| t.named_textures), ["legacy"]);
+    }
 }
