@@ -86,44 +86,92 @@ pub fn check_png_path(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Where the bytes really go: through a symbolic link to its target, so that the link stays.
-fn resolve_target(path: &Path) -> PathBuf {
-    match fs::symlink_metadata(path) {
-        Ok(meta) if meta.file_type().is_symlink() => fs::canonicalize(path).unwrap_or_else(|_| path.to_owned()),
-        _ => path.to_owned(),
+/// Symbolic links followed before giving up (Linux's own limit).
+const MAX_LINK_HOPS: usize = 40;
+
+/// Where the bytes really go: through symbolic links (also one whose target does not exist
+/// yet) to the file they name, so that the links stay links.
+fn resolve_target(path: &Path) -> Result<PathBuf> {
+    let mut target = path.to_owned();
+    for _ in 0..MAX_LINK_HOPS {
+        match fs::symlink_metadata(&target) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = fs::read_link(&target).map_err(|source| Error::Io {
+                    path: target.clone(),
+                    source,
+                })?;
+                // A relative link is relative to the directory holding it; an absolute one
+                // replaces the path (`join` does both).
+                target = parent_dir(&target).join(link);
+            }
+            _ => return Ok(target),
+        }
     }
+    Err(io_error(
+        path,
+        io::ErrorKind::InvalidInput,
+        format!("more than {MAX_LINK_HOPS} symbolic links to follow; is there a loop?"),
+    ))
 }
 
-/// Creates a fresh `.NAME.tmp-PID-N` next to `target` (never an existing file).
+/// Creates a fresh `.sl-PID-N.tmp` next to `target` (never an existing file). The name is short
+/// and does not contain the target's, so that any name the file system takes as a target
+/// (up to 255 bytes) also works while it is being written.
 fn create_temp(target: &Path) -> Result<(PathBuf, File)> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let dir = parent_dir(target);
-    let name = target.file_name().unwrap_or_default().to_string_lossy();
     loop {
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let temp = dir.join(format!(".{name}.tmp-{}-{n}", std::process::id()));
+        let temp = dir.join(format!(".sl-{}-{n}.tmp", std::process::id()));
         match OpenOptions::new().write(true).create_new(true).open(&temp) {
             Ok(file) => return Ok((temp, file)),
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
             Err(source) => {
-                return Err(Error::Io {
-                    path: target.to_owned(),
-                    source,
-                })
+                return Err(io_error(
+                    target,
+                    source.kind(),
+                    format!("cannot create a file in {}: {source}", dir.display()),
+                ))
             }
         }
     }
 }
 
+/// Checks, before any work is done, that [`write_atomic`] will be able to write `path`:
+/// [`check_output_path`], then a temporary file is created next to the file the bytes will go
+/// to (through links) and removed again. A read-only or full directory is found here, not
+/// after a long render.
+pub fn check_writable(path: &Path) -> Result<()> {
+    check_output_path(path)?;
+    let target = resolve_target(path)?;
+    let (temp, file) = create_temp(&target)?;
+    drop(file);
+    let _ = fs::remove_file(&temp);
+    Ok(())
+}
+
 /// Writes `path` all at once: checks it with [`check_output_path`], lets `write` fill a
-/// temporary file in the same directory, flushes it to disk and renames it over `path`.
-/// If anything fails, the temporary file is removed and an existing `path` is left as it was.
-/// A symbolic link is written through (its target is replaced), and an existing file keeps its
-/// permissions.
+/// temporary file (`.sl-PID-N.tmp`) in the same directory, flushes it to disk and renames it
+/// over `path`. If anything fails, the temporary file is removed and an existing `path` is
+/// left as it was; if the process is stopped by SIGINT, SIGTERM or SIGHUP meanwhile, a signal
+/// handler removes the temporary file before the process ends as the signal says.
+///
+/// What happens to links and file attributes:
+/// - A symbolic link is written through: the file it points to (through any chain of links,
+///   and also when it does not exist yet) is replaced, in that file's directory, and the link
+///   stays a link.
+/// - An existing file keeps its permission bits and, where the process may set them, its owner
+///   and group (as a non-root user a file owned by someone else becomes the writer's).
+/// - Hard links are broken, by the design of atomic replacement: the new contents are a new
+///   file renamed over this name; the other names of the old file keep the old contents.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<()> {
     check_output_path(path)?;
-    let target = resolve_target(path);
+    let target = resolve_target(path)?;
+    if target != path {
+        check_output_path(&target)?;
+    }
     let (temp, file) = create_temp(&target)?;
+    let registered = cleanup::register(&temp);
     let fail = |source: io::Error| {
         let _ = fs::remove_file(&temp);
         Error::Io {
@@ -136,15 +184,190 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Resul
     let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
     if let Ok(meta) = fs::metadata(&target) {
         file.set_permissions(meta.permissions()).map_err(fail)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::MetadataExt;
+            // Best effort: only root may give a file away; anyone may keep their own.
+            let _ = std::os::unix::fs::fchown(&file, Some(meta.uid()), Some(meta.gid()));
+        }
     }
     file.sync_all().map_err(fail)?;
     drop(file);
     fs::rename(&temp, &target).map_err(fail)?;
+    drop(registered);
     // Make the rename itself durable (best effort: not every platform can open a directory).
     if let Ok(dir) = File::open(parent_dir(&target)) {
         let _ = dir.sync_all();
     }
     Ok(())
+}
+
+/// Removing temporary files when the process is told to stop (SIGINT, SIGTERM, SIGHUP) while
+/// one is being written.
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+mod cleanup {
+    use std::ffi::{c_char, CString};
+    use std::os::unix::ffi::OsStrExt;
+    use std::path::Path;
+    use std::sync::atomic::{AtomicPtr, Ordering};
+    use std::sync::Once;
+
+    /// Temporary files being written at once (more are written, just not cleaned up on a
+    /// signal).
+    const SLOTS: usize = 32;
+
+    /// The paths, as C strings, that the handler unlinks. A path is never freed once it has
+    /// been published here: the handler may run on another thread at any moment and read it, so
+    /// freeing it would race; a few dozen bytes per file written is the price.
+    static TEMPS: [AtomicPtr<c_char>; SLOTS] = [const { AtomicPtr::new(std::ptr::null_mut()) }; SLOTS];
+    static INSTALL: Once = Once::new();
+    const SIGNALS: [libc::c_int; 3] = [libc::SIGINT, libc::SIGTERM, libc::SIGHUP];
+
+    /// A temporary file known to the handler until this is dropped.
+    pub(super) struct Registered(Option<usize>);
+
+    pub(super) fn register(path: &Path) -> Registered {
+        INSTALL.call_once(install);
+        let Ok(c) = CString::new(path.as_os_str().as_bytes()) else {
+            return Registered(None);
+        };
+        let ptr = c.into_raw();
+        for (i, slot) in TEMPS.iter().enumerate() {
+            if slot
+                .compare_exchange(std::ptr::null_mut(), ptr, Ordering::SeqCst, Ordering::SeqCst)
+                .is_ok()
+            {
+                return Registered(Some(i));
+            }
+        }
+        // SAFETY: `ptr` came from `into_raw` above and was never published.
+        drop(unsafe { CString::from_raw(ptr) });
+        Registered(None)
+    }
+
+    impl Drop for Registered {
+        fn drop(&mut self) {
+            if let Some(i) = self.0 {
+                // Leaked on purpose, see TEMPS.
+                TEMPS[i].store(std::ptr::null_mut(), Ordering::SeqCst);
+            }
+        }
+    }
+
+    extern "C" fn on_signal(signal: libc::c_int) {
+        // Only async-signal-safe calls here: atomic loads, unlink, signal, raise.
+        for slot in &TEMPS {
+            let path = slot.load(Ordering::SeqCst);
+            if !path.is_null() {
+                // SAFETY: a published path is a valid C string that is never freed.
+                unsafe { libc::unlink(path) };
+            }
+        }
+        // End the way the signal asks (status, core), as if no handler had been there.
+        // SAFETY: plain libc calls with valid arguments.
+        unsafe {
+            libc::signal(signal, libc::SIG_DFL);
+            libc::raise(signal);
+        }
+    }
+
+    /// Installs the handler for each signal that has its default action (one ignored, as under
+    /// `nohup`, or handled by someone else is left alone).
+    fn install() {
+        for signal in SIGNALS {
+            // SAFETY: sigaction with a zeroed struct to read, then a filled one to set.
+            unsafe {
+                let mut old: libc::sigaction = std::mem::zeroed();
+                if libc::sigaction(signal, std::ptr::null(), &mut old) != 0 || old.sa_sigaction != libc::SIG_DFL {
+                    continue;
+                }
+                let mut new: libc::sigaction = std::mem::zeroed();
+                new.sa_sigaction = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
+                libc::sigemptyset(&mut new.sa_mask);
+                libc::sigaction(signal, &new, std::ptr::null_mut());
+            }
+        }
+    }
+}
+
+/// Elsewhere: no signal handler (a stopped process may leave its temporary file).
+#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
+mod cleanup {
+    pub(super) struct Registered;
+    pub(super) fn register(_: &std::path::Path) -> Registered {
+        Registered
+    }
+}
+
+/// A human size: `1 MiB`, `64 MiB`, `1.5 GiB`, `300 bytes`.
+pub fn human_bytes(n: u64) -> String {
+    const UNITS: [&str; 4] = ["KiB", "MiB", "GiB", "TiB"];
+    if n < 1024 {
+        return format!("{n} bytes");
+    }
+    let mut value = n as f64;
+    let mut unit = "bytes";
+    for u in UNITS {
+        if value < 1024.0 {
+            break;
+        }
+        value /= 1024.0;
+        unit = u;
+    }
+    if value.fract() == 0.0 {
+        format!("{value:.0} {unit}")
+    } else {
+        format!("{value:.1} {unit}")
+    }
+}
+
+/// Reads a file the user named (a shader, a model, a picture): it must be a regular file (not a
+/// directory, device, pipe or socket: checked before opening, as opening a FIFO blocks) of at
+/// most `cap` bytes, checked from its size before reading and again while reading (at most
+/// `cap + 1` bytes are read, in case the size lies, as for files in `/proc`). `what` names the
+/// kind in messages (`shader files`, `OBJ models`, `pictures`). A missing or unreadable file
+/// is [`Error::Io`] with the system's error kind (e.g. `NotFound`), anything else
+/// [`Error::Io`] with a message naming the size and the cap.
+pub fn read_user_file(path: &Path, cap: u64, what: &str) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let io = |source: io::Error| Error::Io {
+        path: path.to_owned(),
+        source,
+    };
+    let meta = fs::metadata(path).map_err(io)?;
+    if !meta.is_file() {
+        let kind = if meta.is_dir() {
+            "a directory"
+        } else {
+            "not a regular file (a device, pipe or socket)"
+        };
+        return Err(io_error(
+            path,
+            io::ErrorKind::InvalidInput,
+            format!("{kind}; {what} must be regular files"),
+        ));
+    }
+    let too_big = |size: u64, at_least: &str| {
+        io_error(
+            path,
+            io::ErrorKind::InvalidData,
+            format!(
+                "{at_least}{size} bytes ({}); {what} are limited to {cap} bytes ({})",
+                human_bytes(size),
+                human_bytes(cap)
+            ),
+        )
+    };
+    if meta.len() > cap {
+        return Err(too_big(meta.len(), ""));
+    }
+    let file = File::open(path).map_err(io)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(cap + 1).read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > cap {
+        return Err(too_big(bytes.len() as u64, "at least "));
+    }
+    Ok(bytes)
 }
 
 /// Whether `a` and `b` name the same existing file (through any path, link or hard link).
@@ -314,6 +537,165 @@ mod tests {
             .is_symlink());
         assert_eq!(fs::read(&real).unwrap(), b"b");
         assert_eq!(fs::metadata(&real).unwrap().permissions().mode() & 0o777, 0o640);
+    }
+
+    #[test]
+    fn temp_names_are_short_so_any_target_name_works() {
+        let dir = test_dir("long");
+        // 255 bytes, the longest name ext4 and most file systems take.
+        let name = format!("{}.png", "a".repeat(251));
+        write_atomic(&dir.join(&name), |w| w.write_all(b"1")).unwrap();
+        assert_eq!(entries(&dir), std::slice::from_ref(&name));
+        check_writable(&dir.join(&name)).unwrap();
+        assert_eq!(entries(&dir), [name], "the writability probe left a file");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_dangling_link_is_written_through_to_its_target() {
+        let dir = test_dir("dangling");
+        fs::create_dir(dir.join("real")).unwrap();
+        // Relative to the link's directory, and through a chain of two links.
+        std::os::unix::fs::symlink("real/shot.png", dir.join("inner.png")).unwrap();
+        std::os::unix::fs::symlink("inner.png", dir.join("outer.png")).unwrap();
+        write_atomic(&dir.join("outer.png"), |w| w.write_all(b"picture")).unwrap();
+        for link in ["inner.png", "outer.png"] {
+            assert!(
+                fs::symlink_metadata(dir.join(link)).unwrap().file_type().is_symlink(),
+                "{link} was replaced by a file"
+            );
+        }
+        assert_eq!(fs::read(dir.join("real/shot.png")).unwrap(), b"picture");
+        assert_eq!(entries(&dir.join("real")), ["shot.png"]);
+        // A link loop is an error, not a hang, and writes nothing.
+        std::os::unix::fs::symlink("loop_b", dir.join("loop_a")).unwrap();
+        std::os::unix::fs::symlink("loop_a", dir.join("loop_b")).unwrap();
+        let err = write_atomic(&dir.join("loop_a"), |w| w.write_all(b"x")).unwrap_err();
+        assert!(err.to_string().contains("symbolic links"), "{err}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn hard_links_are_broken_by_design_and_the_mode_and_owner_kept() {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        let dir = test_dir("hard");
+        let a = dir.join("a.png");
+        fs::write(&a, b"old").unwrap();
+        fs::set_permissions(&a, fs::Permissions::from_mode(0o604)).unwrap();
+        fs::hard_link(&a, dir.join("b.png")).unwrap();
+        let before = fs::metadata(&a).unwrap();
+        write_atomic(&a, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(fs::read(&a).unwrap(), b"new");
+        // The other name keeps the old file: atomic replacement makes a new one.
+        assert_eq!(fs::read(dir.join("b.png")).unwrap(), b"old");
+        let after = fs::metadata(&a).unwrap();
+        assert_eq!(after.permissions().mode() & 0o777, 0o604);
+        assert_eq!((after.uid(), after.gid()), (before.uid(), before.gid()));
+    }
+
+    #[test]
+    fn user_files_must_be_regular_and_within_the_cap() {
+        let dir = test_dir("user_files");
+        let ok = dir.join("ok.txt");
+        fs::write(&ok, b"12345").unwrap();
+        assert_eq!(read_user_file(&ok, 5, "notes").unwrap(), b"12345");
+        let err = read_user_file(&ok, 4, "notes").unwrap_err().to_string();
+        assert!(
+            err.ends_with("ok.txt: 5 bytes (5 bytes); notes are limited to 4 bytes (4 bytes)"),
+            "{err}"
+        );
+        // A sparse file claiming 1 GiB is refused from its size, without reading it.
+        let big = dir.join("big.frag");
+        File::create(&big).unwrap().set_len(1 << 30).unwrap();
+        let err = read_user_file(&big, 1 << 20, "shader files").unwrap_err().to_string();
+        assert!(
+            err.ends_with("big.frag: 1073741824 bytes (1 GiB); shader files are limited to 1048576 bytes (1 MiB)"),
+            "{err}"
+        );
+        let err = read_user_file(&dir, 10, "pictures").unwrap_err().to_string();
+        assert!(err.contains("a directory; pictures must be regular files"), "{err}");
+        let err = read_user_file(&dir.join("missing"), 10, "pictures").unwrap_err();
+        assert!(
+            matches!(&err, Error::Io { source, .. } if source.kind() == io::ErrorKind::NotFound),
+            "{err:?}"
+        );
+        #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+        {
+            // A FIFO: opening it would block; it is refused before that.
+            let fifo = dir.join("fifo");
+            let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+            // SAFETY: a valid C string.
+            assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+            let err = read_user_file(&fifo, 10, "OBJ models").unwrap_err().to_string();
+            assert!(
+                err.contains("not a regular file (a device, pipe or socket); OBJ models must be regular files"),
+                "{err}"
+            );
+        }
+    }
+
+    #[test]
+    fn human_sizes() {
+        assert_eq!(human_bytes(5), "5 bytes");
+        assert_eq!(human_bytes(1 << 20), "1 MiB");
+        assert_eq!(human_bytes(64 << 20), "64 MiB");
+        assert_eq!(human_bytes(3 << 29), "1.5 GiB");
+    }
+
+    /// The directory `signal_child` writes into, set by the test that runs it.
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    const SIGNAL_CHILD_DIR: &str = "SHADERLAB_TEST_SIGNAL_CHILD_DIR";
+
+    /// Not a test of its own: the child process of
+    /// `a_signal_while_writing_removes_the_temp_file`, stuck half-way through a write.
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    #[test]
+    #[ignore = "the child of a_signal_while_writing_removes_the_temp_file"]
+    fn signal_child() {
+        let Some(dir) = std::env::var_os(SIGNAL_CHILD_DIR) else {
+            return;
+        };
+        let _ = write_atomic(&Path::new(&dir).join("shot.png"), |w| {
+            w.write_all(&[7; 100_000])?;
+            w.flush()?;
+            loop {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+        });
+    }
+
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    #[test]
+    fn a_signal_while_writing_removes_the_temp_file() {
+        use std::os::unix::process::ExitStatusExt;
+        use std::process::{Command, Stdio};
+        for signal in [libc::SIGTERM, libc::SIGINT] {
+            let dir = test_dir(&format!("signal{signal}"));
+            let mut child = Command::new(std::env::current_exe().unwrap())
+                .args([
+                    "--exact",
+                    "fsutil::tests::signal_child",
+                    "--ignored",
+                    "--test-threads=1",
+                ])
+                .env(SIGNAL_CHILD_DIR, &*dir)
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .unwrap();
+            let start = std::time::Instant::now();
+            while entries(&dir).is_empty() {
+                assert!(start.elapsed().as_secs() < 60, "the child never started writing");
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            // Let it get into its writer (the temp file exists from before that).
+            std::thread::sleep(std::time::Duration::from_millis(100));
+            // SAFETY: a plain kill of our own child.
+            assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+            let status = child.wait().unwrap();
+            assert_eq!(status.signal(), Some(signal), "{status:?}");
+            assert!(entries(&dir).is_empty(), "left behind: {:?}", entries(&dir));
+        }
     }
 
     #[test]

@@ -478,7 +478,9 @@ fn glsl2wgsl_refuses_to_overwrite_its_input() {
         .unwrap()
         .contains("fn main"));
     assert!(
-        !names_in(&dir).iter().any(|n| n.contains(".tmp-")),
+        !names_in(&dir)
+            .iter()
+            .any(|n| n.starts_with(".sl-") || n.contains(".tmp")),
         "{:?}",
         names_in(&dir)
     );
@@ -600,4 +602,318 @@ fn no_runtime_dir_prints_no_mesa_warnings() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 17: user files, pictures and output files.
+
+/// A PNG whose IHDR says `width`x`height` (colour type `colour`: 0 grey, 2 RGB) and which has no
+/// pixel data: a decompression bomb as its header shows it, a few dozen bytes.
+fn png_header(width: u32, height: u32, colour: u8) -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+    fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+        let mut c = (data.len() as u32).to_be_bytes().to_vec();
+        c.extend_from_slice(kind);
+        c.extend_from_slice(data);
+        c.extend_from_slice(&crc32(&c[4..]).to_be_bytes());
+        c
+    }
+    let mut ihdr = width.to_be_bytes().to_vec();
+    ihdr.extend_from_slice(&height.to_be_bytes());
+    ihdr.extend_from_slice(&[8, colour, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png.extend(chunk(b"IHDR", &ihdr));
+    png.extend(chunk(b"IEND", &[]));
+    png
+}
+
+/// A 24-bit BMP header for `width`x`height` followed by `pixels`.
+fn bmp(width: i32, height: i32, pixels: &[u8]) -> Vec<u8> {
+    let mut b = b"BM".to_vec();
+    b.extend_from_slice(&(54 + pixels.len() as u32).to_le_bytes());
+    b.extend_from_slice(&[0; 4]);
+    b.extend_from_slice(&54u32.to_le_bytes());
+    b.extend_from_slice(&40u32.to_le_bytes());
+    b.extend_from_slice(&width.to_le_bytes());
+    b.extend_from_slice(&height.to_le_bytes());
+    b.extend_from_slice(&1u16.to_le_bytes());
+    b.extend_from_slice(&24u16.to_le_bytes());
+    b.extend_from_slice(&[0; 24]);
+    b.extend_from_slice(pixels);
+    b
+}
+
+/// A GLSL 1.10 pair for `legacy` sampling `uniform sampler2D tex`.
+fn legacy_texture_shaders(dir: &Path) {
+    std::fs::write(
+        dir.join("t.vert"),
+        "varying vec2 uv;\nvoid main() { uv = gl_MultiTexCoord0.st; gl_Position = ftransform(); }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("t.frag"),
+        "uniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(tex, uv); }\n",
+    )
+    .unwrap();
+}
+
+/// Runs `example args` in `dir` and checks a failure: exit status, one short message holding
+/// each phrase, no PNG written.
+fn expect_failure_of(dir: &Path, example_name: &str, args: &[&str], code: i32, phrases: &[&str]) -> Run {
+    let run = run_in(dir, example_name, args, &[]);
+    assert_eq!(run.code, Some(code), "{args:?}: exit status\n{}", run.stderr);
+    for phrase in phrases {
+        assert!(
+            run.stderr.contains(phrase),
+            "{args:?}: stderr lacks `{phrase}`:\n{}",
+            run.stderr
+        );
+    }
+    assert!(
+        run.stderr.len() < 1000 && run.stderr.lines().count() <= 3,
+        "{args:?}: too much output:\n{}",
+        run.stderr
+    );
+    assert!(!dir.join("o.png").exists(), "{args:?}: a failed run wrote a PNG");
+    run
+}
+
+#[test]
+fn legacy_texture_wider_than_textures_go_is_an_error_not_a_panic() {
+    let dir = test_dir("legacy_wide_texture");
+    legacy_texture_shaders(&dir);
+    image::GrayImage::new(16385, 1).save(dir.join("w.png")).unwrap();
+    expect_failure_of(
+        &dir,
+        "legacy",
+        &["t.vert", "t.frag", "--texture", "tex=w.png", "--screenshot", "o.png"],
+        1,
+        &["legacy: error: w.png: the picture is 16385x1 pixels; textures are limited to 16384 pixels a side"],
+    );
+    // At the limit it is drawn.
+    image::GrayImage::new(16384, 1).save(dir.join("w.png")).unwrap();
+    let run = run_in(
+        &dir,
+        "legacy",
+        &[
+            "t.vert",
+            "t.frag",
+            "--texture",
+            "tex=w.png",
+            "--screenshot",
+            "o.png",
+            "--size",
+            "8x8",
+        ],
+        &[],
+    );
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+}
+
+#[test]
+fn picture_bombs_are_refused_from_their_header() {
+    let dir = test_dir("picture_bombs");
+    std::fs::write(dir.join("bomb.png"), png_header(22600, 22600, 0)).unwrap();
+    std::fs::write(dir.join("rgb.png"), png_header(13000, 13000, 2)).unwrap();
+    let start = std::time::Instant::now();
+    expect_failure_of(
+        &dir,
+        "texparams",
+        &["--texture", "bomb.png", "--screenshot", "o.png"],
+        1,
+        &["texparams: error: bomb.png: the picture is 22600x22600 pixels; textures are limited to 16384 pixels a side"],
+    );
+    expect_failure_of(
+        &dir,
+        "suzanne_texture",
+        &["--texture", "rgb.png", "--screenshot", "o.png"],
+        1,
+        &["rgb.png: the picture is 13000x13000 pixels (169000000 pixels); pictures are limited to 67108864 pixels (256 MiB as RGBA, e.g. 8192x8192)"],
+    );
+    // Nothing was decoded (the unfixed run took 17 s and 4 GB for the first).
+    assert!(start.elapsed().as_secs() < 20, "{:?}", start.elapsed());
+}
+
+#[test]
+fn labs_that_draw_no_picture_or_model_refuse_the_flags() {
+    let dir = test_dir("files_not_taken");
+    std::fs::write(dir.join("bomb.png"), png_header(22600, 22600, 0)).unwrap();
+    // Refused before the file is even read: the bomb is not looked at.
+    expect_failure_of(
+        &dir,
+        "phong",
+        &["--texture", "bomb.png", "--screenshot", "o.png"],
+        2,
+        &["phong: error: `--texture bomb.png`: phong samples no picture from a file (the labs that do: suzanne_texture, suzanne_texture_color, texparams, legacy)"],
+    );
+    expect_failure_of(
+        &dir,
+        "phong",
+        &["--model", "missing.obj", "--screenshot", "o.png"],
+        2,
+        &["phong: error: `--model missing.obj`: phong draws no model from a file (the labs that do: suzanne_"],
+    );
+    expect_failure_of(
+        &dir,
+        "suzanne_texture",
+        &["--texture", "tex=bomb.png", "--screenshot", "o.png"],
+        2,
+        &["suzanne_texture takes one picture, --texture FILE, without a NAME="],
+    );
+}
+
+#[test]
+fn user_files_must_be_regular_files_within_a_size_cap() {
+    let dir = test_dir("user_file_rule");
+    legacy_texture_shaders(&dir);
+    // A FIFO stands for /dev/zero and friends: not a regular file (and opening it would block).
+    let status = Command::new("mkfifo")
+        .arg(dir.join("fifo"))
+        .status()
+        .expect("run mkfifo");
+    assert!(status.success());
+    for (example_name, args, what) in [
+        ("legacy", &["fifo", "t.frag"][..], "shader files"),
+        ("legacy", &["t.vert", "t.frag", "--texture", "tex=fifo"][..], "pictures"),
+        ("suzanne_phong", &["--model", "fifo"][..], "OBJ models"),
+    ] {
+        let args: Vec<&str> = args.iter().copied().chain(["--screenshot", "o.png"]).collect();
+        expect_failure_of(
+            &dir,
+            example_name,
+            &args,
+            1,
+            &[&format!(
+                "fifo: not a regular file (a device, pipe or socket); {what} must be regular files"
+            )],
+        );
+    }
+    // Sparse files of 1 GiB: refused from their size, nothing read, nothing echoed.
+    for name in ["big.frag", "big.obj", "big.png"] {
+        std::fs::File::create(dir.join(name)).unwrap().set_len(1 << 30).unwrap();
+    }
+    expect_failure_of(
+        &dir,
+        "legacy",
+        &["t.vert", "big.frag", "--screenshot", "o.png"],
+        1,
+        &["big.frag: 1073741824 bytes (1 GiB); shader files are limited to 1048576 bytes (1 MiB)"],
+    );
+    expect_failure_of(
+        &dir,
+        "suzanne_phong",
+        &["--model", "big.obj", "--screenshot", "o.png"],
+        1,
+        &["big.obj: 1073741824 bytes (1 GiB); OBJ models are limited to 268435456 bytes (256 MiB)"],
+    );
+    expect_failure_of(
+        &dir,
+        "texparams",
+        &["--texture", "big.png", "--screenshot", "o.png"],
+        1,
+        &["big.png: 1073741824 bytes (1 GiB); pictures are limited to 67108864 bytes (64 MiB)"],
+    );
+}
+
+#[test]
+fn damaged_pictures_say_what_is_wrong() {
+    let dir = test_dir("damaged_pictures");
+    let whole = bmp(4, 2, &[64; 24]);
+    std::fs::write(dir.join("cut.bmp"), &whole[..60]).unwrap();
+    std::fs::write(dir.join("zero.bmp"), bmp(0, 2, &[])).unwrap();
+    expect_failure_of(
+        &dir,
+        "suzanne_texture",
+        &["--texture", "cut.bmp", "--screenshot", "o.png"],
+        1,
+        &["suzanne_texture: error: cut.bmp: the BMP file (4x2 pixels) ends early: it is cut short or damaged"],
+    );
+    expect_failure_of(
+        &dir,
+        "suzanne_texture",
+        &["--texture", "zero.bmp", "--screenshot", "o.png"],
+        1,
+        &["suzanne_texture: error: zero.bmp: the BMP header says 0x2 pixels; a picture needs at least 1x1"],
+    );
+}
+
+#[test]
+fn negative_bench_frames_are_out_of_range() {
+    expect_failure(
+        "bench_negative",
+        &["--bench", "-1"],
+        &[],
+        2,
+        &["invalid value '-1' for '--bench <N>': -1 is not in 1..=100000"],
+    );
+}
+
+#[test]
+fn a_read_only_screenshot_folder_is_found_before_the_gpu_is_opened() {
+    let dir = test_dir("read_only_folder");
+    let ro = dir.join("ro");
+    std::fs::create_dir(&ro).unwrap();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
+    }
+    let writable = |d: &Path| {
+        let probe = d.join("probe");
+        let ok = std::fs::write(&probe, b"").is_ok();
+        let _ = std::fs::remove_file(&probe);
+        ok
+    };
+    // Root writes anywhere: make the folder immutable instead, where the file system can.
+    let immutable = writable(&ro)
+        && Command::new("chattr")
+            .arg("+i")
+            .arg(&ro)
+            .status()
+            .is_ok_and(|s| s.success());
+    if writable(&ro) {
+        println!("skipped: cannot make a read-only folder here");
+        return;
+    }
+    // With no GPU to be found, a run that got as far as opening one would say so instead.
+    let run = run_in(
+        &dir,
+        "phong",
+        &["--screenshot", "ro/x.png"],
+        &[("VK_ICD_FILENAMES", "/nonexistent"), ("WGPU_BACKEND", "vulkan")],
+    );
+    if immutable {
+        let _ = Command::new("chattr").arg("-i").arg(&ro).status();
+    }
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .starts_with("phong: error: ro/x.png: cannot create a file in ro: "),
+        "{}",
+        run.stderr
+    );
+    assert!(!run.stderr.contains("GPU"), "{}", run.stderr);
+}
+
+#[test]
+fn screenshot_names_up_to_255_bytes_work() {
+    let dir = test_dir("long_names");
+    let name = format!("{}.png", "a".repeat(251));
+    let run = run_in(&dir, "phong", &["--screenshot", &name, "--size", "8x8"], &[]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let names: Vec<String> = names_in(&dir).into_iter().filter(|n| n != "xdg").collect();
+    assert_eq!(names, [name]);
 }

@@ -210,39 +210,178 @@ pub fn mip_chain(level0: &Image) -> Vec<Image> {
     chain
 }
 
+/// The largest picture file read (64 MiB); a full 8192×8192 RGBA PNG without any compression
+/// is 256 MiB, but real pictures of that size compress far below this.
+pub const MAX_IMAGE_FILE_BYTES: u64 = 64 << 20;
+
+/// The widest and tallest picture taken (16384 texels a side): wgpu's default
+/// `max_texture_dimension_2d`, which every device offers. A device with a smaller limit is
+/// checked when the texture is made ([`crate::render::check_texture_size`]).
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The most texels a picture may have (64 Mi, e.g. 8192×8192: 256 MiB as RGBA8, and about a
+/// third more with its mipmaps), so that a small file claiming a huge size in its header (a
+/// decompression bomb) is refused before anything is decoded or allocated.
+pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
+
+/// The most memory the decoder may allocate for one picture (its own buffers; the RGBA8 copy
+/// is bounded by [`MAX_IMAGE_PIXELS`]).
+const MAX_DECODE_ALLOC: u64 = 512 << 20;
+
 /// Reads a PNG or BMP file (format guessed from its content) as a one-layer RGBA8 [`Image`].
+///
+/// The file must be a regular file of at most [`MAX_IMAGE_FILE_BYTES`]
+/// ([`crate::fsutil::read_user_file`]); its size is read from its header and checked against
+/// [`MAX_IMAGE_SIDE`] and [`MAX_IMAGE_PIXELS`] before anything is decoded.
 ///
 /// Rows come in the decoder's order, the picture's top row first (a BMP's bottom-up storage is
 /// undone by the decoder); a port that wants GL's "first row uploaded = t ≈ 0" for a picture
-/// file decides itself whether to flip. Errors name the file: [`Error::Io`] if it cannot be
-/// opened or read, [`Error::Image`] if it is not a decodable PNG/BMP.
+/// file decides itself whether to flip. Errors name the file and say in plain words what is
+/// wrong ([`Error::Io`]): missing, unreadable, too large a file, not a PNG or BMP, too many
+/// pixels, damaged or cut short.
 pub fn load_image(path: &Path) -> Result<Image> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = crate::fsutil::read_user_file(path, MAX_IMAGE_FILE_BYTES, "pictures")?;
     decode_image(path, &bytes)
+}
+
+fn bad_picture(path: &Path, message: String) -> Error {
+    Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, message),
+    }
+}
+
+/// The size a PNG's or BMP's header claims, read without a decoder: (width, height), or `None`
+/// if the header is too short to say. A BMP's negative height (rows stored top down) counts
+/// as its absolute value; a negative width stays negative (the decoder refuses it).
+fn header_size(format: image::ImageFormat, bytes: &[u8]) -> Option<(i64, i64)> {
+    let be = |at: usize| Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    let le32 = |at: usize| Some(i32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    let le16 = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?));
+    match format {
+        // Signature (8), IHDR length (4) and type (4), then width and height.
+        image::ImageFormat::Png if bytes.get(12..16) == Some(b"IHDR") => Some((i64::from(be(16)?), i64::from(be(20)?))),
+        // File header (14), then the info header: its size, then width and height, 16-bit in
+        // the old 12-byte BITMAPCOREHEADER, 32-bit signed in the others.
+        image::ImageFormat::Bmp => match le32(14)? {
+            12 => Some((i64::from(le16(18)?), i64::from(le16(20)?))),
+            _ => Some((i64::from(le32(18)?), i64::from(le32(22)?).abs())),
+        },
+        _ => None,
+    }
+}
+
+/// Refuses a picture whose size is empty or beyond [`MAX_IMAGE_SIDE`] or [`MAX_IMAGE_PIXELS`].
+fn check_size(path: &Path, name: &str, (width, height): (i64, i64)) -> Result<()> {
+    if width <= 0 || height <= 0 {
+        return Err(bad_picture(
+            path,
+            format!("the {name} header says {width}x{height} pixels; a picture needs at least 1x1"),
+        ));
+    }
+    let side = i64::from(MAX_IMAGE_SIDE);
+    if width > side || height > side {
+        return Err(bad_picture(
+            path,
+            format!("the picture is {width}x{height} pixels; textures are limited to {MAX_IMAGE_SIDE} pixels a side"),
+        ));
+    }
+    let pixels = (width * height) as u64;
+    if pixels > MAX_IMAGE_PIXELS {
+        return Err(bad_picture(
+            path,
+            format!(
+                "the picture is {width}x{height} pixels ({pixels} pixels); pictures are limited to {MAX_IMAGE_PIXELS} pixels ({} as RGBA, e.g. 8192x8192)",
+                crate::fsutil::human_bytes(MAX_IMAGE_PIXELS * 4)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// What went wrong while decoding, in plain words (`size` once the header has been read).
+fn decode_error(path: &Path, name: &str, size: Option<(u32, u32)>, e: image::ImageError) -> Error {
+    use image::error::{ImageError as E, LimitErrorKind};
+    let of = size.map(|(w, h)| format!(" ({w}x{h} pixels)")).unwrap_or_default();
+    let message = match e {
+        E::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
+            format!("the {name} file{of} ends early: it is cut short or damaged")
+        }
+        E::IoError(io) => format!("reading the {name} file{of}: {io}"),
+        E::Limits(limit) => match limit.kind() {
+            LimitErrorKind::InsufficientMemory => format!(
+                "decoding the {name} file{of} would need more than {} of memory",
+                crate::fsutil::human_bytes(MAX_DECODE_ALLOC)
+            ),
+            _ => format!(
+                "the {name} file{of} is too large: textures are limited to {MAX_IMAGE_SIDE} pixels a side and {MAX_IMAGE_PIXELS} pixels"
+            ),
+        },
+        E::Unsupported(u) => format!("a {name} file{of} of a kind that cannot be read: {u}"),
+        E::Decoding(d) => {
+            // The decoder's own words, without its "Format error decoding Png:" preamble.
+            let why = std::error::Error::source(&d).map_or_else(|| d.to_string(), |s| s.to_string());
+            format!("not a valid {name} file{of}: {why}")
+        }
+        e => format!("not a valid {name} file{of}: {e}"),
+    };
+    bad_picture(path, message)
 }
 
 /// Decodes the bytes of a PNG or BMP file as [`load_image`] does (a picture compiled into the
 /// program, e.g. `assets/uvgrid.bmp`); `path` names it in errors and, when the content says
 /// nothing, its extension gives the format.
 pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
+    use image::ImageDecoder;
     let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|source| Error::Io {
             path: path.to_path_buf(),
             source,
         })?;
-    if reader.format().is_none() {
+    let from_content = reader.format().is_some();
+    if !from_content {
         if let Ok(format) = image::ImageFormat::from_path(path) {
             reader.set_format(format);
         }
     }
-    let decoded = reader.decode().map_err(|source| Error::Image {
-        path: path.to_path_buf(),
-        source,
+    let not_a_picture = || {
+        bad_picture(
+            path,
+            "not a PNG or BMP picture (its first bytes are neither's signature)".into(),
+        )
+    };
+    let format = match reader.format() {
+        Some(f @ (image::ImageFormat::Png | image::ImageFormat::Bmp)) => f,
+        _ => return Err(not_a_picture()),
+    };
+    let name = if format == image::ImageFormat::Png {
+        "PNG"
+    } else {
+        "BMP"
+    };
+    // Refuse from the header, before a decoder allocates anything for the picture.
+    let header = header_size(format, bytes);
+    if let Some(size) = header {
+        check_size(path, name, size)?;
+    }
+    // Checked above: positive and at most MAX_IMAGE_SIDE.
+    let header = header.map(|(w, h)| (w as u32, h as u32));
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(MAX_DECODE_ALLOC);
+    reader.limits(limits);
+    let decoder = reader.into_decoder().map_err(|e| match e {
+        // Only the name said PNG or BMP, and the decoder does not recognise the content either.
+        image::ImageError::Decoding(_) if !from_content => not_a_picture(),
+        e => decode_error(path, name, header, e),
     })?;
+    let (width, height) = decoder.dimensions();
+    // The decoder's own reading of the header decides (also where the quick look above could not).
+    check_size(path, name, (i64::from(width), i64::from(height)))?;
+    let decoded =
+        image::DynamicImage::from_decoder(decoder).map_err(|e| decode_error(path, name, Some((width, height)), e))?;
     let rgba = decoded.to_rgba8();
     Ok(Image {
         width: rgba.width(),
@@ -443,6 +582,124 @@ mod tests {
         assert_eq!(mip_chain(&broken), vec![broken.clone()]);
     }
 
+    /// A PNG of `width`x`height` (grey, colour type 0; RGB, 2) whose IHDR says so but which has
+    /// no pixel data: what a decompression bomb looks like before its data.
+    fn png_header(width: u32, height: u32, colour: u8) -> Vec<u8> {
+        fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+            let mut c = (data.len() as u32).to_be_bytes().to_vec();
+            c.extend_from_slice(kind);
+            c.extend_from_slice(data);
+            c.extend_from_slice(&crc32(&c[4..]).to_be_bytes());
+            c
+        }
+        // PNG's CRC-32 (ISO 3309), bit by bit.
+        fn crc32(bytes: &[u8]) -> u32 {
+            let mut crc = !0u32;
+            for &b in bytes {
+                crc ^= u32::from(b);
+                for _ in 0..8 {
+                    crc = if crc & 1 == 1 {
+                        (crc >> 1) ^ 0xEDB8_8320
+                    } else {
+                        crc >> 1
+                    };
+                }
+            }
+            !crc
+        }
+        let mut ihdr = width.to_be_bytes().to_vec();
+        ihdr.extend_from_slice(&height.to_be_bytes());
+        ihdr.extend_from_slice(&[8, colour, 0, 0, 0]);
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        png.extend(chunk(b"IHDR", &ihdr));
+        png.extend(chunk(b"IEND", &[]));
+        png
+    }
+
+    /// A 24-bit BMP of `width`x`height` with `pixels` as its data.
+    fn bmp(width: i32, height: i32, pixels: &[u8]) -> Vec<u8> {
+        let mut b = b"BM".to_vec();
+        b.extend_from_slice(&(54 + pixels.len() as u32).to_le_bytes());
+        b.extend_from_slice(&[0; 4]);
+        b.extend_from_slice(&54u32.to_le_bytes());
+        b.extend_from_slice(&40u32.to_le_bytes());
+        b.extend_from_slice(&width.to_le_bytes());
+        b.extend_from_slice(&height.to_le_bytes());
+        b.extend_from_slice(&1u16.to_le_bytes());
+        b.extend_from_slice(&24u16.to_le_bytes());
+        b.extend_from_slice(&[0; 24]);
+        b.extend_from_slice(pixels);
+        b
+    }
+
+    fn decode_err(name: &str, bytes: &[u8]) -> String {
+        decode_image(Path::new(name), bytes).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn picture_sizes_are_refused_from_the_header() {
+        // 22600² grey: 510 MB decoded, 2 GB as RGBA; refused before any decoding.
+        assert_eq!(
+            decode_err("bomb.png", &png_header(22600, 22600, 0)),
+            "bomb.png: the picture is 22600x22600 pixels; textures are limited to 16384 pixels a side"
+        );
+        assert_eq!(
+            decode_err("wide.png", &png_header(16385, 1, 0)),
+            "wide.png: the picture is 16385x1 pixels; textures are limited to 16384 pixels a side"
+        );
+        // 13000² RGB: within the side limit, but 676 MB as RGBA.
+        assert_eq!(
+            decode_err("big.png", &png_header(13000, 13000, 2)),
+            "big.png: the picture is 13000x13000 pixels (169000000 pixels); pictures are limited to \
+             67108864 pixels (256 MiB as RGBA, e.g. 8192x8192)"
+        );
+        assert_eq!(
+            decode_err("zero.bmp", &bmp(0, 2, &[])),
+            "zero.bmp: the BMP header says 0x2 pixels; a picture needs at least 1x1"
+        );
+        assert_eq!(
+            decode_err("huge.bmp", &bmp(20000, -20000, &[])),
+            "huge.bmp: the picture is 20000x20000 pixels; textures are limited to 16384 pixels a side"
+        );
+    }
+
+    #[test]
+    fn damaged_pictures_are_described_in_plain_words() {
+        // 4x2, 24-bit: rows of 12 bytes; cut after 6 of its 24 bytes of pixels.
+        let whole = bmp(4, 2, &[64; 24]);
+        let image = decode_image(Path::new("ok.bmp"), &whole).unwrap();
+        assert_eq!((image.width, image.height), (4, 2));
+        assert_eq!(
+            decode_err("cut.bmp", &whole[..60]),
+            "cut.bmp: the BMP file (4x2 pixels) ends early: it is cut short or damaged"
+        );
+        assert_eq!(
+            decode_err("junk.png", b"not a picture"),
+            "junk.png: not a PNG or BMP picture (its first bytes are neither's signature)"
+        );
+        // A header and no pixel data at all.
+        let err = decode_err("empty.png", &png_header(4, 4, 2));
+        assert!(
+            err.starts_with("empty.png: not a valid PNG file (4x4 pixels): "),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn picture_files_have_a_size_cap() {
+        let dir = crate::fsutil::ScratchDir::new("images-cap");
+        let big = dir.join("big.png");
+        std::fs::File::create(&big)
+            .unwrap()
+            .set_len(MAX_IMAGE_FILE_BYTES + 1)
+            .unwrap();
+        let err = load_image(&big).unwrap_err().to_string();
+        assert!(
+            err.ends_with("big.png: 67108865 bytes (64.0 MiB); pictures are limited to 67108864 bytes (64 MiB)"),
+            "{err}"
+        );
+    }
+
     #[test]
     fn load_image_png_bmp_and_errors() {
         let dir = std::env::temp_dir().join(format!("shaderlab-images-{}", std::process::id()));
@@ -466,7 +723,7 @@ mod tests {
         std::fs::write(&junk, b"not an image at all").unwrap();
         let err = load_image(&junk).unwrap_err();
         assert!(
-            matches!(err, Error::Image { .. }) && err.to_string().contains("junk.png"),
+            matches!(err, Error::Io { .. }) && err.to_string().contains("junk.png: not a PNG or BMP picture"),
             "{err}"
         );
         std::fs::remove_dir_all(&dir).ok();

@@ -61,12 +61,24 @@ impl ObjModel {
 /// export following the course's steps).
 pub const SUZANNE_OBJ: &str = include_str!("../../assets/suzanne.obj");
 
-/// Reads and parses an OBJ file. Errors name the file: [`Error::Io`] if it cannot be read
-/// (missing, unreadable, not UTF-8), [`Error::Obj`] for its content.
+/// The largest OBJ file read (256 MiB, some 5 million triangles); the course's Suzanne is 60 KiB.
+pub const MAX_OBJ_BYTES: u64 = 256 << 20;
+
+/// Reads and parses an OBJ file: a regular file of at most [`MAX_OBJ_BYTES`]
+/// ([`crate::fsutil::read_user_file`]), in UTF-8. Errors name the file: [`Error::Io`] if it
+/// cannot be read (missing, unreadable, not a regular file, too large, not UTF-8),
+/// [`Error::Obj`] for its content.
 pub fn load_obj(path: &Path) -> Result<ObjModel> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+    let bytes = crate::fsutil::read_user_file(path, MAX_OBJ_BYTES, "OBJ models")?;
+    let text = String::from_utf8(bytes).map_err(|e| Error::Io {
         path: path.to_path_buf(),
-        source,
+        source: std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "not UTF-8 text (invalid byte at offset {}); an OBJ model is a text file",
+                e.utf8_error().valid_up_to()
+            ),
+        ),
     })?;
     parse(path, &text)
 }

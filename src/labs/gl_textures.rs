@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
 use crate::lab::UserFile;
@@ -113,15 +113,7 @@ impl GlTexture {
     /// Uploads `image` (row 0 first, sampled at t ≈ 0) and its box-filtered mip chain.
     /// `path` names the picture in the error for one larger than the GPU takes.
     pub fn new(gpu: &Gpu, label: &str, image: &Image, path: &Path) -> Result<GlTexture> {
-        let max = gpu.device.limits().max_texture_dimension_2d;
-        if image.width > max || image.height > max {
-            return Err(Error::Image {
-                path: path.to_path_buf(),
-                source: image::ImageError::Limits(image::error::LimitError::from_kind(
-                    image::error::LimitErrorKind::DimensionError,
-                )),
-            });
-        }
+        crate::render::check_texture_size(gpu, path, image.width, image.height)?;
         let levels: Vec<Vec<u8>> = images::mip_chain(image).into_iter().map(|level| level.rgba).collect();
         let texture = Texture::new(gpu, label, image.width, image.height, 1, &levels);
         Ok(GlTexture { texture })

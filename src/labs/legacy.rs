@@ -183,19 +183,19 @@ fn buffer_bind(name: &str, buffer: &wgpu::Buffer) -> Bind {
 
 /// The picture for a sampler: `--texture NAME=FILE`, else a lone `--texture FILE` for the
 /// first sampler2D, else SPEC §0.1's uvgrid (2D) or cube faces (cube).
-fn picture(s: &legacy::Sampler, first_2d: bool, files: &UserFiles) -> Result<Image> {
+fn picture(s: &legacy::Sampler, first_2d: bool, files: &UserFiles) -> Result<(Image, PathBuf)> {
     let named = files.named_textures.iter().find(|(n, _)| *n == s.name).map(|(_, f)| f);
     let file = named.or(if first_2d { files.texture.as_ref() } else { None });
     match (s.dim, file) {
-        (SamplerDim::D2, Some(f)) => Ok(f.data.clone()),
+        (SamplerDim::D2, Some(f)) => Ok((f.data.clone(), f.path.clone())),
         (SamplerDim::Cube, Some(f)) => Err(Error::Param(format!(
             "--texture {}={}: `{}` is a samplerCube; cube maps from files are not supported (the built-in cube faces are used without one)",
             s.name,
             f.path.display(),
             s.name
         ))),
-        (SamplerDim::D2, None) => Ok(images::uvgrid()),
-        (SamplerDim::Cube, None) => Ok(images::cube_faces()),
+        (SamplerDim::D2, None) => Ok((images::uvgrid(), PathBuf::from("the built-in uvgrid"))),
+        (SamplerDim::Cube, None) => Ok((images::cube_faces(), PathBuf::from("the built-in cube faces"))),
     }
 }
 
@@ -231,7 +231,8 @@ fn bind_all(gpu: &Gpu, translation: Translation, vs: &CompiledShader, files: &Us
     let mut textures = Vec::new();
     let first_2d = translation.samplers.iter().position(|s| s.dim == SamplerDim::D2);
     for (i, s) in translation.samplers.iter().enumerate() {
-        let image = picture(s, first_2d == Some(i), files)?;
+        let (image, path) = picture(s, first_2d == Some(i), files)?;
+        crate::render::check_texture_size(gpu, &path, image.width, image.height)?;
         let texture = Texture::new(
             gpu,
             &format!("legacy.{}", s.name),

@@ -26,16 +26,8 @@ impl LegacySource {
 
     /// Reads a file.
     pub fn read(path: &std::path::Path) -> crate::Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            if source.kind() == std::io::ErrorKind::NotFound {
-                Error::ShaderNotFound(path.display().to_string())
-            } else {
-                Error::Io {
-                    path: path.to_path_buf(),
-                    source,
-                }
-            }
-        })?;
+        // The rule of every shader file: a regular file of at most 1 MiB, UTF-8.
+        let text = crate::shader::read_shader_file(path)?;
         // A byte-order mark is not GLSL.
         let text = text.strip_prefix('\u{feff}').map(str::to_owned).unwrap_or(text);
         Ok(LegacySource::new(path.display().to_string(), text))

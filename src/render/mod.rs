@@ -31,5 +31,5 @@ pub use program::{
     reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Faces, Program, RenderState,
     Resource, VertexInput,
 };
-pub use texture::{sampler, SamplerDesc, Texture};
+pub use texture::{check_texture_size, sampler, SamplerDesc, Texture};
 pub use uniforms::Uniforms;

@@ -2,7 +2,30 @@
 //! given by the caller, so the bytes are the same on every device (mip levels are built on the
 //! CPU, not by a GPU blit), and GL's sampler state expressed as wgpu's.
 
+use std::path::Path;
+
+use crate::error::{Error, Result};
 use crate::gpu::Gpu;
+
+/// Checks that a `width`×`height` picture fits this device's 2D textures
+/// (`max_texture_dimension_2d`; a cube map's faces are 2D images of the same limit), so that a
+/// picture too large is an error naming the file (`path`), its size and the limit instead of a
+/// wgpu validation panic. Pictures read from files are already held to
+/// [`crate::geometry::images::MAX_IMAGE_SIDE`], the limit every device offers; this catches a
+/// device with a smaller one.
+pub fn check_texture_size(gpu: &Gpu, path: &Path, width: u32, height: u32) -> Result<()> {
+    texture_size_error(path, width, height, gpu.device.limits().max_texture_dimension_2d).map_or(Ok(()), Err)
+}
+
+fn texture_size_error(path: &Path, width: u32, height: u32, max: u32) -> Option<Error> {
+    (width > max || height > max).then(|| Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("the picture is {width}x{height} pixels; this GPU takes textures of at most {max} pixels a side"),
+        ),
+    })
+}
 
 /// A texture and its view.
 pub struct Texture {
@@ -141,4 +164,20 @@ pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
         mipmap_filter: desc.mipmap.unwrap_or(wgpu::MipmapFilterMode::Nearest),
         ..Default::default()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_texture_beyond_the_device_limit_names_file_size_and_limit() {
+        let err = texture_size_error(Path::new("w.png"), 8193, 1, 8192).expect("refused");
+        assert_eq!(
+            err.to_string(),
+            "w.png: the picture is 8193x1 pixels; this GPU takes textures of at most 8192 pixels a side"
+        );
+        assert!(texture_size_error(Path::new("w.png"), 8192, 8192, 8192).is_none());
+        assert!(texture_size_error(Path::new("w.png"), 1, 9000, 8192).is_some());
+    }
 }

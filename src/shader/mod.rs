@@ -169,57 +169,14 @@ pub fn resolve_in_dir(dir: &Path, name: &str) -> Result<PathBuf> {
 }
 
 /// Reads a shader file from disk: a regular file (not a device, pipe or directory) of at most
-/// [`MAX_SHADER_BYTES`], in UTF-8.
+/// [`MAX_SHADER_BYTES`] ([`crate::fsutil::read_user_file`]'s rule for every user file), in UTF-8.
 pub fn read_shader_file(path: &Path) -> Result<String> {
-    use std::io::Read;
-    let not_found = |e: std::io::Error| {
-        if e.kind() == std::io::ErrorKind::NotFound {
+    let bytes = crate::fsutil::read_user_file(path, MAX_SHADER_BYTES, "shader files").map_err(|e| match e {
+        Error::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
             Error::ShaderNotFound(path.display().to_string())
-        } else {
-            Error::Io {
-                path: path.to_owned(),
-                source: e,
-            }
         }
-    };
-    // Check before opening: opening a FIFO would block.
-    let meta = std::fs::metadata(path).map_err(not_found)?;
-    if !meta.is_file() {
-        let what = if meta.is_dir() {
-            "a directory"
-        } else {
-            "not a regular file"
-        };
-        return Err(io_error(
-            path,
-            std::io::ErrorKind::InvalidInput,
-            format!("{what}; a shader must be a text file"),
-        ));
-    }
-    let too_big = |size: u64| {
-        io_error(
-            path,
-            std::io::ErrorKind::InvalidData,
-            format!(
-                "{size} bytes; shader files are limited to {} bytes (1 MiB)",
-                MAX_SHADER_BYTES
-            ),
-        )
-    };
-    if meta.len() > MAX_SHADER_BYTES {
-        return Err(too_big(meta.len()));
-    }
-    let file = std::fs::File::open(path).map_err(not_found)?;
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(MAX_SHADER_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|source| Error::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-    if bytes.len() as u64 > MAX_SHADER_BYTES {
-        return Err(too_big(bytes.len() as u64));
-    }
+        e => e,
+    })?;
     String::from_utf8(bytes).map_err(|e| {
         io_error(
             path,
@@ -820,7 +777,7 @@ mod loader_tests {
         fs::create_dir(dir.join("dir.glsl")).unwrap();
         phong_with(&dir, "#include \"dir.glsl\"");
         let err = compile_err(&dir, "phong.frag");
-        assert!(err.contains("a directory; a shader must be a text file"), "{err}");
+        assert!(err.contains("a directory; shader files must be regular files"), "{err}");
     }
 
     #[test]

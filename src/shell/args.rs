@@ -27,7 +27,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE.png")]
     pub screenshot: Option<PathBuf>,
     /// Render N frames offscreen, waiting for each, and print ms_per_frame.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000), allow_negative_numbers = true)]
     pub bench: Option<u32>,
     /// With --bench: also time each frame on the GPU with timestamp queries (slower on CPU drivers).
     #[arg(long)]
@@ -55,10 +55,10 @@ pub struct Args {
     /// original; `auto` with a port-only mode (`--shading` other than phong, `--set smooth=1`).
     #[arg(long, value_name = "N|auto", value_parser = parse_tess)]
     pub tess: Option<f64>,
-    /// A Wavefront OBJ to draw instead of the lab's built-in model (labs that draw one, e.g. suzanne_*; others ignore it).
+    /// A Wavefront OBJ to draw instead of the lab's built-in model (the suzanne_* labs; others refuse it).
     #[arg(long, value_name = "FILE.obj")]
     pub model: Option<PathBuf>,
-    /// A PNG or BMP picture to use instead of the lab's picture texture (labs that sample one, e.g. suzanne_texture, texparams; others ignore it); `NAME=FILE` (repeatable) binds it to the texture called NAME in the lab's shaders (legacy).
+    /// A PNG or BMP picture to use instead of the lab's picture texture (suzanne_texture, suzanne_texture_color, texparams, legacy; others refuse it); `NAME=FILE` (repeatable) binds it to the texture called NAME in the lab's shaders (legacy).
     #[arg(long, value_name = "[NAME=]FILE", value_parser = parse_texture)]
     pub texture: Vec<TextureArg>,
     /// Eye position (the `camera` parameter of labs that have one, e.g. legacy).
@@ -198,6 +198,7 @@ impl Args {
     /// notices (missing `vt`/`vn`, ignored elements) on stderr, one line each; the positional
     /// files go along as paths.
     pub fn files(&self, entry: &LabEntry) -> Result<UserFiles, Error> {
+        self.check_files_taken(entry)?;
         let mut plain = self.texture.iter().filter(|t| t.name.is_none());
         let texture = plain.next().map(|t| t.path.as_path());
         if let Some(second) = plain.next() {
@@ -218,6 +219,52 @@ impl Args {
             eprintln!("{}: {notice}", entry.info.name);
         }
         Ok(files)
+    }
+
+    /// Refuses `--model` and `--texture` for a lab that draws no such file (as a usage error,
+    /// before the file is read), naming the labs that do.
+    fn check_files_taken(&self, entry: &LabEntry) -> Result<(), Error> {
+        let name = entry.info.name;
+        let taken = crate::labs::files_taken(name);
+        let those = |which: fn(crate::labs::FilesTaken) -> bool| {
+            let names: Vec<&str> = crate::labs::ALL
+                .iter()
+                .map(|e| e.info.name)
+                .filter(|n| which(crate::labs::files_taken(n)))
+                .collect();
+            names.join(", ")
+        };
+        if let Some(model) = &self.model {
+            if !taken.model {
+                return Err(Error::Param(format!(
+                    "`--model {}`: {name} draws no model from a file (the labs that do: {})",
+                    model.display(),
+                    those(|t| t.model)
+                )));
+            }
+        }
+        for texture in &self.texture {
+            let ok = match texture.name {
+                Some(_) => taken.named_textures,
+                None => taken.texture,
+            };
+            if ok {
+                continue;
+            }
+            let arg = match &texture.name {
+                Some(n) => format!("{n}={}", texture.path.display()),
+                None => texture.path.display().to_string(),
+            };
+            return Err(Error::Param(if taken.texture {
+                format!("`--texture {arg}`: {name} takes one picture, --texture FILE, without a NAME= (the labs that bind textures by name: {})", those(|t| t.named_textures))
+            } else {
+                format!(
+                    "`--texture {arg}`: {name} samples no picture from a file (the labs that do: {})",
+                    those(|t| t.texture)
+                )
+            }));
+        }
+        Ok(())
     }
 
     /// The image or window size.

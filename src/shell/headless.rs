@@ -18,6 +18,10 @@ pub(crate) fn check_png_path(path: &Path) -> Result<()> {
 }
 
 pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: &UserFiles) -> Result<(), Failure> {
+    if let Some(path) = &args.screenshot {
+        // A read-only folder is found now, not after the GPU was opened and the frame drawn.
+        crate::fsutil::check_writable(path)?;
+    }
     let gpu = Gpu::headless()?;
     let source = args.shader_source()?;
     let cx = LabContext {

@@ -42,7 +42,9 @@ impl From<Error> for Failure {
 
 /// Mesa prints two warnings on every run when `XDG_RUNTIME_DIR` is unset, which makes a
 /// newcomer's first, successful run look broken: give the process a private one instead
-/// (`$TMP/shaderlab-runtime-PID`, mode 0700). Call it first thing in `main`, before any thread
+/// (`$TMP/shaderlab-runtime-UID`, created mode 0700 and used only if it is this user's own
+/// directory with that mode; it is kept and reused by the next run, never removed, as several
+/// runs may share it at once). Call it first thing in `main`, before any thread
 /// starts; the lab examples do it through [`main`], the other examples call it themselves.
 pub fn ensure_runtime_dir() {
     if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| !d.is_empty()) {
