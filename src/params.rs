@@ -2,9 +2,11 @@
 //! title and tests, for every lab.
 //!
 //! A lab (or each part it is composed of) declares its parameters as [`ParamSpec`]s with a
-//! default, a range and a kind; [`Params`] holds the current values. Values are kept in f64 so
-//! that a clock can run for hours without losing precision before a lab narrows them to the
-//! f32 its uniforms take.
+//! default, a range and a kind; [`Params`] holds the current values. Values are parsed and kept
+//! in f64 so that a clock can run for hours without losing precision before a lab narrows them
+//! to the f32 its uniforms take, so that a whole number is exact over the whole i32 range
+//! (`uniform int k` = 16777217), and so that a documented bound (`near` 0.0001, `Ka` 1e30) is
+//! accepted: the value is compared with the range in the type both are stored in.
 
 use std::path::PathBuf;
 
@@ -38,6 +40,8 @@ pub struct ParamSpec {
     pub kind: Kind,
     /// One line for `--help`.
     pub help: &'static str,
+    /// One more value accepted outside `[min, max]` (GL's `spotCutoff`: 0..90 or 180).
+    pub or: Option<f64>,
 }
 
 impl ParamSpec {
@@ -50,7 +54,14 @@ impl ParamSpec {
             max,
             kind: Kind::Real,
             help,
+            or: None,
         }
+    }
+
+    /// The same parameter, also taking exactly `value` outside its range.
+    pub const fn or_exactly(mut self, value: f64) -> Self {
+        self.or = Some(value);
+        self
     }
 
     /// A whole number in `[min, max]`.
@@ -62,6 +73,7 @@ impl ParamSpec {
             max,
             kind: Kind::Int,
             help,
+            or: None,
         }
     }
 
@@ -74,6 +86,7 @@ impl ParamSpec {
             max: 1.0,
             kind: Kind::Bool,
             help,
+            or: None,
         }
     }
 
@@ -91,6 +104,7 @@ impl ParamSpec {
             max: (names.len() - 1) as f64,
             kind: Kind::Choice(names),
             help,
+            or: None,
         }
     }
 
@@ -107,12 +121,33 @@ fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
             .and_then(|v| names.get(*v as usize))
             .map(|s| s.to_string())
             .unwrap_or_default(),
-        _ => values
+        // Reals as the f32 the shaders get; whole numbers exactly (16777217 is no f32).
+        Kind::Real => values
             .iter()
             .map(|v| format!("{}", *v as f32))
             .collect::<Vec<_>>()
             .join(","),
+        _ => values.iter().map(|v| format!("{v}")).collect::<Vec<_>>().join(","),
     }
+}
+
+/// A bound as `--help` and the range errors write it: whole numbers in full (2147483647), huge
+/// ones short (1e30), the rest in the shortest form that reads back as the same f64 (0.0001),
+/// so that the text is the bound that is checked.
+pub fn bound_text(v: f64) -> String {
+    if v.fract() == 0.0 && v.abs() < 1e16 {
+        format!("{v}")
+    } else if v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The range of a spec as text, `0..90 or 180` where one more value is taken.
+fn range_text(spec: &ParamSpec) -> String {
+    let or = spec.or.map(|v| format!(" or {}", bound_text(v))).unwrap_or_default();
+    format!("{}..{}{or}", bound_text(spec.min), bound_text(spec.max))
 }
 
 /// Files a lab takes on the command line (positional `FILES...`), and the parameters those
@@ -135,6 +170,9 @@ pub struct Params {
     specs: Vec<ParamSpec>,
     values: Vec<Vec<f64>>,
     files: Option<FileArgs>,
+    /// Rules between parameters (`near` < `far`), run by [`Params::check`] once all values are
+    /// set: one `--set` at a time cannot be judged (`--set near=200 --set far=1000`).
+    checks: Vec<fn(&Params) -> Result<()>>,
 }
 
 impl Params {
@@ -160,6 +198,17 @@ impl Params {
     pub fn with_files(mut self, files: FileArgs) -> Self {
         self.files = Some(files);
         self
+    }
+
+    /// Adds a rule between parameters, checked by [`Params::check`].
+    pub fn with_check(mut self, check: fn(&Params) -> Result<()>) -> Self {
+        self.checks.push(check);
+        self
+    }
+
+    /// Runs the rules between parameters (after the command line is applied).
+    pub fn check(&self) -> Result<()> {
+        self.checks.iter().try_for_each(|c| c(self))
     }
 
     /// The files the lab takes on the command line, if any.
@@ -268,11 +317,10 @@ impl Params {
                     self.choices_hint(&spec)
                 )));
             }
-            if v < spec.min || v > spec.max {
+            if (v < spec.min || v > spec.max) && spec.or != Some(v) {
                 return Err(Error::Param(format!(
-                    "parameter `{name}`: {v} is outside {}..{}{}",
-                    spec.min as f32,
-                    spec.max as f32,
+                    "parameter `{name}`: {v} is outside {}{}",
+                    range_text(&spec),
                     self.choices_hint(&spec)
                 )));
             }
@@ -352,8 +400,11 @@ impl Params {
     pub fn put(&mut self, name: &str, values: &[f64]) {
         debug_assert!(self.has(name), "unknown parameter {name}");
         if let Some(i) = self.index(name) {
-            let (lo, hi) = (self.specs[i].min, self.specs[i].max);
-            self.values[i] = values.iter().map(|v| v.clamp(lo, hi)).collect();
+            let (lo, hi, or) = (self.specs[i].min, self.specs[i].max, self.specs[i].or);
+            self.values[i] = values
+                .iter()
+                .map(|&v| if or == Some(v) { v } else { v.clamp(lo, hi) })
+                .collect();
         }
     }
 
@@ -407,23 +458,30 @@ impl Params {
                         .join(", ")
                 ),
                 Kind::Bool => "0 or 1".into(),
-                Kind::Int => format!("whole number {}..{}", s.min, s.max),
-                Kind::Real => format!("{}..{}", s.min as f32, s.max as f32),
+                Kind::Int => format!("whole number {}", range_text(s)),
+                Kind::Real => range_text(s),
+            };
+            // A long array's default is abbreviated: `uniform float a[100000]` would print
+            // 100,000 zeros.
+            let default = if s.default.len() > 16 {
+                format!("{},... ({} numbers)", format_value(s, &s.default[..4]), s.default.len())
+            } else {
+                s.default_text()
             };
             out.push_str(&format!(
                 "  {:<16} default {:<14} {range}: {}\n",
-                s.name,
-                s.default_text(),
-                s.help
+                s.name, default, s.help
             ));
         }
         out
     }
 }
 
-/// Parses one finite number (as f32, then widened: the originals' values are floats).
-pub fn parse_finite(s: &str) -> std::result::Result<f32, String> {
-    match s.trim().parse::<f32>() {
+/// Parses one finite number, in f64: the value is compared with its range in the type it is
+/// stored in (an f32 parse made `0.0001` 0.0000999999974, below a bound of 0.0001, and
+/// `16777217` 16777216), and narrowed to f32 only where a shader takes a float.
+pub fn parse_finite(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
         _ => Err(format!("`{s}` is not a finite number")),
     }
@@ -431,7 +489,7 @@ pub fn parse_finite(s: &str) -> std::result::Result<f32, String> {
 
 /// Parses comma-separated finite numbers.
 pub fn parse_numbers(s: &str) -> std::result::Result<Vec<f64>, String> {
-    s.split(',').map(|p| parse_finite(p).map(f64::from)).collect()
+    s.split(',').map(parse_finite).collect()
 }
 
 #[cfg(test)]
