@@ -543,4 +543,62 @@ mod tests {
         assert!(p.on("fixpos"));
         assert!(p.help().contains("teapot (0)"));
     }
+
+    #[test]
+    fn documented_bounds_are_taken_and_whole_numbers_are_exact() {
+        const EDGES: &[ParamSpec] = &[
+            ParamSpec::real("near", &[1.0], 1e-4, 1e6, "near"),
+            ParamSpec::real("Ka", &[0.0], -1e30, 1e30, "big"),
+            ParamSpec::int("k", &[0.0], -2147483648.0, 2147483647.0, "int"),
+        ];
+        let mut p = Params::new(EDGES);
+        // f32 parsing made 0.0001 0.0000999999974 (below the bound) and 1e30 1.00000002e30.
+        p.set_str("near", "0.0001").unwrap();
+        p.set_str("Ka", "1e30").unwrap();
+        p.set_str("Ka", "-1e30").unwrap();
+        p.set_str("k", "2147483647").unwrap();
+        p.set_str("k", "-2147483648").unwrap();
+        // 16777217 is no f32: it must reach the shader as itself.
+        p.set_str("k", "16777217").unwrap();
+        assert_eq!(p.get("k"), Some(&[16777217.0][..]));
+        assert_eq!(p.text("k"), "16777217");
+        // Errors and --help name the bounds that are checked.
+        let e = p.set_str("k", "2147483648").unwrap_err().to_string();
+        assert!(e.contains("2147483648 is outside -2147483648..2147483647"), "{e}");
+        let e = p.set_str("near", "0.00001").unwrap_err().to_string();
+        assert!(e.contains("0.00001 is outside 0.0001..1000000"), "{e}");
+        let help = p.help();
+        assert!(help.contains("0.0001..1000000") && help.contains("-1e30..1e30"), "{help}");
+        assert!(help.contains("whole number -2147483648..2147483647"), "{help}");
+    }
+
+    #[test]
+    fn one_extra_value_rules_between_parameters_and_long_defaults() {
+        const SPOT: &[ParamSpec] = &[
+            ParamSpec::real("spotCutoff", &[180.0], 0.0, 90.0, "cutoff").or_exactly(180.0),
+            ParamSpec::real("near", &[1.0], 1e-4, 1e6, "near"),
+            ParamSpec::real("far", &[100.0], 1e-3, 1e7, "far"),
+            ParamSpec::real("a", &[0.0; 100], -1.0, 1.0, "array"),
+        ];
+        fn near_far(p: &Params) -> Result<()> {
+            if p.f64("near") >= p.f64("far") {
+                return Err(Error::Param("near must be less than far".into()));
+            }
+            Ok(())
+        }
+        let mut p = Params::new(SPOT).with_check(near_far);
+        let e = p.set_str("spotCutoff", "90.5").unwrap_err().to_string();
+        assert!(e.contains("90.5 is outside 0..90 or 180"), "{e}");
+        p.set_str("spotCutoff", "180").unwrap();
+        p.put("spotCutoff", &[180.0]);
+        assert_eq!(p.f("spotCutoff"), 180.0, "put keeps the extra value");
+        p.set_str("spotCutoff", "45").unwrap();
+        assert!(p.check().is_ok());
+        p.set_str("near", "200").unwrap();
+        assert!(p.check().unwrap_err().to_string().contains("near must be less than far"));
+        let help = p.help();
+        assert!(help.contains("0..90 or 180"), "{help}");
+        assert!(help.contains("0,0,0,0,... (100 numbers)"), "{help}");
+        assert!(help.len() < 1000, "a long default is abbreviated:\n{help}");
+    }
 }

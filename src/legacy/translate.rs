@@ -387,6 +387,10 @@ impl Analysis<'_> {
                 self.fail(range, &format!("`{name}` {why}; this is a {stage} shader"))
             }
             Builtin::Constant(value) => self.edit(range, value),
+            // wgpu draws points one pixel wide and has no point-size output in WGSL: the
+            // shader's writes go to a private variable, so the runner and `glsl2wgsl --legacy`
+            // accept the same shaders (the runner draws triangles, where GL ignores it too).
+            Builtin::Native if name == "gl_PointSize" => self.edit(range, "sl_PointSize"),
             Builtin::TexCoord if !self.handled.contains(&range.start) => self.texcoord_any = true,
             Builtin::State(m)
                 if matches!(m.name, "gl_LightSource" | "gl_FrontLightProduct")
@@ -423,6 +427,7 @@ fn leak_builtin_name(name: &str) -> &'static str {
         "gl_TexCoord",
         "gl_FragColor",
         "gl_FragData",
+        "gl_PointSize",
     ];
     NAMES.iter().copied().find(|n| *n == name).unwrap_or("gl_other")
 }
@@ -1300,6 +1305,12 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         }
         if a.builtins.contains_key("gl_Normal") {
             out.generated("layout(location = 1) in vec3 gl_Normal;\n", first_use("gl_Normal"));
+        }
+        if a.builtins.contains_key("gl_PointSize") {
+            out.generated(
+                "float sl_PointSize; // gl_PointSize: wgpu draws points one pixel wide\n",
+                first_use("gl_PointSize"),
+            );
         }
         if a.builtins.contains_key("gl_MultiTexCoord0") {
             out.generated(

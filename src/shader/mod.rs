@@ -1095,4 +1095,64 @@ mod loader_tests {
         let err = compile_file(Path::new("/dev/zero.frag")).unwrap_err().to_string();
         assert!(err.contains("not found"), "{err}");
     }
+
+    #[test]
+    fn long_lines_are_cut_around_the_caret() {
+        // A 2 MB line printed whole made 4 MB of stderr (the line and the caret's padding).
+        let line = format!("{}BAD{}", "a".repeat(1_000_000), "b".repeat(1_000_000));
+        let d = format_diagnostic("x.frag", 1, 1_000_001, "here", &line, 3);
+        assert!(d.len() < 600, "{} bytes", d.len());
+        let lines: Vec<&str> = d.lines().collect();
+        assert!(lines[1].contains("…") && lines[1].ends_with('…'), "{d}");
+        // The caret stays under the construct.
+        let at = lines[1].chars().position(|c| c == 'B').unwrap();
+        let caret = lines[2].chars().position(|c| c == '^').unwrap();
+        assert_eq!(at, caret, "{d}");
+        assert!(lines[2].ends_with("^^^"), "{d}");
+        // A short line is shown whole, without marks.
+        let d = format_diagnostic("x.frag", 2, 5, "here", "int x = 1;", 1);
+        assert!(d.ends_with("   2 | int x = 1;\n      |     ^"), "{d}");
+    }
+
+    #[test]
+    fn naga_internals_become_sentences() {
+        let cases = [
+            ("ErrorDirective", "#error not done yet", "`#error`: not done yet"),
+            ("UnfinishedBlock", "#if 1", "no matching `#endif`"),
+            (
+                "HirExpr { kind: PrePostfix { op: Subtract, postfix: false, expr: [1] }, meta: Span { start: 310, end: 312 } } cannot be in the left hand side",
+                "",
+                "only a variable",
+            ),
+            ("Unknown function 'f'", "", "unknown function `f`"),
+            (
+                "Function [0] 'main' is invalid: Expression [8] is invalid: Accessing index 7 is out of [5] bounds",
+                "",
+                "constant index 7 is out of bounds",
+            ),
+            ("Float literal is infinite", "", "division by zero"),
+            (
+                "Entry point main at Vertex is invalid: Uses operations forbidden at this stage",
+                "",
+                "`discard`",
+            ),
+        ];
+        for (naga, line, plain) in cases {
+            let m = plain_message(naga, line);
+            assert!(m.contains(plain), "{naga} → {m}");
+            for internal in ["HirExpr", "ErrorDirective", "UnfinishedBlock", "Expression [", "Span {"] {
+                assert!(!m.contains(internal), "{naga} → {m}");
+            }
+        }
+        assert_eq!(plain_message("something else", ""), "something else");
+    }
+
+    #[test]
+    fn the_glsl_450_loader_says_error_directives_in_words() {
+        let dir = shader_dir("error_directive");
+        phong_with(&dir, "#error not ported yet");
+        let e = compile_err(&dir, "phong.frag");
+        assert!(e.contains("the shader stops here with `#error`: not ported yet"), "{e}");
+        assert!(!e.contains("ErrorDirective") && !e.contains("Expected end of file"), "{e}");
+    }
 }
