@@ -568,7 +568,10 @@ mod tests {
         let e = p.set_str("near", "0.00001").unwrap_err().to_string();
         assert!(e.contains("0.00001 is outside 0.0001..1000000"), "{e}");
         let help = p.help();
-        assert!(help.contains("0.0001..1000000") && help.contains("-1e30..1e30"), "{help}");
+        assert!(
+            help.contains("0.0001..1000000") && help.contains("-1e30..1e30"),
+            "{help}"
+        );
         assert!(help.contains("whole number -2147483648..2147483647"), "{help}");
     }
 
@@ -595,7 +598,11 @@ mod tests {
         p.set_str("spotCutoff", "45").unwrap();
         assert!(p.check().is_ok());
         p.set_str("near", "200").unwrap();
-        assert!(p.check().unwrap_err().to_string().contains("near must be less than far"));
+        assert!(p
+            .check()
+            .unwrap_err()
+            .to_string()
+            .contains("near must be less than far"));
         let help = p.help();
         assert!(help.contains("0..90 or 180"), "{help}");
         assert!(help.contains("0,0,0,0,... (100 numbers)"), "{help}");

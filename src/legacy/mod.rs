@@ -248,7 +248,7 @@ impl Translation {
                     .iter()
                     .filter_map(|u| sizes.iter().find(|(m, _)| *m == u.member()).map(|(_, s)| (u, *s)))
                     .collect();
-                by_size.sort_by(|a, b| b.1.cmp(&a.1));
+                by_size.sort_by_key(|u| std::cmp::Reverse(u.1));
                 let list: Vec<String> = by_size
                     .iter()
                     .take(5)

@@ -468,11 +468,17 @@ fn limits_are_checked_with_the_uniforms_and_varyings_named() {
     let (vs, fs) = t.compile().unwrap();
     assert!(t.check_limits(&vs, &fs, 16384, 16).is_ok());
     let e = t.check_limits(&vs, &fs, 1024, 16).unwrap_err();
-    let Error::Shader { file, line, message, .. } = e else {
+    let Error::Shader {
+        file, line, message, ..
+    } = e
+    else {
         panic!("{e:?}")
     };
     assert_eq!((file.as_str(), line), ("t.frag", 1), "{message}");
-    assert!(message.contains("need 1616 bytes") && message.contains("limit of 1024 bytes"), "{message}");
+    assert!(
+        message.contains("need 1616 bytes") && message.contains("limit of 1024 bytes"),
+        "{message}"
+    );
     assert!(message.contains("`a` float[100] 1600 bytes (t.frag:1)"), "{message}");
     assert!(message.contains("`b` vec4 16 bytes (t.frag:2)"), "{message}");
 
@@ -484,19 +490,31 @@ fn limits_are_checked_with_the_uniforms_and_varyings_named() {
     let (vs, fs) = t.compile().unwrap();
     assert!(t.check_limits(&vs, &fs, 16384, 4).is_ok());
     let e = t.check_limits(&vs, &fs, 16384, 3).unwrap_err();
-    let Error::Shader { file, line, message, .. } = e else {
+    let Error::Shader {
+        file, line, message, ..
+    } = e
+    else {
         panic!("{e:?}")
     };
-    assert_eq!((file.as_str(), line), ("t.vert", 3), "the first varying past the limit: {message}");
+    assert_eq!(
+        (file.as_str(), line),
+        ("t.vert", 3),
+        "the first varying past the limit: {message}"
+    );
     assert!(
-        message.contains("passes 4 values") && message.contains("p, q, r, gl_FrontColor") && message.contains("at most 3"),
+        message.contains("passes 4 values")
+            && message.contains("p, q, r, gl_FrontColor")
+            && message.contains("at most 3"),
         "{message}"
     );
 }
 
 #[test]
 fn int_uniforms_are_exact_over_the_whole_range() {
-    let t = ok(PASS_VS, "uniform int k;\nvoid main() { gl_FragColor = vec4(float(k)); }\n");
+    let t = ok(
+        PASS_VS,
+        "uniform int k;\nvoid main() { gl_FragColor = vec4(float(k)); }\n",
+    );
     let (vs, _) = t.compile().unwrap();
     let mut params = crate::params::Params::new(&t.params(&|_| false));
     for v in ["16777217", "2147483647", "-2147483648"] {
@@ -510,12 +528,17 @@ fn int_uniforms_are_exact_over_the_whole_range() {
 
 #[test]
 fn uniforms_named_like_lab_parameters_are_renamed_and_say_why() {
-    let t = ok(PASS_VS, "uniform float near;\nuniform float kept;\nvoid main() { gl_FragColor = vec4(near + kept); }\n");
+    let t = ok(
+        PASS_VS,
+        "uniform float near;\nuniform float kept;\nvoid main() { gl_FragColor = vec4(near + kept); }\n",
+    );
     let params = t.params(&|n| n == "near");
     let names: Vec<&str> = params.iter().map(|p| p.name).collect();
     assert_eq!(names, ["uniform.near", "kept"]);
     assert!(
-        params[0].help.contains("`near` is the lab's own parameter, so this one is `uniform.near`"),
+        params[0]
+            .help
+            .contains("`near` is the lab's own parameter, so this one is `uniform.near`"),
         "{}",
         params[0].help
     );

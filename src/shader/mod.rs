@@ -1153,6 +1153,9 @@ mod loader_tests {
         phong_with(&dir, "#error not ported yet");
         let e = compile_err(&dir, "phong.frag");
         assert!(e.contains("the shader stops here with `#error`: not ported yet"), "{e}");
-        assert!(!e.contains("ErrorDirective") && !e.contains("Expected end of file"), "{e}");
+        assert!(
+            !e.contains("ErrorDirective") && !e.contains("Expected end of file"),
+            "{e}"
+        );
     }
 }
