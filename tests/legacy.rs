@@ -621,6 +621,26 @@ fn command_line_refuses_what_gl_refuses_and_says_what_it_draws() {
         "{} bytes",
         out.len()
     );
+    // A uniform named like a lab parameter is `uniform.NAME`, settable, and stderr says so.
+    let near = dir.join("near.frag");
+    std::fs::write(
+        &near,
+        "uniform float near;\nvoid main() { gl_FragColor = vec4(near); }\n",
+    )
+    .unwrap();
+    let near = near.display().to_string();
+    let (code, out, _) = run(&[&vert, &near, "--help"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("uniform.near") && out.contains("`near` is the lab's own parameter"),
+        "{out}"
+    );
+    let (code, _, err) = run(&[&vert, &near, "--set", "uniform.near=0.5", "--screenshot", &png]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("the shaders' uniform `near` is the parameter `uniform.near`"),
+        "{err}"
+    );
     // Without files the built-in pair is drawn, and stderr says so.
     let (code, _, err) = run(&["--screenshot", &png]);
     assert_eq!(code, 0, "{err}");

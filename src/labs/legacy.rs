@@ -299,6 +299,16 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         declare,
     });
     let (bound, binds) = bind_all(cx.gpu, translation, &vs, &fs, cx.files)?;
+    // A uniform named like one of the lab's parameters is `uniform.NAME`; say so once, so
+    // that `--set near=...` is not mistaken for the shader's `near`.
+    for (u, name) in bound.translation.uniforms.iter().zip(&bound.uniform_params) {
+        if u.name != *name {
+            eprintln!(
+                "legacy: the shaders' uniform `{}` is the parameter `{name}` (`--set {name}=...`): `{}` is the lab's own",
+                u.name, u.name
+            );
+        }
+    }
     let mut program = Program::from_shaders(cx.gpu, "legacy", vs, fs, RenderState::default(), cx.format)?;
     program.bind(cx.gpu, binds)?;
     let stage = GlutStage::new(
