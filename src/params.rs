@@ -135,10 +135,18 @@ fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
 /// ones short (1e30), the rest in the shortest form that reads back as the same f64 (0.0001),
 /// so that the text is the bound that is checked.
 pub fn bound_text(v: f64) -> String {
+    let short = |v: f64| {
+        // A bound that is an f32 (f32::MAX) in its f32 form: 3.4028235e38, not 3.4028234663852886e38.
+        if f64::from(v as f32) == v {
+            format!("{:e}", v as f32)
+        } else {
+            format!("{v:e}")
+        }
+    };
     if v.fract() == 0.0 && v.abs() < 1e16 {
         format!("{v}")
     } else if v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6) {
-        format!("{v:e}")
+        short(v)
     } else {
         format!("{v}")
     }
@@ -317,7 +325,14 @@ impl Params {
                     self.choices_hint(&spec)
                 )));
             }
-            if (v < spec.min || v > spec.max) && spec.or != Some(v) {
+            // In f64, the type the value is kept in; a real is also taken where its f32 (what
+            // a shader gets) is within the f32 bounds, so that a bound printed as an f32
+            // (`3.4028235e38` for f32::MAX) is itself accepted.
+            let inside = (spec.min..=spec.max).contains(&v)
+                || (spec.kind == Kind::Real
+                    && (v as f32).is_finite()
+                    && (spec.min as f32..=spec.max as f32).contains(&(v as f32)));
+            if !inside && spec.or != Some(v) {
                 return Err(Error::Param(format!(
                     "parameter `{name}`: {v} is outside {}{}",
                     range_text(&spec),
@@ -573,6 +588,11 @@ mod tests {
             "{help}"
         );
         assert!(help.contains("whole number -2147483648..2147483647"), "{help}");
+        // A range of any f32 prints as one, and its printed bound is taken.
+        let mut f = Params::new(&[ParamSpec::real("x", &[0.0], -f32::MAX as f64, f32::MAX as f64, "x")]);
+        assert!(f.help().contains("-3.4028235e38..3.4028235e38"), "{}", f.help());
+        f.set_str("x", "3.4028235e38").unwrap();
+        assert!(f.set_str("x", "1e39").is_err());
     }
 
     #[test]
