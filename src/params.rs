@@ -2,9 +2,11 @@
 //! title and tests, for every lab.
 //!
 //! A lab (or each part it is composed of) declares its parameters as [`ParamSpec`]s with a
-//! default, a range and a kind; [`Params`] holds the current values. Values are kept in f64 so
-//! that a clock can run for hours without losing precision before a lab narrows them to the
-//! f32 its uniforms take.
+//! default, a range and a kind; [`Params`] holds the current values. Values are parsed and kept
+//! in f64 so that a clock can run for hours without losing precision before a lab narrows them
+//! to the f32 its uniforms take, so that a whole number is exact over the whole i32 range
+//! (`uniform int k` = 16777217), and so that a documented bound (`near` 0.0001, `Ka` 1e30) is
+//! accepted: the value is compared with the range in the type both are stored in.
 
 use std::path::PathBuf;
 
@@ -38,6 +40,8 @@ pub struct ParamSpec {
     pub kind: Kind,
     /// One line for `--help`.
     pub help: &'static str,
+    /// One more value accepted outside `[min, max]` (GL's `spotCutoff`: 0..90 or 180).
+    pub or: Option<f64>,
 }
 
 impl ParamSpec {
@@ -50,7 +54,14 @@ impl ParamSpec {
             max,
             kind: Kind::Real,
             help,
+            or: None,
         }
+    }
+
+    /// The same parameter, also taking exactly `value` outside its range.
+    pub const fn or_exactly(mut self, value: f64) -> Self {
+        self.or = Some(value);
+        self
     }
 
     /// A whole number in `[min, max]`.
@@ -62,6 +73,7 @@ impl ParamSpec {
             max,
             kind: Kind::Int,
             help,
+            or: None,
         }
     }
 
@@ -74,6 +86,7 @@ impl ParamSpec {
             max: 1.0,
             kind: Kind::Bool,
             help,
+            or: None,
         }
     }
 
@@ -91,6 +104,7 @@ impl ParamSpec {
             max: (names.len() - 1) as f64,
             kind: Kind::Choice(names),
             help,
+            or: None,
         }
     }
 
@@ -107,12 +121,41 @@ fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
             .and_then(|v| names.get(*v as usize))
             .map(|s| s.to_string())
             .unwrap_or_default(),
-        _ => values
+        // Reals as the f32 the shaders get; whole numbers exactly (16777217 is no f32).
+        Kind::Real => values
             .iter()
             .map(|v| format!("{}", *v as f32))
             .collect::<Vec<_>>()
             .join(","),
+        _ => values.iter().map(|v| format!("{v}")).collect::<Vec<_>>().join(","),
     }
+}
+
+/// A bound as `--help` and the range errors write it: whole numbers in full (2147483647), huge
+/// ones short (1e30), the rest in the shortest form that reads back as the same f64 (0.0001),
+/// so that the text is the bound that is checked.
+pub fn bound_text(v: f64) -> String {
+    let short = |v: f64| {
+        // A bound that is an f32 (f32::MAX) in its f32 form: 3.4028235e38, not 3.4028234663852886e38.
+        if f64::from(v as f32) == v {
+            format!("{:e}", v as f32)
+        } else {
+            format!("{v:e}")
+        }
+    };
+    if v.fract() == 0.0 && v.abs() < 1e16 {
+        format!("{v}")
+    } else if v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6) {
+        short(v)
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The range of a spec as text, `0..90 or 180` where one more value is taken.
+fn range_text(spec: &ParamSpec) -> String {
+    let or = spec.or.map(|v| format!(" or {}", bound_text(v))).unwrap_or_default();
+    format!("{}..{}{or}", bound_text(spec.min), bound_text(spec.max))
 }
 
 /// Files a lab takes on the command line (positional `FILES...`), and the parameters those
@@ -135,6 +178,9 @@ pub struct Params {
     specs: Vec<ParamSpec>,
     values: Vec<Vec<f64>>,
     files: Option<FileArgs>,
+    /// Rules between parameters (`near` < `far`), run by [`Params::check`] once all values are
+    /// set: one `--set` at a time cannot be judged (`--set near=200 --set far=1000`).
+    checks: Vec<fn(&Params) -> Result<()>>,
 }
 
 impl Params {
@@ -160,6 +206,17 @@ impl Params {
     pub fn with_files(mut self, files: FileArgs) -> Self {
         self.files = Some(files);
         self
+    }
+
+    /// Adds a rule between parameters, checked by [`Params::check`].
+    pub fn with_check(mut self, check: fn(&Params) -> Result<()>) -> Self {
+        self.checks.push(check);
+        self
+    }
+
+    /// Runs the rules between parameters (after the command line is applied).
+    pub fn check(&self) -> Result<()> {
+        self.checks.iter().try_for_each(|c| c(self))
     }
 
     /// The files the lab takes on the command line, if any.
@@ -268,11 +325,17 @@ impl Params {
                     self.choices_hint(&spec)
                 )));
             }
-            if v < spec.min || v > spec.max {
+            // In f64, the type the value is kept in; a real is also taken where its f32 (what
+            // a shader gets) is within the f32 bounds, so that a bound printed as an f32
+            // (`3.4028235e38` for f32::MAX) is itself accepted.
+            let inside = (spec.min..=spec.max).contains(&v)
+                || (spec.kind == Kind::Real
+                    && (v as f32).is_finite()
+                    && (spec.min as f32..=spec.max as f32).contains(&(v as f32)));
+            if !inside && spec.or != Some(v) {
                 return Err(Error::Param(format!(
-                    "parameter `{name}`: {v} is outside {}..{}{}",
-                    spec.min as f32,
-                    spec.max as f32,
+                    "parameter `{name}`: {v} is outside {}{}",
+                    range_text(&spec),
                     self.choices_hint(&spec)
                 )));
             }
@@ -352,8 +415,11 @@ impl Params {
     pub fn put(&mut self, name: &str, values: &[f64]) {
         debug_assert!(self.has(name), "unknown parameter {name}");
         if let Some(i) = self.index(name) {
-            let (lo, hi) = (self.specs[i].min, self.specs[i].max);
-            self.values[i] = values.iter().map(|v| v.clamp(lo, hi)).collect();
+            let (lo, hi, or) = (self.specs[i].min, self.specs[i].max, self.specs[i].or);
+            self.values[i] = values
+                .iter()
+                .map(|&v| if or == Some(v) { v } else { v.clamp(lo, hi) })
+                .collect();
         }
     }
 
@@ -407,23 +473,30 @@ impl Params {
                         .join(", ")
                 ),
                 Kind::Bool => "0 or 1".into(),
-                Kind::Int => format!("whole number {}..{}", s.min, s.max),
-                Kind::Real => format!("{}..{}", s.min as f32, s.max as f32),
+                Kind::Int => format!("whole number {}", range_text(s)),
+                Kind::Real => range_text(s),
+            };
+            // A long array's default is abbreviated: `uniform float a[100000]` would print
+            // 100,000 zeros.
+            let default = if s.default.len() > 16 {
+                format!("{},... ({} numbers)", format_value(s, &s.default[..4]), s.default.len())
+            } else {
+                s.default_text()
             };
             out.push_str(&format!(
                 "  {:<16} default {:<14} {range}: {}\n",
-                s.name,
-                s.default_text(),
-                s.help
+                s.name, default, s.help
             ));
         }
         out
     }
 }
 
-/// Parses one finite number (as f32, then widened: the originals' values are floats).
-pub fn parse_finite(s: &str) -> std::result::Result<f32, String> {
-    match s.trim().parse::<f32>() {
+/// Parses one finite number, in f64: the value is compared with its range in the type it is
+/// stored in (an f32 parse made `0.0001` 0.0000999999974, below a bound of 0.0001, and
+/// `16777217` 16777216), and narrowed to f32 only where a shader takes a float.
+pub fn parse_finite(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
         _ => Err(format!("`{s}` is not a finite number")),
     }
@@ -431,7 +504,7 @@ pub fn parse_finite(s: &str) -> std::result::Result<f32, String> {
 
 /// Parses comma-separated finite numbers.
 pub fn parse_numbers(s: &str) -> std::result::Result<Vec<f64>, String> {
-    s.split(',').map(|p| parse_finite(p).map(f64::from)).collect()
+    s.split(',').map(parse_finite).collect()
 }
 
 #[cfg(test)]
@@ -484,5 +557,75 @@ mod tests {
         p.toggle("fixpos");
         assert!(p.on("fixpos"));
         assert!(p.help().contains("teapot (0)"));
+    }
+
+    #[test]
+    fn documented_bounds_are_taken_and_whole_numbers_are_exact() {
+        const EDGES: &[ParamSpec] = &[
+            ParamSpec::real("near", &[1.0], 1e-4, 1e6, "near"),
+            ParamSpec::real("Ka", &[0.0], -1e30, 1e30, "big"),
+            ParamSpec::int("k", &[0.0], -2147483648.0, 2147483647.0, "int"),
+        ];
+        let mut p = Params::new(EDGES);
+        // f32 parsing made 0.0001 0.0000999999974 (below the bound) and 1e30 1.00000002e30.
+        p.set_str("near", "0.0001").unwrap();
+        p.set_str("Ka", "1e30").unwrap();
+        p.set_str("Ka", "-1e30").unwrap();
+        p.set_str("k", "2147483647").unwrap();
+        p.set_str("k", "-2147483648").unwrap();
+        // 16777217 is no f32: it must reach the shader as itself.
+        p.set_str("k", "16777217").unwrap();
+        assert_eq!(p.get("k"), Some(&[16777217.0][..]));
+        assert_eq!(p.text("k"), "16777217");
+        // Errors and --help name the bounds that are checked.
+        let e = p.set_str("k", "2147483648").unwrap_err().to_string();
+        assert!(e.contains("2147483648 is outside -2147483648..2147483647"), "{e}");
+        let e = p.set_str("near", "0.00001").unwrap_err().to_string();
+        assert!(e.contains("0.00001 is outside 0.0001..1000000"), "{e}");
+        let help = p.help();
+        assert!(
+            help.contains("0.0001..1000000") && help.contains("-1e30..1e30"),
+            "{help}"
+        );
+        assert!(help.contains("whole number -2147483648..2147483647"), "{help}");
+        // A range of any f32 prints as one, and its printed bound is taken.
+        let mut f = Params::new(&[ParamSpec::real("x", &[0.0], -f32::MAX as f64, f32::MAX as f64, "x")]);
+        assert!(f.help().contains("-3.4028235e38..3.4028235e38"), "{}", f.help());
+        f.set_str("x", "3.4028235e38").unwrap();
+        assert!(f.set_str("x", "1e39").is_err());
+    }
+
+    #[test]
+    fn one_extra_value_rules_between_parameters_and_long_defaults() {
+        const SPOT: &[ParamSpec] = &[
+            ParamSpec::real("spotCutoff", &[180.0], 0.0, 90.0, "cutoff").or_exactly(180.0),
+            ParamSpec::real("near", &[1.0], 1e-4, 1e6, "near"),
+            ParamSpec::real("far", &[100.0], 1e-3, 1e7, "far"),
+            ParamSpec::real("a", &[0.0; 100], -1.0, 1.0, "array"),
+        ];
+        fn near_far(p: &Params) -> Result<()> {
+            if p.f64("near") >= p.f64("far") {
+                return Err(Error::Param("near must be less than far".into()));
+            }
+            Ok(())
+        }
+        let mut p = Params::new(SPOT).with_check(near_far);
+        let e = p.set_str("spotCutoff", "90.5").unwrap_err().to_string();
+        assert!(e.contains("90.5 is outside 0..90 or 180"), "{e}");
+        p.set_str("spotCutoff", "180").unwrap();
+        p.put("spotCutoff", &[180.0]);
+        assert_eq!(p.f("spotCutoff"), 180.0, "put keeps the extra value");
+        p.set_str("spotCutoff", "45").unwrap();
+        assert!(p.check().is_ok());
+        p.set_str("near", "200").unwrap();
+        assert!(p
+            .check()
+            .unwrap_err()
+            .to_string()
+            .contains("near must be less than far"));
+        let help = p.help();
+        assert!(help.contains("0..90 or 180"), "{help}");
+        assert!(help.contains("0,0,0,0,... (100 numbers)"), "{help}");
+        assert!(help.len() < 1000, "a long default is abbreviated:\n{help}");
     }
 }

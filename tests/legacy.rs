@@ -549,3 +549,104 @@ fn seed002_double_vision_translates_its_sampler_named_texture() {
     let names: Vec<&str> = t.params(&|_| false).iter().map(|p| p.name).collect();
     assert_eq!(names, ["left_separation", "right_separation"]);
 }
+
+#[test]
+fn command_line_refuses_what_gl_refuses_and_says_what_it_draws() {
+    let dir = scratch("refusals");
+    let vert = dir.join("a.vert");
+    let frag = dir.join("a.frag");
+    std::fs::write(
+        &vert,
+        "void main() { gl_Position = ftransform(); gl_FrontColor = gl_LightSource[0].diffuse; }\n",
+    )
+    .unwrap();
+    std::fs::write(&frag, "void main() { gl_FragColor = gl_Color; }\n").unwrap();
+    let (vert, frag) = (vert.display().to_string(), frag.display().to_string());
+    let png = dir.join("x.png").display().to_string();
+    // near >= far, and a cutoff GL refuses (0..90 or 180), are usage errors before any GPU work.
+    let (code, _, err) = run(&[
+        &vert,
+        &frag,
+        "--set",
+        "near=200",
+        "--set",
+        "far=100",
+        "--screenshot",
+        &png,
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("`near` (200) must be less than `far` (100)"), "{err}");
+    let (code, _, err) = run(&[
+        &vert,
+        &frag,
+        "--set",
+        "gl_LightSource[0].spotCutoff=90.5",
+        "--screenshot",
+        &png,
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("90.5 is outside 0..90 or 180"), "{err}");
+    // The documented lower bound of `near` is taken (an f32 parse put it below the bound).
+    let (code, _, err) = run(&[
+        &vert,
+        &frag,
+        "--set",
+        "near=0.0001",
+        "--set",
+        "gl_LightSource[0].spotCutoff=180",
+        "--screenshot",
+        &png,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("no VERT FRAG"), "{err}");
+    // Uniforms over the device's block limit are named before a pipeline is made.
+    let big = dir.join("big.frag");
+    std::fs::write(
+        &big,
+        "uniform float a[100000];\nvoid main() { gl_FragColor = vec4(a[3]); }\n",
+    )
+    .unwrap();
+    let (code, _, err) = run(&[&vert, &big.display().to_string(), "--screenshot", &png]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("big.frag:1:15: the uniforms need 1600000 bytes"), "{err}");
+    assert!(
+        !err.contains("bind_group") && !err.contains("Validation Error"),
+        "{err}"
+    );
+    // --help abbreviates the 100,000 zeros of that array's default.
+    let (code, out, _) = run(&[&vert, &big.display().to_string(), "--help"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("(100000 numbers)") && out.len() < 20_000,
+        "{} bytes",
+        out.len()
+    );
+    // A uniform named like a lab parameter is `uniform.NAME`, settable, and stderr says so.
+    let near = dir.join("near.frag");
+    std::fs::write(
+        &near,
+        "uniform float near;\nvoid main() { gl_FragColor = vec4(near); }\n",
+    )
+    .unwrap();
+    let near = near.display().to_string();
+    let (code, out, _) = run(&[&vert, &near, "--help"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("uniform.near") && out.contains("`near` is the lab's own parameter"),
+        "{out}"
+    );
+    let (code, _, err) = run(&[&vert, &near, "--set", "uniform.near=0.5", "--screenshot", &png]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("the shaders' uniform `near` is the parameter `uniform.near`"),
+        "{err}"
+    );
+    // Without files the built-in pair is drawn, and stderr says so.
+    let (code, _, err) = run(&["--screenshot", &png]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("no VERT FRAG given: drawing the built-in GLSL 1.10 pair"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(dir).ok();
+}

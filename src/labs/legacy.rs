@@ -71,8 +71,19 @@ const OWN: &[ParamSpec] = &[
 const DEFAULT_VERT: &str = include_str!("legacy/default.vert");
 const DEFAULT_FRAG: &str = include_str!("legacy/default.frag");
 
+/// gluPerspective needs 0 < near < far; GL would draw nothing (or garbage) otherwise.
+fn near_before_far(p: &Params) -> Result<()> {
+    let (near, far) = (p.f64("near"), p.f64("far"));
+    if near >= far {
+        return Err(Error::Param(format!(
+            "`near` ({near}) must be less than `far` ({far}): gluPerspective needs 0 < near < far"
+        )));
+    }
+    Ok(())
+}
+
 fn base_params() -> Params {
-    let mut p = Params::new(OWN);
+    let mut p = Params::new(OWN).with_check(near_before_far);
     let stage: Vec<ParamSpec> = PARAMS_000
         .iter()
         .copied()
@@ -199,7 +210,20 @@ fn picture(s: &legacy::Sampler, first_2d: bool, files: &UserFiles) -> Result<(Im
     }
 }
 
-fn bind_all(gpu: &Gpu, translation: Translation, vs: &CompiledShader, files: &UserFiles) -> Result<(Bound, Vec<Bind>)> {
+fn bind_all(
+    gpu: &Gpu,
+    translation: Translation,
+    vs: &CompiledShader,
+    fs: &CompiledShader,
+    files: &UserFiles,
+) -> Result<(Bound, Vec<Bind>)> {
+    let limits = gpu.device.limits();
+    translation.check_limits(
+        vs,
+        fs,
+        limits.max_uniform_buffer_binding_size,
+        limits.max_inter_stage_shader_variables,
+    )?;
     for (name, _) in &files.named_textures {
         if !translation.samplers.iter().any(|s| &s.name == name) {
             let have: Vec<&str> = translation.samplers.iter().map(|s| s.name.as_str()).collect();
@@ -262,12 +286,30 @@ fn bind_all(gpu: &Gpu, translation: Translation, vs: &CompiledShader, files: &Us
 
 fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
     let files = cx.files.inputs.clone();
+    if files.is_empty() {
+        // Running without files stays (every lab runs with no arguments: `labs`, the README
+        // pictures, the window tests), but a user who forgot the files must not mistake the
+        // built-in pair for theirs.
+        eprintln!(
+            "legacy: no VERT FRAG given: drawing the built-in GLSL 1.10 pair (legacy/default.vert, legacy/default.frag); run `legacy VERT FRAG` for your own shaders"
+        );
+    }
     let (translation, vs, fs) = load(&files)?;
     let params = declared(&translation).with_files(FileArgs {
         names: &["VERT", "FRAG"],
         declare,
     });
-    let (bound, binds) = bind_all(cx.gpu, translation, &vs, cx.files)?;
+    let (bound, binds) = bind_all(cx.gpu, translation, &vs, &fs, cx.files)?;
+    // A uniform named like one of the lab's parameters is `uniform.NAME`; say so once, so
+    // that `--set near=...` is not mistaken for the shader's `near`.
+    for (u, name) in bound.translation.uniforms.iter().zip(&bound.uniform_params) {
+        if u.name != *name {
+            eprintln!(
+                "legacy: the shaders' uniform `{}` is the parameter `{name}` (`--set {name}=...`): `{}` is the lab's own",
+                u.name, u.name
+            );
+        }
+    }
     let mut program = Program::from_shaders(cx.gpu, "legacy", vs, fs, RenderState::default(), cx.format)?;
     program.bind(cx.gpu, binds)?;
     let stage = GlutStage::new(
@@ -459,7 +501,7 @@ impl Lab for LegacyLab {
                 }
             }
         }
-        let (bound, binds) = bind_all(cx.gpu, translation, &vs, &self.user_files)?;
+        let (bound, binds) = bind_all(cx.gpu, translation, &vs, &fs, &self.user_files)?;
         self.program.set_shaders_and_bind(cx.gpu, vs, fs, binds)?;
         self.bound = bound;
         self.params = params;

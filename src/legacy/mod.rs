@@ -58,11 +58,12 @@ impl Translated {
         let module = frontend
             .parse(&naga::front::glsl::Options::from(self.stage), text)
             .map_err(|errors| {
-                let found: Vec<(Range<usize>, String)> = errors
+                let mut found: Vec<(Range<usize>, String)> = errors
                     .errors
                     .iter()
                     .map(|e| (e.meta.to_range().unwrap_or(0..0), e.kind.to_string()))
                     .collect();
+                crate::shader::error_directive_first(&mut found, |(_, m)| m);
                 self.combine(&found)
             })?;
         let info = Validator::new(ValidationFlags::all(), Capabilities::all())
@@ -105,12 +106,40 @@ impl Translated {
         })
     }
 
+    /// An error naga gives no place for. naga folds constants with no span: a projective
+    /// lookup with q = 0 (`texture2DProj(s, vec3(0.5, 0.5, 0.0))`) is "Float literal is
+    /// infinite" at nowhere; point at the first projective lookup if there is one, else name
+    /// the file without a (wrong) line.
+    fn spanless(&self, message: &str) -> Error {
+        let plain = crate::shader::plain_message(message, "");
+        let text = &self.source.text;
+        if message.contains("Float literal is") {
+            if let Some(at) = text.find("Proj(") {
+                let start = text[..at]
+                    .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .map_or(0, |i| i + 1);
+                return self.source.error(start..at + 4, &plain);
+            }
+        }
+        Error::Shader {
+            file: self.source.path.clone(),
+            line: 1,
+            column: 1,
+            message: format!("{}: {plain}", self.source.path),
+        }
+    }
+
     fn combine(&self, found: &[(Range<usize>, String)]) -> Error {
         let errors: Vec<Error> = found
             .iter()
             // The user's `main` is `sl_main` in the translation: name it as the user does.
             .map(|(range, message)| {
-                self.error_at(range.start, range.len().max(1), &message.replace("'sl_main'", "'main'"))
+                if *range == (0..0) {
+                    return self.spanless(message);
+                }
+                let line = self.source_line_at(range.start);
+                let message = crate::shader::plain_message(&message.replace("'sl_main'", "'main'"), &line);
+                self.error_at(range.start, range.len().max(1), &message)
             })
             .collect();
         let mut errors = errors.into_iter();
@@ -173,8 +202,16 @@ impl Translation {
             };
             let (line, _, _) = file.line_col(u.declared.1.start);
             let kind = if u.attribute { "attribute" } else { "uniform" };
+            // A uniform named like one of the lab's parameters keeps both settable: the
+            // lab's keeps its name (documented, used by keys and shorthands such as
+            // `--camera`), the shader's is `uniform.NAME`, and its help line says why.
+            let renamed = if name != u.name {
+                format!("; `{}` is the lab's own parameter, so this one is `{name}`", u.name)
+            } else {
+                String::new()
+            };
             let help = state::intern(&format!(
-                "{kind} {}{} ({}:{line})",
+                "{kind} {}{} ({}:{line}){renamed}",
                 u.ty.glsl(),
                 u.array.map(|n| format!("[{n}]")).unwrap_or_default(),
                 file.path
@@ -188,6 +225,131 @@ impl Translation {
         }
         out
     }
+}
+
+impl Translation {
+    /// Checks what the shaders need against the device's limits before any buffer or pipeline
+    /// is made: wgpu would otherwise report them as validation errors about `legacy.bind_group`
+    /// or `legacy.pipeline`. `max_block` is the largest uniform binding in bytes,
+    /// `max_varyings` the inter-stage variables; `vs` and `fs` the compiled stages.
+    pub fn check_limits(
+        &self,
+        vs: &CompiledShader,
+        fs: &CompiledShader,
+        max_block: u64,
+        max_varyings: u32,
+    ) -> Result<()> {
+        if let Some(sizes) = member_sizes(vs, UNIFORM_BLOCK) {
+            let total: u64 = sizes.iter().map(|(_, size)| size).sum();
+            if total > max_block {
+                // Name the uniforms, largest first, with their sizes in the block.
+                let mut by_size: Vec<(&Uniform, u64)> = self
+                    .uniforms
+                    .iter()
+                    .filter_map(|u| sizes.iter().find(|(m, _)| *m == u.member()).map(|(_, s)| (u, *s)))
+                    .collect();
+                by_size.sort_by_key(|u| std::cmp::Reverse(u.1));
+                let list: Vec<String> = by_size
+                    .iter()
+                    .take(5)
+                    .map(|(u, size)| {
+                        let file = if u.declared.0 {
+                            &self.vertex.source
+                        } else {
+                            &self.fragment.source
+                        };
+                        format!(
+                            "`{}` {}{} {size} bytes ({}:{})",
+                            u.name,
+                            u.ty.glsl(),
+                            u.array.map(|n| format!("[{n}]")).unwrap_or_default(),
+                            file.path,
+                            file.line_col(u.declared.1.start).0
+                        )
+                    })
+                    .collect();
+                let more = by_size.len().saturating_sub(5);
+                let message = format!(
+                    "the uniforms need {total} bytes, more than this GPU's limit of {max_block} bytes for one uniform block: {}{}; \
+                     each element of a float or vec2 array takes 16 bytes (std140): use fewer or smaller arrays, or pack floats into vec4s",
+                    list.join(", "),
+                    if more > 0 { format!(" and {more} more") } else { String::new() }
+                );
+                return Err(match by_size.first() {
+                    Some((u, _)) => {
+                        let file = if u.declared.0 {
+                            &self.vertex.source
+                        } else {
+                            &self.fragment.source
+                        };
+                        file.error(u.declared.1.clone(), &message)
+                    }
+                    None => self.vertex.source.error(0..0, &message),
+                });
+            }
+        }
+        // The fragment shader's built-in inputs other than the position (gl_FrontFacing)
+        // take inter-stage variables too.
+        let builtins = fragment_builtin_inputs(fs);
+        let limit = max_varyings.saturating_sub(builtins) as usize;
+        if self.varyings.len() > limit {
+            let names: Vec<&str> = self.varyings.iter().map(|(n, _)| n.as_str()).take(16).collect();
+            let more = self.varyings.len().saturating_sub(16);
+            let message = format!(
+                "the vertex shader passes {} values to the fragment shader ({}{}); this GPU takes at most {limit}{}: \
+                 pack several floats into one vec4 varying (gl_FrontColor and each gl_TexCoord[i] count, a variable gl_TexCoord index counts all 8)",
+                self.varyings.len(),
+                names.join(", "),
+                if more > 0 { format!(", and {more} more") } else { String::new() },
+                if builtins > 0 { format!(" ({max_varyings} less {builtins} for the fragment built-ins read)") } else { String::new() }
+            );
+            let first_over = self.varyings.iter().skip(limit).find_map(|(_, r)| r.clone());
+            let range = first_over.or_else(|| self.varyings.iter().rev().find_map(|(_, r)| r.clone()));
+            return Err(match range {
+                Some(r) => self.vertex.source.error(r, &message),
+                None => self.vertex.source.error(0..0, &message),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Each member of the uniform block `name` with its size in bytes (up to the next member).
+fn member_sizes(shader: &CompiledShader, name: &str) -> Option<Vec<(String, u64)>> {
+    let module = &shader.module;
+    let var = module
+        .global_variables
+        .iter()
+        .map(|(_, v)| v)
+        .find(|v| v.space == naga::AddressSpace::Uniform && module.types[v.ty].name.as_deref() == Some(name))?;
+    let naga::TypeInner::Struct { members, span } = &module.types[var.ty].inner else {
+        return None;
+    };
+    Some(
+        members
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let end = members.get(i + 1).map_or(*span, |n| n.offset);
+                (m.name.clone().unwrap_or_default(), u64::from(end - m.offset))
+            })
+            .collect(),
+    )
+}
+
+/// How many built-in inputs other than the position the fragment entry point reads.
+fn fragment_builtin_inputs(fs: &CompiledShader) -> u32 {
+    let module = &fs.module;
+    let count = |b: &Option<naga::Binding>| matches!(b, Some(naga::Binding::BuiltIn(bi)) if !matches!(bi, naga::BuiltIn::Position { .. }));
+    module
+        .entry_points
+        .iter()
+        .flat_map(|ep| &ep.function.arguments)
+        .map(|arg| match &module.types[arg.ty].inner {
+            naga::TypeInner::Struct { members, .. } => members.iter().filter(|m| count(&m.binding)).count() as u32,
+            _ => u32::from(count(&arg.binding)),
+        })
+        .sum()
 }
 
 /// The uniform block `name` of a compiled shader as raw bytes, each leaf (scalar, vector or

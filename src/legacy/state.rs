@@ -95,17 +95,23 @@ pub fn params(used: &[&str], lights: usize) -> Vec<ParamSpec> {
             for (field, first, other) in LIGHT_FIELDS {
                 let (min, max) = match *field {
                     "spotExponent" => (0.0, 128.0),
-                    "spotCutoff" => (0.0, 180.0),
+                    // GL takes 0..90 or exactly 180 (no spot); 90.5 is GL_INVALID_VALUE.
+                    "spotCutoff" => (0.0, 90.0),
                     "constantAttenuation" | "linearAttenuation" | "quadraticAttenuation" => (0.0, BIG),
                     _ => (-BIG, BIG),
                 };
-                out.push(ParamSpec::real(
+                let spec = ParamSpec::real(
                     intern(&format!("gl_LightSource[{i}].{field}")),
                     if i == 0 { first } else { other },
                     min,
                     max,
                     light_help(field),
-                ));
+                );
+                out.push(if *field == "spotCutoff" {
+                    spec.or_exactly(180.0)
+                } else {
+                    spec
+                });
             }
         }
     }

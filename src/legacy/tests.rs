@@ -423,3 +423,134 @@ fn names_glsl_450_reserves_are_renamed() {
         t.vertex.output.text.contains("float sl_round(float x)") && t.vertex.output.text.contains("r = sl_round(1.4)")
     );
 }
+
+#[test]
+fn naga_internals_reach_the_user_as_sentences_at_the_users_place() {
+    let proj = "uniform sampler2D s;\nvoid main() {\n  gl_FragColor = texture2DProj(s, vec3(0.5, 0.5, 0.0));\n}\n";
+    let cases: &[(&str, &str, &str, u32, u32, &str)] = &[
+        (PASS_VS, "void main() {\n  float x = 1.0;\n  gl_FragColor = vec4(----x);\n}\n", "t.frag", 3, 25, "only a variable"),
+        (PASS_VS, "#error not ported yet\nvoid main() { gl_FragColor = vec4(1.0); }\n", "t.frag", 1, 2, "`#error`: not ported yet"),
+        (PASS_VS, "#if 1\nvoid main() { gl_FragColor = vec4(1.0); }\n", "t.frag", 1, 2, "no matching `#endif`"),
+        (PASS_VS, "float f(float x) {\n  return x > 0.0 ? f(x - 1.0) : 0.0;\n}\nvoid main() { gl_FragColor = vec4(f(1.0)); }\n", "t.frag", 2, 20, "`f` calls itself"),
+        (PASS_VS, "float g(float x);\nfloat f(float x) { return g(x); }\nfloat g(float x) { return f(x); }\nvoid main() { gl_FragColor = vec4(f(1.0)); }\n", "t.frag", 2, 27, "recursion (f → g → f)"),
+        (PASS_VS, "void main(float x) {\n  gl_FragColor = vec4(1.0);\n}\n", "t.frag", 1, 1, "`main` takes no parameters"),
+        ("void main() {\n  gl_Position = ftransform();\n  if (gl_Position.x > 0.0) discard;\n}\n", PASS_FS, "t.vert", 3, 28, "`discard` is only allowed in a fragment shader"),
+        (PASS_VS, "void main() {\n  float a[5];\n  a[0] = 1.0;\n  gl_FragColor = vec4(a[7]);\n}\n", "t.frag", 4, 24, "constant index 7 is out of bounds"),
+        (PASS_VS, proj, "t.frag", 3, 18, "division by zero"),
+    ];
+    for (vs, fs, file, line, col, what) in cases {
+        let (f, l, c, m) = err(vs, fs);
+        assert_eq!((f.as_str(), l, c), (*file, *line, *col), "{what}: {m}");
+        assert!(m.contains(what), "{what}: {m}");
+        for internal in [
+            "HirExpr",
+            "ErrorDirective",
+            "UnfinishedBlock",
+            "Unknown function",
+            "Expression [",
+            "not visited",
+            "Float literal",
+            "Expected end of file",
+        ] {
+            assert!(!m.contains(internal), "{what}: {m}");
+        }
+    }
+    // `void main(void)` is still a `main` without parameters.
+    ok(PASS_VS, "void main(void) { gl_FragColor = vec4(1.0); }\n");
+}
+
+#[test]
+fn limits_are_checked_with_the_uniforms_and_varyings_named() {
+    let t = ok(
+        PASS_VS,
+        "uniform float a[100];\nuniform vec4 b;\nvoid main() { gl_FragColor = vec4(a[3]) + b; }\n",
+    );
+    let (vs, fs) = t.compile().unwrap();
+    assert!(t.check_limits(&vs, &fs, 16384, 16).is_ok());
+    let e = t.check_limits(&vs, &fs, 1024, 16).unwrap_err();
+    let Error::Shader {
+        file, line, message, ..
+    } = e
+    else {
+        panic!("{e:?}")
+    };
+    assert_eq!((file.as_str(), line), ("t.frag", 1), "{message}");
+    assert!(
+        message.contains("need 1616 bytes") && message.contains("limit of 1024 bytes"),
+        "{message}"
+    );
+    assert!(message.contains("`a` float[100] 1600 bytes (t.frag:1)"), "{message}");
+    assert!(message.contains("`b` vec4 16 bytes (t.frag:2)"), "{message}");
+
+    let vary = "varying vec4 p;\nvarying vec4 q;\nvarying vec4 r;\n";
+    let t = ok(
+        &format!("{vary}void main() {{ p = q = r = vec4(1.0); gl_FrontColor = p; gl_Position = ftransform(); }}\n"),
+        &format!("{vary}void main() {{ gl_FragColor = p + q + r + gl_Color; }}\n"),
+    );
+    let (vs, fs) = t.compile().unwrap();
+    assert!(t.check_limits(&vs, &fs, 16384, 4).is_ok());
+    let e = t.check_limits(&vs, &fs, 16384, 3).unwrap_err();
+    let Error::Shader {
+        file, line, message, ..
+    } = e
+    else {
+        panic!("{e:?}")
+    };
+    assert_eq!(
+        (file.as_str(), line),
+        ("t.vert", 3),
+        "the first varying past the limit: {message}"
+    );
+    assert!(
+        message.contains("passes 4 values")
+            && message.contains("p, q, r, gl_FrontColor")
+            && message.contains("at most 3"),
+        "{message}"
+    );
+}
+
+#[test]
+fn int_uniforms_are_exact_over_the_whole_range() {
+    let t = ok(
+        PASS_VS,
+        "uniform int k;\nvoid main() { gl_FragColor = vec4(float(k)); }\n",
+    );
+    let (vs, _) = t.compile().unwrap();
+    let mut params = crate::params::Params::new(&t.params(&|_| false));
+    for v in ["16777217", "2147483647", "-2147483648"] {
+        params.set_str("k", v).unwrap();
+        let values = vec![params.get("k").unwrap().to_vec()];
+        let bytes = block_bytes(&vs, UNIFORM_BLOCK, &mut uniform_lookup(&t.uniforms, &values)).unwrap();
+        let got = i32::from_ne_bytes(bytes[0..4].try_into().unwrap());
+        assert_eq!(got.to_string(), v);
+    }
+}
+
+#[test]
+fn uniforms_named_like_lab_parameters_are_renamed_and_say_why() {
+    let t = ok(
+        PASS_VS,
+        "uniform float near;\nuniform float kept;\nvoid main() { gl_FragColor = vec4(near + kept); }\n",
+    );
+    let params = t.params(&|n| n == "near");
+    let names: Vec<&str> = params.iter().map(|p| p.name).collect();
+    assert_eq!(names, ["uniform.near", "kept"]);
+    assert!(
+        params[0]
+            .help
+            .contains("`near` is the lab's own parameter, so this one is `uniform.near`"),
+        "{}",
+        params[0].help
+    );
+}
+
+#[test]
+fn point_size_is_accepted_by_the_runner_and_by_wgsl_output() {
+    let t = ok(
+        "void main() { gl_Position = ftransform(); gl_PointSize = 2.0; }\n",
+        PASS_FS,
+    );
+    let (vs, _) = t.compile().unwrap();
+    // glsl2wgsl --legacy writes WGSL, which has no point size: it used to fail here.
+    vs.to_wgsl().unwrap_or_else(|e| panic!("{e}"));
+}

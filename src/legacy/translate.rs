@@ -211,6 +211,20 @@ pub struct Translated {
 }
 
 impl Translated {
+    /// The user's line that a place of the generated text comes from ("" for generated text).
+    pub fn source_line_at(&self, offset: usize) -> String {
+        match self.output.locate(offset) {
+            Some(origin) => {
+                let file = match origin.file {
+                    File::This => &self.source,
+                    File::Other => &self.other,
+                };
+                file.line_col(origin.offset).2.to_owned()
+            }
+            None => String::new(),
+        }
+    }
+
     /// An error at a place of the generated text, reported in the user's file.
     pub fn error_at(&self, offset: usize, len: usize, message: &str) -> Error {
         match self.output.locate(offset) {
@@ -236,6 +250,10 @@ pub struct Translation {
     pub fragment: Translated,
     /// The loose uniforms (block `sl_Uniforms`, binding 1), vertex stage's first.
     pub uniforms: Vec<Uniform>,
+    /// What the vertex shader passes to the fragment shader, by location: the user's
+    /// varyings (with their declaration in the vertex file), then `gl_FrontColor` and each
+    /// `gl_TexCoord[i]` used (all 8 for a variable index).
+    pub varyings: Vec<(String, Option<Range<usize>>)>,
     /// The samplers (bindings 2 and up).
     pub samplers: Vec<Sampler>,
     /// The members of the built-in state block (`sl_GlState`, binding 0) the shaders use.
@@ -319,6 +337,12 @@ struct Analysis<'a> {
     /// declarations are known.
     lookups: Vec<(String, Range<usize>, SamplerDim)>,
     handled: BTreeSet<usize>,
+    /// The function whose body is being visited, the functions defined, and each call of a
+    /// user function (caller, callee, range): GLSL forbids recursion, which naga reports as
+    /// "Unknown function", so cycles are found here.
+    function: Option<String>,
+    functions: BTreeSet<String>,
+    calls: Vec<(String, String, Range<usize>)>,
     error: Option<Error>,
 }
 
@@ -363,6 +387,10 @@ impl Analysis<'_> {
                 self.fail(range, &format!("`{name}` {why}; this is a {stage} shader"))
             }
             Builtin::Constant(value) => self.edit(range, value),
+            // wgpu draws points one pixel wide and has no point-size output in WGSL: the
+            // shader's writes go to a private variable, so the runner and `glsl2wgsl --legacy`
+            // accept the same shaders (the runner draws triangles, where GL ignores it too).
+            Builtin::Native if name == "gl_PointSize" => self.edit(range, "sl_PointSize"),
             Builtin::TexCoord if !self.handled.contains(&range.start) => self.texcoord_any = true,
             Builtin::State(m)
                 if matches!(m.name, "gl_LightSource" | "gl_FrontLightProduct")
@@ -399,6 +427,7 @@ fn leak_builtin_name(name: &str) -> &'static str {
         "gl_TexCoord",
         "gl_FragColor",
         "gl_FragData",
+        "gl_PointSize",
     ];
     NAMES.iter().copied().find(|n| *n == name).unwrap_or("gl_other")
 }
@@ -443,6 +472,9 @@ impl Visitor for Analysis<'_> {
                 if let Some(ident) = fun.as_ident() {
                     let name = ident.0.as_str();
                     let range = span0(ident);
+                    if let Some(caller) = &self.function {
+                        self.calls.push((caller.clone(), name.to_owned(), range.clone()));
+                    }
                     if name == "ftransform" {
                         if self.stage != ShaderStage::Vertex {
                             self.fail(
@@ -491,8 +523,33 @@ impl Visitor for Analysis<'_> {
         Visit::Children
     }
 
+    fn visit_jump_statement(&mut self, jump: &ast::JumpStatement) -> Visit {
+        if matches!(jump.content, ast::JumpStatementData::Discard) && self.stage == ShaderStage::Vertex {
+            self.fail(
+                span0(jump),
+                "`discard` is only allowed in a fragment shader; this is a vertex shader",
+            );
+        }
+        Visit::Children
+    }
+
     fn visit_function_definition(&mut self, def: &ast::FunctionDefinition) -> Visit {
-        if def.prototype.name.0.as_str() == "main" {
+        let name = def.prototype.name.0.as_str();
+        self.function = Some(name.to_owned());
+        self.functions.insert(name.to_owned());
+        if name == "main" {
+            // `void main(void)` is allowed; anything else is an error naga reports as
+            // "Unknown function 'main'".
+            let takes_some = def.prototype.parameters.iter().any(|p| {
+                !matches!(&p.content, ast::FunctionParameterDeclarationData::Unnamed(_, t)
+                    if matches!(t.ty.content, ast::TypeSpecifierNonArrayData::Void))
+            });
+            if takes_some {
+                self.fail(
+                    span0(&def.prototype),
+                    "`main` takes no parameters: write `void main()` (values come in as uniforms, attributes or varyings)",
+                );
+            }
             let range = span0(&def.prototype.name);
             self.edit(range.clone(), "sl_main");
             self.main = Some(range);
@@ -664,6 +721,9 @@ fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<
         main: None,
         lookups: Vec::new(),
         handled: BTreeSet::new(),
+        function: None,
+        functions: BTreeSet::new(),
+        calls: Vec::new(),
         error: None,
     };
     for external in &tu.0 {
@@ -703,6 +763,9 @@ fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<
         }
     }
     tu.visit(&mut a);
+    if let Some((range, message)) = recursion(&a.functions, &a.calls) {
+        a.fail(range, &message);
+    }
     if a.main.is_none() {
         a.fail(0..0, "no `void main()` in this shader");
     }
@@ -714,6 +777,47 @@ fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<
         Some(e) => Err(e),
         None => Ok(a),
     }
+}
+
+/// The first call that closes a cycle of user functions, with a message naming the cycle.
+fn recursion(functions: &BTreeSet<String>, calls: &[(String, String, Range<usize>)]) -> Option<(Range<usize>, String)> {
+    for (caller, callee, range) in calls {
+        if !functions.contains(callee) {
+            continue;
+        }
+        // Breadth-first from the callee back to the caller, keeping each name's parent.
+        let mut parent: BTreeMap<&str, &str> = BTreeMap::new();
+        let mut queue = std::collections::VecDeque::from([callee.as_str()]);
+        let mut seen = BTreeSet::from([callee.as_str()]);
+        while let Some(f) = queue.pop_front() {
+            if f == caller {
+                let mut chain = vec![f];
+                let mut at = f;
+                while let Some(p) = parent.get(at) {
+                    chain.push(p);
+                    at = p;
+                }
+                chain.reverse();
+                let path = std::iter::once(caller.as_str())
+                    .chain(chain)
+                    .collect::<Vec<_>>()
+                    .join(" → ");
+                let message = if caller == callee {
+                    format!("`{caller}` calls itself: GLSL does not allow recursion; rewrite it as a loop")
+                } else {
+                    format!("recursion ({path}): GLSL does not allow a function to call itself, directly or through others; rewrite it as a loop")
+                };
+                return Some((range.clone(), message));
+            }
+            for (from, to, _) in calls.iter().filter(|(from, _, _)| from == f) {
+                if seen.insert(to.as_str()) {
+                    parent.insert(to.as_str(), from.as_str());
+                    queue.push_back(to.as_str());
+                }
+            }
+        }
+    }
+    None
 }
 
 /// An attribute, varying or uniform declaration at global scope.
@@ -1078,7 +1182,19 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
     } else {
         vs.lights.union(&fs.lights).max().map_or(0, |k| *k as usize + 1)
     };
+    // What each location carries, for the limit check before a pipeline is made.
+    let locations: Vec<(String, Option<Range<usize>>)> = varyings
+        .iter()
+        .map(|(name, _, range)| (name.clone(), Some(range.clone())))
+        .chain(color_location.map(|_| ("gl_FrontColor".to_owned(), None)))
+        .chain(
+            texcoord_locations
+                .iter()
+                .map(|(k, _)| (format!("gl_TexCoord[{k}]"), None)),
+        )
+        .collect();
     Ok(Translation {
+        varyings: locations,
         vertex: Translated {
             source: vertex.clone(),
             other: fragment.clone(),
@@ -1189,6 +1305,12 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         }
         if a.builtins.contains_key("gl_Normal") {
             out.generated("layout(location = 1) in vec3 gl_Normal;\n", first_use("gl_Normal"));
+        }
+        if a.builtins.contains_key("gl_PointSize") {
+            out.generated(
+                "float sl_PointSize; // gl_PointSize: wgpu draws points one pixel wide\n",
+                first_use("gl_PointSize"),
+            );
         }
         if a.builtins.contains_key("gl_MultiTexCoord0") {
             out.generated(

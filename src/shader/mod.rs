@@ -431,18 +431,126 @@ impl Splicer<'_, '_> {
     }
 }
 
-/// Formats `path:line:column: message`, the source line and a caret under the column.
+/// How many characters of a long source line a snippet shows on each side of the caret.
+const SNIPPET_CONTEXT: usize = 100;
+/// How many carets at most: a construct longer than this is marked by its start.
+const SNIPPET_CARETS: usize = 100;
+
+/// Formats `path:line:column: message`, the source line and a caret under the column. A long
+/// line is cut to [`SNIPPET_CONTEXT`] characters on each side of the caret, with `…` where text
+/// is left out: a 2 MB minified line would otherwise print 4 MB (the line and its padding).
 pub fn format_diagnostic(path: &str, line: u32, column: u32, message: &str, source_line: &str, len: usize) -> String {
-    let caret_pad: String = source_line
-        .chars()
-        .take(column.saturating_sub(1) as usize)
-        .map(|c| if c == '\t' { '\t' } else { ' ' })
+    let chars: Vec<char> = source_line.chars().collect();
+    let at = (column.saturating_sub(1) as usize).min(chars.len());
+    let len = len.clamp(1, chars.len().saturating_sub(at).clamp(1, SNIPPET_CARETS));
+    let start = at.saturating_sub(SNIPPET_CONTEXT);
+    let end = (at + len + SNIPPET_CONTEXT).min(chars.len());
+    let (open, close) = (
+        if start > 0 { "…" } else { "" },
+        if end < chars.len() { "…" } else { "" },
+    );
+    let shown: String = chars[start..end].iter().collect();
+    let caret_pad: String = std::iter::repeat_n(" ", open.chars().count())
+        .chain(chars[start..at].iter().map(|&c| if c == '\t' { "\t" } else { " " }))
         .collect();
-    let len = len.clamp(1, source_line.len().saturating_sub(column as usize - 1).max(1));
     format!(
-        "{path}:{line}:{column}: {message}\n {line:>4} | {source_line}\n      | {caret_pad}{}",
+        "{path}:{line}:{column}: {message}\n {line:>4} | {open}{shown}{close}\n      | {caret_pad}{}",
         "^".repeat(len)
     )
+}
+
+/// naga's message for a shader error in words a student understands: naga's GLSL front end
+/// prints some errors as Rust debug text (`ErrorDirective`, `UnfinishedBlock`,
+/// `HirExpr { kind: PrePostfix … }`) or in IR terms (`Expression [8] is invalid: Accessing
+/// index 7 is out of [3] bounds`). `line` is the source line the error points at (for the text
+/// of an `#error`). Messages not recognised are kept as naga wrote them.
+pub fn plain_message(message: &str, line: &str) -> String {
+    // Validation errors are chains "Function [0] 'main' is invalid: Expression [8] is
+    // invalid: …": the last link says what is wrong.
+    let last = message.rsplit(": ").next().unwrap_or(message);
+    let pp = |what: &str| -> Option<&str> {
+        Some(match what {
+            "ErrorDirective" => "",
+            "UnfinishedBlock" => "this `#if`/`#ifdef`/`#ifndef` has no matching `#endif`",
+            "ElifOutsideOfBlock" => "`#elif` without an `#if` before it",
+            "ElseOutsideOfBlock" => "`#else` without an `#if` before it",
+            "EndifOutsideOfBlock" => "`#endif` without an `#if` before it",
+            "ElifAfterElse" => "`#elif` after `#else`",
+            "MoreThanOneElse" => "a second `#else` for the same `#if`",
+            "UnknownDirective" => "unknown preprocessor directive (GLSL has #define, #undef, #if, #ifdef, #ifndef, #elif, #else, #endif, #error, #pragma, #extension, #version, #line)",
+            "DefineRedefined" => "this macro is already #defined differently: #undef it first",
+            "DuplicateParameter" => "a macro parameter named twice",
+            "TooFewDefineArguments" => "too few arguments for this macro",
+            "TooManyDefineArguments" => "too many arguments for this macro",
+            "RecursionLimitReached" => "macros expand into each other too deeply",
+            "DivisionByZero" => "division by zero in a preprocessor expression",
+            "RemainderByZero" => "remainder (%) by zero in a preprocessor expression",
+            "IntegerOverflow" => "an integer constant too large for 32 bits",
+            "FloatParsingError" => "a number that cannot be read",
+            "UnexpectedCharacter" => "a character that GLSL does not use here",
+            "UnexpectedHash" => "a `#` that starts no directive",
+            "UnexpectedNewLine" => "this directive ends too early",
+            "UnexpectedEndOfInput" => "the file ends in the middle of a construct",
+            "LineOverflow" => "a #line number too large",
+            "MacroNotDefined" => "this macro is not defined",
+            _ => return None,
+        })
+    };
+    let word = message.split(['(', ' ']).next().unwrap_or(message);
+    if message == "ErrorDirective" {
+        let text = line.split_once("#error").map_or("", |(_, t)| t.trim());
+        let text: String = text.chars().take(200).collect();
+        return if text.is_empty() {
+            "the shader stops here with `#error`".to_owned()
+        } else {
+            format!("the shader stops here with `#error`: {text}")
+        };
+    }
+    if word == message || message.starts_with("UnexpectedToken(") {
+        if let Some(plain) = pp(word) {
+            return plain.to_owned();
+        }
+        if word == "UnexpectedToken" {
+            return "unexpected text in a preprocessor directive".to_owned();
+        }
+    }
+    if message.ends_with("cannot be in the left hand side") {
+        return "only a variable (or an element or field of one) can be assigned or changed with `++`/`--`; \
+                this is a value (`----x` applies `--` to the value of `--x`: write `x -= 2.0`)"
+            .to_owned();
+    }
+    if let Some(name) = message
+        .strip_prefix("Unknown function '")
+        .and_then(|r| r.strip_suffix('\''))
+    {
+        return format!(
+            "unknown function `{name}` for these arguments: no built-in and no function defined above this call takes them \
+             (GLSL needs a function declared before it is called, with matching argument types)"
+        );
+    }
+    if let Some(rest) = last.strip_prefix("Accessing index ") {
+        let index = rest.split(' ').next().unwrap_or("?");
+        return format!("constant index {index} is out of bounds: indices start at 0 and must be below the array's, vector's or matrix's size");
+    }
+    if last == "Float literal is infinite" || last == "Float literal is NaN" {
+        return "a constant expression is infinite or not a number: a division by zero (such as a projective \
+                texture lookup with q = 0), or a number too large for a float"
+            .to_owned();
+    }
+    if last == "Uses operations forbidden at this stage" || last.starts_with("Expression not visited") {
+        return "an operation this stage cannot use: `discard` and derivatives (dFdx, dFdy, fwidth) are for fragment shaders"
+            .to_owned();
+    }
+    message.to_owned()
+}
+
+/// Keeps only the `#error` of a list of naga's messages when there is one: naga goes on
+/// parsing the directive's text as code ("Expected end of file, found Identifier").
+pub fn error_directive_first<T>(found: &mut Vec<T>, message: impl Fn(&T) -> &str) {
+    if found.iter().any(|f| message(f) == "ErrorDirective") {
+        found.retain(|f| message(f) == "ErrorDirective");
+        found.truncate(1);
+    }
 }
 
 /// A parsed and validated shader.
@@ -478,11 +586,12 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
     let module = frontend
         .parse(&naga::front::glsl::Options::from(stage), &source.text)
         .map_err(|errors| {
-            let spans: Vec<(naga::Span, String)> = errors
+            let mut spans: Vec<(naga::Span, String)> = errors
                 .errors
                 .iter()
                 .map(|e| parse_error_span(&source.text, e))
                 .collect();
+            error_directive_first(&mut spans, |(_, m)| m);
             shader_error(path, stage, &source, &spans)
         })?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
@@ -568,7 +677,7 @@ fn shader_error(path: &str, stage: ShaderStage, source: &Spliced, spans: &[(naga
                 &file,
                 line,
                 loc.line_position,
-                msg,
+                &plain_message(msg, &src_line),
                 &src_line,
                 loc.length as usize,
             ));
@@ -580,7 +689,7 @@ fn shader_error(path: &str, stage: ShaderStage, source: &Spliced, spans: &[(naga
                     stage_name(stage)
                 )
             } else {
-                msg.clone()
+                plain_message(msg, "")
             };
             messages.push(format!("{path}: {msg}"));
         }
@@ -942,5 +1051,68 @@ mod loader_tests {
         assert!(err.contains("is an absolute path"), "{err}");
         let err = compile_file(Path::new("/dev/zero.frag")).unwrap_err().to_string();
         assert!(err.contains("not found"), "{err}");
+    }
+
+    #[test]
+    fn long_lines_are_cut_around_the_caret() {
+        // A 2 MB line printed whole made 4 MB of stderr (the line and the caret's padding).
+        let line = format!("{}BAD{}", "a".repeat(1_000_000), "b".repeat(1_000_000));
+        let d = format_diagnostic("x.frag", 1, 1_000_001, "here", &line, 3);
+        assert!(d.len() < 600, "{} bytes", d.len());
+        let lines: Vec<&str> = d.lines().collect();
+        assert!(lines[1].contains("…") && lines[1].ends_with('…'), "{d}");
+        // The caret stays under the construct.
+        let at = lines[1].chars().position(|c| c == 'B').unwrap();
+        let caret = lines[2].chars().position(|c| c == '^').unwrap();
+        assert_eq!(at, caret, "{d}");
+        assert!(lines[2].ends_with("^^^"), "{d}");
+        // A short line is shown whole, without marks.
+        let d = format_diagnostic("x.frag", 2, 5, "here", "int x = 1;", 1);
+        assert!(d.ends_with("   2 | int x = 1;\n      |     ^"), "{d}");
+    }
+
+    #[test]
+    fn naga_internals_become_sentences() {
+        let cases = [
+            ("ErrorDirective", "#error not done yet", "`#error`: not done yet"),
+            ("UnfinishedBlock", "#if 1", "no matching `#endif`"),
+            (
+                "HirExpr { kind: PrePostfix { op: Subtract, postfix: false, expr: [1] }, meta: Span { start: 310, end: 312 } } cannot be in the left hand side",
+                "",
+                "only a variable",
+            ),
+            ("Unknown function 'f'", "", "unknown function `f`"),
+            (
+                "Function [0] 'main' is invalid: Expression [8] is invalid: Accessing index 7 is out of [5] bounds",
+                "",
+                "constant index 7 is out of bounds",
+            ),
+            ("Float literal is infinite", "", "division by zero"),
+            (
+                "Entry point main at Vertex is invalid: Uses operations forbidden at this stage",
+                "",
+                "`discard`",
+            ),
+        ];
+        for (naga, line, plain) in cases {
+            let m = plain_message(naga, line);
+            assert!(m.contains(plain), "{naga} → {m}");
+            for internal in ["HirExpr", "ErrorDirective", "UnfinishedBlock", "Expression [", "Span {"] {
+                assert!(!m.contains(internal), "{naga} → {m}");
+            }
+        }
+        assert_eq!(plain_message("something else", ""), "something else");
+    }
+
+    #[test]
+    fn the_glsl_450_loader_says_error_directives_in_words() {
+        let dir = shader_dir("error_directive");
+        phong_with(&dir, "#error not ported yet");
+        let e = compile_err(&dir, "phong.frag");
+        assert!(e.contains("the shader stops here with `#error`: not ported yet"), "{e}");
+        assert!(
+            !e.contains("ErrorDirective") && !e.contains("Expected end of file"),
+            "{e}"
+        );
     }
 }

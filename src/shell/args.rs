@@ -104,7 +104,7 @@ fn parse_texture(s: &str) -> Result<TextureArg, String> {
 }
 
 fn parse_time(s: &str) -> Result<f64, String> {
-    parse_finite(s).map(f64::from)
+    parse_finite(s)
 }
 
 fn parse_tess(s: &str) -> Result<f64, String> {
@@ -330,6 +330,7 @@ impl Args {
             }
             p.set_str(key, value)?;
         }
+        p.check()?;
         Ok(p)
     }
 }
