@@ -642,6 +642,9 @@ fn const_values(expr: &ast::Expr) -> Option<Vec<f64>> {
 }
 
 fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<'a>> {
+    // Before glsl-lang's parser, the visitor below and naga: nesting, macro and call-graph
+    // bounds (see `shader::guard`); the generated code around the user's adds little depth.
+    crate::shader::guard::check(&source.text).map_err(|e| source.error(e.range, &e.message))?;
     let tu = ast::TranslationUnit::parse(source.text.as_str()).map_err(|e| {
         let pos = e.pos();
         let start = u32::from(pos.start()) as usize;

@@ -16,6 +16,7 @@ use naga::ShaderStage;
 
 use crate::error::{Error, Result};
 
+pub mod guard;
 mod layout;
 
 pub use layout::*;
@@ -517,6 +518,11 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
         });
     }
     let source = splice(path, text, resolve)?;
+    // Before naga's recursive parser: nesting, macro and call-graph bounds (see `guard`).
+    guard::check(&source.text).map_err(|e| {
+        let span = naga::Span::new(e.range.start as u32, e.range.end as u32);
+        shader_error(path, stage, &source, &[(span, e.message)])
+    })?;
     let mut frontend = naga::front::glsl::Frontend::default();
     let module = frontend
         .parse(&naga::front::glsl::Options::from(stage), &source.text)
