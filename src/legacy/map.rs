@@ -24,18 +24,10 @@ impl LegacySource {
         }
     }
 
-    /// Reads a file.
+    /// Reads a file: a regular file of at most 1 MiB in UTF-8, as every shader file
+    /// ([`crate::shader::read_shader_file`]).
     pub fn read(path: &std::path::Path) -> crate::Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            if source.kind() == std::io::ErrorKind::NotFound {
-                Error::ShaderNotFound(path.display().to_string())
-            } else {
-                Error::Io {
-                    path: path.to_path_buf(),
-                    source,
-                }
-            }
-        })?;
+        let text = crate::shader::read_shader_file(path)?;
         // A byte-order mark is not GLSL.
         let text = text.strip_prefix('\u{feff}').map(str::to_owned).unwrap_or(text);
         Ok(LegacySource::new(path.display().to_string(), text))
@@ -65,6 +57,25 @@ impl LegacySource {
             column,
             message: format_diagnostic(&self.path, line, column, message, text, len.max(1)),
         }
+    }
+}
+
+/// The start of every line of a text, for line numbers in O(log n) each.
+pub struct LineIndex(Vec<usize>);
+
+impl LineIndex {
+    /// The index of `text`.
+    pub fn new(text: &str) -> Self {
+        LineIndex(
+            std::iter::once(0)
+                .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+                .collect(),
+        )
+    }
+
+    /// The 1-based line of a byte offset (as [`LegacySource::line_col`] counts it).
+    pub fn line(&self, offset: usize) -> u32 {
+        self.0.partition_point(|&start| start <= offset) as u32
     }
 }
 
@@ -239,6 +250,10 @@ mod tests {
         assert_eq!(out.locate(x).unwrap().offset, 32);
         let s = LegacySource::new("a.vert", src);
         assert_eq!(s.line_col(32), (2, 15, "void main() { x = a; }"));
+        let index = LineIndex::new(src);
+        for offset in 0..=src.len() + 1 {
+            assert_eq!(index.line(offset), s.line_col(offset).0, "{offset}");
+        }
         // Inside a replacement: its start.
         let loc = out.text.find("location").unwrap();
         assert_eq!(out.locate(loc).unwrap().offset, 0);
