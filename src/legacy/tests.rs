@@ -467,7 +467,9 @@ fn hostile_shaders_are_errors_at_their_line() {
             "with its macros expanded and its calls inlined",
         ),
     ] {
-        let e = translate(&src("t.vert", PASS_VS), &src("t.frag", &text)).unwrap_err();
+        let Some(e) = translate(&src("t.vert", PASS_VS), &src("t.frag", &text)).err() else {
+            panic!("accepted: {}", &text[..200])
+        };
         let Error::Shader {
             file,
             line: at,
@@ -560,7 +562,9 @@ fn uniform_arrays_beyond_the_block_are_refused_by_name() {
             "uniform `a` (mat4[2000000000]) takes 128000000000 bytes",
         ),
     ] {
-        let e = translate(&src("t.vert", PASS_VS), &src("t.frag", &format!("{decl}\n{PASS_FS}"))).unwrap_err();
+        let Some(e) = translate(&src("t.vert", PASS_VS), &src("t.frag", &format!("{decl}\n{PASS_FS}"))).err() else {
+            panic!("accepted: {decl}")
+        };
         let message = e.to_string();
         assert!(message.contains("t.frag:1:") && message.contains(phrase), "{message}");
         assert!(message.contains("the limit is 16384 bytes"), "{message}");
