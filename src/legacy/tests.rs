@@ -494,6 +494,14 @@ fn hostile_shaders_are_errors_at_their_line() {
         PASS_VS,
         &deep(format!("{}x = 2.0;{}", "{".repeat(limit), "}".repeat(limit))),
     );
+    ok(PASS_VS, &deep(format!("{}x = 2.0;", "if (x > 0.0) ".repeat(limit))));
+    ok(
+        PASS_VS,
+        &deep(format!(
+            "{} {{ x = 2.0; }}",
+            "if (x > 0.0) { x = 1.0; } else ".repeat(limit / 2)
+        )),
+    );
 }
 
 /// Issue 17: the line map was quadratic in the file's length (16,000 comment lines took

@@ -381,6 +381,8 @@ struct Depth {
     levels: Vec<usize>,
     top: usize,
     total: usize,
+    /// The last token closed a block: a statement ended, unless `else` follows.
+    after_block: bool,
 }
 
 impl Depth {
@@ -389,6 +391,11 @@ impl Depth {
     }
 
     fn push(&mut self, tok: &Tok) -> Result<(), Exceeded> {
+        // `if (a) { } if (b) { }` are two statements, not nested; `if (a) { } else if (b) { }`
+        // nests (the `else` holds the second `if`).
+        if std::mem::take(&mut self.after_block) && tok.text != "else" {
+            self.reset();
+        }
         match tok.text {
             "(" | "[" | "{" => {
                 self.levels.push(0);
@@ -398,12 +405,9 @@ impl Depth {
                 if let Some(ops) = self.levels.pop() {
                     self.total -= 1 + ops;
                 }
+                self.after_block = tok.text == "}";
             }
-            "," | ";" => {
-                let ops = self.levels.last_mut().unwrap_or(&mut self.top);
-                self.total -= *ops;
-                *ops = 0;
-            }
+            "," | ";" => self.reset(),
             "if" | "else" | "for" | "while" | "do" | "switch" | "case" | "default" => self.op(),
             _ if tok.kind == Kind::Punct => self.op(),
             _ => {}
@@ -418,6 +422,12 @@ impl Depth {
             });
         }
         Ok(())
+    }
+
+    fn reset(&mut self) {
+        let ops = self.levels.last_mut().unwrap_or(&mut self.top);
+        self.total -= *ops;
+        *ops = 0;
     }
 
     fn op(&mut self) {
@@ -556,6 +566,9 @@ mod tests {
             assert_eq!(check(text), Ok(()), "{name}");
         }
         assert_eq!(check(&nested("(", ")", 200)), Ok(()));
+        // Statements one after another do not nest, however many.
+        let ifs = "if (x > 0.0) { x = 1.0; } for (int i = 0; i < 2; i++) { x += 1.0; }\n".repeat(1000);
+        assert_eq!(check(&format!("void main() {{ float x = 0.0;\n{ifs}}}\n")), Ok(()));
         let chain: String = (0..10)
             .map(|i| format!("float f{}(float x) {{ return f{i}(x) + f{i}(x); }}\n", i + 1))
             .collect();
@@ -568,7 +581,9 @@ mod tests {
     fn deep_nesting_is_refused_at_its_place() {
         let sum = format!("void main() {{\n float x = {}; }}\n", vec!["1.0"; 10_000].join("+"));
         let ifs = format!("void main() {{\n{} x = 1.0; }}\n", "if (x > 0.0) ".repeat(5000));
+        let chain = format!("void main() {{\n{} {{ }}\n}}\n", "if (x > 0.0) { } else ".repeat(5000));
         for text in [
+            chain,
             nested("(", ")", 10_000),
             nested("{", "}", 10_000),
             nested("[", "]", 300),
