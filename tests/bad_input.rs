@@ -660,13 +660,10 @@ fn hostile_shaders_are_errors_at_their_line() {
         }
     }
     // The GLSL 450 loader: `phong --shaders DIR` and a `glsl2wgsl --all` batch.
-    for (name, line, phrase) in limits {
+    for ((name, line, phrase), body) in limits.into_iter().zip([&sum, &parens, &macros, &chain]) {
         let case = dir.join(name);
         std::fs::create_dir_all(&case).unwrap();
-        let shaders = shaders_with(
-            &case,
-            &[sum.as_str(), &parens, &macros, &chain][limits.iter().position(|l| l.0 == name).unwrap()],
-        );
+        let shaders = shaders_with(&case, body);
         let run = run_in(&case, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
         assert_eq!(run.code, Some(1), "phong {name}: {}", run.stderr);
         let at = format!("phong.frag:{}:", line + 1);
