@@ -639,7 +639,6 @@ fn hostile_shaders_are_errors_at_their_line() {
         ("chain", 14, "`f13` is "),
     ];
     common::example("legacy"); // built before the clock starts
-    common::example("legacy"); // built before the clock starts
     let started = std::time::Instant::now();
     for (name, line, phrase) in limits {
         let at = format!("{name}.frag:{line}:");
