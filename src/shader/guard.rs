@@ -30,6 +30,11 @@ pub const MAX_DEPTH: usize = 256;
 /// twice as many.
 pub const MAX_EXPANDED_TOKENS: usize = 1 << 18;
 
+/// The most tokens outside function bodies (declarations, constant initializers): naga's
+/// handling of global constants is slower than linear, 2.6 s for 262,144 tokens of `const`
+/// initializers. A 4096-entry constant table is under 10,000.
+pub const MAX_GLOBAL_TOKENS: usize = 1 << 16;
+
 /// The most tokens a function may have with every call inlined, as the GPU driver compiles it.
 /// Mesa's lavapipe takes 3 s and 350 MB for 150,000 (a 14-deep chain of `f(x) + f(x)`), and
 /// crashes after 3 GB long before 2^40.
@@ -455,6 +460,9 @@ struct CallGraph<'a> {
     candidate: Option<(Tok<'a>, bool)>,
     /// In a function's body.
     inside: bool,
+    /// Tokens outside function bodies so far, and the one past [`MAX_GLOBAL_TOKENS`].
+    global: usize,
+    too_many_global: Option<(usize, usize)>,
 }
 
 impl<'a> CallGraph<'a> {
@@ -473,6 +481,10 @@ impl<'a> CallGraph<'a> {
                 self.inside = false;
             }
         } else {
+            self.global += 1;
+            if self.global > MAX_GLOBAL_TOKENS && self.too_many_global.is_none() {
+                self.too_many_global = Some(tok.site);
+            }
             match (tok.text, brackets, self.candidate) {
                 ("(", 1, _) => self.candidate = self.last_ident.map(|t| (t, false)),
                 (")", 0, Some((t, false))) => self.candidate = Some((t, true)),
@@ -496,6 +508,15 @@ impl<'a> CallGraph<'a> {
     /// Each function's size with its calls inlined (overloads counted together; a recursive
     /// call, which GLSL forbids, counted once), without recursion.
     fn check(&self) -> Result<(), Exceeded> {
+        if let Some(site) = self.too_many_global {
+            return Err(Exceeded {
+                range: site.0..site.1,
+                message: format!(
+                    "the declarations outside functions pass {MAX_GLOBAL_TOKENS} tokens here (after \
+                     macro expansion); shaderlab refuses global initializers this large"
+                ),
+            });
+        }
         let mut by_name: HashMap<&str, Vec<usize>> = HashMap::new();
         for (i, f) in self.functions.iter().enumerate() {
             by_name.entry(f.name).or_default().push(i);
@@ -620,6 +641,21 @@ mod tests {
         );
         // A macro that names itself is not expanded again (as in C).
         assert_eq!(check("#define A A+1\nfloat x = A;\n"), Ok(()));
+    }
+
+    #[test]
+    fn huge_global_initializers_are_refused() {
+        let table = format!("const float t[4096] = float[]({});\n", vec!["1.0"; 4096].join(", "));
+        assert_eq!(check(&table), Ok(()));
+        let consts: String = (0..10_000)
+            .map(|i| format!("const float k{i} = 1.0 + 2.0;\n"))
+            .collect();
+        let e = check(&consts).unwrap_err();
+        assert!(
+            e.message.contains("outside functions pass 65536 tokens"),
+            "{}",
+            e.message
+        );
     }
 
     #[test]
