@@ -668,4 +668,28 @@ mod tests {
         assert!(e.message.contains("inlined"), "{}", e.message);
         assert!(text[e.range.clone()].starts_with('f'), "{:?}", &text[e.range.clone()]);
     }
+
+    /// Every shader file of the repository (labs, fixtures, course files) is within the bounds.
+    #[test]
+    fn every_shader_of_the_repository_passes() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut stack = vec![root.join("tests"), root.join("shaders_glsl"), root.join("assets")];
+        let mut checked = 0;
+        while let Some(dir) = stack.pop() {
+            for entry in std::fs::read_dir(&dir).expect("a directory of the repository") {
+                let path = entry.expect("an entry").path();
+                if path.is_dir() {
+                    stack.push(path);
+                } else if matches!(
+                    path.extension().and_then(|e| e.to_str()),
+                    Some("vert" | "frag" | "glsl" | "comp")
+                ) {
+                    let text = std::fs::read_to_string(&path).expect("a shader's text");
+                    assert_eq!(check(&text), Ok(()), "{}", path.display());
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 50, "{checked} shader files");
+    }
 }
