@@ -384,6 +384,27 @@ fn live_reload_keeps_the_last_good_pipeline_and_values() {
     let e = lab.reload(&cx).unwrap_err().to_string();
     assert!(e.contains("r.frag:3:") && e.contains("undefined_thing"), "{e}");
     assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [128, 0, 0]);
+    // Issue 17: hostile saves (a 10,000-term sum overflowed the stack and killed the window,
+    // doubling macros froze it) are errors too, and the last good pipeline still draws.
+    let macros: String = (0..40).map(|i| format!("#define A{} (A{i}+A{i})\n", i + 1)).collect();
+    for (text, phrase) in [
+        (
+            format!(
+                "void main() {{\n  gl_FragColor = vec4({});\n}}\n",
+                vec!["0.1"; 10_000].join(" + ")
+            ),
+            "r.frag:2:",
+        ),
+        (
+            format!("#define A0 1.0\n{macros}void main() {{ gl_FragColor = vec4(A40); }}\n"),
+            "r.frag:42:",
+        ),
+    ] {
+        std::fs::write(&frag, text).unwrap();
+        let e = lab.reload(&cx).unwrap_err().to_string();
+        assert!(e.contains(phrase), "{e}");
+        assert_eq!(render(lab.as_mut(), 640, 360).get_pixel(320, 180).0, [128, 0, 0]);
+    }
     std::fs::remove_dir_all(dir).ok();
 }
 

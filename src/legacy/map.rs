@@ -24,7 +24,8 @@ impl LegacySource {
         }
     }
 
-    /// Reads a file.
+    /// Reads a file: a regular file of at most 1 MiB in UTF-8, as every shader file
+    /// ([`crate::shader::read_shader_file`]).
     pub fn read(path: &std::path::Path) -> crate::Result<Self> {
         // The rule of every shader file: a regular file of at most 1 MiB, UTF-8.
         let text = crate::shader::read_shader_file(path)?;
@@ -57,6 +58,25 @@ impl LegacySource {
             column,
             message: format_diagnostic(&self.path, line, column, message, text, len.max(1)),
         }
+    }
+}
+
+/// The start of every line of a text, for line numbers in O(log n) each.
+pub struct LineIndex(Vec<usize>);
+
+impl LineIndex {
+    /// The index of `text`.
+    pub fn new(text: &str) -> Self {
+        LineIndex(
+            std::iter::once(0)
+                .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+                .collect(),
+        )
+    }
+
+    /// The 1-based line of a byte offset (as [`LegacySource::line_col`] counts it).
+    pub fn line(&self, offset: usize) -> u32 {
+        self.0.partition_point(|&start| start <= offset) as u32
     }
 }
 
@@ -231,6 +251,10 @@ mod tests {
         assert_eq!(out.locate(x).unwrap().offset, 32);
         let s = LegacySource::new("a.vert", src);
         assert_eq!(s.line_col(32), (2, 15, "void main() { x = a; }"));
+        let index = LineIndex::new(src);
+        for offset in 0..=src.len() + 1 {
+            assert_eq!(index.line(offset), s.line_col(offset).0, "{offset}");
+        }
         // Inside a replacement: its start.
         let loc = out.text.find("location").unwrap();
         assert_eq!(out.locate(loc).unwrap().offset, 0);

@@ -79,18 +79,21 @@ impl Translated {
                 let span = err.spans().last().and_then(|(s, _)| s.to_range()).unwrap_or(0..0);
                 self.combine(&[(span, message)])
             })?;
+        // One line index per file: `line_col` for every line would scan the text each time,
+        // quadratic in the file's length.
+        let (this, other) = (
+            map::LineIndex::new(&self.source.text),
+            map::LineIndex::new(&self.other.text),
+        );
         let line_map = self
             .output
             .line_origins()
             .into_iter()
             .map(|origin| match origin {
-                Some(o) => {
-                    let file = match o.file {
-                        map::File::This => &self.source,
-                        map::File::Other => &self.other,
-                    };
-                    (file.path.clone(), file.line_col(o.offset).0)
-                }
+                Some(o) => match o.file {
+                    map::File::This => (self.source.path.clone(), this.line(o.offset)),
+                    map::File::Other => (self.other.path.clone(), other.line(o.offset)),
+                },
                 None => (self.source.path.clone(), 1),
             })
             .collect();

@@ -554,3 +554,159 @@ fn point_size_is_accepted_by_the_runner_and_by_wgsl_output() {
     // glsl2wgsl --legacy writes WGSL, which has no point size: it used to fail here.
     vs.to_wgsl().unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// Issue 17: hostile shaders are errors at their file and line, not a stack overflow (the
+/// nesting), gigabytes (macros) or a driver crash (calls): `shader::guard` runs before
+/// glsl-lang's parser.
+#[test]
+fn hostile_shaders_are_errors_at_their_line() {
+    let deep =
+        |body: String| format!("void main() {{\n    float x = 1.0;\n    {body}\n    gl_FragColor = vec4(x);\n}}\n");
+    let macros: String = (0..40).map(|i| format!("#define A{} (A{i}+A{i})\n", i + 1)).collect();
+    let chain: String = (0..40)
+        .map(|i| format!("float f{}(float x) {{ return f{i}(x) + f{i}(x); }}\n", i + 1))
+        .collect();
+    for (text, line, phrase) in [
+        (
+            deep(format!("x = {};", vec!["x"; 10_000].join(" + "))),
+            3,
+            "nests too deeply",
+        ),
+        (
+            deep(format!("x = {}x{};", "(".repeat(10_000), ")".repeat(10_000))),
+            3,
+            "nests too deeply",
+        ),
+        (
+            deep(format!("{}x = 2.0;{}", "{".repeat(10_000), "}".repeat(10_000))),
+            3,
+            "nests too deeply",
+        ),
+        (
+            deep(format!("{}x = 2.0;", "if (x > 0.0) ".repeat(5000))),
+            3,
+            "nests too deeply",
+        ),
+        (
+            format!("#define A0 1.0\n{macros}void main() {{ gl_FragColor = vec4(A40); }}\n"),
+            42,
+            "`A40`: the shader's macro expansions pass 262144 tokens",
+        ),
+        (
+            format!("float f0(float x) {{ return x; }}\n{chain}void main() {{ gl_FragColor = vec4(f40(0.5)); }}\n"),
+            14,
+            "with its macros expanded and its calls inlined",
+        ),
+    ] {
+        let Some(e) = translate(&src("t.vert", PASS_VS), &src("t.frag", &text)).err() else {
+            panic!("accepted: {}", &text[..200])
+        };
+        let Error::Shader {
+            file,
+            line: at,
+            message,
+            ..
+        } = &e
+        else {
+            panic!("{e:?}")
+        };
+        assert_eq!((file.as_str(), *at), ("t.frag", line), "{message}");
+        assert!(message.contains(phrase), "{message}");
+    }
+    // Just under the bound, every stage (glsl-lang, the translation, naga) copes on a test
+    // thread's 2 MiB stack (checked in a release build).
+    let limit = crate::shader::guard::MAX_DEPTH - 10;
+    ok(
+        PASS_VS,
+        &deep(format!("x = {}x{};", "(".repeat(limit), ")".repeat(limit))),
+    );
+    ok(PASS_VS, &deep(format!("x = {};", vec!["x"; limit].join(" + "))));
+    ok(
+        PASS_VS,
+        &deep(format!("{}x = 2.0;{}", "{".repeat(limit), "}".repeat(limit))),
+    );
+    ok(PASS_VS, &deep(format!("{}x = 2.0;", "if (x > 0.0) ".repeat(limit))));
+    ok(
+        PASS_VS,
+        &deep(format!(
+            "{} {{ x = 2.0; }}",
+            "if (x > 0.0) { x = 1.0; } else ".repeat(limit / 2)
+        )),
+    );
+}
+
+/// Issue 17: the line map was quadratic in the file's length (16,000 comment lines took
+/// 4.6 s, 5 MB 80 s); one line index per file makes it linear.
+#[test]
+fn long_files_translate_in_linear_time() {
+    let start = std::time::Instant::now();
+    let comments = "// a comment line of a long file\n".repeat(30_000) + PASS_FS;
+    let functions: String = (0..10_000)
+        .map(|i| format!("float g{i}() {{ return 1.0; }}\n"))
+        .collect();
+    for fs in [comments, functions + PASS_FS] {
+        let t = ok(PASS_VS, &fs);
+        assert_eq!(
+            t.fragment.compile().unwrap().source.line_map.len(),
+            t.fragment.output.text.lines().count()
+        );
+    }
+    assert!(start.elapsed().as_secs_f64() < 8.0, "{:?}", start.elapsed());
+}
+
+/// Issue 17: `uniform float a[1000]` was copied whole into a private array on every
+/// invocation (20 s in lavapipe's compiler); its elements are now read from the block.
+#[test]
+fn uniform_arrays_are_read_in_place() {
+    let t = ok(
+        PASS_VS,
+        "uniform float a[1000];\nuniform bool b[2];\nuniform vec2 texture[2];\n\
+         float at(int i) { return a[i]; }\n\
+         void main() { gl_FragColor = vec4(at(1) + a[int(a[0])], b[1] ? 1.0 : 0.0, texture[1]); }\n",
+    );
+    let text = &t.fragment.output.text;
+    assert!(!text.contains("for (int i"), "{text}");
+    for read in [
+        "sl_u_a[i].x",
+        "sl_u_a[int(sl_u_a[0].x)].x",
+        "(sl_u_b[1].x != 0)",
+        "sl_u_sl_texture[1].xy",
+    ] {
+        assert!(text.contains(read), "{read}:\n{text}");
+    }
+    // An array used whole (or redeclared, or named by a macro) keeps its private copy.
+    let t = ok(
+        PASS_VS,
+        "uniform float w[3];\nfloat sum(float v[3]) { return v[0] + v[1] + v[2]; }\n\
+         void main() { gl_FragColor = vec4(sum(w)); }\n",
+    );
+    assert!(t
+        .fragment
+        .output
+        .text
+        .contains("for (int i = 0; i < 3; i++) { w[i] = sl_u_w[i].x; }"));
+}
+
+/// Issue 17: a uniform array larger than a uniform block is refused by name, before its
+/// default values are allocated.
+#[test]
+fn uniform_arrays_beyond_the_block_are_refused_by_name() {
+    for (decl, phrase) in [
+        (
+            "uniform float a[100000];",
+            "uniform `a` (float[100000]) takes 1600000 bytes",
+        ),
+        (
+            "uniform mat4 a[2000000000];",
+            "uniform `a` (mat4[2000000000]) takes 128000000000 bytes",
+        ),
+    ] {
+        let Some(e) = translate(&src("t.vert", PASS_VS), &src("t.frag", &format!("{decl}\n{PASS_FS}"))).err() else {
+            panic!("accepted: {decl}")
+        };
+        let message = e.to_string();
+        assert!(message.contains("t.frag:1:") && message.contains(phrase), "{message}");
+        assert!(message.contains("the limit is 16384 bytes"), "{message}");
+    }
+    ok(PASS_VS, &format!("uniform float a[1024];\n{PASS_FS}"));
+}

@@ -152,6 +152,22 @@ impl Uniform {
         (self.encoding != Encoding::Plain).then(|| format!("{} {}{};", self.ty.glsl(), self.glsl, self.array_suffix()))
     }
 
+    /// An element `m[i]` of a padded array read in place, as GLSL 1.10 reads `name[i]`: the
+    /// text before `m` and after `]`.
+    fn element_read(&self) -> (String, String) {
+        let swizzle = match self.ty.rows {
+            1 => ".x",
+            2 => ".xy",
+            3 => ".xyz",
+            _ => "",
+        };
+        match (self.ty.scalar, self.ty.rows) {
+            (Scalar::Bool, 1) => ("(".into(), ".x != 0)".into()),
+            (Scalar::Bool, n) => ("notEqual(".into(), format!("{swizzle}, ivec{n}(0))")),
+            _ => (String::new(), swizzle.into()),
+        }
+    }
+
     /// Statements of the generated `main` that fill the private variable.
     fn private_init(&self) -> Option<String> {
         let (g, m) = (&self.glsl, self.member());
@@ -273,6 +289,9 @@ pub const UNIFORM_BINDING: u32 = 1;
 pub const STATE_BLOCK: &str = "sl_GlState";
 /// The name of the loose uniforms' block.
 pub const UNIFORM_BLOCK: &str = "sl_Uniforms";
+/// The largest uniform array, in bytes of the uniform block: wgpu's guaranteed
+/// `max_uniform_buffer_binding_size`.
+pub const MAX_UNIFORM_BLOCK_BYTES: u64 = 16384;
 
 fn span_of<T: ast::NodeContent>(node: &ast::Node<T>) -> Option<Range<usize>> {
     node.span.map(|s| {
@@ -343,6 +362,15 @@ struct Analysis<'a> {
     function: Option<String>,
     functions: BTreeSet<String>,
     calls: Vec<(String, String, Range<usize>)>,
+    /// Each `NAME[...]`: the name, its range and the end of the whole expression (an array
+    /// uniform held padded is read in place there, not copied whole on every invocation).
+    element_reads: Vec<(String, Range<usize>, usize)>,
+    /// The starts of the names of `element_reads`.
+    element_bases: BTreeSet<usize>,
+    /// Names that cannot be read in place: used whole, declared again, or named by a macro.
+    not_in_place: BTreeSet<String>,
+    /// How many times each name is declared.
+    declared: BTreeMap<String, usize>,
     error: Option<Error>,
 }
 
@@ -438,6 +466,9 @@ impl Visitor for Analysis<'_> {
             ast::ExprData::Variable(ident) => {
                 let name = ident.0.as_str();
                 let range = span0(ident);
+                if !self.element_bases.contains(&range.start) {
+                    self.not_in_place.insert(name.to_owned());
+                }
                 if name.starts_with("gl_") {
                     self.use_builtin(name, range);
                 }
@@ -445,6 +476,11 @@ impl Visitor for Analysis<'_> {
             ast::ExprData::Bracket(array, index) => {
                 if let ast::ExprData::Variable(ident) = &array.content {
                     let name = ident.0.as_str();
+                    if let Some(whole) = span_of(expr) {
+                        let range = span0(ident);
+                        self.element_bases.insert(range.start);
+                        self.element_reads.push((name.to_owned(), range, whole.end));
+                    }
                     if name == "gl_LightSource" || name == "gl_FrontLightProduct" {
                         if let ast::ExprData::IntConst(k) = &index.content {
                             if (*k as usize) < super::builtins::MAX_LIGHTS {
@@ -557,6 +593,23 @@ impl Visitor for Analysis<'_> {
         Visit::Children
     }
 
+    fn visit_single_declaration(&mut self, d: &ast::SingleDeclaration) -> Visit {
+        if let Some(name) = &d.name {
+            *self.declared.entry(name.0.to_string()).or_default() += 1;
+        }
+        Visit::Children
+    }
+
+    fn visit_single_declaration_no_type(&mut self, d: &ast::SingleDeclarationNoType) -> Visit {
+        *self.declared.entry(d.ident.ident.0.to_string()).or_default() += 1;
+        Visit::Children
+    }
+
+    fn visit_function_parameter_declarator(&mut self, d: &ast::FunctionParameterDeclarator) -> Visit {
+        *self.declared.entry(d.ident.ident.0.to_string()).or_default() += 1;
+        Visit::Children
+    }
+
     fn visit_function_parameter_declaration(&mut self, param: &ast::FunctionParameterDeclaration) -> Visit {
         let ty = match &param.content {
             ast::FunctionParameterDeclarationData::Named(_, d) => &d.ty,
@@ -583,6 +636,7 @@ impl Visitor for Analysis<'_> {
             };
             let range = span0(pp);
             for word in body.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
+                self.not_in_place.insert(word.to_owned());
                 if word.starts_with("gl_") {
                     if let Some(Builtin::State(_)) = classify(word, self.stage) {
                         self.use_builtin(word, range.clone());
@@ -699,6 +753,9 @@ fn const_values(expr: &ast::Expr) -> Option<Vec<f64>> {
 }
 
 fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<'a>> {
+    // Before glsl-lang's parser, the visitor below and naga: nesting, macro and call-graph
+    // bounds (see `shader::guard`); the generated code around the user's adds little depth.
+    crate::shader::guard::check(&source.text).map_err(|e| source.error(e.range, &e.message))?;
     let tu = ast::TranslationUnit::parse(source.text.as_str()).map_err(|e| {
         let pos = e.pos();
         let start = u32::from(pos.start()) as usize;
@@ -724,6 +781,10 @@ fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<
         function: None,
         functions: BTreeSet::new(),
         calls: Vec::new(),
+        element_reads: Vec::new(),
+        element_bases: BTreeSet::new(),
+        not_in_place: BTreeSet::new(),
+        declared: BTreeMap::new(),
         error: None,
     };
     for external in &tu.0 {
@@ -766,6 +827,13 @@ fn analyse<'a>(source: &'a LegacySource, stage: ShaderStage) -> Result<Analysis<
     if let Some((range, message)) = recursion(&a.functions, &a.calls) {
         a.fail(range, &message);
     }
+    let again: Vec<String> = a
+        .declared
+        .iter()
+        .filter(|(_, n)| **n > 1)
+        .map(|(k, _)| k.clone())
+        .collect();
+    a.not_in_place.extend(again);
     if a.main.is_none() {
         a.fail(0..0, "no `void main()` in this shader");
     }
@@ -981,6 +1049,26 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
             for d in &g.declarators {
                 match &d.ty {
                     DeclTy::Value(ty) => {
+                        // std140 gives each array element (each matrix column) 16 bytes; wgpu
+                        // guarantees uniform blocks of 16 KiB (GL 2.0's own minimum is 512
+                        // vertex uniform components, 2 KiB). Checked before the defaults of a
+                        // `float a[2000000000]` are allocated.
+                        if let Some(len) = d.array {
+                            let bytes = len as u64 * 16 * ty.cols as u64;
+                            if bytes > MAX_UNIFORM_BLOCK_BYTES {
+                                return Err(a.source.error(
+                                    d.range.clone(),
+                                    &format!(
+                                        "uniform `{}` ({}[{len}]) takes {bytes} bytes of the uniform block (16 \
+                                         per element{}); the limit is {MAX_UNIFORM_BLOCK_BYTES} bytes, {} elements",
+                                        d.name,
+                                        ty.glsl(),
+                                        if ty.cols > 1 { " column" } else { "" },
+                                        MAX_UNIFORM_BLOCK_BYTES / (16 * ty.cols as u64)
+                                    ),
+                                ));
+                            }
+                        }
                         let n = ty.components() * d.array.unwrap_or(1) as usize;
                         let default = match &d.init {
                             Some(v) if v.len() == n => v.clone(),
@@ -1389,6 +1477,7 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
     // The user's declarations, rewritten where they stand.
     let mut edits = a.edits.clone();
     let mut privates = Vec::new();
+    let mut in_place: Vec<&Uniform> = Vec::new();
     for g in &a.globals {
         let mut text = String::new();
         for d in &g.declarators {
@@ -1417,6 +1506,10 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
                             s.sampler
                         ));
                     } else if let Some(u) = ctx.uniforms.iter().find(|u| u.name == d.name) {
+                        if u.encoding == Encoding::Padded && !a.not_in_place.contains(&u.name) {
+                            in_place.push(u);
+                            continue;
+                        }
                         if let Some(p) = u.private_decl() {
                             text.push_str(&p);
                         }
@@ -1431,6 +1524,31 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
             range: g.range.clone(),
             text,
         });
+    }
+    // Padded arrays read in place: `a[i]` becomes `sl_u_a[i].x` (a copy of the whole array
+    // into a private one, on every invocation, is what made `uniform float a[1000]` take
+    // 20 s to compile in lavapipe).
+    if !in_place.is_empty() {
+        let mut names = BTreeSet::new();
+        let mut reads = Vec::new();
+        for (name, range, end) in &a.element_reads {
+            let Some(u) = in_place.iter().find(|u| &u.name == name) else {
+                continue;
+            };
+            let (prefix, suffix) = u.element_read();
+            names.insert((range.start, range.end));
+            reads.push(Edit {
+                range: range.clone(),
+                text: format!("{prefix}{}", u.member()),
+            });
+            reads.push(Edit {
+                range: *end..*end,
+                text: suffix,
+            });
+        }
+        // The name's own edit (a name GLSL 450 reserves, renamed) gives way to these.
+        edits.retain(|e| !names.contains(&(e.range.start, e.range.end)));
+        edits.extend(reads);
     }
     // Lookups take the texture and its sampler.
     for (name, range, dim) in &a.lookups {

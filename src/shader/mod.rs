@@ -16,6 +16,7 @@ use naga::ShaderStage;
 
 use crate::error::{Error, Result};
 
+pub mod guard;
 mod layout;
 
 pub use layout::*;
@@ -582,6 +583,11 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
         });
     }
     let source = splice(path, text, resolve)?;
+    // Before naga's recursive parser: nesting, macro and call-graph bounds (see `guard`).
+    guard::check(&source.text).map_err(|e| {
+        let span = naga::Span::new(e.range.start as u32, e.range.end as u32);
+        shader_error(path, stage, &source, &[(span, e.message)])
+    })?;
     let mut frontend = naga::front::glsl::Frontend::default();
     let module = frontend
         .parse(&naga::front::glsl::Options::from(stage), &source.text)
@@ -756,6 +762,42 @@ impl CompiledShader {
 mod loader_tests {
     use super::*;
     use std::fs;
+
+    /// Issue 17: nesting past `guard::MAX_DEPTH` (here in an `#include`d snippet) is an
+    /// error at the snippet's line, before naga's recursive parser overflows its stack.
+    #[test]
+    fn deep_nesting_is_an_error_at_the_included_line() {
+        let snippet = format!(
+            "// deep.glsl\nfloat deep(float x) {{ return {}x{}; }}\n",
+            "(".repeat(5000),
+            ")".repeat(5000)
+        );
+        let main = "#version 450\n#include \"deep.glsl\"\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(deep(1.0)); }\n";
+        let Err(e) = compile_text("main.frag", main, ShaderStage::Fragment, &|_: &str| {
+            Ok(("deep.glsl".to_owned(), snippet.clone()))
+        }) else {
+            panic!("accepted")
+        };
+        let Error::Shader {
+            file, line, message, ..
+        } = &e
+        else {
+            panic!("{e:?}")
+        };
+        assert_eq!((file.as_str(), *line), ("deep.glsl", 2), "{message}");
+        assert!(message.contains("nests too deeply"), "{message}");
+        // Just under the limit naga parses and validates it, and writes WGSL.
+        let ok = format!(
+            "float deep(float x) {{ return {}x{}; }}\n",
+            "(".repeat(guard::MAX_DEPTH - 10),
+            ")".repeat(guard::MAX_DEPTH - 10)
+        );
+        let shader = compile_text("main.frag", main, ShaderStage::Fragment, &|_: &str| {
+            Ok(("deep.glsl".to_owned(), ok.clone()))
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
+        shader.to_wgsl().unwrap();
+    }
 
     /// Issue 23: a moved checkout once embedded no file at all. Every file of the checkout's
     /// `shaders_glsl/` is embedded with its current text, and every shader name quoted in
