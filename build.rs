@@ -28,7 +28,10 @@ fn main() {
         }
         match entry.file_name().into_string() {
             Ok(name) => names.push(name),
-            Err(name) => fail(&format!("{}: a shader file name that is not UTF-8: {name:?}", dir.display())),
+            Err(name) => fail(&format!(
+                "{}: a shader file name that is not UTF-8: {name:?}",
+                dir.display()
+            )),
         }
     }
     names.sort();
@@ -49,7 +52,10 @@ fn main() {
     for name in &names {
         let path = dir.join(name);
         println!("cargo:rerun-if-changed={}", path.display());
-        code.push_str(&format!("    ({name:?}, include_str!({:?})),\n", path.display().to_string()));
+        code.push_str(&format!(
+            "    ({name:?}, include_str!({:?})),\n",
+            path.display().to_string()
+        ));
     }
     code.push_str("];\n");
     let out = match env::var_os("OUT_DIR") {

@@ -706,7 +706,11 @@ mod loader_tests {
         assert_eq!(embedded, on_disk, "the embedded list is the folder's files");
         for name in &on_disk {
             let text = fs::read_to_string(root.join("shaders_glsl").join(name)).expect("shader text");
-            assert_eq!(embedded_source(name), Some(text.as_str()), "{name}: embedded text is stale");
+            assert_eq!(
+                embedded_source(name),
+                Some(text.as_str()),
+                "{name}: embedded text is stale"
+            );
         }
         let mut used = Vec::new();
         let mut stack = vec![root.join("src/labs")];
@@ -732,9 +736,16 @@ mod loader_tests {
                 }
             }
         }
-        assert!(used.len() >= 40, "the scan finds the labs' shader names ({} found)", used.len());
+        assert!(
+            used.len() >= 40,
+            "the scan finds the labs' shader names ({} found)",
+            used.len()
+        );
         for name in &used {
-            assert!(embedded_source(name).is_some(), "{name} is named by a lab but not embedded");
+            assert!(
+                embedded_source(name).is_some(),
+                "{name} is named by a lab but not embedded"
+            );
         }
     }
 
