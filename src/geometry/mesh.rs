@@ -99,8 +99,10 @@ impl Mesh {
         // another (quadratic). Keyed by bits, with -0 as +0 because -0 == 0.
         let mut exact: HashMap<[u32; 3], u32> = HashMap::new();
         let mut remap: Vec<u32> = Vec::with_capacity(self.vertices.len());
-        let mut vertices: Vec<Vertex> = Vec::new();
-        let mut sums: Vec<[f64; 3]> = Vec::new();
+        // At most one per input vertex; reserved, since doubling a vector of millions copies it
+        // and briefly holds both.
+        let mut vertices: Vec<Vertex> = Vec::with_capacity(self.vertices.len());
+        let mut sums: Vec<[f64; 3]> = Vec::with_capacity(self.vertices.len());
         for (i, v) in self.vertices.iter().enumerate() {
             let leader = leaders[i];
             if leader != SEARCH && leader as usize != i {
@@ -276,11 +278,13 @@ fn isolated_leaders(vertices: &[Vertex], cell_of: impl Fn([f32; 3]) -> [i64; 3])
         while end < keys.len() && keys[end].0 == key {
             end += 1;
         }
-        let position = bits(vertices[first as usize].position);
-        let alone = !crowded[j]
-            && keys[start + 1..end]
+        // (A run of one, nearly every run, reads no position: those reads miss the cache.)
+        let alone = !crowded[j] && {
+            let position = || bits(vertices[first as usize].position);
+            keys[start + 1..end]
                 .iter()
-                .all(|&(_, i)| bits(vertices[i as usize].position) == position);
+                .all(|&(_, i)| bits(vertices[i as usize].position) == position())
+        };
         if alone {
             for &(_, i) in &keys[start..end] {
                 leaders[i as usize] = first;
