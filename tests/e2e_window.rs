@@ -1432,6 +1432,40 @@ fn hostile_window_managers_get_clear_answers() {
     assert!(!err.contains("panicked"), "{err}");
 }
 
+/// Issue 17, item 5: a window destroyed by another program while its frames go through X shared
+/// memory. A put the server refuses (BadDrawable) never completes, and dropping the presenter
+/// waited for that completion for good: 2 of 30 paced runs and every `--unpaced` run (a put is
+/// nearly always in flight) hung. Each cycle must end within 5 s, with the one clear message.
+#[test]
+fn windows_closed_while_drawing_end_and_never_hang() {
+    let x = Xvfb::start("close_while_drawing");
+    let cycles: [(&str, &[&str], u64); 6] = [
+        ("wave", &["--unpaced"], 300),
+        ("particles", &["--unpaced"], 700),
+        ("wave", &["--unpaced"], 1200),
+        ("particles", &["--unpaced"], 450),
+        ("wave", &[], 500),
+        ("particles", &[], 900),
+    ];
+    for (name, args, ms) in cycles {
+        // The shared-memory presenter for sure (it is the default only for CPU adapters).
+        let mut lab = x.launch(name, args, &[("SHADERLAB_PRESENT", "shm")]);
+        sleep_ms(ms);
+        x.xdotool(&["windowclose", &lab.window]);
+        let status = lab.wait_exit(Duration::from_secs(5));
+        let err = lab.stderr();
+        assert_eq!(status.code(), Some(1), "{name} {args:?}: {err}");
+        assert!(
+            err.contains("closed or destroyed by another program"),
+            "{name} {args:?}: {err}"
+        );
+        // The refused put is the same news: not a second message about the presenter.
+        for bad in ["shared-memory presenter", "panicked"] {
+            assert!(!err.contains(bad), "{name} {args:?} printed `{bad}`: {err}");
+        }
+    }
+}
+
 /// Issue 9, item 8: F12 names carry the process id, so two windows writing screenshots into one
 /// folder in the same second never overwrite each other.
 #[test]

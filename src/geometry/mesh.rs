@@ -77,7 +77,10 @@ impl Mesh {
     ///   compared only with the representatives of its 27 neighbouring cells; a position with
     ///   an infinite coordinate welds only with an equal one (hashed by its bits) and one with a
     ///   NaN never welds. (A plain bitwise key for all positions would miss the teapot's 1-2 ulp
-    ///   seams: 1890 instead of 1621 vertices at grid 8, and cracks.)
+    ///   seams: 1890 instead of 1621 vertices at grid 8, and cracks.) Vertices whose 27 cells
+    ///   hold no other position ([`isolated_leaders`], nearly all of a fine mesh) skip the grid:
+    ///   27 hash probes each into a table of millions of cells made the level-512 teapot (8.4 M
+    ///   vertices) take a minute and 2.3 GB.
     pub fn welded(&self) -> Mesh {
         let max_abs = self
             .vertices
@@ -87,6 +90,7 @@ impl Mesh {
             .fold(0.0f64, |m, c| m.max(f64::from(c).abs()));
         let eps = (max_abs * 1e-6).max(f64::from(f32::MIN_POSITIVE));
         let cell_of = |p: [f32; 3]| p.map(|c| (f64::from(c) / eps).floor() as i64);
+        let leaders = isolated_leaders(&self.vertices, cell_of);
 
         let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
         // Positions with an infinite coordinate weld only with an equal position (their
@@ -94,11 +98,22 @@ impl Mesh {
         // grid, where they would all share the cells of ±i64::MAX or 0 and be compared with one
         // another (quadratic). Keyed by bits, with -0 as +0 because -0 == 0.
         let mut exact: HashMap<[u32; 3], u32> = HashMap::new();
-        let bits = |p: [f32; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
-        let mut remap = Vec::with_capacity(self.vertices.len());
-        let mut vertices: Vec<Vertex> = Vec::new();
-        let mut sums: Vec<[f64; 3]> = Vec::new();
-        for v in &self.vertices {
+        let mut remap: Vec<u32> = Vec::with_capacity(self.vertices.len());
+        // At most one per input vertex; reserved, since doubling a vector of millions copies it
+        // and briefly holds both.
+        let mut vertices: Vec<Vertex> = Vec::with_capacity(self.vertices.len());
+        let mut sums: Vec<[f64; 3]> = Vec::with_capacity(self.vertices.len());
+        for (i, v) in self.vertices.iter().enumerate() {
+            let leader = leaders[i];
+            if leader != SEARCH && leader as usize != i {
+                // A repeat of an isolated position: it joins what its first occurrence joined.
+                let id = remap[leader as usize];
+                for (acc, &c) in sums[id as usize].iter_mut().zip(&v.normal) {
+                    *acc += f64::from(c);
+                }
+                remap.push(id);
+                continue;
+            }
             if !v.position.iter().all(|c| c.is_finite()) {
                 let new_id = vertices.len() as u32;
                 let id = if v.position.iter().any(|c| c.is_nan()) {
@@ -118,7 +133,12 @@ impl Mesh {
             }
             let cell = cell_of(v.position);
             let mut found = None;
+            // An isolated first occurrence has nothing to find, and no later search can reach
+            // it (whatever lies within its 27 cells is at its own position, so is isolated too).
             'search: for dx in -1i64..=1 {
+                if leader != SEARCH {
+                    break;
+                }
                 for dy in -1i64..=1 {
                     for dz in -1i64..=1 {
                         let key = [
@@ -149,7 +169,9 @@ impl Mesh {
                     let id = vertices.len() as u32;
                     vertices.push(*v);
                     sums.push([0.0; 3]);
-                    grid.entry(cell).or_default().push(id);
+                    if leader == SEARCH {
+                        grid.entry(cell).or_default().push(id);
+                    }
                     id
                 }
             };
@@ -173,10 +195,112 @@ impl Mesh {
     }
 }
 
+/// A position's bits with -0 as +0, so that equal finite positions (`==`) get equal keys.
+fn bits(p: [f32; 3]) -> [u32; 3] {
+    p.map(|c| if c == 0.0 { 0 } else { c.to_bits() })
+}
+
+/// In [`isolated_leaders`]' answer: this vertex needs the grid search.
+const SEARCH: u32 = u32::MAX;
+
+/// For each vertex, [`SEARCH`] unless its position is finite and every finite vertex in its 27
+/// grid cells (its own and the 26 around it) is at exactly that position; then the index of
+/// the first of those. Such a vertex is decided without the grid: the first becomes a new
+/// vertex, the others join it (the grid search would find nothing else).
+///
+/// Sorting the cells makes this one pass over memory in order, where probing a hash table of
+/// millions of cells 27 times per vertex missed the cache at nearly every probe.
+fn isolated_leaders(vertices: &[Vertex], cell_of: impl Fn([f32; 3]) -> [i64; 3]) -> Vec<u32> {
+    let mut leaders = vec![SEARCH; vertices.len()];
+    // A cell packs into 21 bits per axis, x highest, so that the packed keys sort like the
+    // cells and a neighbour is the key plus a constant. `welded`'s cells lie within ±1e6 + 1
+    // (eps is at least 1e-6 of the largest coordinate); anything else, or an index past u32,
+    // leaves every vertex to the search.
+    const BITS: u32 = 21;
+    const BIAS: i64 = 1 << (BITS - 1);
+    let fits = |c: i64| (-BIAS + 1..BIAS - 1).contains(&c);
+    let pack = |c: [i64; 3]| c.iter().fold(0u64, |key, &a| (key << BITS) | (a + BIAS) as u64);
+    if vertices.len() >= SEARCH as usize {
+        return leaders;
+    }
+    let mut keys: Vec<(u64, u32)> = Vec::with_capacity(vertices.len());
+    for (i, v) in vertices.iter().enumerate() {
+        if v.position.iter().all(|c| c.is_finite()) {
+            let cell = cell_of(v.position);
+            if !cell.iter().all(|&c| fits(c)) {
+                return leaders;
+            }
+            keys.push((pack(cell), i as u32));
+        }
+    }
+    // By cell, and within a cell by index, so a run's first entry is its first occurrence.
+    keys.sort_unstable();
+
+    // The occupied cells, and whether any of the 26 around each is occupied too. For each of
+    // the 9 columns (dx, dy) the neighbours' keys are this key plus a fixed offset, and the
+    // keys rise, so one cursor per column only moves forward.
+    let mut cells: Vec<u64> = keys.iter().map(|&(k, _)| k).collect();
+    cells.dedup();
+    let mut offsets = [0i64; 9];
+    for (o, (dx, dy)) in offsets
+        .iter_mut()
+        .zip((-1i64..=1).flat_map(|dx| (-1i64..=1).map(move |dy| (dx, dy))))
+    {
+        *o = (dx << (2 * BITS)) + (dy << BITS);
+    }
+    let mut cursors = [0usize; 9];
+    let mut crowded = vec![false; cells.len()];
+    for (j, &key) in cells.iter().enumerate() {
+        for (cursor, &offset) in cursors.iter_mut().zip(&offsets) {
+            // `fits` keeps key + offset ± 1 inside the packing: no wrap, no borrow.
+            let lo = (key as i64 + offset - 1) as u64;
+            let hi = lo + 2;
+            while *cursor < cells.len() && cells[*cursor] < lo {
+                *cursor += 1;
+            }
+            let mut c = *cursor;
+            while c < cells.len() && cells[c] <= hi {
+                if c != j {
+                    crowded[j] = true;
+                    break;
+                }
+                c += 1;
+            }
+        }
+    }
+
+    // Each run of one cell: isolated if its cell is not crowded and it holds one position.
+    let mut j = 0;
+    let mut start = 0;
+    while start < keys.len() {
+        let (key, first) = keys[start];
+        let mut end = start + 1;
+        while end < keys.len() && keys[end].0 == key {
+            end += 1;
+        }
+        // (A run of one, nearly every run, reads no position: those reads miss the cache.)
+        let alone = !crowded[j] && {
+            let position = || bits(vertices[first as usize].position);
+            keys[start + 1..end]
+                .iter()
+                .all(|&(_, i)| bits(vertices[i as usize].position) == position())
+        };
+        if alone {
+            for &(_, i) in &keys[start..end] {
+                leaders[i as usize] = first;
+            }
+        }
+        j += 1;
+        start = end;
+    }
+    leaders
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::glut::tests::{check_indices, check_unit_normals, len, sub};
+    use crate::geometry::tess::{self, Object};
 
     #[test]
     fn welded_cube() {
@@ -364,6 +488,259 @@ mod tests {
         let w = m.welded();
         assert_eq!(w.vertices.len(), count);
         assert_eq!(w.indices, m.indices);
+    }
+
+    /// `welded()` as it was before isolated vertices skipped the grid (a verbatim copy of that
+    /// version): the yardstick for "bit for bit as before" on every input below.
+    fn welded_grid_reference(mesh: &Mesh) -> Mesh {
+        let max_abs = mesh
+            .vertices
+            .iter()
+            .flat_map(|v| v.position)
+            .filter(|c| c.is_finite())
+            .fold(0.0f64, |m, c| m.max(f64::from(c).abs()));
+        let eps = (max_abs * 1e-6).max(f64::from(f32::MIN_POSITIVE));
+        let cell_of = |p: [f32; 3]| p.map(|c| (f64::from(c) / eps).floor() as i64);
+
+        let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+        let mut exact: HashMap<[u32; 3], u32> = HashMap::new();
+        let bits = |p: [f32; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+        let mut remap = Vec::with_capacity(mesh.vertices.len());
+        let mut vertices: Vec<Vertex> = Vec::new();
+        let mut sums: Vec<[f64; 3]> = Vec::new();
+        for v in &mesh.vertices {
+            if !v.position.iter().all(|c| c.is_finite()) {
+                let new_id = vertices.len() as u32;
+                let id = if v.position.iter().any(|c| c.is_nan()) {
+                    new_id
+                } else {
+                    *exact.entry(bits(v.position)).or_insert(new_id)
+                };
+                if id == new_id {
+                    vertices.push(*v);
+                    sums.push([0.0; 3]);
+                }
+                for (acc, &c) in sums[id as usize].iter_mut().zip(&v.normal) {
+                    *acc += f64::from(c);
+                }
+                remap.push(id);
+                continue;
+            }
+            let cell = cell_of(v.position);
+            let mut found = None;
+            'search: for dx in -1i64..=1 {
+                for dy in -1i64..=1 {
+                    for dz in -1i64..=1 {
+                        let key = [
+                            cell[0].saturating_add(dx),
+                            cell[1].saturating_add(dy),
+                            cell[2].saturating_add(dz),
+                        ];
+                        let Some(ids) = grid.get(&key) else { continue };
+                        for &id in ids {
+                            let q = vertices[id as usize].position;
+                            let d2: f64 = (0..3)
+                                .map(|k| {
+                                    let d = f64::from(v.position[k]) - f64::from(q[k]);
+                                    d * d
+                                })
+                                .sum();
+                            if d2 <= eps * eps || v.position == q {
+                                found = Some(id);
+                                break 'search;
+                            }
+                        }
+                    }
+                }
+            }
+            let id = match found {
+                Some(id) => id,
+                None => {
+                    let id = vertices.len() as u32;
+                    vertices.push(*v);
+                    sums.push([0.0; 3]);
+                    grid.entry(cell).or_default().push(id);
+                    id
+                }
+            };
+            for (acc, &c) in sums[id as usize].iter_mut().zip(&v.normal) {
+                *acc += f64::from(c);
+            }
+            remap.push(id);
+        }
+        for (v, s) in vertices.iter_mut().zip(&sums) {
+            let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+            if len.is_finite() && len > 1e-12 {
+                v.normal = [(s[0] / len) as f32, (s[1] / len) as f32, (s[2] / len) as f32];
+            }
+        }
+        let indices = mesh
+            .indices
+            .iter()
+            .map(|&i| remap.get(i as usize).copied().unwrap_or(i))
+            .collect();
+        Mesh { vertices, indices }
+    }
+
+    /// A small deterministic generator (xorshift), so the point clouds below need no crate.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        /// Uniform in [-1, 1).
+        fn unit(&mut self) -> f32 {
+            (self.next() >> 40) as f32 / (1u64 << 23) as f32 - 1.0
+        }
+    }
+
+    /// A triangle soup over `positions`, every vertex used, with varied unit-ish normals.
+    fn soup(positions: Vec<[f32; 3]>, rng: &mut Rng) -> Mesh {
+        let vertices: Vec<Vertex> = positions
+            .into_iter()
+            .map(|position| Vertex {
+                position,
+                normal: [rng.unit(), rng.unit(), rng.unit()],
+            })
+            .collect();
+        let n = vertices.len() as u32;
+        let indices = (0..n - n % 3).chain([0, n, n + 7]).collect();
+        Mesh { vertices, indices }
+    }
+
+    #[test]
+    fn welded_matches_the_grid_reference_on_every_object_and_level() {
+        for level in [3, 4, 7, 10, 24, 61] {
+            for object in Object::ALL {
+                let mesh = tess::mesh(object, level);
+                let name = format!("{} {level}", object.name());
+                assert_same_mesh(&name, &mesh.welded(), &welded_grid_reference(&mesh));
+            }
+        }
+        // Scaled, mirrored, flattened and collapsed copies: the grid's `eps` follows the
+        // largest coordinate, so these move the seams to other cells and cell edges.
+        for size in [0.0, 1e-30, 1e-7, 0.37, -1.0, 3.0e5, 1e30] {
+            for mesh in [
+                Mesh::teapot(size, 10),
+                Mesh::sphere(size, 7, 5),
+                Mesh::torus(size, size * 2.0, 9, 4),
+            ] {
+                let name = format!("size {size}, {} vertices", mesh.vertices.len());
+                assert_same_mesh(&name, &mesh.welded(), &welded_grid_reference(&mesh));
+            }
+        }
+    }
+
+    #[test]
+    fn welded_matches_the_grid_reference_on_clusters_and_odd_values() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        // Points a fraction of `eps` to a few `eps` apart (eps = 1e-6 here, the largest
+        // coordinate being 1): chains of near neighbours, where the greedy order and the
+        // first-cell-found tie-break decide the result; some exact repeats and signed zeros.
+        let mut positions = vec![[1.0, 0.0, 0.0], [-1.0, -1.0, -1.0]];
+        for spread in [0.2e-6, 1e-6, 3e-6, 30e-6] {
+            for _ in 0..3000 {
+                let p = [
+                    0.25 + spread * rng.unit(),
+                    -0.5 + spread * rng.unit(),
+                    spread * rng.unit(),
+                ];
+                positions.push(p);
+                if rng.next() % 5 == 0 {
+                    let k = (rng.next() % positions.len() as u64) as usize;
+                    positions.push(positions[k]);
+                }
+            }
+        }
+        for _ in 0..200 {
+            let z = |r: &mut Rng| if r.next() % 2 == 0 { 0.0 } else { -0.0 };
+            positions.push([z(&mut rng), z(&mut rng), 1e-6 * rng.unit()]);
+        }
+        // Values on cell edges: exact multiples of eps, and their neighbours one ulp away.
+        for k in -20..20 {
+            let c = k as f32 * 1e-6;
+            for p in [
+                c,
+                f32::from_bits(c.to_bits() + 1),
+                f32::from_bits(c.to_bits().wrapping_sub(1)),
+            ] {
+                positions.push([p, 0.5, p]);
+            }
+        }
+        let mesh = soup(positions.clone(), &mut rng);
+        assert_same_mesh("clusters", &mesh.welded(), &welded_grid_reference(&mesh));
+
+        // The same with non-finite positions mixed in (their own exact-match path).
+        let odd = [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            -0.0,
+            f32::MAX,
+            f32::MIN,
+            1e-45,
+        ];
+        for k in 0..positions.len() / 7 {
+            let i = (rng.next() % positions.len() as u64) as usize;
+            positions[i][k % 3] = odd[k % odd.len()];
+        }
+        let mesh = soup(positions, &mut rng);
+        assert_same_mesh("non-finite", &mesh.welded(), &welded_grid_reference(&mesh));
+
+        // Degenerate meshes: empty, one vertex, all at one point, only non-finite.
+        let one = |position| Vertex {
+            position,
+            normal: [0.0, 0.0, 0.0],
+        };
+        for mesh in [
+            Mesh::default(),
+            Mesh {
+                vertices: vec![one([0.5; 3])],
+                indices: vec![0, 0, 0],
+            },
+            Mesh {
+                vertices: vec![one([0.0; 3]); 1000],
+                indices: (0..999).collect(),
+            },
+            Mesh {
+                vertices: vec![one([f32::NAN; 3]); 10],
+                indices: vec![9, 3, 1],
+            },
+            Mesh {
+                vertices: vec![one([f32::INFINITY; 3]); 10],
+                indices: vec![9, 3, 1],
+            },
+        ] {
+            assert_same_mesh("degenerate", &mesh.welded(), &welded_grid_reference(&mesh));
+        }
+    }
+
+    /// FNV-1a over a mesh's bits: vertex positions and normals, then indices.
+    fn mesh_hash(m: &Mesh) -> u64 {
+        let words = m.vertices.iter().flat_map(|v| v.position.into_iter().chain(v.normal));
+        let words = words.map(f32::to_bits).chain(m.indices.iter().copied());
+        words.fold(0xcbf2_9ce4_8422_2325, |h, w| {
+            w.to_le_bytes()
+                .iter()
+                .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3))
+        })
+    }
+
+    #[test]
+    fn welded_level_512_is_what_it_was() {
+        // Hashes of the level-512 welds the grid-only version made (the teapot took it 60 s
+        // there, too long to run the reference in a test), and their vertex counts.
+        for (object, vertices, hash) in [
+            (Object::Sphere, 261_634, 0x65cd_7539_acb8_cc48),
+            (Object::Torus, 262_144, 0xf364_ac96_c374_a922),
+            (Object::Teapot, 8_359_925, 0xb5e0_0070_bd3c_b1d3),
+        ] {
+            let w = tess::mesh(object, 512).welded();
+            assert_eq!((w.vertices.len(), mesh_hash(&w)), (vertices, hash), "{object:?}");
+        }
     }
 
     // ----------------------------------------------------------- clamping

@@ -14,6 +14,7 @@
 //! that fails while drawing hands back to the swapchain too.
 
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use winit::raw_window_handle::{HasWindowHandle, RawWindowHandle};
 use winit::window::Window;
@@ -61,7 +62,15 @@ pub(super) struct ShmPresenter {
     segments: [Segment; 2],
     pending: [bool; 2],
     next: usize,
+    /// The server refused a request (say, a put into a window another program destroyed). A
+    /// refused put never completes, so its `pending` flag can no longer be trusted.
+    refused: bool,
+    /// What was refused was the window itself: another program destroyed it.
+    window_gone: bool,
 }
+
+/// How long dropping the presenter waits for the server to finish its last puts.
+const DROP_WAIT: Duration = Duration::from_secs(1);
 
 /// A frame on its way: its readback buffer, its submission and its size.
 struct InFlight {
@@ -177,6 +186,8 @@ impl ShmPresenter {
             segments,
             pending: [false; 2],
             next: 0,
+            refused: false,
+            window_gone: false,
         })
     }
 
@@ -185,6 +196,21 @@ impl ShmPresenter {
         while self.pending[k] {
             let event = self.conn.wait_for_event().map_err(x("X events"))?;
             self.handle(event)?;
+        }
+        Ok(())
+    }
+
+    /// Like [`Self::wait_for`], but gives up at `deadline`, or at once after a refusal (whose put
+    /// never completes). For dropping the presenter, where waiting is only politeness: the
+    /// server handles requests in order, so it has finished a put before it sees the detach
+    /// that follows, and the memory lives until both sides have detached.
+    fn wait_until(&mut self, k: usize, deadline: Instant) -> Result<(), Why> {
+        while self.pending[k] && !self.refused {
+            match self.conn.poll_for_event().map_err(x("X events"))? {
+                Some(event) => self.handle(event)?,
+                None if Instant::now() >= deadline => return Err("no completion from the X server".into()),
+                None => std::thread::sleep(Duration::from_millis(2)),
+            }
         }
         Ok(())
     }
@@ -200,9 +226,26 @@ impl ShmPresenter {
                 }
                 Ok(())
             }
-            x11rb::protocol::Event::Error(e) => Err(format!("the X server refused a frame: {e:?}")),
+            x11rb::protocol::Event::Error(e) => {
+                self.refused = true;
+                let gone = matches!(
+                    e.error_kind,
+                    x11rb::protocol::ErrorKind::Drawable | x11rb::protocol::ErrorKind::Window
+                );
+                if gone && e.bad_value == self.window {
+                    self.window_gone = true;
+                    return Err("the window is gone".into());
+                }
+                Err(format!("the X server refused a frame: {e:?}"))
+            }
             _ => Ok(()),
         }
+    }
+
+    /// Whether the presenter failed because its window no longer exists (another program
+    /// destroyed it); the window's `Destroyed` event follows and ends the lab with its message.
+    pub(super) fn window_gone(&self) -> bool {
+        self.window_gone
     }
 
     /// Follows a resize: new targets and, if the frame no longer fits, a new segment.
@@ -332,8 +375,11 @@ impl ShmPresenter {
 
 impl Drop for ShmPresenter {
     fn drop(&mut self) {
+        // Never `wait_for` here: after a refused put (the window destroyed under it) the
+        // completion it waits for never comes, and closing the window hung for good.
+        let deadline = Instant::now() + DROP_WAIT;
         for k in 0..2 {
-            let _ = self.wait_for(k);
+            let _ = self.wait_until(k, deadline);
             let segment = std::mem::replace(
                 &mut self.segments[k],
                 Segment {

@@ -61,6 +61,9 @@ impl Presenter {
     fn present(&mut self, _: &Gpu, _: wgpu::CommandEncoder, _: bool) -> std::result::Result<(), String> {
         Ok(())
     }
+    fn window_gone(&self) -> bool {
+        false
+    }
 }
 
 /// Says once per window that it is larger than the device can draw (the surface is clamped to
@@ -508,7 +511,9 @@ impl WindowState {
         self.depth = depth_texture(&self.gpu.device, self.config.width, self.config.height);
         if let Some(shm) = &mut self.shm {
             if let Err(why) = shm.resize(&self.gpu, self.config.width, self.config.height) {
-                eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+                if !shm.window_gone() {
+                    eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+                }
                 self.shm = None;
             }
         }
@@ -708,14 +713,19 @@ impl WindowState {
         }
         self.window.pre_present_notify();
         // Drawing as fast as possible keeps one frame in flight (shown while the next renders).
-        let presented = shm.present(&self.gpu, encoder, self.unpaced);
+        let presented = shm
+            .present(&self.gpu, encoder, self.unpaced)
+            .map_err(|why| (why, shm.window_gone()));
         if let Some(e) = self.lab.take_error() {
             eprintln!("{}: {e}", self.name());
             self.shader_error = true;
             self.update_title();
         }
-        if let Err(why) = presented {
-            eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+        if let Err((why, gone)) = presented {
+            // A destroyed window is said once, by the `Destroyed` event that follows.
+            if !gone {
+                eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
+            }
             self.shm = None;
             self.dirty = 2;
         }
