@@ -89,7 +89,11 @@ pub(super) fn build(
     ];
     bindings.extend(extra.unwrap_or_default());
     program.bind(cx.gpu, bindings)?;
-    let indices: Vec<u32> = QUAD_SPLIT_UNCLIPPED.iter().chain(&QUAD_SPLIT_CLIPPED).copied().collect();
+    let indices: Vec<u32> = QUAD_SPLIT_UNCLIPPED
+        .iter()
+        .chain(&QUAD_SPLIT_CLIPPED)
+        .copied()
+        .collect();
     let quad = GpuMesh::new(cx.gpu, &format!("{}.quad", info.name), &bump_quad(), Some(&indices));
     Ok(Box::new(BumpLab {
         info,
