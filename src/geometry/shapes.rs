@@ -1,13 +1,14 @@
 //! The lectures' hand-made meshes as plain vertex data, computed the way the course code (or
 //! SPEC's pinned code) computes them: in float where the C code uses float, in double and then
 //! rounded where SPEC says so. Quads are split as (v0, v1, v2), (v0, v2, v3) into triangle
-//! lists unless a function says otherwise. All vertex structs are `#[repr(C)]` and [`Pod`], so
+//! lists unless a function says otherwise: Mesa's split of a `GL_QUADS` draw none of whose
+//! vertices needs clipping (see [`QUAD_SPLIT_CLIPPED`] for the other case). All vertex structs are `#[repr(C)]` and [`Pod`], so
 //! a slice of them is a vertex buffer as it is.
 
 use crate::camera::fly::qt_normalize;
 use crate::geometry::obj::ObjCorner;
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// A 2D vertex with the custom `height` attribute of 001 `height`.
 #[repr(C)]
@@ -74,6 +75,36 @@ pub struct StripVertex {
     pub color: [f32; 3],
     /// `normal`, from `calculateNormals`.
     pub normal: [f32; 3],
+}
+
+/// Mesa's (llvmpipe's) split of a `GL_QUADS` quad into two triangles when no vertex of the
+/// draw lies outside the clip volume: diagonal v0–v2.
+pub const QUAD_SPLIT_UNCLIPPED: [u32; 6] = [0, 1, 2, 0, 2, 3];
+
+/// Mesa's split when some vertex of the draw lies outside the clip volume (the draw then takes
+/// the clipping path, which cuts every quad of it this other way): diagonal v1–v3. Measured on
+/// the original `bump` (one quad, per-vertex light vectors far apart, so the diagonal shows):
+/// drawn as `GL_QUADS` it is bit-identical to `GL_TRIANGLES` (v0,v1,v2),(v0,v2,v3) in every
+/// tried state whose corners are all inside (largest |NDC| 0.75–0.99) and to
+/// (v0,v1,v3),(v1,v2,v3) in every one with a corner outside (1.01–1.09); the wrong diagonal
+/// costs 32–52 dB.
+pub const QUAD_SPLIT_CLIPPED: [u32; 6] = [0, 1, 3, 1, 2, 3];
+
+/// Whether Mesa flags any of these clip-space positions (wgpu's depth convention, as the
+/// port's `mvp` gives them) for clipping: outside −w ≤ x, y ≤ w or 0 ≤ z ≤ w. llvmpipe uses no
+/// guard band, so a corner just off screen counts.
+pub fn needs_clipping(clip: impl IntoIterator<Item = Vec4>) -> bool {
+    clip.into_iter()
+        .any(|c| !(c.x.abs() <= c.w && c.y.abs() <= c.w && c.z >= 0.0 && c.z <= c.w))
+}
+
+/// The split Mesa gives the quads of a `GL_QUADS` draw with these clip-space vertices.
+pub fn quad_split(clip: impl IntoIterator<Item = Vec4>) -> [u32; 6] {
+    if needs_clipping(clip) {
+        QUAD_SPLIT_CLIPPED
+    } else {
+        QUAD_SPLIT_UNCLIPPED
+    }
 }
 
 /// Splits quads (4 consecutive vertices each) into triangles (v0, v1, v2), (v0, v2, v3).
@@ -188,20 +219,21 @@ pub fn particle_velocities(n: u32) -> Vec<[f32; 3]> {
 
 /// SPEC §1.11 (001 `bump`, also `normmap`): the `GL_QUADS` quad (−1.25,−1.25,0) st (0,0);
 /// (1.25,−1.25,0) (1,0); (1.25,1.25,0) (1,1); (−1.25,1.25,0) (0,1), normal (0,0,1), tangent
-/// (1,0,0,1), as two triangles (v0,v1,v2), (v0,v2,v3).
-pub fn bump_quad() -> Vec<BumpVertex> {
+/// (1,0,0,1): the four corners in that order, to be drawn through [`quad_split`]'s indices
+/// (the lab picks the split per frame: its per-vertex light vectors make the diagonal show).
+pub fn bump_quad() -> [BumpVertex; 4] {
     let corner = |x: f32, y: f32, s: f32, t: f32| BumpVertex {
         position: [x, y, 0.0],
         normal: [0.0, 0.0, 1.0],
         tangent: [1.0, 0.0, 0.0, 1.0],
         st: [s, t],
     };
-    quads_to_triangles(&[
+    [
         corner(-1.25, -1.25, 0.0, 0.0),
         corner(1.25, -1.25, 1.0, 0.0),
         corner(1.25, 1.25, 1.0, 1.0),
         corner(-1.25, 1.25, 0.0, 1.0),
-    ])
+    ]
 }
 
 /// Quads per side of [`twist_grid`] (the course's `count`).
@@ -427,17 +459,33 @@ mod tests {
     #[test]
     fn bump_quad_corners() {
         let q = bump_quad();
-        assert_eq!(q.len(), 6);
         let st: Vec<[f32; 2]> = q.iter().map(|v| v.st).collect();
-        assert_eq!(
-            st,
-            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
-        );
+        assert_eq!(st, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
         assert_eq!(q[2].position, [1.25, 1.25, 0.0]);
         assert!(q
             .iter()
             .all(|v| v.normal == [0.0, 0.0, 1.0] && v.tangent == [1.0, 0.0, 0.0, 1.0]));
         assert_eq!(std::mem::size_of::<BumpVertex>(), 48);
+    }
+
+    #[test]
+    fn quad_split_follows_clipping() {
+        let inside = [Vec4::new(-0.5, -0.5, 0.5, 1.0), Vec4::new(2.0, -2.0, 3.9, 4.0)];
+        assert_eq!(quad_split(inside), QUAD_SPLIT_UNCLIPPED);
+        // Each bound on its own: x and y beyond ±w, z before 0 (near) or beyond w (far).
+        for outside in [
+            Vec4::new(1.01, 0.0, 0.5, 1.0),
+            Vec4::new(0.0, -1.01, 0.5, 1.0),
+            Vec4::new(0.0, 0.0, -0.01, 1.0),
+            Vec4::new(0.0, 0.0, 1.01, 1.0),
+            Vec4::new(0.0, 0.0, 0.5, -1.0),
+        ] {
+            assert!(needs_clipping(inside.into_iter().chain([outside])), "{outside}");
+            assert_eq!(quad_split(inside.into_iter().chain([outside])), QUAD_SPLIT_CLIPPED);
+        }
+        // Both splits are the same quad, counter-clockwise like it, cut along the two diagonals.
+        assert_eq!(QUAD_SPLIT_UNCLIPPED, [0, 1, 2, 0, 2, 3]);
+        assert_eq!(QUAD_SPLIT_CLIPPED, [0, 1, 3, 1, 2, 3]);
     }
 
     #[test]

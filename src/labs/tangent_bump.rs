@@ -5,11 +5,11 @@
 //! material, the light keys and the rotation. Each lab brings its fragment shader (and
 //! `normmap` its normalization cube map on unit 1).
 
-use glam::Vec3;
+use glam::{Mat4, Vec3, Vec4};
 
 use crate::error::Result;
 use crate::geometry::images;
-use crate::geometry::shapes::{bump_quad, BumpVertex};
+use crate::geometry::shapes::{bump_quad, needs_clipping, BumpVertex, QUAD_SPLIT_CLIPPED, QUAD_SPLIT_UNCLIPPED};
 use crate::lab::{Input, Lab, LabContext, LabInfo};
 use crate::params::Params;
 use crate::render::{sampler, Bind, Frame, GpuMesh, Load, Program, RenderState, SamplerDesc, Texture};
@@ -41,7 +41,22 @@ struct BumpLab {
     stage: UstcStage,
     light: GlLight,
     program: Program<BumpVertex>,
+    /// The four corners with both of Mesa's `GL_QUADS` splits as indices: 0..6 the unclipped
+    /// one, 6..12 the clipped one.
     quad: GpuMesh<BumpVertex>,
+}
+
+/// Which half of the quad's indices Mesa's split is for this `mvp`: the per-vertex light
+/// vectors differ a lot over the quad, so interpolating them over the other diagonal shows
+/// (seen obliquely, 37.8 dB against the original instead of 89).
+fn split_range(mvp: &[[f32; 4]; 4]) -> std::ops::Range<u32> {
+    let mvp = Mat4::from_cols_array_2d(mvp);
+    let corners = bump_quad().map(|v| mvp * Vec4::from((Vec3::from(v.position), 1.0)));
+    if needs_clipping(corners) {
+        6..12
+    } else {
+        0..6
+    }
 }
 
 /// Builds the bump lab with fragment shader `frag`, and `extra` bindings (texture unit 1 of
@@ -74,7 +89,12 @@ pub(super) fn build(
     ];
     bindings.extend(extra.unwrap_or_default());
     program.bind(cx.gpu, bindings)?;
-    let quad = GpuMesh::new(cx.gpu, &format!("{}.quad", info.name), &bump_quad(), None);
+    let indices: Vec<u32> = QUAD_SPLIT_UNCLIPPED
+        .iter()
+        .chain(&QUAD_SPLIT_CLIPPED)
+        .copied()
+        .collect();
+    let quad = GpuMesh::new(cx.gpu, &format!("{}.quad", info.name), &bump_quad(), Some(&indices));
     Ok(Box::new(BumpLab {
         info,
         params: params(),
@@ -106,7 +126,8 @@ impl Lab for BumpLab {
         self.light.upload(gpu, &self.params);
         self.stage.upload(gpu, &self.params, frame.width, frame.height);
         let mut pass = frame.pass(self.info.name, Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, &self.quad);
+        let range = split_range(&self.stage.transform.value.mvp);
+        self.program.draw_range(&mut pass, &self.quad, range);
         Ok(())
     }
 }
