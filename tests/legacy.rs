@@ -651,7 +651,11 @@ fn command_line_refuses_what_gl_refuses_and_says_what_it_draws() {
     // --help abbreviates the 1000 zeros of an array's default.
     let (code, out, _) = run(&[&vert, &sum.display().to_string(), "--help"]);
     assert_eq!(code, 0);
-    assert!(out.contains("(1000 numbers)") && out.len() < 20_000, "{} bytes", out.len());
+    assert!(
+        out.contains("(1000 numbers)") && out.len() < 20_000,
+        "{} bytes",
+        out.len()
+    );
     // A uniform named like a lab parameter is `uniform.NAME`, settable, and stderr says so.
     let near = dir.join("near.frag");
     std::fs::write(

@@ -317,17 +317,23 @@ impl Translation {
     }
 }
 
-/// Each member of the uniform block `name` with its size in bytes (up to the next member).
-fn member_sizes(shader: &CompiledShader, name: &str) -> Option<Vec<(String, u64)>> {
+/// The members and size of the uniform block whose struct type is called `name`.
+fn uniform_block<'a>(shader: &'a CompiledShader, name: &str) -> Option<(&'a [naga::StructMember], &'a u32)> {
     let module = &shader.module;
     let var = module
         .global_variables
         .iter()
         .map(|(_, v)| v)
         .find(|v| v.space == naga::AddressSpace::Uniform && module.types[v.ty].name.as_deref() == Some(name))?;
-    let naga::TypeInner::Struct { members, span } = &module.types[var.ty].inner else {
-        return None;
-    };
+    match &module.types[var.ty].inner {
+        naga::TypeInner::Struct { members, span } => Some((members, span)),
+        _ => None,
+    }
+}
+
+/// Each member of the uniform block `name` with its size in bytes (up to the next member).
+fn member_sizes(shader: &CompiledShader, name: &str) -> Option<Vec<(String, u64)>> {
+    let (members, span) = uniform_block(shader, name)?;
     Some(
         members
             .iter()
@@ -363,19 +369,11 @@ pub fn block_bytes(
     name: &str,
     lookup: &mut dyn FnMut(&str) -> Option<Vec<f64>>,
 ) -> Option<Vec<u8>> {
-    let module = &shader.module;
-    let var = module
-        .global_variables
-        .iter()
-        .map(|(_, v)| v)
-        .find(|v| v.space == naga::AddressSpace::Uniform && module.types[v.ty].name.as_deref() == Some(name))?;
-    let naga::TypeInner::Struct { members, span } = &module.types[var.ty].inner else {
-        return None;
-    };
+    let (members, span) = uniform_block(shader, name)?;
     let mut bytes = vec![0u8; (*span as usize).next_multiple_of(16)];
     for m in members {
         let path = m.name.clone().unwrap_or_default();
-        write_leaf(module, m.ty, m.offset as usize, &path, &mut bytes, lookup);
+        write_leaf(&shader.module, m.ty, m.offset as usize, &path, &mut bytes, lookup);
     }
     Some(bytes)
 }
