@@ -655,6 +655,14 @@ mod tests {
         let Some(dir) = std::env::var_os(SIGNAL_CHILD_DIR) else {
             return;
         };
+        // A process started in the background by a non-interactive shell (as CI may start the
+        // tests) inherits SIGINT ignored, and the handler leaves an ignored signal alone: give
+        // this child the default actions, so that it tests the handler and is not immune.
+        // SAFETY: plain libc calls with valid arguments, before any other thread is started.
+        unsafe {
+            libc::signal(libc::SIGINT, libc::SIG_DFL);
+            libc::signal(libc::SIGTERM, libc::SIG_DFL);
+        }
         let _ = write_atomic(&Path::new(&dir).join("shot.png"), |w| {
             w.write_all(&[7; 100_000])?;
             w.flush()?;
@@ -692,7 +700,18 @@ mod tests {
             std::thread::sleep(std::time::Duration::from_millis(100));
             // SAFETY: a plain kill of our own child.
             assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
-            let status = child.wait().unwrap();
+            // Never hang the suite: a child that outlives the signal is killed and reported.
+            let status = loop {
+                if let Some(status) = child.try_wait().unwrap() {
+                    break status;
+                }
+                if start.elapsed().as_secs() > 60 {
+                    let _ = child.kill();
+                    let _ = child.wait();
+                    panic!("the child ignored signal {signal} and was killed");
+                }
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            };
             assert_eq!(status.signal(), Some(signal), "{status:?}");
             assert!(entries(&dir).is_empty(), "left behind: {:?}", entries(&dir));
         }
