@@ -24,6 +24,30 @@ pub struct LabInfo {
     pub size: (u32, u32),
     /// The keys and mouse, for `--help` and the README.
     pub keys: &'static str,
+    /// Which files named on the command line the lab draws (the shell refuses the others
+    /// before reading them, so a picture is decoded only for a lab that samples it).
+    pub files: FilesTaken,
+}
+
+/// Which files named on the command line a lab draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FilesTaken {
+    /// `--model FILE.obj`: the labs built on the Suzanne stage (every `suzanne_*`).
+    pub model: bool,
+    /// `--texture FILE`: the labs sampling a picture (004's textured Suzannes and
+    /// `texparams`' floor, `legacy`'s first sampler2D).
+    pub texture: bool,
+    /// `--texture NAME=FILE`: `legacy`, whose shaders name their samplers.
+    pub named_textures: bool,
+}
+
+impl FilesTaken {
+    /// No files: the lab draws only its own data.
+    pub const NONE: FilesTaken = FilesTaken {
+        model: false,
+        texture: false,
+        named_textures: false,
+    };
 }
 
 /// A special key (GLUT's `glutSpecialFunc` keys).

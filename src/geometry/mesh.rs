@@ -78,7 +78,7 @@ impl Mesh {
     ///   an infinite coordinate welds only with an equal one (hashed by its bits) and one with a
     ///   NaN never welds. (A plain bitwise key for all positions would miss the teapot's 1-2 ulp
     ///   seams: 1890 instead of 1621 vertices at grid 8, and cracks.) Vertices whose 27 cells
-    ///   hold no other position ([`isolated_leaders`], nearly all of a fine mesh) skip the grid:
+    ///   hold no other position (`isolated_leaders`, nearly all of a fine mesh) skip the grid:
     ///   27 hash probes each into a table of millions of cells made the level-512 teapot (8.4 M
     ///   vertices) take a minute and 2.3 GB.
     pub fn welded(&self) -> Mesh {
@@ -200,7 +200,7 @@ fn bits(p: [f32; 3]) -> [u32; 3] {
     p.map(|c| if c == 0.0 { 0 } else { c.to_bits() })
 }
 
-/// In [`isolated_leaders`]' answer: this vertex needs the grid search.
+/// In `isolated_leaders`' answer: this vertex needs the grid search.
 const SEARCH: u32 = u32::MAX;
 
 /// For each vertex, [`SEARCH`] unless its position is finite and every finite vertex in its 27

@@ -11,7 +11,7 @@
 //! Keys: `←`/`→` blx ∓0.25, `↑`/`↓` bly ±0.25, PageUp/PageDown blz ±0.25; left drag rotates.
 
 use crate::error::Result;
-use crate::lab::{Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Lab, LabContext, LabEntry, LabInfo};
 
 use super::tangent_bump;
 
@@ -23,6 +23,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: tangent_bump::KEYS,
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

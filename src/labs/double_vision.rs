@@ -16,7 +16,7 @@
 use crate::error::Result;
 use crate::geometry::images::uvgrid;
 use crate::geometry::shapes::{double_vision_triangle, TexVertex2};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{sampler, Bind, Frame, GpuMesh, Load, Program, RenderState, SamplerDesc, Texture, Uniforms};
 
@@ -28,6 +28,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "002 Lecture 12",
     size: (512, 512),
     keys: "[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

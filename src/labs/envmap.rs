@@ -11,7 +11,7 @@ use glam::Vec3;
 
 use crate::error::Result;
 use crate::geometry::images;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::Params;
 use crate::render::{sampler, Bind, Frame, Load, Program, RenderState, SamplerDesc, Texture, Uniforms};
@@ -26,6 +26,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "1-4: objects; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -11,7 +11,7 @@ use glam::Vec3;
 
 use crate::error::Result;
 use crate::geometry::shapes::HeightVertex;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState};
 
@@ -26,6 +26,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "v: feeding mode (per-vertex calls / arrays; same image); left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

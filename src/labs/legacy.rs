@@ -16,7 +16,7 @@ use crate::camera;
 use crate::error::{Error, Result};
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo, UserFiles};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo, UserFiles};
 use crate::legacy::{self, state, LegacySource, SamplerDim, Translation, STATE_BLOCK, UNIFORM_BLOCK};
 use crate::params::{FileArgs, ParamSpec, Params};
 use crate::render::{
@@ -35,6 +35,11 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "any course's GLSL 1.10/1.20 shaders",
     size: (640, 360),
     keys: "1-4: cube, sphere, torus, teapot; left drag rotates; Space pauses the clock (shaders with `uniform float time`)\nVERT and FRAG reload live when edited",
+    files: FilesTaken {
+        texture: true,
+        named_textures: true,
+        ..FilesTaken::NONE
+    },
 };
 
 /// The list entry.

@@ -169,31 +169,6 @@ pub static ALL: &[&LabEntry] = &[
     &legacy::ENTRY,
 ];
 
-/// Which files named on the command line a lab draws, so that the shell refuses the others
-/// before reading them (a picture is decoded only for a lab that samples it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct FilesTaken {
-    /// `--model FILE.obj`: the labs built on [`suzanne_stage`] (every `suzanne_*`).
-    pub model: bool,
-    /// `--texture FILE`: the labs sampling a picture (004's textured Suzannes and
-    /// `texparams`' floor, `legacy`'s first sampler2D).
-    pub texture: bool,
-    /// `--texture NAME=FILE`: `legacy`, whose shaders name their samplers.
-    pub named_textures: bool,
-}
-
-/// What [`FilesTaken`] the lab called `name` has.
-pub fn files_taken(name: &str) -> FilesTaken {
-    FilesTaken {
-        model: name.starts_with("suzanne_"),
-        texture: matches!(
-            name,
-            "suzanne_texture" | "suzanne_texture_color" | "texparams" | "legacy"
-        ),
-        named_textures: name == "legacy",
-    }
-}
-
 /// The lab called `name`.
 pub fn find(name: &str) -> Option<&'static LabEntry> {
     ALL.iter().copied().find(|e| e.info.name == name)
@@ -245,10 +220,10 @@ mod tests {
 
     #[test]
     fn the_labs_taking_user_files_are_the_ones_built_on_them() {
-        let with = |which: fn(FilesTaken) -> bool| -> Vec<&str> {
+        let with = |which: fn(crate::lab::FilesTaken) -> bool| -> Vec<&str> {
             ALL.iter()
+                .filter(|e| which(e.info.files))
                 .map(|e| e.info.name)
-                .filter(|n| which(files_taken(n)))
                 .collect()
         };
         // SuzanneStage (the model) is built by suzanne_plain, suzanne_textured and suzanne_lit.

@@ -18,7 +18,7 @@ use glam::Vec3;
 
 use crate::error::Result;
 use crate::geometry::shapes::{morph_vertices, MorphVertex};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -33,6 +33,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "Space pauses the clock; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

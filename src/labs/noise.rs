@@ -6,7 +6,7 @@
 use glam::Vec3;
 
 use crate::error::Result;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Frame, Load, Program, RenderState, Uniforms};
@@ -23,6 +23,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
     keys: "R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock",
+    files: FilesTaken::NONE,
 };
 
 /// The objects drawn outside faces first ([`GlutStage::faces`]: same pixels, fewer fragments

@@ -1,7 +1,7 @@
 //! Exercise 2, normal → RGB (`Lab05-2`): `normalize(gl_NormalMatrix * gl_Normal)` in eye space
 //! as colour; negative components clamp to 0. Keys: `1`-`4` objects, mouse drag rotates.
 
-use crate::lab::{LabEntry, LabInfo};
+use crate::lab::{FilesTaken, LabEntry, LabInfo};
 
 use super::plain::{self, Plain};
 use crate::tess::Object;
@@ -14,6 +14,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
     keys: "1-4: cube, sphere, torus, teapot; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 const PLAIN: Plain = Plain {

@@ -11,7 +11,7 @@
 //! Keys: `x`/`X`, `y`/`Y`, `z`/`Z`: rx, ry, rz ∓/±5°.
 
 use crate::error::Result;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
@@ -27,6 +27,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "002 Lecture 12",
     size: (512, 512),
     keys: "x/X y/Y z/Z: rotate about x, y, z ∓/±5°",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -8,7 +8,7 @@
 
 use crate::error::Result;
 use crate::geometry::images;
-use crate::lab::{Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Lab, LabContext, LabEntry, LabInfo};
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
 use super::tangent_bump;
@@ -21,6 +21,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: tangent_bump::KEYS,
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -10,7 +10,7 @@ use glam::{Mat4, Vec3};
 
 use crate::error::Result;
 use crate::geometry::shapes::{particle_velocities, PARTICLE_COUNT};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -25,6 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "Space pauses the clock; r: restart at t = 0; g/G: g ∓0.5; m/M: m ∓0.25 (≥ 0.25); left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -16,7 +16,7 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Frame, GpuMesh, Load, Program, RenderState, Uniforms};
@@ -35,6 +35,7 @@ pub static INFO: LabInfo = LabInfo {
     keys: "W/A/S/D: camera ±0.1 (light stays put); X/Y/Z x/y/z: light ±0.1; < >: Ka ∓0.05; [ ]: Kd ∓0.05;\n\
            { }: Ks ∓0.05; H/h: shininess ±1; R/G/B r/g/b: diffuse colour ±0.01; m: shading model;\n\
            1-4: objects; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The objects drawn outside faces first ([`GlutStage::faces`]: same pixels, fewer fragments

@@ -15,7 +15,7 @@
 use glam::Mat4;
 
 use crate::error::Result;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo, Special};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo, Special};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
@@ -31,6 +31,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "002 Lecture 12",
     size: (512, 512),
     keys: "Up/Down: rx ±5°; p: fixpos (course bug / gl_Vertex)",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -2,7 +2,7 @@
 //! See [`super::modified_phong`] for the light, the keys and `compare` (both halves side by side).
 
 use crate::error::Result;
-use crate::lab::{Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Lab, LabContext, LabEntry, LabInfo};
 
 use super::modified_phong::{self, Shading};
 
@@ -14,6 +14,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: modified_phong::KEYS,
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

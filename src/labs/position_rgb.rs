@@ -2,7 +2,7 @@
 //! + 0.5` — a 4-component normalize with w = 1 — so the object shows its position as colour,
 //! z as red, y as green, x as blue; values above 1 clamp. Keys: `1`-`4` objects, mouse drag rotates.
 
-use crate::lab::{LabEntry, LabInfo};
+use crate::lab::{FilesTaken, LabEntry, LabInfo};
 
 use super::plain::{self, Plain};
 use crate::tess::Object;
@@ -15,6 +15,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
     keys: "1-4: cube, sphere, torus, teapot; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 const PLAIN: Plain = Plain {

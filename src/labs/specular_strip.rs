@@ -34,7 +34,7 @@ use crate::camera::fly::{FlyCamera, FlyStart, Move};
 use crate::camera::gl_to_wgpu_depth;
 use crate::error::Result;
 use crate::geometry::shapes::{bezier_strip, StripVertex};
-use crate::lab::{params_title, Input, Lab, LabContext, LabEntry, LabInfo, Special};
+use crate::lab::{params_title, FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo, Special};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -47,6 +47,7 @@ pub static INFO: LabInfo = LabInfo {
     size: (640, 480),
     keys: "W/S: forward/back; A/D: left/right; E/Q: up/down; Left/Right: yaw ∓2°; Up/Down: pitch ±2°;\n\
            left drag looks around (0.1° per pixel); r: camera back to the parameters' state",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -4,7 +4,7 @@
 //!
 //! Keys: left drag rotates (0.5° per pixel).
 
-use crate::lab::{LabEntry, LabInfo};
+use crate::lab::{FilesTaken, LabEntry, LabInfo};
 
 use super::suzanne_plain::{self, Plain};
 use super::suzanne_stage::Normals;
@@ -17,6 +17,10 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
     keys: "left drag rotates (0.5° per pixel)",
+    files: FilesTaken {
+        model: true,
+        ..FilesTaken::NONE
+    },
 };
 
 static PLAIN: Plain = Plain {

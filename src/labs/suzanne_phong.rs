@@ -3,7 +3,7 @@
 //!
 //! Keys: see [`super::suzanne_lit`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
 
-use crate::lab::{LabEntry, LabInfo};
+use crate::lab::{FilesTaken, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 
 use super::suzanne_lit::{self, Lit, SHADINGS};
@@ -16,6 +16,10 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
     keys: suzanne_lit::KEYS,
+    files: FilesTaken {
+        model: true,
+        ..FilesTaken::NONE
+    },
 };
 
 const SHADING: &[ParamSpec] = &[ParamSpec::choice("shading", &[2.0], SHADINGS, "shading model (1/2/3)")];

@@ -3,7 +3,7 @@
 //!
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
-use crate::lab::{LabEntry, LabInfo};
+use crate::lab::{FilesTaken, LabEntry, LabInfo};
 
 use super::suzanne_textured::{self, Textured};
 
@@ -15,6 +15,11 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
     keys: "t: checker / BMP texture; left drag rotates (0.5 degrees per pixel)",
+    files: FilesTaken {
+        model: true,
+        texture: true,
+        ..FilesTaken::NONE
+    },
 };
 
 static TEXTURED: Textured = Textured {

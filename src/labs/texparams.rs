@@ -14,7 +14,7 @@ use crate::camera::glm;
 use crate::error::Result;
 use crate::geometry::obj::ObjCorner;
 use crate::geometry::shapes;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -29,6 +29,10 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
     keys: "w: wrap_s; W: wrap_t; m: min filter; M: mag filter (each cycles)",
+    files: FilesTaken {
+        texture: true,
+        ..FilesTaken::NONE
+    },
 };
 
 /// The list entry.

@@ -10,7 +10,7 @@ use glam::Vec3;
 use crate::error::Result;
 use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Mesh;
 use crate::params::Params;
 use crate::render::{sampler, Bind, Frame, GpuMesh, Load, Program, RenderState, SamplerDesc, Texture};
@@ -25,6 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

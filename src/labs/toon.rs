@@ -10,7 +10,7 @@
 use glam::Vec3;
 
 use crate::error::Result;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::Params;
 use crate::render::{Frame, Load, Program, RenderState};
@@ -26,6 +26,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "←/→ ↑/↓ PageUp/PageDown: light ±0.25; h/H: shininess ∓5; 1-4: objects; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

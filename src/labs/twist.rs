@@ -10,7 +10,7 @@
 
 use crate::error::Result;
 use crate::geometry::shapes::twist_grid;
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -22,6 +22,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "002 Lecture 12",
     size: (512, 512),
     keys: "+/-: twisting ±0.25",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

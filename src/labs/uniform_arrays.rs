@@ -16,7 +16,7 @@ use bytemuck::Zeroable;
 use glam::Vec3;
 
 use crate::error::{Error, Result};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, Load, Program, RenderState, Uniforms};
@@ -34,6 +34,7 @@ pub static INFO: LabInfo = LabInfo {
     size: (512, 512),
     keys: "e: setter style (whole arrays / element by element; same image); ←/→ ↑/↓ PageUp/PageDown: light ±0.25;\n\
            h/H: shininess ∓5; 1-4: objects; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

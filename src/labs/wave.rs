@@ -12,7 +12,7 @@ use glam::Vec3;
 
 use crate::error::Result;
 use crate::geometry::shapes::{wave_grid, ColorVertex};
-use crate::lab::{Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
 
@@ -26,6 +26,7 @@ pub static INFO: LabInfo = LabInfo {
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
     keys: "Space pauses the clock; h/H: h ∓0.02; x/X: xs ∓0.5; z/Z: zs ∓0.5; left drag rotates",
+    files: FilesTaken::NONE,
 };
 
 /// The list entry.

@@ -438,7 +438,7 @@ const SNIPPET_CONTEXT: usize = 100;
 const SNIPPET_CARETS: usize = 100;
 
 /// Formats `path:line:column: message`, the source line and a caret under the column. A long
-/// line is cut to [`SNIPPET_CONTEXT`] characters on each side of the caret, with `…` where text
+/// line is cut to `SNIPPET_CONTEXT` characters on each side of the caret, with `…` where text
 /// is left out: a 2 MB minified line would otherwise print 4 MB (the line and its padding).
 pub fn format_diagnostic(path: &str, line: u32, column: u32, message: &str, source_line: &str, len: usize) -> String {
     let chars: Vec<char> = source_line.chars().collect();

@@ -225,12 +225,12 @@ impl Args {
     /// before the file is read), naming the labs that do.
     fn check_files_taken(&self, entry: &LabEntry) -> Result<(), Error> {
         let name = entry.info.name;
-        let taken = crate::labs::files_taken(name);
-        let those = |which: fn(crate::labs::FilesTaken) -> bool| {
+        let taken = entry.info.files;
+        let those = |which: fn(crate::lab::FilesTaken) -> bool| {
             let names: Vec<&str> = crate::labs::ALL
                 .iter()
+                .filter(|e| which(e.info.files))
                 .map(|e| e.info.name)
-                .filter(|n| which(crate::labs::files_taken(n)))
                 .collect();
             names.join(", ")
         };
