@@ -71,7 +71,7 @@ fn reference(path: &Path) -> RgbImage {
 }
 
 /// A reference image kept in the repository (`tests/reference/`, copied from the original
-/// programs' renders in `../shared/reference/`): the tests read nothing outside the repository.
+/// programs' renders): the tests read nothing outside the repository.
 fn in_tests(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests").join(rel)
 }

@@ -1,8 +1,8 @@
 //! The repository stands alone (issue 17.1): nothing the build, the tests or CI run reads
-//! outside the checkout. CI runs with `../shared` beside the clone, so a test that quietly read
-//! `../shared/reference/…` would pass there and fail for every user who cloned the repository;
-//! this scan fails instead. Benchmark scripts under `scripts/` may call the original programs in
-//! `../shared/original`, and say so in their header; they are not scanned.
+//! outside the checkout. CI runs with the team's shared folder beside the clone, so a test that
+//! quietly read its reference images would pass there and fail for every user who cloned the
+//! repository; this scan fails instead. Benchmark scripts under `scripts/` may call the original
+//! programs kept in that folder, and say so in their header; they are not scanned.
 
 use std::fs;
 use std::path::{Path, PathBuf};

@@ -266,7 +266,7 @@ pub fn render_state(entry: &LabEntry, state: &[(&str, &str)]) -> RgbImage {
     shot(lab.as_mut())
 }
 
-/// An image of the original programs of seeds 001–004 (`tests/reference/seeds/NAME`, copied from `../shared/reference/seeds`); a
+/// An image of the original programs of seeds 001–004 (`tests/reference/seeds/NAME`, kept in the repository); a
 /// missing one fails the test (they come from the reference renderer, never from the tests).
 pub fn seed_reference(name: &str) -> RgbImage {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
