@@ -253,7 +253,9 @@ fn bad_picture(path: &Path, message: String) -> Error {
 
 /// The size a PNG's or BMP's header claims, read without a decoder: (width, height), or `None`
 /// if the header is too short to say. A BMP's negative height (rows stored top down) counts
-/// as its absolute value; a negative width stays negative (the decoder refuses it).
+/// as its absolute value; a negative width stays negative (the decoder refuses it). Read by
+/// hand because `image`'s PNG decoder reads on to the first IDAT chunk before it reports a
+/// size, so a damaged or truncated file would hide the size it claims.
 fn header_size(format: image::ImageFormat, bytes: &[u8]) -> Option<(i64, i64)> {
     let be = |at: usize| Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
     let le32 = |at: usize| Some(i32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
