@@ -143,9 +143,7 @@ pub fn bound_text(v: f64) -> String {
             format!("{v:e}")
         }
     };
-    if v.fract() == 0.0 && v.abs() < 1e16 {
-        format!("{v}")
-    } else if v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6) {
+    if v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6) {
         short(v)
     } else {
         format!("{v}")
