@@ -18,7 +18,8 @@ fn main() {
             .iter()
             .map(|s| format!("`{}`={}", s.name, s.default_text()))
             .collect();
-        let keys = info.keys.split_whitespace().collect::<Vec<_>>().join(" ");
+        let keys = info.keys.help();
+        let keys = keys.split_whitespace().collect::<Vec<_>>().join(" ");
         if markdown {
             println!(
                 "| `{}` | {} | {} {} | {}x{} | {} | {} |",

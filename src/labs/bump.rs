@@ -22,7 +22,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "bump mapping",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: tangent_bump::KEYS,
+    keys: crate::lab::Keys::text(tangent_bump::KEYS),
     files: FilesTaken::NONE,
 };
 

@@ -25,8 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "displacement",
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
-    keys:
-        "[ / ]: displacement ∓0.01; R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock",
+    keys: crate::lab::Keys::text("[ / ]: displacement ∓0.01; R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock"),
     files: FilesTaken::NONE,
 };
 

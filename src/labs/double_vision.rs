@@ -27,7 +27,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "double vision",
     lecture: "002 Lecture 12",
     size: (512, 512),
-    keys: "[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)",
+    keys: crate::lab::Keys::text("[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)"),
     files: FilesTaken::NONE,
 };
 

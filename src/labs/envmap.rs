@@ -25,7 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "environment map",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "1-4: objects; left drag rotates",
+    keys: crate::lab::Keys::text("1-4: objects; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

@@ -25,7 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "custom vertex attribute",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "v: feeding mode (per-vertex calls / arrays; same image); left drag rotates",
+    keys: crate::lab::Keys::text("v: feeding mode (per-vertex calls / arrays; same image); left drag rotates"),
     files: FilesTaken::NONE,
 };
 

@@ -34,7 +34,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "GLSL 1.10 shaders",
     lecture: "any course's GLSL 1.10/1.20 shaders",
     size: (640, 360),
-    keys: "1-4: cube, sphere, torus, teapot; left drag rotates; Space pauses the clock (shaders with `uniform float time`)\nVERT and FRAG reload live when edited",
+    keys: crate::lab::Keys::text("1-4: cube, sphere, torus, teapot; left drag rotates; Space pauses the clock (shaders with `uniform float time`)\nVERT and FRAG reload live when edited"),
     files: FilesTaken {
         texture: true,
         named_textures: true,

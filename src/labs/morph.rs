@@ -32,7 +32,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "morphing",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "Space pauses the clock; left drag rotates",
+    keys: crate::lab::Keys::text("Space pauses the clock; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

@@ -22,7 +22,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "simplex noise",
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
-    keys: "R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock",
+    keys: crate::lab::Keys::text("R/r G/g B/b: shade ±0.05; 1-4: objects; left drag rotates; Space pauses the clock"),
     files: FilesTaken::NONE,
 };
 

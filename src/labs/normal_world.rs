@@ -26,7 +26,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "normal as colour, world space",
     lecture: "002 Lecture 12",
     size: (512, 512),
-    keys: "x/X y/Y z/Z: rotate about x, y, z ∓/±5°",
+    keys: crate::lab::Keys::text("x/X y/Y z/Z: rotate about x, y, z ∓/±5°"),
     files: FilesTaken::NONE,
 };
 

@@ -24,7 +24,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "particle system",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "Space pauses the clock; r: restart at t = 0; g/G: g ∓0.5; m/M: m ∓0.25 (≥ 0.25); left drag rotates",
+    keys: crate::lab::Keys::text("Space pauses the clock; r: restart at t = 0; g/G: g ∓0.5; m/M: m ∓0.25 (≥ 0.25); left drag rotates"),
     files: FilesTaken::NONE,
 };
 

@@ -32,9 +32,9 @@ pub static INFO: LabInfo = LabInfo {
     label: "Phong",
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
-    keys: "W/A/S/D: camera ±0.1 (light stays put); X/Y/Z x/y/z: light ±0.1; < >: Ka ∓0.05; [ ]: Kd ∓0.05;\n\
+    keys: crate::lab::Keys::text("W/A/S/D: camera ±0.1 (light stays put); X/Y/Z x/y/z: light ±0.1; < >: Ka ∓0.05; [ ]: Kd ∓0.05;\n\
            { }: Ks ∓0.05; H/h: shininess ±1; R/G/B r/g/b: diffuse colour ±0.01; m: shading model;\n\
-           1-4: objects; left drag rotates",
+           1-4: objects; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

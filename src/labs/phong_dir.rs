@@ -30,7 +30,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "Phong, directional light",
     lecture: "002 Lecture 12",
     size: (512, 512),
-    keys: "Up/Down: rx ±5°; p: fixpos (course bug / gl_Vertex)",
+    keys: crate::lab::Keys::text("Up/Down: rx ±5°; p: fixpos (course bug / gl_Vertex)"),
     files: FilesTaken::NONE,
 };
 

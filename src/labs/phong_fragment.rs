@@ -13,7 +13,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "modified Phong, per fragment",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: modified_phong::KEYS,
+    keys: crate::lab::Keys::text(modified_phong::KEYS),
     files: FilesTaken::NONE,
 };
 

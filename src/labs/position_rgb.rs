@@ -14,7 +14,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "position to RGB",
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
-    keys: "1-4: cube, sphere, torus, teapot; left drag rotates",
+    keys: crate::lab::Keys::text("1-4: cube, sphere, torus, teapot; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

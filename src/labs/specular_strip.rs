@@ -45,8 +45,8 @@ pub static INFO: LabInfo = LabInfo {
     label: "Bezier strip, specular light",
     lecture: "003 LETI lab 5",
     size: (640, 480),
-    keys: "W/S: forward/back; A/D: left/right; E/Q: up/down; Left/Right: yaw ∓2°; Up/Down: pitch ±2°;\n\
-           left drag looks around (0.1° per pixel); r: camera back to the parameters' state",
+    keys: crate::lab::Keys::text("W/S: forward/back; A/D: left/right; E/Q: up/down; Left/Right: yaw ∓2°; Up/Down: pitch ±2°;\n\
+           left drag looks around (0.1° per pixel); r: camera back to the parameters' state"),
     files: FilesTaken::NONE,
 };
 

@@ -15,7 +15,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "Flat shading",
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
-    keys: suzanne_lit::KEYS,
+    keys: crate::lab::Keys::text(suzanne_lit::KEYS),
     files: FilesTaken {
         model: true,
         ..FilesTaken::NONE

@@ -16,7 +16,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "normal matrix",
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
-    keys: "left drag rotates (0.5° per pixel)",
+    keys: crate::lab::Keys::text("left drag rotates (0.5° per pixel)"),
     files: FilesTaken {
         model: true,
         ..FilesTaken::NONE

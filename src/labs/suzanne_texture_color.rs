@@ -14,7 +14,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "texture × colour",
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
-    keys: "t: checker / BMP texture; left drag rotates (0.5 degrees per pixel)",
+    keys: crate::lab::Keys::text("t: checker / BMP texture; left drag rotates (0.5 degrees per pixel)"),
     files: FilesTaken {
         model: true,
         texture: true,

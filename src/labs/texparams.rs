@@ -28,7 +28,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "texture parameters",
     lecture: "004 OpenGL III – Basic Shaders",
     size: (640, 480),
-    keys: "w: wrap_s; W: wrap_t; m: min filter; M: mag filter (each cycles)",
+    keys: crate::lab::Keys::text("w: wrap_s; W: wrap_t; m: min filter; M: mag filter (each cycles)"),
     files: FilesTaken {
         texture: true,
         ..FilesTaken::NONE

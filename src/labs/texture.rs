@@ -24,7 +24,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "texture mapping",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "left drag rotates",
+    keys: crate::lab::Keys::text("left drag rotates"),
     files: FilesTaken::NONE,
 };
 

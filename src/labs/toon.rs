@@ -25,7 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "toon shading",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "←/→ ↑/↓ PageUp/PageDown: light ±0.25; h/H: shininess ∓5; 1-4: objects; left drag rotates",
+    keys: crate::lab::Keys::text("←/→ ↑/↓ PageUp/PageDown: light ±0.25; h/H: shininess ∓5; 1-4: objects; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

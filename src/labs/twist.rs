@@ -8,29 +8,10 @@
 //!
 //! Keys: `+`/`-` twisting ±0.25.
 
-use crate::error::Result;
 use crate::geometry::shapes::twist_grid;
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
-use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
-
-/// `twist`.
-pub static INFO: LabInfo = LabInfo {
-    name: "twist",
-    title: "ref002",
-    label: "2D twisting",
-    lecture: "002 Lecture 12",
-    size: (512, 512),
-    keys: "+/-: twisting ±0.25",
-    files: FilesTaken::NONE,
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
+use crate::lab::{Flat, FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::params::ParamSpec;
+use crate::render::{GpuMesh, RenderState};
 
 /// One vertex of the grid: `glVertex2f(x, y)`.
 #[repr(C)]
@@ -41,102 +22,42 @@ pub struct TwistVertex {
 }
 crate::vertex_type!(TwistVertex, { position: "vertex_position" => Float32x2 });
 
-/// The `Twist` block of `twist_params.glsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct TwistUniforms {
-    /// `color`.
-    pub color: [f32; 3],
-    /// `twisting`, radians per unit of distance from the centre.
-    pub twisting: f32,
-}
-crate::uniform_block!(TwistUniforms, "Twist", { color: "color", twisting: "twisting" });
+/// `twist`: the `Twist` block's `twisting` and `color` are its parameters.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "twist",
+        title: "ref002",
+        label: "2D twisting",
+        lecture: "002 Lecture 12",
+        size: (512, 512),
+        keys: Keys::rows(&[KeyRow::step(&[C('-'), C('+')], "twisting", 0.25)], ""),
+        files: FilesTaken::NONE,
+    },
+    params: &[&[
+        ParamSpec::real("twisting", &[4.25], -1000.0, 1000.0, "radians of turn per unit of radius (+/-)"),
+        ParamSpec::real(
+            "color",
+            &[0.5, 9.0, 0.5],
+            -100.0,
+            100.0,
+            "uniform colour (course: 9.0 clamps to 1 in the framebuffer)",
+        ),
+    ]],
+    animated: false,
+    title: None,
+    build: |cx, p| {
+        let grid: Vec<TwistVertex> = twist_grid().into_iter().map(|position| TwistVertex { position }).collect();
+        let stage = Flat(GpuMesh::new(cx.gpu, "twist.grid", &grid, None));
+        Shaded::build(cx, "twist", p, stage, &LOOK, Vec::new())
+    },
+};
 
-const PARAMS: &[ParamSpec] = &[
-    ParamSpec::real(
-        "twisting",
-        &[4.25],
-        -1000.0,
-        1000.0,
-        "radians of turn per unit of radius (+/-)",
-    ),
-    ParamSpec::real(
-        "color",
-        &[0.5, 9.0, 0.5],
-        -100.0,
-        100.0,
-        "uniform colour (course: 9.0 clamps to 1 in the framebuffer)",
-    ),
-];
+static LOOK: Look = Look {
+    passes: &[Pass::new("twist.vert", "twist.frag").state(RenderState::GL.no_depth())],
+    draw: crate::lab::Draw::All,
+    hook: None,
+    clear: [0.0; 3],
+};
 
-fn params() -> Params {
-    Params::new(PARAMS)
-}
-
-struct Twist {
-    params: Params,
-    uniforms: Uniforms<TwistUniforms>,
-    program: Program<TwistVertex>,
-    grid: GpuMesh<TwistVertex>,
-}
-
-fn uniforms_of(p: &Params) -> TwistUniforms {
-    TwistUniforms {
-        color: p.v3("color"),
-        twisting: p.f("twisting"),
-    }
-}
-
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let params = params();
-    let uniforms = Uniforms::new(cx.gpu, "twist.params", uniforms_of(&params));
-    let mut program = Program::new(
-        cx,
-        "twist",
-        "twist.vert",
-        "twist.frag",
-        RenderState::default().no_depth(),
-    )?;
-    program.bind(cx.gpu, vec![uniforms.bind()])?;
-    let vertices: Vec<TwistVertex> = twist_grid()
-        .into_iter()
-        .map(|position| TwistVertex { position })
-        .collect();
-    let grid = GpuMesh::new(cx.gpu, "twist.grid", &vertices, None);
-    Ok(Box::new(Twist {
-        params,
-        uniforms,
-        program,
-        grid,
-    }))
-}
-
-impl Lab for Twist {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        match input {
-            Input::Key('+') => self.params.step("twisting", 0.25),
-            Input::Key('-') => self.params.step("twisting", -0.25),
-            _ => return false,
-        }
-        true
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        self.uniforms.value = uniforms_of(&self.params);
-        self.uniforms.upload(frame.gpu);
-        let mut pass = frame.pass("twist", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, &self.grid);
-        Ok(())
-    }
-}
+/// The list entry.
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);

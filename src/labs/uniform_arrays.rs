@@ -32,8 +32,8 @@ pub static INFO: LabInfo = LabInfo {
     label: "uniform vectors and arrays",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "e: setter style (whole arrays / element by element; same image); ←/→ ↑/↓ PageUp/PageDown: light ±0.25;\n\
-           h/H: shininess ∓5; 1-4: objects; left drag rotates",
+    keys: crate::lab::Keys::text("e: setter style (whole arrays / element by element; same image); ←/→ ↑/↓ PageUp/PageDown: light ±0.25;\n\
+           h/H: shininess ∓5; 1-4: objects; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

@@ -25,7 +25,7 @@ pub static INFO: LabInfo = LabInfo {
     label: "wave motion",
     lecture: "001 USTC GLSL (III)",
     size: (512, 512),
-    keys: "Space pauses the clock; h/H: h ∓0.02; x/X: xs ∓0.5; z/Z: zs ∓0.5; left drag rotates",
+    keys: crate::lab::Keys::text("Space pauses the clock; h/H: h ∓0.02; x/X: xs ∓0.5; z/Z: zs ∓0.5; left drag rotates"),
     files: FilesTaken::NONE,
 };
 

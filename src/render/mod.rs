@@ -21,12 +21,14 @@ pub struct Context<'a> {
 
 mod frame;
 mod mesh;
+mod param_block;
 mod program;
 mod texture;
 mod uniforms;
 
 pub use frame::{Frame, Load};
 pub use mesh::{GpuMesh, VertexAttr, VertexType};
+pub use param_block::{Computed, ParamBlock};
 pub use program::{
     reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Faces, Program, RenderState,
     Resource, VertexInput,

@@ -64,27 +64,29 @@ pub enum Faces {
 }
 
 impl Default for RenderState {
-    /// GL's defaults plus the depth test every 3D lab enables: triangles, no culling, `GL_LESS`.
     fn default() -> Self {
-        RenderState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            front_face: wgpu::FrontFace::Ccw,
-            depth_test: true,
-            blend: None,
-            faces: Faces::AsStated,
-        }
+        RenderState::GL
     }
 }
 
 impl RenderState {
+    /// GL's defaults plus the depth test every 3D lab enables: triangles, no culling, `GL_LESS`.
+    pub const GL: RenderState = RenderState {
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        cull_mode: None,
+        front_face: wgpu::FrontFace::Ccw,
+        depth_test: true,
+        blend: None,
+        faces: Faces::AsStated,
+    };
+
     /// With another topology.
-    pub fn topology(self, topology: wgpu::PrimitiveTopology) -> Self {
+    pub const fn topology(self, topology: wgpu::PrimitiveTopology) -> Self {
         RenderState { topology, ..self }
     }
 
     /// With the depth test off (2D scenes).
-    pub fn no_depth(self) -> Self {
+    pub const fn no_depth(self) -> Self {
         RenderState {
             depth_test: false,
             ..self
@@ -92,7 +94,7 @@ impl RenderState {
     }
 
     /// With another choice of faces (see [`Faces`]).
-    pub fn faces(self, faces: Faces) -> Self {
+    pub const fn faces(self, faces: Faces) -> Self {
         RenderState { faces, ..self }
     }
 
@@ -179,6 +181,13 @@ pub enum Resource {
         /// Compares the struct with the reflected block.
         check: fn(&str, &BlockLayout) -> Result<()>,
     },
+    /// The buffer of a [`ParamBlock`](super::ParamBlock), laid out as `layout`.
+    Block {
+        /// The buffer.
+        buffer: wgpu::Buffer,
+        /// The layout its bytes follow.
+        layout: BlockLayout,
+    },
     /// A texture view.
     Texture(wgpu::TextureView, wgpu::TextureViewDimension),
     /// A sampler.
@@ -189,6 +198,7 @@ impl Resource {
     fn describe(&self) -> String {
         match self {
             Resource::Buffer { rust_name, .. } => format!("uniform buffer of {rust_name}"),
+            Resource::Block { layout, .. } => format!("uniform block {} filled by name", layout.name),
             Resource::Texture(_, d) => format!("texture ({d:?})"),
             Resource::Sampler(_) => "sampler".into(),
         }
@@ -456,6 +466,8 @@ pub trait AnyProgram {
     fn files(&self) -> (&str, &str);
     /// Replaces the pipeline with one built from WGSL text for both stages.
     fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()>;
+    /// Compiles the shaders again (see [`Program::reload`]).
+    fn reload(&mut self, cx: &LabContext) -> Result<()>;
 }
 
 impl<V: VertexType> AnyProgram for Program<V> {
@@ -464,6 +476,9 @@ impl<V: VertexType> AnyProgram for Program<V> {
     }
     fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()> {
         Program::use_wgsl(self, gpu, vertex_wgsl, fragment_wgsl)
+    }
+    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+        Program::reload(self, cx)
     }
 }
 
@@ -794,6 +809,16 @@ impl<V: VertexType> Program<V> {
                 ) => {
                     if let Err(e) = check(rust_name, layout) {
                         problems.push(e.to_string());
+                        continue;
+                    }
+                    buffer.as_entire_binding()
+                }
+                (BindingKind::Uniform(want), Resource::Block { buffer, layout }) => {
+                    if want.size != layout.size || want.members != layout.members {
+                        problems.push(format!(
+                            "uniform block {} changed its members or their layout in {files}; {label} fills it as it was when the lab started (restart the lab to take the new block)",
+                            b.name
+                        ));
                         continue;
                     }
                     buffer.as_entire_binding()

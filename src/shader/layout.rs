@@ -581,6 +581,12 @@ fn decode(kind: ScalarKind, bytes: &[u8]) -> f32 {
 /// sets every element of an array, `colors[1]` one. Integer members take whole numbers.
 /// Fails with the list of valid names when `name` is unknown, and on a wrong count.
 pub fn set_member<T: UniformBlock>(value: &mut T, block: &BlockLayout, name: &str, values: &[f32]) -> Result<()> {
+    set_member_bytes(bytemuck::bytes_of_mut(value), block, name, values)
+}
+
+/// [`set_member`] on the bytes of a block laid out as `block` (a
+/// [`ParamBlock`](crate::render::ParamBlock), which has no Rust struct).
+pub fn set_member_bytes(bytes: &mut [u8], block: &BlockLayout, name: &str, values: &[f32]) -> Result<()> {
     let (member, ty, elements) = select(block, name)?;
     let wanted = elements.len() * ty.element_components();
     if values.len() != wanted {
@@ -597,10 +603,9 @@ pub fn set_member<T: UniformBlock>(value: &mut T, block: &BlockLayout, name: &st
         .map(|(at, n)| member.offset + at + n * size)
         .max()
         .unwrap_or(0);
-    let bytes = bytemuck::bytes_of_mut(value);
     if end > bytes.len() {
         return Err(Error::Layout(format!(
-            "member `{}` lies outside the Rust struct",
+            "member `{}` lies outside the block's bytes",
             member.name
         )));
     }

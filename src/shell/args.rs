@@ -172,7 +172,7 @@ impl Args {
         let after = format!(
             "PARAMETERS (--set NAME=VALUE):\n{}\nKEYS AND MOUSE:\n  {}\n  F12 saves a screenshot, Esc quits; shaders edited under --shaders DIR (or shaders_glsl/) reload live.\n\nDefault size {w}x{h}.",
             params.help(),
-            info.keys.replace('\n', "\n  ")
+            info.keys.help().replace('\n', "\n  ")
         );
         let command = Args::command()
             .name(info.name)

@@ -5,6 +5,12 @@
 //! [`Lab::params_mut`], and asks the lab to [`render`](Lab::render) into a [`Frame`]. A lab never
 //! sees winit, and no lab knows another.
 
+mod keys;
+mod runner;
+
+pub use keys::{Act, Key, KeyRow, Keys, DOWN, LEFT, PAGE_DOWN, PAGE_UP, RIGHT, UP};
+pub use runner::{Draw, Flat, Hook, Look, Pass, Recipe, Runner, Scene, Shaded, Stage};
+
 use crate::error::Result;
 use crate::params::Params;
 use crate::render::Frame;
@@ -23,7 +29,7 @@ pub struct LabInfo {
     /// Default window and image size.
     pub size: (u32, u32),
     /// The keys and mouse, for `--help` and the README.
-    pub keys: &'static str,
+    pub keys: Keys,
     /// Which files named on the command line the lab draws (the shell refuses the others
     /// before reading them, so a picture is decoded only for a lab that samples it).
     pub files: FilesTaken,

@@ -1,0 +1,216 @@
+//! Keys as data. A [`KeyRow`] steps, picks, toggles or cycles one parameter; the same row
+//! handles the key ([`Keys::apply`]) and writes its `--help` line and README row
+//! ([`Keys::help`]), so a lab's keys are declared once.
+
+use super::{Input, Special};
+use crate::params::Params;
+
+/// A key as GLUT reported it: a character or a special key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Key {
+    /// `glutKeyboardFunc`'s character.
+    C(char),
+    /// `glutSpecialFunc`'s key.
+    S(Special),
+}
+
+/// ←
+pub const LEFT: Key = Key::S(Special::Left);
+/// →
+pub const RIGHT: Key = Key::S(Special::Right);
+/// ↑
+pub const UP: Key = Key::S(Special::Up);
+/// ↓
+pub const DOWN: Key = Key::S(Special::Down);
+/// Page Up
+pub const PAGE_UP: Key = Key::S(Special::PageUp);
+/// Page Down
+pub const PAGE_DOWN: Key = Key::S(Special::PageDown);
+
+impl Key {
+    fn matches(self, input: Input) -> bool {
+        match (self, input) {
+            (Key::C(a), Input::Key(b)) => a == b,
+            (Key::S(a), Input::Special(b)) => a == b,
+            _ => false,
+        }
+    }
+
+    fn name(self) -> String {
+        match self {
+            Key::C(c) => c.to_string(),
+            Key::S(s) => format!("{s:?}"),
+        }
+    }
+}
+
+/// What a row does to its parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Act {
+    /// The first key subtracts `step`, the second adds it: to component `component` (every
+    /// component for `None`), clamped to `within` (the declared range for `None`; the
+    /// originals' keys often clamp tighter than `--set` accepts).
+    Step {
+        /// The amount.
+        step: f64,
+        /// The component stepped.
+        component: Option<usize>,
+        /// The bounds the keys keep to.
+        within: Option<(f64, f64)>,
+    },
+    /// Key `i` sets the parameter to `i` (a choice's `i`-th name).
+    Pick,
+    /// The key flips a flag.
+    Toggle,
+    /// The key moves a choice or whole number to its next value.
+    Cycle,
+}
+
+/// One row of a lab's key table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KeyRow {
+    /// The keys, in the order [`Act`] gives them meaning.
+    pub keys: &'static [Key],
+    /// The parameter they change.
+    pub param: &'static str,
+    /// How.
+    pub act: Act,
+}
+
+impl KeyRow {
+    /// `keys[0]` subtracts `step` from every component of `param`, `keys[1]` adds it.
+    pub const fn step(keys: &'static [Key], param: &'static str, step: f64) -> KeyRow {
+        KeyRow {
+            keys,
+            param,
+            act: Act::Step {
+                step,
+                component: None,
+                within: None,
+            },
+        }
+    }
+
+    /// As [`KeyRow::step`] on component `c` only, clamped to `[lo, hi]`.
+    pub const fn channel(keys: &'static [Key], param: &'static str, c: usize, step: f64, lo: f64, hi: f64) -> KeyRow {
+        KeyRow {
+            keys,
+            param,
+            act: Act::Step {
+                step,
+                component: Some(c),
+                within: Some((lo, hi)),
+            },
+        }
+    }
+
+    /// Key `i` of `keys` sets `param` to `i`.
+    pub const fn pick(keys: &'static [Key], param: &'static str) -> KeyRow {
+        KeyRow {
+            keys,
+            param,
+            act: Act::Pick,
+        }
+    }
+
+    /// The key flips `param`.
+    pub const fn toggle(key: &'static [Key], param: &'static str) -> KeyRow {
+        KeyRow {
+            keys: key,
+            param,
+            act: Act::Toggle,
+        }
+    }
+
+    /// The key moves `param` to its next value.
+    pub const fn cycle(key: &'static [Key], param: &'static str) -> KeyRow {
+        KeyRow {
+            keys: key,
+            param,
+            act: Act::Cycle,
+        }
+    }
+
+    /// Applies the row to `p` if `input` is one of its keys; returns whether it was.
+    fn apply(&self, p: &mut Params, input: Input) -> bool {
+        let Some(i) = self.keys.iter().position(|k| k.matches(input)) else {
+            return false;
+        };
+        match self.act {
+            Act::Step {
+                step,
+                component,
+                within,
+            } => {
+                let delta = if i == 0 { -step } else { step };
+                let c = component.unwrap_or(usize::MAX);
+                match within {
+                    Some((lo, hi)) => p.step_clamped(self.param, c, delta, lo, hi),
+                    None => p.step_component(self.param, c, delta),
+                }
+            }
+            Act::Pick => p.put(self.param, &[i as f64]),
+            Act::Toggle => p.toggle(self.param),
+            Act::Cycle => p.cycle(self.param),
+        }
+        true
+    }
+
+    /// The row's help line: `h/H: h -/+0.02`.
+    pub fn help(&self) -> String {
+        let keys: Vec<String> = self.keys.iter().map(|k| k.name()).collect();
+        let what = match self.act {
+            Act::Step {
+                step, component, ..
+            } => match component {
+                Some(c) => format!("{}[{c}] -/+{step}", self.param),
+                None => format!("{} -/+{step}", self.param),
+            },
+            Act::Pick => format!("{} 0..{}", self.param, self.keys.len() - 1),
+            Act::Toggle => format!("toggle {}", self.param),
+            Act::Cycle => format!("next {}", self.param),
+        };
+        format!("{}: {what}", keys.join("/"))
+    }
+}
+
+/// A lab's keys and mouse: rows that change parameters, and a sentence for what rows do not
+/// say (the mouse, a stage's object keys, a hand-written lab's keys).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Keys {
+    /// The rows.
+    pub rows: &'static [KeyRow],
+    /// The rest, as text.
+    pub more: &'static str,
+}
+
+impl Keys {
+    /// Keys described by text alone (a hand-written lab).
+    pub const fn text(more: &'static str) -> Keys {
+        Keys { rows: &[], more }
+    }
+
+    /// Rows, then `more`.
+    pub const fn rows(rows: &'static [KeyRow], more: &'static str) -> Keys {
+        Keys { rows, more }
+    }
+
+    /// Applies the first row that takes `input`; returns whether one did.
+    pub fn apply(&self, p: &mut Params, input: Input) -> bool {
+        self.rows.iter().any(|r| r.apply(p, input))
+    }
+
+    /// The `--help` text: one row per line, then `more`.
+    pub fn help(&self) -> String {
+        let mut lines: Vec<String> = self.rows.iter().map(KeyRow::help).collect();
+        if !self.more.is_empty() {
+            lines.push(self.more.to_owned());
+        }
+        lines.join(";\n")
+    }
+
+    /// Every parameter a row names (checked against the lab's parameters by a test).
+    pub fn params(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.rows.iter().map(|r| r.param)
+    }
+}
