@@ -24,9 +24,9 @@ fn fixture(path: &str) -> PathBuf {
 fn course(lab: u32) -> Vec<PathBuf> {
     let pick = |name: String| {
         if name == "lab4.frag" || name == "lab5.vert" {
-            fixture(&format!("course000-mended/{name}"))
+            fixture(&format!("seed000-mended/{name}"))
         } else {
-            fixture(&format!("course000/{name}"))
+            fixture(&format!("seed000/{name}"))
         }
     };
     vec![pick(format!("lab{lab}.vert")), pick(format!("lab{lab}.frag"))]
@@ -265,11 +265,11 @@ fn command_line_runs_a_course_pair_with_its_uniforms() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("VERT FRAG"), "{err}");
     // The course's own lab 4 has an extra `)`: the error points at the user's file.
-    let lab4 = fixture("course000/lab4.frag").display().to_string();
-    let lab4v = fixture("course000/lab4.vert").display().to_string();
+    let lab4 = fixture("seed000/lab4.frag").display().to_string();
+    let lab4v = fixture("seed000/lab4.vert").display().to_string();
     let (code, _, err) = run(&[&lab4v, &lab4, "--screenshot", "x.png"]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("course000/lab4.frag:34:46: unexpected `)`"), "{err}");
+    assert!(err.contains("seed000/lab4.frag:34:46: unexpected `)`"), "{err}");
     assert!(
         err.contains("34 |         + i.x + vec4(0.0, i1.x, i2.x, 1.0 ) ));"),
         "{err}"

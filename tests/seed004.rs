@@ -15,7 +15,7 @@ use std::process::Command;
 use image::RgbImage;
 use shaderlab::geometry::images;
 use shaderlab::lab::{Input, LabEntry, Special};
-use shaderlab::labs::{self, gl_textures};
+use shaderlab::labs::{self, seed004::gl_textures};
 use shaderlab::metrics::{diff_image, mean_color, psnr};
 
 const MIN_PSNR: f64 = 40.0;
@@ -277,7 +277,7 @@ fn non_mipmapped_min_filters_switch_with_mag_where_gl_does() {
 
 /// The pixel where the floor point (x, −1, z) of texparams appears.
 fn floor_pixel(x: f32, z: f32) -> (f64, f64) {
-    let p = labs::suzanne_stage::projection(640.0 / 480.0) * labs::texparams::view();
+    let p = labs::seed004::stage::projection(640.0 / 480.0) * labs::seed004::texparams::view();
     let clip = p * glam::Vec4::new(x, -1.0, z, 1.0);
     let (nx, ny) = (f64::from(clip.x / clip.w), f64::from(clip.y / clip.w));
     ((nx + 1.0) * 320.0, (1.0 - ny) * 240.0)

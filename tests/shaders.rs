@@ -18,8 +18,8 @@ use common::{gpu, output_dir};
 
 use shaderlab::lab::{LabContext, LabEntry};
 use shaderlab::labs;
-use shaderlab::labs::glut_stage::TransformUniforms;
-use shaderlab::labs::phong::PhongUniforms;
+use shaderlab::labs::common::TransformUniforms;
+use shaderlab::labs::seed000::phong::PhongUniforms;
 use shaderlab::metrics::{coverage, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::render::{Program, RenderState, Uniforms};

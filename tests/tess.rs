@@ -9,7 +9,7 @@ use common::*;
 use glam::Vec3;
 use shaderlab::exact::{silhouette_error, ExactScene, Shape};
 use shaderlab::labs;
-use shaderlab::labs::glut_stage::{GlutStage, StageConfig, PARAMS_000};
+use shaderlab::labs::seed000::stage::{GlutStage, StageConfig, PARAMS_000};
 use shaderlab::metrics::mask;
 use shaderlab::params::Params;
 use shaderlab::Object;

@@ -160,9 +160,7 @@ impl KeyRow {
     pub fn help(&self) -> String {
         let keys: Vec<String> = self.keys.iter().map(|k| k.name()).collect();
         let what = match self.act {
-            Act::Step {
-                step, component, ..
-            } => match component {
+            Act::Step { step, component, .. } => match component {
                 Some(c) => format!("{}[{c}] -/+{step}", self.param),
                 None => format!("{} -/+{step}", self.param),
             },

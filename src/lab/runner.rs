@@ -4,11 +4,13 @@
 //! parameters by GLSL name). [`Runner`] implements [`Lab`] for every recipe: parameters, keys,
 //! reload, programs (so the GLSL-versus-WGSL round trip reaches every lab) and the title.
 
+use super::{params_title, Input, Lab, LabContext, LabInfo};
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use super::{params_title, Input, Lab, LabContext, LabInfo};
 use crate::params::{ParamSpec, Params};
-use crate::render::{AnyProgram, Bind, BindingKind, Computed, Faces, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, VertexType};
+use crate::render::{
+    AnyProgram, Bind, BindingKind, Computed, Faces, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, VertexType,
+};
 
 /// A lab as data.
 pub struct Recipe {
@@ -208,7 +210,14 @@ pub struct Shaded<S: Stage> {
 impl<S: Stage> Shaded<S> {
     /// Compiles the passes and binds them: the stage's blocks, `own` resources, and a
     /// [`ParamBlock`] for every other uniform block the shaders declare.
-    pub fn build(cx: &LabContext, name: &str, p: &Params, stage: S, look: &'static Look, own: Vec<Bind>) -> Result<Box<dyn Scene>> {
+    pub fn build(
+        cx: &LabContext,
+        name: &str,
+        p: &Params,
+        stage: S,
+        look: &'static Look,
+        own: Vec<Bind>,
+    ) -> Result<Box<dyn Scene>> {
         let mut computed = Computed::default();
         if let Some(hook) = look.hook {
             hook(p, &mut computed);
@@ -236,11 +245,21 @@ impl<S: Stage> Shaded<S> {
                         pass.vert,
                         pass.frag,
                         b.name,
-                        if matches!(b.kind, BindingKind::Sampler) { "a sampler" } else { "a texture" }
+                        if matches!(b.kind, BindingKind::Sampler) {
+                            "a sampler"
+                        } else {
+                            "a texture"
+                        }
                     )));
                 };
                 if !blocks.iter().any(|k| k.name() == b.name) {
-                    blocks.push(ParamBlock::new(cx.gpu, &format!("{name}.{}", b.name), layout, p, &computed)?);
+                    blocks.push(ParamBlock::new(
+                        cx.gpu,
+                        &format!("{name}.{}", b.name),
+                        layout,
+                        p,
+                        &computed,
+                    )?);
                 }
                 binds.extend(blocks.iter().filter(|k| k.name() == b.name).map(ParamBlock::bind));
             }

@@ -15,9 +15,9 @@ fn fixture(dir: &str, name: &str) -> LegacySource {
 fn course(lab: u32) -> (LegacySource, LegacySource) {
     let pick = |name: String| {
         if name == "lab4.frag" || name == "lab5.vert" {
-            fixture("course000-mended", &name)
+            fixture("seed000-mended", &name)
         } else {
-            fixture("course000", &name)
+            fixture("seed000", &name)
         }
     };
     (pick(format!("lab{lab}.vert")), pick(format!("lab{lab}.frag")))
@@ -36,7 +36,7 @@ fn course_shaders_translate_and_validate() {
 #[test]
 fn course_parenthesis_errors_point_at_the_course_line() {
     let (v, _) = course(4);
-    let e = translate(&v, &fixture("course000", "lab4.frag")).unwrap_err();
+    let e = translate(&v, &fixture("seed000", "lab4.frag")).unwrap_err();
     let Error::Shader {
         file,
         line,
@@ -46,7 +46,7 @@ fn course_parenthesis_errors_point_at_the_course_line() {
     else {
         panic!("{e:?}")
     };
-    assert!(file.ends_with("course000/lab4.frag"), "{file}");
+    assert!(file.ends_with("seed000/lab4.frag"), "{file}");
     assert_eq!((line, column), (34, 46), "{message}");
     assert!(message.contains("unexpected `)`"), "{message}");
 }

@@ -642,7 +642,7 @@ pub fn get_member<T: UniformBlock>(value: &T, block: &BlockLayout, name: &str) -
 #[cfg(test)]
 mod layout_tests {
     use super::*;
-    use crate::labs::phong::PhongUniforms;
+    use crate::labs::seed000::phong::PhongUniforms;
     use crate::shader::{compile_text, embedded_source, ShaderSource};
     use naga::ShaderStage;
 
@@ -682,8 +682,8 @@ mod layout_tests {
 
     #[test]
     fn every_lab_block_still_matches() {
-        use crate::labs::glut_stage::TransformUniforms;
-        use crate::labs::{displacement::DisplacementUniforms, noise::NoiseUniforms};
+        use crate::labs::common::TransformUniforms;
+        use crate::labs::seed000::displacement::DisplacementUniforms;
         let block = |file: &str, name: &str| {
             let shader = ShaderSource::Embedded.compile(file).unwrap();
             shader
@@ -694,7 +694,6 @@ mod layout_tests {
             check_layout::<PhongUniforms>("PhongUniforms", &block(frag, "PhongParams")).unwrap();
         }
         check_layout::<PhongUniforms>("PhongUniforms", &block("phong_gouraud.vert", "PhongParams")).unwrap();
-        check_layout::<NoiseUniforms>("NoiseUniforms", &block("noise.frag", "NoiseParams")).unwrap();
         check_layout::<DisplacementUniforms>(
             "DisplacementUniforms",
             &block("displacement.vert", "DisplacementParams"),

@@ -1,0 +1,62 @@
+//! Seed 000, CMP211 Lab05 (GLUT, GLSL 4.5 through the port's matrices): five exercises on one
+//! stage ([`stage`]): position and normal as colour, Phong, simplex noise, displacement.
+
+pub mod stage;
+
+pub mod displacement;
+pub mod noise;
+pub mod normal_rgb;
+pub mod phong;
+mod plain;
+pub mod position_rgb;
+
+use crate::lab::{Key::C, KeyRow};
+use crate::params::{ParamSpec, Params};
+
+/// The simplex noise is periodic in `time` along (1,1,1): its lattice repeats every 289 skewed
+/// units, and a shift of t along (1,1,1) moves the skewed coordinates by 2t, so t = 289/2.
+pub const NOISE_PERIOD: f64 = 144.5;
+
+/// The clock of exercises 4 and 5, and the port's wrap of it by the noise period.
+pub(crate) const NOISE_PARAMS: &[ParamSpec] = &[
+    ParamSpec::real("time", &[0.0], -1e9, 1e9, "seconds (a clock in a window)"),
+    ParamSpec::flag(
+        "wrap_time",
+        &[1.0],
+        "port: wrap time by the noise period (144.5 s) so f32 never loses precision",
+    ),
+];
+
+/// The time uniform of exercises 4 and 5: kept in f64 by the clock and wrapped by the noise
+/// period before it is narrowed, so a long-running window keeps full precision.
+pub(crate) fn noise_time(p: &Params) -> f32 {
+    let t = p.f64("time");
+    (if p.on("wrap_time") {
+        t.rem_euclid(NOISE_PERIOD)
+    } else {
+        t
+    }) as f32
+}
+
+/// The shade keys of exercises 4 and 5: `R/G/B` +0.05, `r/g/b` -0.05 on the noise colour.
+pub(crate) fn shade_key(p: &mut Params, key: char) -> bool {
+    let (channel, delta) = match key {
+        'R' => (0, 0.05),
+        'r' => (0, -0.05),
+        'G' => (1, 0.05),
+        'g' => (1, -0.05),
+        'B' => (2, 0.05),
+        'b' => (2, -0.05),
+        _ => return false,
+    };
+    p.step_clamped("shade", channel, delta, 0.0, 1.0);
+    true
+}
+
+/// The shade keys of exercises 4 and 5: `r/R`, `g/G`, `b/B` ∓/±0.05 on the noise colour,
+/// within [0, 1] (`--set` takes any value).
+pub(crate) const SHADE_KEYS: &[KeyRow] = &[
+    KeyRow::channel(&[C('r'), C('R')], "shade", 0, 0.05, 0.0, 1.0),
+    KeyRow::channel(&[C('g'), C('G')], "shade", 1, 0.05, 0.0, 1.0),
+    KeyRow::channel(&[C('b'), C('B')], "shade", 2, 0.05, 0.0, 1.0),
+];

@@ -1,0 +1,150 @@
+//! Seed 001 `morph` (SPEC §1.4): the course's morphing vertex shader blends each vertex of a
+//! 16-gon (`gl_Vertex`) with its partner on an 8-pointed star (`attribute vec4 vertices2`) by
+//! `s = 0.5·(1 + sin(0.001·time))`, `time` in milliseconds as the course's
+//! `glutGet(GLUT_ELAPSED_TIME)` (the `time` parameter is in seconds; the shader gets ×1000).
+//! s = 0 is the circle (time 4.712389 s), s = 1 the star (time 1.570796 s).
+//!
+//! The course's draw loop is kept: `glBegin(GL_TRIANGLES)`, then for each of its N = 50
+//! vertices `glVertexAttrib3fv(vertices2, two[i]); glVertex3fv(one[i]);` — 16 triangles, the last
+//! 2 vertices dropped by GL. The attribute is looked up as an attribute (the course's
+//! `glGetUniformLocation` would leave it (0,0,0,1) and nothing would morph, §6.1). White: the
+//! course sets no colour.
+//!
+//! Keys: Space pauses the clock; left drag rotates.
+
+use std::f64::consts::TAU;
+
+use glam::Vec3;
+
+use crate::error::Result;
+use crate::geometry::shapes::{morph_vertices, MorphVertex};
+use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::params::{ParamSpec, Params};
+use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+
+use crate::labs::seed001::immediate::Immediate;
+use crate::labs::seed001::stage::{UstcStage, ROTATION};
+
+/// Seed 001, §1.4.
+pub static INFO: LabInfo = LabInfo {
+    name: "morph",
+    title: "ref001",
+    label: "morphing",
+    lecture: "001 USTC GLSL (III)",
+    size: (512, 512),
+    keys: crate::lab::Keys::text("Space pauses the clock; left drag rotates"),
+    files: FilesTaken::NONE,
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params,
+    new,
+};
+
+/// The `Morph` block of `morph.vert`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct MorphUniforms {
+    /// `time` in milliseconds.
+    pub time: f32,
+}
+crate::uniform_block!(MorphUniforms, "Morph", { time: "time" });
+
+// gl_Vertex (vertices_one) and the vertices2 attribute (vertices_two).
+crate::vertex_type!(MorphVertex, {
+    one: "vertex_position" => Float32x3,
+    two: "vertices2" => Float32x3,
+});
+
+/// Vertices GL draws of the course's 50: whole triangles only.
+const DRAWN: u32 = 48;
+
+const OWN: &[ParamSpec] = &[ParamSpec::real(
+    "time",
+    &[0.0],
+    -1e9,
+    1e9,
+    "seconds (the shader gets milliseconds; a clock in a window, Space pauses)",
+)];
+
+fn params() -> Params {
+    let mut p = Params::new(OWN);
+    p.extend(ROTATION);
+    p
+}
+
+/// The `time` uniform: the state's seconds × 1000. The shader only uses `sin(0.001·time)`, so
+/// the seconds are wrapped by 2π first (in double): the same value below 2π s, and a window left
+/// running keeps full float precision.
+pub fn time_uniform(seconds: f64) -> f32 {
+    (seconds.rem_euclid(TAU) * 1000.0) as f32
+}
+
+/// The course's loop: `glBegin(GL_TRIANGLES)`, for i < N: `glVertexAttrib3fv(vertices2Param,
+/// vertices_two[i]); glVertex3fv(vertices_one[i]);`, `glEnd()`.
+pub fn course_triangles() -> Vec<MorphVertex> {
+    let shapes = morph_vertices();
+    let mut triangles = Immediate::begin(MorphVertex {
+        one: [0.0; 3],
+        two: [0.0; 3], // glVertexAttrib's default (0, 0, 0, 1)
+    });
+    for v in &shapes {
+        triangles.attrib(|c| c.two = v.two);
+        triangles.vertex(|c| c.one = v.one);
+    }
+    triangles.end()
+}
+
+struct Morph {
+    params: Params,
+    stage: UstcStage,
+    uniforms: Uniforms<MorphUniforms>,
+    program: Program<MorphVertex>,
+    mesh: GpuMesh<MorphVertex>,
+}
+
+fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
+    let stage = UstcStage::new(cx.gpu, "morph", Vec3::new(0.0, 0.0, 4.0));
+    let uniforms = Uniforms::new(cx.gpu, "morph.params", MorphUniforms { time: 0.0 });
+    let mut program = Program::new(cx, "morph", "morph.vert", "pass_color.frag", RenderState::default())?;
+    program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
+    let mesh = GpuMesh::new(cx.gpu, "morph.triangles", &course_triangles(), None);
+    Ok(Box::new(Morph {
+        params: params(),
+        stage,
+        uniforms,
+        program,
+        mesh,
+    }))
+}
+
+impl Lab for Morph {
+    fn info(&self) -> &'static LabInfo {
+        &INFO
+    }
+    fn params(&self) -> &Params {
+        &self.params
+    }
+    fn params_mut(&mut self) -> &mut Params {
+        &mut self.params
+    }
+    fn input(&mut self, input: Input) -> bool {
+        self.stage.input(&mut self.params, input)
+    }
+    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+        self.program.reload(cx)
+    }
+    fn animated(&self) -> bool {
+        true
+    }
+    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
+        self.uniforms.value.time = time_uniform(self.params.f64("time"));
+        self.uniforms.upload(frame.gpu);
+        self.stage.upload(frame.gpu, &self.params, frame.width, frame.height);
+        let mut pass = frame.pass("morph", Load::Clear([0.0; 3]));
+        self.program.draw_range(&mut pass, &self.mesh, 0..DRAWN);
+        Ok(())
+    }
+}

@@ -1,0 +1,198 @@
+//! The frame every seed-001 exercise shares (SPEC §1, "Common frame"): `gluPerspective(45,
+//! aspect, 0.1, 100)`, `gluLookAt(eye, origin, +y)` with a per-exercise eye, the model turned by
+//! `glRotatef(xangle, 1,0,0); glRotatef(yangle, 0,1,0)` that the left-button drag changes, the
+//! GL 2.0 matrices as the `Transform` block (`transform_block.glsl`), and, for the exercises that
+//! draw them, GLUT's solids in seed 001's `object` numbering (0 teapot, 1 sphere, 2 torus,
+//! 3 cube; keys `1` cube, `2` sphere, `3` torus, `4` teapot as in seed 000).
+
+use std::collections::HashMap;
+
+use glam::{Mat4, Vec3};
+
+use crate::camera;
+use crate::gpu::Gpu;
+use crate::lab::Input;
+use crate::mesh::Vertex;
+use crate::params::{ParamSpec, Params};
+use crate::render::{Bind, GpuMesh, Uniforms, VertexType};
+use crate::tess::Object;
+
+use crate::labs::common::{object_key, GlutMouse, TransformUniforms};
+
+/// Seed 001's object numbering.
+pub const OBJECTS_001: &[&str] = &["teapot", "sphere", "torus", "cube"];
+
+/// The objects in [`OBJECTS_001`] order.
+const OBJECTS: [Object; 4] = [Object::Teapot, Object::Sphere, Object::Torus, Object::Cube];
+
+/// The model rotation every seed-001 exercise has (defaults 0).
+pub const ROTATION: &[ParamSpec] = &[
+    ParamSpec::real(
+        "xangle",
+        &[0.0],
+        -36000.0,
+        36000.0,
+        "glRotatef about x, degrees (mouse: vertical drag)",
+    ),
+    ParamSpec::real(
+        "yangle",
+        &[0.0],
+        -36000.0,
+        36000.0,
+        "glRotatef about y, degrees (mouse: horizontal drag)",
+    ),
+];
+
+/// The GLUT solid of the exercises that draw one (default the teapot).
+pub const OBJECT: &[ParamSpec] = &[ParamSpec::choice(
+    "object",
+    &[0.0],
+    OBJECTS_001,
+    "GLUT solid (keys 1 cube, 2 sphere, 3 torus, 4 teapot)",
+)];
+
+/// `gluPerspective` of every seed-001 exercise: fovy 45°, near 0.1, far 100.
+const PERSPECTIVE: (f64, f64, f64) = (45.0, 0.1, 100.0);
+
+/// Camera, rotation, mouse and the Transform block of one exercise.
+pub struct UstcStage {
+    /// The eye of `gluLookAt(eye, (0,0,0), (0,1,0))`.
+    pub eye: Vec3,
+    mouse: GlutMouse,
+    /// The Transform block (`gl_ModelViewMatrix`, `gl_ModelViewProjectionMatrix`, `gl_NormalMatrix`).
+    pub transform: Uniforms<TransformUniforms>,
+}
+
+impl UstcStage {
+    /// A stage looking from `eye` at the origin.
+    pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
+        let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
+        UstcStage {
+            eye,
+            mouse: GlutMouse::default(),
+            transform: Uniforms::new(gpu, &format!("{label}.transform"), identity),
+        }
+    }
+
+    /// The object chosen by `object` (the teapot for a lab without one).
+    pub fn object(params: &Params) -> Object {
+        if params.has("object") {
+            OBJECTS[params.index_of("object").min(OBJECTS.len() - 1)]
+        } else {
+            Object::Teapot
+        }
+    }
+
+    /// The model matrix `Rx(xangle)·Ry(yangle)` as the matrix stack holds it after
+    /// `glLoadIdentity(); glRotatef(xangle,1,0,0); glRotatef(yangle,0,1,0)`.
+    pub fn model(params: &Params) -> Mat4 {
+        camera::gl_rotate(params.f("xangle"), Vec3::X) * camera::gl_rotate(params.f("yangle"), Vec3::Y)
+    }
+
+    /// `gluLookAt(eye, 0, y)` followed by the two rotations, multiplied in the order Mesa's
+    /// matrix stack does (each `glRotatef` multiplies the current matrix on the right, in float).
+    pub fn modelview(&self, params: &Params) -> Mat4 {
+        let view = camera::glu_look_at(self.eye, Vec3::ZERO, Vec3::Y);
+        view * camera::gl_rotate(params.f("xangle"), Vec3::X) * camera::gl_rotate(params.f("yangle"), Vec3::Y)
+    }
+
+    /// `gluPerspective(45, (float)w/h, 0.1, 100)` for a viewport, in wgpu's depth convention.
+    pub fn projection(width: u32, height: u32) -> Mat4 {
+        let (fovy, near, far) = PERSPECTIVE;
+        let aspect = (width as f32 / height.max(1) as f32) as f64;
+        camera::gl_to_wgpu_depth(camera::glu_perspective(fovy, aspect, near, far))
+    }
+
+    /// Writes the Transform block for a `width` x `height` viewport.
+    pub fn upload(&mut self, gpu: &Gpu, params: &Params, width: u32, height: u32) {
+        self.upload_with(gpu, params, Self::projection(width, height));
+    }
+
+    /// Writes the Transform block with the given (wgpu-depth) projection.
+    pub fn upload_with(&mut self, gpu: &Gpu, params: &Params, projection: Mat4) {
+        self.transform.value = TransformUniforms::new(self.modelview(params), projection);
+        self.transform.upload(gpu);
+    }
+
+    /// Keys `1`-`4` choose cube, sphere, torus, teapot (when the lab has `object`); a
+    /// left-button drag turns yangle by ±2° per horizontal motion event and xangle by ±1° per
+    /// vertical one. Like the GLUT originals, a coordinate that was 0 at the press does not turn.
+    pub fn input(&mut self, params: &mut Params, input: Input) -> bool {
+        object_key(params, input) || self.mouse.input(params, input)
+    }
+}
+
+/// GLUT's four solids at GLUT's levels, uploaded on first use.
+#[derive(Default)]
+pub struct Solids {
+    meshes: HashMap<Object, GpuMesh<Vertex>>,
+}
+
+impl Solids {
+    /// The mesh of `object` (`glutSolidTeapot(1)`, `glutSolidSphere(1,24,24)`,
+    /// `glutSolidTorus(0.5,1,24,24)`, `glutSolidCube(1.5)`).
+    pub fn get(&mut self, gpu: &Gpu, object: Object) -> &GpuMesh<Vertex> {
+        self.meshes.entry(object).or_insert_with(|| {
+            let mesh = object.mesh();
+            GpuMesh::new(
+                gpu,
+                &format!("mesh.{}", object.name()),
+                &mesh.vertices,
+                Some(&mesh.indices),
+            )
+        })
+    }
+}
+
+/// The frame as the runner draws it ([`crate::lab::Stage`]): GLUT's solid chosen by `object`.
+pub struct OnSolid {
+    /// The frame.
+    pub stage: UstcStage,
+    solids: Solids,
+}
+
+impl OnSolid {
+    /// A frame looking from `eye`.
+    pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
+        OnSolid {
+            stage: UstcStage::new(gpu, label, eye),
+            solids: Solids::default(),
+        }
+    }
+}
+
+/// The frame as the runner draws it ([`crate::lab::Stage`]): the lab's own mesh.
+pub struct OnMesh<V: VertexType> {
+    /// The frame.
+    pub stage: UstcStage,
+    /// The mesh.
+    pub mesh: GpuMesh<V>,
+}
+
+impl crate::lab::Stage for OnSolid {
+    type Vertex = Vertex;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
+    }
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.stage.transform.bind()]
+    }
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
+        self.stage.upload(gpu, p, width, height);
+        self.solids.get(gpu, UstcStage::object(p))
+    }
+}
+
+impl<V: VertexType + 'static> crate::lab::Stage for OnMesh<V> {
+    type Vertex = V;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
+    }
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.stage.transform.bind()]
+    }
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
+        self.stage.upload(gpu, p, width, height);
+        &self.mesh
+    }
+}

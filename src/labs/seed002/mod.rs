@@ -1,0 +1,9 @@
+//! Seed 002, Lecture 12 (P. Khungurn): twisting and double vision in 2D, and the teapot of
+//! [`stage`] with normals and Phong in world space.
+
+pub mod stage;
+
+pub mod double_vision;
+pub mod normal_world;
+pub mod phong_dir;
+pub mod twist;

@@ -1,0 +1,303 @@
+//! Seed 003 (LETI lab report 5, Qt `QOpenGLWidget`, GL 3.3 core) `specular_strip`, SPEC §3: a
+//! yellow Bézier strip, 202 vertices drawn as one `GL_TRIANGLE_STRIP`
+//! ([`bezier_strip`]), lit by a point light at `lightPos` (ambient 0.1, diffuse, specular 0.5
+//! with exponent 64), seen through the report's free-flying camera ([`FlyCamera`]).
+//!
+//! Course quirks kept (SPEC §6.3):
+//! - `for (float t = 0; t <= 1; t += 0.01)` yields 101 points, the last at t = 0.99999934, not 1
+//!   (#3; [`crate::geometry::shapes::bezier_parameters`]).
+//! - `calculateNormals` negates only the y component of a downward triangle normal, adds each
+//!   triangle's normal to two of its three vertices and leaves the last vertex (201) with
+//!   (0, 0, 0), kept by Qt 6's `normalize()` (#2). The fragment shader's `normalize(Normal)` of
+//!   that zero vector is NaN, but only at vertex 201 itself: every fragment of the last
+//!   triangle interpolates a non-zero normal, and the reference shows no stray pixel there; the
+//!   port's shader is the course's, unguarded, and renders the same.
+//! - The Camera constructor swaps width and height (640 high, 480 wide); `resizeGL` overwrites
+//!   both before the first paint (#1), so the projection uses the window's width / height.
+//!
+//! **Camera state.** The live camera starts in the state the parameters name (SPEC §3's order:
+//! after `initializeGL` — skipped with `preset=1` — `up` × move(Up), `forward` × move(Forward),
+//! `right` × move(Right), then one `rotate(yaw, pitch)` if either is non-zero;
+//! [`FlyStart`]). Keys and the mouse move the live camera itself, not the parameters: the
+//! report's camera operations do not commute (a move goes along the current front), so a
+//! sequence of them cannot be written back as those six numbers. Changing a state parameter
+//! (`--set`, a test) puts the camera back into the state it names; `r` does so by hand. The
+//! window title shows the live camera once it has left its start state.
+//!
+//! Keys: `W`/`S` forward/back, `A`/`D` left/right, `E`/`Q` up/down (0.5 each), ←/→ yaw ∓2°,
+//! ↑/↓ pitch ±2° (clamped to ±89°), left-button drag looks around (0.1° per pixel), `r`
+//! resets the camera to the parameters' state (a port addition).
+
+use glam::{Mat4, Vec3};
+
+use crate::camera::fly::{FlyCamera, FlyStart, Move};
+use crate::camera::gl_to_wgpu_depth;
+use crate::error::Result;
+use crate::geometry::shapes::{bezier_strip, StripVertex};
+use crate::lab::{params_title, FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo, Special};
+use crate::params::{ParamSpec, Params};
+use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+
+/// `specular_strip`.
+pub static INFO: LabInfo = LabInfo {
+    name: "specular_strip",
+    title: "ref003",
+    label: "Bezier strip, specular light",
+    lecture: "003 LETI lab 5",
+    size: (640, 480),
+    keys: crate::lab::Keys::text(
+        "W/S: forward/back; A/D: left/right; E/Q: up/down; Left/Right: yaw ∓2°; Up/Down: pitch ±2°;\n\
+           left drag looks around (0.1° per pixel); r: camera back to the parameters' state",
+    ),
+    files: FilesTaken::NONE,
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = LabEntry {
+    info: &INFO,
+    params,
+    new,
+};
+
+crate::vertex_type!(StripVertex, {
+    position: "objectPosition" => Float32x3,
+    color: "objectColor" => Float32x3,
+    normal: "normal" => Float32x3,
+});
+
+/// The `Strip` block of `specular_strip_params.glsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct StripUniforms {
+    /// `projectionMatrix`, depth mapped to wgpu's 0..1.
+    pub projection: [[f32; 4]; 4],
+    /// `viewMatrix`.
+    pub view: [[f32; 4]; 4],
+    /// `modelMatrix`: identity.
+    pub model: [[f32; 4]; 4],
+    /// `lightPos`.
+    pub light_pos: [f32; 3],
+    /// std140 padding.
+    pub _pad0: f32,
+    /// `viewPos`: the camera position.
+    pub view_pos: [f32; 3],
+    /// std140 padding.
+    pub _pad1: f32,
+}
+crate::uniform_block!(StripUniforms, "Strip", {
+    projection: "projectionMatrix",
+    view: "viewMatrix",
+    model: "modelMatrix",
+    light_pos: "lightPos",
+    view_pos: "viewPos",
+});
+
+impl StripUniforms {
+    /// The uniforms of one frame: the camera's matrices for `aspect`, identity model.
+    pub fn new(camera: &FlyCamera, aspect: f32, light: [f32; 3]) -> Self {
+        StripUniforms {
+            projection: gl_to_wgpu_depth(camera.projection(aspect)).to_cols_array_2d(),
+            view: camera.view().to_cols_array_2d(),
+            model: Mat4::IDENTITY.to_cols_array_2d(),
+            light_pos: light,
+            _pad0: 0.0,
+            view_pos: camera.position.to_array(),
+            _pad1: 0.0,
+        }
+    }
+}
+
+/// Bound on the step counts of the state parameters.
+const STEPS: f64 = 1000.0;
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::flag(
+        "preset",
+        &[0.0],
+        "1: skip initializeGL's rotate(30, 0) and 3 × move(Left)",
+    ),
+    ParamSpec::int(
+        "up",
+        &[0.0],
+        -STEPS,
+        STEPS,
+        "start: move(Up) this many times (negative: Down)",
+    ),
+    ParamSpec::int(
+        "forward",
+        &[0.0],
+        -STEPS,
+        STEPS,
+        "start: then move(Forward) (negative: Back)",
+    ),
+    ParamSpec::int(
+        "right",
+        &[0.0],
+        -STEPS,
+        STEPS,
+        "start: then move(Right) (negative: Left)",
+    ),
+    ParamSpec::real(
+        "yaw",
+        &[0.0],
+        -36000.0,
+        36000.0,
+        "start: then rotate(yaw, pitch), degrees",
+    ),
+    ParamSpec::real(
+        "pitch",
+        &[0.0],
+        -36000.0,
+        36000.0,
+        "start: pitch of that rotate (clamped to ±89°)",
+    ),
+    ParamSpec::real("lightx", &[0.0], -1000.0, 1000.0, "lightPos.x"),
+    ParamSpec::real("lighty", &[0.0], -1000.0, 1000.0, "lightPos.y"),
+    ParamSpec::real("lightz", &[0.0], -1000.0, 1000.0, "lightPos.z"),
+];
+
+fn params() -> Params {
+    Params::new(PARAMS)
+}
+
+/// The camera start state the parameters name.
+pub fn start_of(p: &Params) -> FlyStart {
+    FlyStart {
+        preset: p.on("preset"),
+        up: p.f64("up") as i32,
+        forward: p.f64("forward") as i32,
+        right: p.f64("right") as i32,
+        yaw: p.f("yaw"),
+        pitch: p.f("pitch"),
+    }
+}
+
+struct SpecularStrip {
+    params: Params,
+    /// The live camera.
+    camera: FlyCamera,
+    /// The start state `camera` was last put into.
+    start: FlyStart,
+    /// The last mouse position of a left-button drag.
+    mouse: (i32, i32),
+    uniforms: Uniforms<StripUniforms>,
+    program: Program<StripVertex>,
+    strip: GpuMesh<StripVertex>,
+}
+
+fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
+    let params = params();
+    let start = start_of(&params);
+    let camera = FlyCamera::from_start(&start);
+    let uniforms = Uniforms::new(
+        cx.gpu,
+        "specular_strip.params",
+        StripUniforms::new(&camera, 640.0 / 480.0, [0.0; 3]),
+    );
+    let state = RenderState::default().topology(wgpu::PrimitiveTopology::TriangleStrip);
+    let mut program = Program::new(
+        cx,
+        "specular_strip",
+        "specular_strip.vert",
+        "specular_strip.frag",
+        state,
+    )?;
+    program.bind(cx.gpu, vec![uniforms.bind()])?;
+    let strip = GpuMesh::new(cx.gpu, "specular_strip.strip", &bezier_strip(), None);
+    Ok(Box::new(SpecularStrip {
+        params,
+        camera,
+        start,
+        mouse: (0, 0),
+        uniforms,
+        program,
+        strip,
+    }))
+}
+
+impl SpecularStrip {
+    /// Puts the camera into the parameters' start state if they changed since it was last put
+    /// there.
+    fn sync(&mut self) {
+        let start = start_of(&self.params);
+        if start != self.start {
+            self.start = start;
+            self.camera = FlyCamera::from_start(&start);
+        }
+    }
+}
+
+impl Lab for SpecularStrip {
+    fn info(&self) -> &'static LabInfo {
+        &INFO
+    }
+    fn params(&self) -> &Params {
+        &self.params
+    }
+    fn params_mut(&mut self) -> &mut Params {
+        &mut self.params
+    }
+    fn input(&mut self, input: Input) -> bool {
+        self.sync();
+        let camera = &mut self.camera;
+        match input {
+            Input::Key(c) => match c.to_ascii_lowercase() {
+                'w' => camera.move_(Move::Forward),
+                's' => camera.move_(Move::Back),
+                'a' => camera.move_(Move::Left),
+                'd' => camera.move_(Move::Right),
+                'e' => camera.move_(Move::Up),
+                'q' => camera.move_(Move::Down),
+                'r' => *camera = FlyCamera::from_start(&self.start),
+                _ => return false,
+            },
+            Input::Special(Special::Left) => camera.rotate(-2.0, 0.0),
+            Input::Special(Special::Right) => camera.rotate(2.0, 0.0),
+            Input::Special(Special::Up) => camera.rotate(0.0, 2.0),
+            Input::Special(Special::Down) => camera.rotate(0.0, -2.0),
+            Input::Special(_) => return false,
+            Input::Press(x, y) | Input::Release(x, y) => {
+                self.mouse = (x, y);
+                return false;
+            }
+            Input::Drag(x, y) => {
+                let (dx, dy) = (x - self.mouse.0, y - self.mouse.1);
+                self.mouse = (x, y);
+                if (dx, dy) == (0, 0) {
+                    return false;
+                }
+                camera.rotate(0.1 * dx as f32, -0.1 * dy as f32);
+            }
+        }
+        true
+    }
+    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+        self.program.reload(cx)
+    }
+    fn title(&self) -> String {
+        let base = params_title(&INFO, &self.params);
+        let c = &self.camera;
+        if *c == FlyCamera::from_start(&start_of(&self.params)) {
+            base
+        } else {
+            let Vec3 { x, y, z } = c.position;
+            format!(
+                "{base} | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}",
+                c.yaw, c.pitch
+            )
+        }
+    }
+    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
+        self.sync();
+        let light = [
+            self.params.f("lightx"),
+            self.params.f("lighty"),
+            self.params.f("lightz"),
+        ];
+        self.uniforms.value = StripUniforms::new(&self.camera, frame.aspect(), light);
+        self.uniforms.upload(frame.gpu);
+        let mut pass = frame.pass("specular_strip", Load::Clear([0.0; 3]));
+        self.program.draw(&mut pass, &self.strip);
+        Ok(())
+    }
+}
