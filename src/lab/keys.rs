@@ -212,3 +212,57 @@ impl Keys {
         self.rows.iter().map(|r| r.param)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::ParamSpec;
+
+    const SPECS: &[ParamSpec] = &[
+        ParamSpec::real("h", &[0.1], -1.0, 1.0, "height"),
+        ParamSpec::real("shade", &[0.5, 0.5, 0.5], -9.0, 9.0, "colour"),
+        ParamSpec::choice("shading", &[0.0], &["flat", "gouraud", "phong"], "model"),
+        ParamSpec::flag("fixpos", &[0.0], "flag"),
+    ];
+    const ROWS: &[KeyRow] = &[
+        KeyRow::step(&[Key::C('h'), Key::C('H')], "h", 0.5),
+        KeyRow::channel(&[Key::C('r'), Key::C('R')], "shade", 0, 0.25, 0.0, 1.0),
+        KeyRow::pick(&[Key::C('1'), Key::C('2'), Key::C('3')], "shading"),
+        KeyRow::toggle(&[Key::C('p')], "fixpos"),
+        KeyRow::cycle(&[Key::C('m')], "shading"),
+        KeyRow::step(&[LEFT, RIGHT], "h", 0.25),
+    ];
+    const KEYS: Keys = Keys::rows(ROWS, "left drag rotates");
+
+    #[test]
+    fn rows_step_clamp_pick_toggle_and_cycle() {
+        let mut p = Params::new(SPECS);
+        assert!(KEYS.apply(&mut p, Input::Key('H')));
+        assert_eq!(p.f("h"), 0.6);
+        assert!(KEYS.apply(&mut p, Input::Key('H')));
+        assert_eq!(p.f("h"), 1.0, "clamped to the declared range");
+        KEYS.apply(&mut p, Input::Special(Special::Left));
+        assert_eq!(p.f("h"), 0.75);
+        for _ in 0..3 {
+            KEYS.apply(&mut p, Input::Key('R'));
+        }
+        assert_eq!(p.v3("shade"), [1.0, 0.5, 0.5], "one channel, within the row's bounds");
+        KEYS.apply(&mut p, Input::Key('3'));
+        assert_eq!(p.text("shading"), "phong");
+        KEYS.apply(&mut p, Input::Key('m'));
+        assert_eq!(p.text("shading"), "flat", "cycling wraps");
+        KEYS.apply(&mut p, Input::Key('p'));
+        assert!(p.on("fixpos"));
+        assert!(!KEYS.apply(&mut p, Input::Key('q')), "a key no row has");
+        assert!(!KEYS.apply(&mut p, Input::Special(Special::Up)));
+    }
+
+    #[test]
+    fn rows_write_the_help() {
+        assert_eq!(
+            KEYS.help(),
+            "h/H: h -/+0.5;\nr/R: shade[0] -/+0.25;\n1/2/3: shading 0..2;\np: toggle fixpos;\nm: next shading;\nLeft/Right: h -/+0.25;\nleft drag rotates"
+        );
+        assert_eq!(KEYS.params().collect::<Vec<_>>(), ["h", "shade", "shading", "fixpos", "shading", "h"]);
+    }
+}

@@ -468,6 +468,8 @@ pub trait AnyProgram {
     fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()>;
     /// Compiles the shaders again (see [`Program::reload`]).
     fn reload(&mut self, cx: &LabContext) -> Result<()>;
+    /// The compiled vertex and fragment shaders (for the WGSL round trip).
+    fn shaders(&self) -> (&CompiledShader, &CompiledShader);
 }
 
 impl<V: VertexType> AnyProgram for Program<V> {
@@ -479,6 +481,9 @@ impl<V: VertexType> AnyProgram for Program<V> {
     }
     fn reload(&mut self, cx: &LabContext) -> Result<()> {
         Program::reload(self, cx)
+    }
+    fn shaders(&self) -> (&CompiledShader, &CompiledShader) {
+        Program::shaders(self)
     }
 }
 
