@@ -119,3 +119,26 @@ fn a_reload_that_changes_a_block_keeps_the_last_good_pipeline() {
     assert!(err.contains("Twist") && err.contains("changed its members"), "{err}");
     assert_eq!(shot(lab.as_mut()), before, "the last good pipeline still draws");
 }
+
+/// `cargo run --example NAME` works for every lab: each lab of the one list has its 3-line
+/// example, and every other example is one of the tools.
+#[test]
+fn every_lab_has_its_example_and_every_example_is_a_lab_or_a_tool() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    for entry in labs::ALL {
+        let name = entry.info.name;
+        let text = std::fs::read_to_string(dir.join(format!("{name}.rs")))
+            .unwrap_or_else(|e| panic!("examples/{name}.rs: {e}"));
+        let call = format!("shaderlab::shell::main(shaderlab::labs::{})", name.to_uppercase());
+        assert!(text.contains(&call), "examples/{name}.rs does not call {call}");
+        assert!(labs::find(name).is_some_and(|e| std::ptr::eq(e, *entry)));
+    }
+    for file in std::fs::read_dir(&dir).unwrap() {
+        let path = file.unwrap().path();
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        assert!(
+            labs::find(&stem).is_some() || ["bench", "glsl2wgsl", "labs", "tradeoff"].contains(&stem.as_str()),
+            "examples/{stem}.rs is neither a lab nor a tool"
+        );
+    }
+}
