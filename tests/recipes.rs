@@ -47,7 +47,11 @@ fn every_lab_draws_the_same_picture_through_wgsl() {
             }
             Some(db) => report.push(format!(
                 "{name}: {count} program(s), {}",
-                if a == b { "identical".to_owned() } else { format!("{db:.1} dB") }
+                if a == b {
+                    "identical".to_owned()
+                } else {
+                    format!("{db:.1} dB")
+                }
             )),
         }
     }
@@ -60,7 +64,11 @@ fn every_key_row_names_a_parameter_of_its_lab() {
     for entry in labs::ALL {
         let params = (entry.params)();
         for name in entry.info.keys.params() {
-            assert!(params.has(name), "{}: a key row names `{name}`, which it lacks", entry.info.name);
+            assert!(
+                params.has(name),
+                "{}: a key row names `{name}`, which it lacks",
+                entry.info.name
+            );
         }
         assert!(!entry.info.keys.help().is_empty(), "{}: no keys help", entry.info.name);
     }

@@ -263,6 +263,9 @@ mod tests {
             KEYS.help(),
             "h/H: h -/+0.5;\nr/R: shade[0] -/+0.25;\n1/2/3: shading 0..2;\np: toggle fixpos;\nm: next shading;\nLeft/Right: h -/+0.25;\nleft drag rotates"
         );
-        assert_eq!(KEYS.params().collect::<Vec<_>>(), ["h", "shade", "shading", "fixpos", "shading", "h"]);
+        assert_eq!(
+            KEYS.params().collect::<Vec<_>>(),
+            ["h", "shade", "shading", "fixpos", "shading", "h"]
+        );
     }
 }

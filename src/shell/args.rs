@@ -67,6 +67,19 @@ pub struct Args {
     /// Clear colour (the `clear` parameter of labs that have one, e.g. legacy).
     #[arg(long, value_name = "R,G,B", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub clear: Option<[f64; 3]>,
+    /// Record frames offscreen at a fixed time step (frame k at time FROM + k/FPS) into NAME.gif,
+    /// NAME.mp4 or NAME.webm (through ffmpeg), a PNG sequence (frames-%04d.png) or a directory.
+    #[arg(long, value_name = "OUT", requires = "frames", conflicts_with_all = ["screenshot", "bench"])]
+    pub record: Option<PathBuf>,
+    /// With --record: how many frames.
+    #[arg(long, value_name = "N", requires = "record", value_parser = clap::value_parser!(u32).range(1..=i64::from(super::record::MAX_FRAMES)), allow_negative_numbers = true)]
+    pub frames: Option<u32>,
+    /// With --record: frames per second of lab time (default 25, which GIF's 1/100 s delays hold exactly).
+    #[arg(long, value_name = "F", requires = "record", value_parser = parse_fps, allow_hyphen_values = true)]
+    pub fps: Option<f64>,
+    /// With --record: the lab time of the first frame, in seconds (default: the `time` parameter).
+    #[arg(long, value_name = "T", requires = "record", value_parser = parse_time, allow_hyphen_values = true)]
+    pub from: Option<f64>,
     /// In a window: draw as fast as possible (present mode Immediate, no pacing), to measure frame time.
     #[arg(long)]
     pub unpaced: bool,
@@ -105,6 +118,13 @@ fn parse_texture(s: &str) -> Result<TextureArg, String> {
 
 fn parse_time(s: &str) -> Result<f64, String> {
     parse_finite(s)
+}
+
+fn parse_fps(s: &str) -> Result<f64, String> {
+    match parse_finite(s)? {
+        f if (0.01..=1000.0).contains(&f) => Ok(f),
+        _ => Err(format!("`{s}`: expected frames per second from 0.01 to 1000")),
+    }
 }
 
 fn parse_tess(s: &str) -> Result<f64, String> {

@@ -22,6 +22,21 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         // A read-only folder is found now, not after the GPU was opened and the frame drawn.
         crate::fsutil::check_writable(path)?;
     }
+    let recording = match &args.record {
+        Some(path) => {
+            let recording = super::record::Recording {
+                output: super::record::Output::parse(path, entry.info.name)?,
+                frames: args.frames.unwrap_or(1),
+                fps: args.fps.unwrap_or(25.0),
+                from: args
+                    .from
+                    .unwrap_or_else(|| if params.has("time") { params.f64("time") } else { 0.0 }),
+            };
+            recording.output.check(recording.frames)?;
+            Some(recording)
+        }
+        None => None,
+    };
     let gpu = Gpu::headless()?;
     let source = args.shader_source()?;
     let cx = LabContext {
@@ -37,12 +52,48 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         let result = bench(&gpu, lab.as_mut(), frames, width, height, args.gpu_time)?;
         say(&result.line(entry.info.name, lab.params(), width, height, frames))?;
     }
+    if let Some(recording) = &recording {
+        if let (super::record::Output::Gif(_), (_, Some(note))) =
+            (&recording.output, super::record::gif_delay(recording.fps))
+        {
+            eprintln!("{}: note: {note}", entry.info.name);
+        }
+        let bar = progress_bar(u64::from(recording.frames), "frames");
+        super::record::record(&gpu, lab.as_mut(), recording, width, height, &mut |k| {
+            bar.set_position(u64::from(k))
+        })?;
+        bar.finish_and_clear();
+        say(&match &recording.output {
+            super::record::Output::Pngs(names) => format!(
+                "wrote {} frames: {} … {}",
+                recording.frames,
+                names.name(0).display(),
+                names.name(recording.frames - 1).display()
+            ),
+            super::record::Output::Gif(path) | super::record::Output::Video(path, _) => {
+                format!("wrote {} frames to {}", recording.frames, path.display())
+            }
+        })?;
+    }
     if let Some(path) = &args.screenshot {
         let image = screenshot(&gpu, lab.as_mut(), width, height)?;
         save_png(&image, path)?;
         say(&format!("wrote {}", path.display()))?;
     }
     Ok(())
+}
+
+/// A progress bar on stderr when it is a terminal; hidden otherwise (logs and pipes stay clean).
+pub fn progress_bar(len: u64, unit: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    let style = indicatif::ProgressStyle::with_template(&format!("{{bar:40}} {{pos}}/{{len}} {unit} {{elapsed}}"))
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar
 }
 
 /// Records one frame of `lab` into `target` and submits it.

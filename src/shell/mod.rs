@@ -9,6 +9,7 @@
 
 mod args;
 mod headless;
+pub mod record;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
 pub mod window;
@@ -86,7 +87,7 @@ pub fn main(entry: &'static LabEntry) -> ExitCode {
     ensure_runtime_dir();
     let name = entry.info.name;
     let args = Args::parse_for(entry);
-    if args.screenshot.is_some() || args.bench.is_some() {
+    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() {
         skip_display_device_select();
     }
     let result = run(entry, args);
@@ -110,9 +111,12 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     if let Some(path) = &args.screenshot {
         headless::check_png_path(path)?;
     }
+    if let Some(path) = &args.record {
+        record::Output::parse(path, entry.info.name)?;
+    }
     args.shader_source()?;
     let files = args.files(entry)?;
-    if args.screenshot.is_some() || args.bench.is_some() {
+    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() {
         headless::run(entry, &args, params, &files)
     } else if !window::has_display() {
         // No display: still do something useful.

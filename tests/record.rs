@@ -1,0 +1,227 @@
+//! `--record`: frames at a fixed time step into a GIF, a PNG sequence or (through ffmpeg) a
+//! video; deterministic, atomic, and every bad name or missing tool a clear message.
+
+mod common;
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use common::*;
+use image::AnimationDecoder;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = output_dir().join("record").join(name);
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(lab: &str, dir: &Path, args: &[&str]) -> Output {
+    Command::new(example(lab))
+        .current_dir(dir)
+        .env(
+            "XDG_RUNTIME_DIR",
+            std::env::var_os("XDG_RUNTIME_DIR").unwrap_or_default(),
+        )
+        .args(args)
+        .output()
+        .expect("run the example")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Files in `dir` other than `keep`.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_gif_has_its_frames_moves_with_time_and_is_the_same_twice() {
+    let dir = scratch("gif");
+    let out = run(
+        "wave",
+        &dir,
+        &["--record", "w.gif", "--frames", "6", "--fps", "25", "--size", "160x120"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let first = fs::read(dir.join("w.gif")).unwrap();
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(&first)).unwrap();
+    let frames = decoder.into_frames().collect_frames().unwrap();
+    assert_eq!(frames.len(), 6);
+    for f in &frames {
+        assert_eq!(f.buffer().dimensions(), (160, 120));
+        let (n, d) = f.delay().numer_denom_ms();
+        assert_eq!(n / d, 40, "25 fps is 4/100 s");
+    }
+    assert_ne!(frames[0].buffer(), frames[5].buffer(), "wave moves with time");
+    // Frame 5 is the picture at time 5/25 s.
+    let still = run(
+        "wave",
+        &dir,
+        &["--set", "time=0.2", "--size", "160x120", "--screenshot", "s.png"],
+    );
+    assert!(still.status.success(), "{}", stderr(&still));
+    let shot = image::open(dir.join("s.png")).unwrap().to_rgba8();
+    let differing = shot
+        .pixels()
+        .zip(frames[5].buffer().pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        differing < shot.pixels().len() / 50,
+        "frame 5 is the picture at t = 0.2 s ({differing} pixels differ after GIF's palette)"
+    );
+    let again = run(
+        "wave",
+        &dir,
+        &["--record", "w.gif", "--frames", "6", "--fps", "25", "--size", "160x120"],
+    );
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert_eq!(
+        fs::read(dir.join("w.gif")).unwrap(),
+        first,
+        "two runs write the same bytes"
+    );
+    assert_eq!(listing(&dir), ["s.png", "w.gif"], "no temporary file left");
+}
+
+#[test]
+fn a_png_sequence_is_named_by_its_pattern_and_never_overwrites() {
+    let dir = scratch("pngs");
+    let out = run("twist", &dir, &["--record", "f-%03d.png", "--frames", "3"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(listing(&dir), ["f-000.png", "f-001.png", "f-002.png"]);
+    let frame = image::open(dir.join("f-001.png")).unwrap();
+    assert_eq!((frame.width(), frame.height()), (512, 512));
+    let before = fs::read(dir.join("f-000.png")).unwrap();
+    let out = run(
+        "twist",
+        &dir,
+        &["--record", "f-%03d.png", "--frames", "3", "--set", "twisting=0"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("f-000.png: exists"), "{}", stderr(&out));
+    assert_eq!(fs::read(dir.join("f-000.png")).unwrap(), before, "left as it was");
+    // A directory takes LAB-0000.png ….
+    fs::create_dir(dir.join("sub")).unwrap();
+    let out = run("twist", &dir, &["--record", "sub", "--frames", "2"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(listing(&dir.join("sub")), ["twist-0000.png", "twist-0001.png"]);
+}
+
+#[test]
+fn bad_names_and_missing_tools_are_clear_and_write_nothing() {
+    let dir = scratch("bad");
+    let cases: &[(&[&str], i32, &str)] = &[
+        (&["--record", "a.avi", "--frames", "2"], 2, "expected NAME.gif"),
+        (&["--record", "a.gif"], 2, "--frames"),
+        (&["--frames", "2"], 2, "--record"),
+        (&["--record", "a.gif", "--frames", "0"], 2, "--frames"),
+        (
+            &["--record", "a.gif", "--frames", "2", "--fps", "0"],
+            2,
+            "frames per second",
+        ),
+        (
+            &["--record", "a.gif", "--frames", "2", "--screenshot", "a.png"],
+            2,
+            "cannot be used with",
+        ),
+        (&["--record", "nowhere/a.gif", "--frames", "2"], 1, "does not exist"),
+    ];
+    for (args, code, says) in cases {
+        let out = run("twist", &dir, args);
+        assert_eq!(out.status.code(), Some(*code), "{args:?}: {}", stderr(&out));
+        assert!(stderr(&out).contains(says), "{args:?}: {}", stderr(&out));
+    }
+    // No ffmpeg on PATH: say which package, write nothing.
+    let empty = dir.join("empty-path");
+    fs::create_dir(&empty).unwrap();
+    let out = Command::new(example("twist"))
+        .current_dir(&dir)
+        .env("PATH", &empty)
+        .args(["--record", "a.mp4", "--frames", "2"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("apt-get install ffmpeg"), "{}", stderr(&out));
+    assert_eq!(listing(&dir), ["empty-path"], "nothing written");
+}
+
+/// A stand-in `ffmpeg` that copies its input to its output (or fails): what the port pipes
+/// in and how it keeps the file whole, without the real encoder.
+fn fake_ffmpeg(dir: &Path, body: &str) -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let bin = dir.join("bin");
+    fs::create_dir_all(&bin).unwrap();
+    let script = bin.join("ffmpeg");
+    fs::write(&script, format!("#!/bin/sh\n{body}\n")).unwrap();
+    fs::set_permissions(&script, fs::Permissions::from_mode(0o755)).unwrap();
+    bin
+}
+
+#[test]
+fn a_video_is_the_frames_piped_through_ffmpeg_and_a_failure_keeps_the_old_file() {
+    let dir = scratch("video");
+    let path = format!("{}:/usr/bin:/bin", fake_ffmpeg(&dir, "cat").display());
+    let out = Command::new(example("twist"))
+        .current_dir(&dir)
+        .env("PATH", &path)
+        .args(["--record", "v.webm", "--frames", "3", "--size", "64x32"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(
+        fs::metadata(dir.join("v.webm")).unwrap().len(),
+        3 * 64 * 32 * 4,
+        "three RGBA frames"
+    );
+    let bin = fake_ffmpeg(&dir, "echo 'encoder exploded' >&2; exit 3");
+    let out = Command::new(example("twist"))
+        .current_dir(&dir)
+        .env("PATH", format!("{}:/usr/bin:/bin", bin.display()))
+        .args(["--record", "v.webm", "--frames", "3", "--size", "64x32"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("encoder exploded"), "{}", stderr(&out));
+    assert_eq!(
+        fs::metadata(dir.join("v.webm")).unwrap().len(),
+        3 * 64 * 32 * 4,
+        "the old file stays"
+    );
+    assert_eq!(listing(&dir), ["bin", "v.webm"], "no temporary file left");
+}
+
+#[test]
+fn an_interrupted_recording_leaves_no_file() {
+    let dir = scratch("interrupted");
+    fs::write(dir.join("long.gif"), b"an older recording").unwrap();
+    let mut child = Command::new(example("wave"))
+        .current_dir(&dir)
+        .args(["--record", "long.gif", "--frames", "100000"])
+        .spawn()
+        .unwrap();
+    // Wait until it is writing (its temporary file exists), then interrupt it.
+    let started = std::time::Instant::now();
+    while !listing(&dir).iter().any(|n| n.ends_with(".tmp")) {
+        assert!(started.elapsed().as_secs() < 60, "the recording never started");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert!(!status.success());
+    assert_eq!(listing(&dir), ["long.gif"], "the temporary file is gone");
+    assert_eq!(fs::read(dir.join("long.gif")).unwrap(), b"an older recording");
+}
