@@ -14,7 +14,7 @@ use shaderlab::shell::bench;
 use shaderlab::{labs, Gpu};
 
 #[derive(Parser)]
-#[command(about = "Benchmark every lab (and object) offscreen")]
+#[command(name = "bench", about = "Benchmark every lab (and object) offscreen")]
 struct Args {
     /// Frames per case.
     #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]
@@ -29,7 +29,12 @@ struct Args {
 
 fn main() -> anyhow::Result<()> {
     shaderlab::shell::ensure_runtime_dir();
-    let args = Args::parse();
+    run(std::env::args_os())
+}
+
+/// The benchmark for a command line (program name first); `shaderlab bench` calls it too.
+pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result<()> {
+    let args = Args::parse_from(argv);
     let gpu = Gpu::headless()?;
     println!("adapter: {}; {} frames per case", gpu.describe(), args.frames);
     println!("| lab | object | size | ms/frame | gpu ms |");

@@ -150,7 +150,12 @@ fn run(args: &Args) -> anyhow::Result<()> {
 
 fn main() -> ExitCode {
     shaderlab::shell::ensure_runtime_dir();
-    let args = Args::parse();
+    main_from(std::env::args_os())
+}
+
+/// The translator for a command line (program name first); `shaderlab glsl2wgsl` calls it too.
+pub fn main_from(argv: impl IntoIterator<Item = std::ffi::OsString>) -> ExitCode {
+    let args = Args::parse_from(argv);
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

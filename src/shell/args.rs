@@ -167,6 +167,11 @@ fn parse_set(s: &str) -> Result<(String, String), String> {
 impl Args {
     /// Parses the process arguments for `entry`; prints usage and exits 2 on a bad flag.
     pub fn parse_for(entry: &LabEntry) -> Self {
+        Self::parse_from_for(entry, std::env::args_os().collect())
+    }
+
+    /// Parses `argv` (program name first) for `entry`, as [`Args::parse_for`] does.
+    pub fn parse_from_for(entry: &LabEntry, argv: Vec<std::ffi::OsString>) -> Self {
         let info = entry.info;
         let mut params = (entry.params)();
         let (w, h) = info.size;
@@ -179,7 +184,7 @@ impl Args {
                 .disable_version_flag(true)
                 .ignore_errors(true);
             let files = prescan
-                .try_get_matches()
+                .try_get_matches_from(argv.clone())
                 .ok()
                 .and_then(|m| Args::from_arg_matches(&m).ok())
                 .map(|a| a.files)
@@ -202,7 +207,7 @@ impl Args {
                 Some(f) => a.value_names(f.names.iter().copied()).num_args(0..=f.names.len()),
                 None => a.hide(true),
             });
-        let matches = command.get_matches();
+        let matches = command.get_matches_from(argv);
         Args::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
     }
 

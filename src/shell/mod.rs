@@ -84,9 +84,14 @@ fn skip_display_device_select() {
 
 /// Entry point of every example: parses arguments, then renders offscreen or opens a window.
 pub fn main(entry: &'static LabEntry) -> ExitCode {
+    main_from(entry, std::env::args_os().collect())
+}
+
+/// [`main`] with the command line given (program name first): what `shaderlab run NAME …` calls.
+pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> ExitCode {
     ensure_runtime_dir();
     let name = entry.info.name;
-    let args = Args::parse_for(entry);
+    let args = Args::parse_from_for(entry, argv);
     if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() {
         skip_display_device_select();
     }

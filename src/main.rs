@@ -1,0 +1,111 @@
+//! `shaderlab`: every lab and tool of the course in one command (`cargo install --path .`).
+//! The labs run through the same code as the examples (`shaderlab run phong …` is
+//! `cargo run --example phong -- …`), and the tools are the examples' own files.
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::process::ExitCode;
+
+use shaderlab::labs;
+
+#[allow(dead_code)]
+#[path = "../examples/bench.rs"]
+mod bench;
+#[allow(dead_code)]
+#[path = "../examples/glsl2wgsl.rs"]
+mod glsl2wgsl;
+
+const USAGE: &str = "shaderlab: the GLSL course labs on wgpu
+
+Usage:
+  shaderlab list                      every lab, by lecture
+  shaderlab run NAME [FLAGS…]         run a lab (shaderlab run NAME --help lists its flags)
+  shaderlab record NAME OUT [FLAGS…]  run NAME --record OUT (needs --frames N; OUT.gif, OUT.mp4,
+                                      OUT.webm, frames-%04d.png or a directory)
+  shaderlab legacy VERT FRAG [FLAGS…] a course's own GLSL 1.10/1.20 pair
+  shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
+  shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
+  shaderlab --version
+
+Each lab is also an example: cargo run --release --example NAME -- [FLAGS…]";
+
+fn main() -> ExitCode {
+    shaderlab::shell::ensure_runtime_dir();
+    let mut argv: Vec<OsString> = std::env::args_os().collect();
+    let words: Vec<String> = argv.iter().map(|a| a.to_string_lossy().into_owned()).collect();
+    match words.get(1).map(String::as_str) {
+        None | Some("help" | "--help" | "-h") => {
+            println!("{USAGE}");
+            ExitCode::SUCCESS
+        }
+        Some("--version" | "-V") => {
+            println!("shaderlab {}", env!("CARGO_PKG_VERSION"));
+            ExitCode::SUCCESS
+        }
+        Some("list") => {
+            let mut lines = Vec::new();
+            let mut lecture = "";
+            for entry in labs::ALL {
+                let info = entry.info;
+                if info.lecture != lecture {
+                    lecture = info.lecture;
+                    lines.push(lecture.to_owned());
+                }
+                lines.push(format!(
+                    "  {:<22} {} {} ({}x{})",
+                    info.name, info.title, info.label, info.size.0, info.size.1
+                ));
+            }
+            // A closed pipe (`shaderlab list | head`) ends the listing quietly.
+            let mut out = std::io::stdout().lock();
+            let _ = lines.iter().try_for_each(|l| writeln!(out, "{l}"));
+            ExitCode::SUCCESS
+        }
+        Some(verb @ ("run" | "record" | "legacy")) => {
+            let (name, rest) = if verb == "legacy" {
+                (Some("legacy"), 2)
+            } else {
+                (words.get(2).map(String::as_str), 3)
+            };
+            let Some(entry) = name.and_then(labs::find) else {
+                let names: Vec<&str> = labs::ALL.iter().map(|e| e.info.name).collect();
+                eprintln!(
+                    "shaderlab {verb}: {}; the labs are: {}\n\nUsage: shaderlab {verb} NAME{} [FLAGS…]",
+                    match name {
+                        Some(n) if !n.starts_with('-') => format!("no lab called `{n}`"),
+                        _ => "which lab?".to_owned(),
+                    },
+                    names.join(", "),
+                    if verb == "record" { " OUT" } else { "" }
+                );
+                return ExitCode::from(2);
+            };
+            let mut args: Vec<OsString> = vec![format!("shaderlab {verb} {}", entry.info.name).into()];
+            if verb == "record" {
+                match argv.get(3) {
+                    Some(out) => args.extend([OsString::from("--record"), out.clone()]),
+                    None => {
+                        eprintln!("shaderlab record: where to? Usage: shaderlab record NAME OUT --frames N [FLAGS…]");
+                        return ExitCode::from(2);
+                    }
+                }
+                args.extend(argv.drain(4..));
+            } else {
+                args.extend(argv.drain(rest.min(argv.len())..));
+            }
+            shaderlab::shell::main_from(entry, args)
+        }
+        Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),
+        Some("bench") => match bench::run(argv.drain(1..)) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("shaderlab bench: error: {e:#}");
+                ExitCode::from(1)
+            }
+        },
+        Some(other) => {
+            eprintln!("shaderlab: unknown command `{other}`\n\n{USAGE}");
+            ExitCode::from(2)
+        }
+    }
+}
