@@ -165,41 +165,92 @@ pub fn check_writable(path: &Path) -> Result<()> {
 /// - Hard links are broken, by the design of atomic replacement: the new contents are a new
 ///   file renamed over this name; the other names of the old file keep the old contents.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<()> {
-    check_output_path(path)?;
-    let target = resolve_target(path)?;
-    if target != path {
-        check_output_path(&target)?;
-    }
-    let (temp, file) = create_temp(&target)?;
-    let registered = cleanup::register(&temp);
-    let fail = |source: io::Error| {
-        let _ = fs::remove_file(&temp);
-        Error::Io {
+    let mut file = AtomicFile::create(path)?;
+    write(&mut file).map_err(|source| Error::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    file.commit()
+}
+
+/// A file written whole or not at all, for writers that live longer than one call (a
+/// recording that grows frame by frame): bytes go to a temporary file next to the target
+/// (known to the signal handler), [`AtomicFile::commit`] renames it into place as
+/// [`write_atomic`] does, and dropping it uncommitted removes it.
+pub struct AtomicFile {
+    path: PathBuf,
+    target: PathBuf,
+    temp: PathBuf,
+    out: Option<BufWriter<File>>,
+    _registered: cleanup::Registered,
+}
+
+impl AtomicFile {
+    /// Starts writing `path` (checked with [`check_output_path`], written through links).
+    pub fn create(path: &Path) -> Result<AtomicFile> {
+        check_output_path(path)?;
+        let target = resolve_target(path)?;
+        if target != path {
+            check_output_path(&target)?;
+        }
+        let (temp, file) = create_temp(&target)?;
+        let registered = cleanup::register(&temp);
+        Ok(AtomicFile {
             path: path.to_owned(),
+            target,
+            temp,
+            out: Some(BufWriter::new(file)),
+            _registered: registered,
+        })
+    }
+
+    /// Flushes to disk and renames over the target (keeping an existing file's permission
+    /// bits and, where allowed, its owner); on failure the target is left as it was.
+    pub fn commit(mut self) -> Result<()> {
+        let fail = |source: io::Error| Error::Io {
+            path: self.path.clone(),
             source,
+        };
+        let out = self.out.take().expect("an open file until committed");
+        let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
+        if let Ok(meta) = fs::metadata(&self.target) {
+            file.set_permissions(meta.permissions()).map_err(fail)?;
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::MetadataExt;
+                // Best effort: only root may give a file away; anyone may keep their own.
+                let _ = std::os::unix::fs::fchown(&file, Some(meta.uid()), Some(meta.gid()));
+            }
         }
-    };
-    let mut out = BufWriter::new(file);
-    write(&mut out).map_err(fail)?;
-    let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
-    if let Ok(meta) = fs::metadata(&target) {
-        file.set_permissions(meta.permissions()).map_err(fail)?;
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::MetadataExt;
-            // Best effort: only root may give a file away; anyone may keep their own.
-            let _ = std::os::unix::fs::fchown(&file, Some(meta.uid()), Some(meta.gid()));
+        file.sync_all().map_err(fail)?;
+        drop(file);
+        fs::rename(&self.temp, &self.target).map_err(fail)?;
+        // Renamed: nothing left to remove on drop.
+        self.temp = PathBuf::new();
+        // Make the rename itself durable (best effort: not every platform can open a directory).
+        if let Ok(dir) = File::open(parent_dir(&self.target)) {
+            let _ = dir.sync_all();
+        }
+        Ok(())
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.out.as_mut().map_or(Ok(0), |o| o.write(buf))
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.out.as_mut().map_or(Ok(()), BufWriter::flush)
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if !self.temp.as_os_str().is_empty() {
+            self.out = None;
+            let _ = fs::remove_file(&self.temp);
         }
     }
-    file.sync_all().map_err(fail)?;
-    drop(file);
-    fs::rename(&temp, &target).map_err(fail)?;
-    drop(registered);
-    // Make the rename itself durable (best effort: not every platform can open a directory).
-    if let Ok(dir) = File::open(parent_dir(&target)) {
-        let _ = dir.sync_all();
-    }
-    Ok(())
 }
 
 /// Removing temporary files when the process is told to stop (SIGINT, SIGTERM, SIGHUP) while

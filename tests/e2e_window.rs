@@ -1701,3 +1701,63 @@ fn a_window_without_runtime_dir_prints_no_mesa_warnings() {
         "the control run should show Mesa's warning; the test would not see a regression: {control}"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// F10
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn f10_records_what_the_window_shows_into_a_gif() {
+    use image::AnimationDecoder;
+    let x = Xvfb::start("f10");
+    let mut lab = x.launch("wave", &[], &[]);
+    lab.first_frame();
+    lab.keys(&["F10"]);
+    let started = poll(Duration::from_secs(10), || {
+        lab.stderr().contains("recording to ").then_some(())
+    });
+    assert!(started.is_some(), "F10 said nothing; stderr:\n{}", lab.stderr());
+    std::thread::sleep(Duration::from_millis(1500));
+    lab.keys(&["F10"]);
+    let line = poll(Duration::from_secs(10), || {
+        lab.stdout()
+            .lines()
+            .find(|l| l.starts_with("recording: "))
+            .map(str::to_owned)
+    })
+    .unwrap_or_else(|| panic!("F10 printed no `recording:` line; stderr:\n{}", lab.stderr()));
+    let path = PathBuf::from(
+        line.trim_start_matches("recording: ")
+            .split(" (")
+            .next()
+            .unwrap()
+            .trim(),
+    );
+    assert!(
+        path.starts_with(&lab.x.dir),
+        "not in the current directory: {}",
+        path.display()
+    );
+    let name = path.file_name().unwrap().to_string_lossy().into_owned();
+    assert!(name.starts_with("wave-") && name.ends_with(".gif"), "{name}");
+    let bytes = std::fs::read(&path).unwrap();
+    let frames = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(bytes))
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap();
+    assert!(frames.len() >= 3, "{} frames in 1.5 s", frames.len());
+    assert_eq!(frames[0].buffer().dimensions(), (512, 512));
+    assert_ne!(
+        frames[0].buffer(),
+        frames[frames.len() - 1].buffer(),
+        "the wave moved while recording"
+    );
+    let leftovers: Vec<_> = std::fs::read_dir(&lab.x.dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+    lab.escape();
+}

@@ -8,6 +8,7 @@
 //! with 1.
 
 mod args;
+mod capture;
 mod headless;
 pub mod record;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]

@@ -165,6 +165,12 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
             ))
         }
     }
+    // A recording still running when the window closes is kept, not lost.
+    if let Some(state) = app.state.as_mut() {
+        if state.capture.is_some() {
+            state.toggle_capture();
+        }
+    }
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
@@ -233,6 +239,8 @@ struct WindowState {
     lose_device_at: Option<Instant>,
     reload: Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)>,
     screenshots: u32,
+    /// F10's recording, while one runs.
+    capture: Option<super::capture::Capture>,
 }
 
 impl App {
@@ -424,6 +432,7 @@ impl App {
             lose_device_at,
             reload,
             screenshots: 0,
+            capture: None,
         })
     }
 }
@@ -476,6 +485,9 @@ impl WindowState {
         let mut title = self.lab.title();
         if self.shader_error {
             title.push_str(" | SHADER ERROR (see terminal)");
+        }
+        if let Some(c) = &self.capture {
+            title.push_str(&format!(" | REC {} frames (F10 stops)", c.frames()));
         }
         self.window.set_title(&title);
     }
@@ -563,26 +575,69 @@ impl WindowState {
         self.update_title();
     }
 
-    fn screenshot(&mut self) {
+    /// A fresh name in the current directory: `NAME-SECONDS-PID-N.EXT` (F12 and F10).
+    fn fresh_name(&mut self, extension: &str) -> PathBuf {
         self.screenshots += 1;
         let stamp = std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs())
             .unwrap_or(0);
         // The process id keeps two windows started in the same second apart.
-        let mut path;
         loop {
-            path = PathBuf::from(format!(
-                "{}-{stamp}-{}-{}.png",
+            let path = PathBuf::from(format!(
+                "{}-{stamp}-{}-{}.{extension}",
                 self.name(),
                 std::process::id(),
                 self.screenshots
             ));
             if !path.exists() {
-                break;
+                return path;
             }
             self.screenshots += 1;
         }
+    }
+
+    /// F10: starts or stops recording what the window shows.
+    fn toggle_capture(&mut self) {
+        match self.capture.take() {
+            Some(capture) => {
+                let frames = capture.frames();
+                match capture.finish() {
+                    Ok(path) => println!(
+                        "recording: {} ({frames} frames)",
+                        std::fs::canonicalize(&path).unwrap_or(path).display()
+                    ),
+                    Err(e) => eprintln!("{}: recording failed: {e}", self.name()),
+                }
+            }
+            None => {
+                let path = self.fresh_name("gif");
+                match super::capture::Capture::start(&path) {
+                    Ok(capture) => {
+                        eprintln!("{}: recording to {} (F10 stops)", self.name(), path.display());
+                        self.capture = Some(capture);
+                        self.dirty = self.dirty.max(2);
+                    }
+                    Err(e) => eprintln!("{}: cannot record: {e}", self.name()),
+                }
+            }
+        }
+        self.update_title();
+    }
+
+    /// Adds the frame just shown to F10's recording.
+    fn capture_frame(&mut self) {
+        let Some(capture) = self.capture.as_mut() else { return };
+        let (w, h) = (self.config.width, self.config.height);
+        if let Err(e) = capture.add(&self.gpu, self.lab.as_mut(), w, h, self.config.format) {
+            eprintln!("{}: recording stopped: {e}", self.name());
+            self.capture = None;
+        }
+        self.update_title();
+    }
+
+    fn screenshot(&mut self) {
+        let path = self.fresh_name("png");
         let (w, h) = (self.config.width, self.config.height);
         // Drawn by the window's own pipelines (its format), read back as RGB.
         let target = Offscreen::with_format(&self.gpu, w, h, self.config.format);
@@ -805,6 +860,7 @@ impl WindowState {
         match &event.logical_key {
             Key::Named(NamedKey::Escape) => event_loop.exit(),
             Key::Named(NamedKey::F12) => self.screenshot(),
+            Key::Named(NamedKey::F10) => self.toggle_capture(),
             Key::Named(NamedKey::Space) if self.lab.animated() => self.toggle_clock(),
             Key::Named(named) => {
                 let special = match named {
@@ -921,6 +977,7 @@ impl ApplicationHandler for App {
                     self.error = Some(e);
                     event_loop.exit();
                 }
+                state.capture_frame();
             }
             _ => {}
         }
