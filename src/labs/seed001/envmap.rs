@@ -16,7 +16,7 @@ use crate::render::{sampler, Bind, Computed, SamplerDesc, Texture};
 
 use crate::labs::seed001::stage::{OnSolid, UstcStage, OBJECT, ROTATION};
 
-/// Seed 001, §1.10: the `EnvMap` block is computed ([`env_map`]); the cube map and its
+/// Seed 001, §1.10: the `EnvMap` block is computed (`env_map`); the cube map and its
 /// sampler are the lab's own bindings.
 pub static RECIPE: Recipe = Recipe {
     info: LabInfo {

@@ -29,7 +29,7 @@ use crate::shader::CompiledShader;
 use crate::labs::seed001::gl_light::{GlLight, COURSE};
 use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
 
-/// Seed 001, §1.2: both blocks are the stage's ([`Course`]): the `UniformArrays` block as the
+/// Seed 001, §1.2: both blocks are the stage's (`Course`): the `UniformArrays` block as the
 /// course's setters leave it for `mode`, and the GL light state.
 pub static RECIPE: Recipe = Recipe {
     info: LabInfo {
