@@ -9,51 +9,65 @@
 
 use glam::Vec3;
 
-use crate::error::Result;
 use crate::geometry::shapes::HeightVertex;
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
-use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState};
+use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::params::ParamSpec;
+use crate::render::{GpuMesh, RenderState};
 
 use crate::labs::seed001::immediate::Immediate;
-use crate::labs::seed001::stage::{UstcStage, ROTATION};
+use crate::labs::seed001::stage::{OnPicked, UstcStage, ROTATION};
 
-/// Seed 001, §1.1.
-pub static INFO: LabInfo = LabInfo {
-    name: "height",
-    title: "ref001",
-    label: "custom vertex attribute",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text("v: feeding mode (per-vertex calls / arrays; same image); left drag rotates"),
-    files: FilesTaken::NONE,
+/// Seed 001, §1.1: no uniform block besides the Transform; `mode` picks the strip.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "height",
+        title: "ref001",
+        label: "custom vertex attribute",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: Keys::rows(&[KeyRow::cycle(&[C('v')], "mode")], "left drag rotates"),
+        files: FilesTaken::NONE,
+    },
+    params: &[
+        &[ParamSpec::choice(
+            "mode",
+            &[0.0],
+            &["immediate", "arrays"],
+            "how height is fed: 0 glVertexAttrib1f per vertex, 1 attribute arrays (v)",
+        )],
+        ROTATION,
+    ],
+    animated: false,
+    title: None,
+    build: |cx, p| {
+        let stage = OnPicked {
+            stage: UstcStage::new(cx.gpu, "height", Vec3::new(0.0, 0.0, 4.0)),
+            meshes: vec![
+                GpuMesh::new(cx.gpu, "height.immediate", &immediate_strip(), None),
+                GpuMesh::new(cx.gpu, "height.arrays", &array_strip(), None),
+            ],
+            choice: "mode",
+        };
+        Shaded::build(cx, "height", p, stage, &LOOK, Vec::new())
+    },
+};
+
+static LOOK: Look = Look {
+    passes: &[Pass::new("height.vert", "pass_color.frag")
+        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))],
+    draw: crate::lab::Draw::All,
+    hook: None,
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 // glVertex2f's x, y and the `height` attribute (GL converts both to the shader's types).
 crate::vertex_type!(HeightVertex, {
     position: "vertex_position" => Float32x2,
     height: "height" => Float32,
 });
-
-const OWN: &[ParamSpec] = &[ParamSpec::choice(
-    "mode",
-    &[0.0],
-    &["immediate", "arrays"],
-    "how height is fed: 0 glVertexAttrib1f per vertex, 1 attribute arrays (v)",
-)];
-
-fn params() -> Params {
-    let mut p = Params::new(OWN);
-    p.extend(ROTATION);
-    p
-}
 
 /// Mode 0, the course's first listing: `glBegin(GL_TRIANGLE_STRIP)`, then
 /// `glVertexAttrib1f(loc, h); glVertex2f(x, y);` four times.
@@ -84,60 +98,4 @@ pub fn array_strip() -> Vec<HeightVertex> {
             height,
         })
         .collect()
-}
-
-struct Height {
-    params: Params,
-    stage: UstcStage,
-    program: Program<HeightVertex>,
-    /// Indexed by `mode`.
-    strips: [GpuMesh<HeightVertex>; 2],
-}
-
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, "height", Vec3::new(0.0, 0.0, 4.0));
-    let state = RenderState::default().topology(wgpu::PrimitiveTopology::TriangleStrip);
-    let mut program = Program::new(cx, "height", "height.vert", "pass_color.frag", state)?;
-    program.bind(cx.gpu, vec![stage.transform.bind()])?;
-    let strips = [
-        GpuMesh::new(cx.gpu, "height.immediate", &immediate_strip(), None),
-        GpuMesh::new(cx.gpu, "height.arrays", &array_strip(), None),
-    ];
-    Ok(Box::new(Height {
-        params: params(),
-        stage,
-        program,
-        strips,
-    }))
-}
-
-impl Lab for Height {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        match input {
-            Input::Key('v') => {
-                self.params.cycle("mode");
-                true
-            }
-            _ => self.stage.input(&mut self.params, input),
-        }
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        self.stage.upload(frame.gpu, &self.params, frame.width, frame.height);
-        let strip = &self.strips[self.params.index_of("mode").min(1)];
-        let mut pass = frame.pass("height", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, strip);
-        Ok(())
-    }
 }

@@ -16,41 +16,55 @@ use std::f64::consts::TAU;
 
 use glam::Vec3;
 
-use crate::error::Result;
 use crate::geometry::shapes::{morph_vertices, MorphVertex};
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+use crate::render::{Computed, GpuMesh};
 
 use crate::labs::seed001::immediate::Immediate;
-use crate::labs::seed001::stage::{UstcStage, ROTATION};
+use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
 
-/// Seed 001, §1.4.
-pub static INFO: LabInfo = LabInfo {
-    name: "morph",
-    title: "ref001",
-    label: "morphing",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text("Space pauses the clock; left drag rotates"),
-    files: FilesTaken::NONE,
+/// Seed 001, §1.4: the `Morph` block's `time` is [`time_uniform`] of the clock.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "morph",
+        title: "ref001",
+        label: "morphing",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: Keys::text("Space pauses the clock; left drag rotates"),
+        files: FilesTaken::NONE,
+    },
+    params: &[
+        &[ParamSpec::real(
+            "time",
+            &[0.0],
+            -1e9,
+            1e9,
+            "seconds (the shader gets milliseconds; a clock in a window, Space pauses)",
+        )],
+        ROTATION,
+    ],
+    animated: true,
+    title: None,
+    build: |cx, p| {
+        let stage = OnMesh {
+            stage: UstcStage::new(cx.gpu, "morph", Vec3::new(0.0, 0.0, 4.0)),
+            mesh: GpuMesh::new(cx.gpu, "morph.triangles", &course_triangles()[..DRAWN], None),
+        };
+        Shaded::build(cx, "morph", p, stage, &LOOK, Vec::new())
+    },
+};
+
+static LOOK: Look = Look {
+    passes: &[Pass::new("morph.vert", "pass_color.frag")],
+    draw: crate::lab::Draw::All,
+    hook: Some(|p: &Params, c: &mut Computed| c.set("time", &[time_uniform(p.f64("time"))])),
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
-
-/// The `Morph` block of `morph.vert`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct MorphUniforms {
-    /// `time` in milliseconds.
-    pub time: f32,
-}
-crate::uniform_block!(MorphUniforms, "Morph", { time: "time" });
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 // gl_Vertex (vertices_one) and the vertices2 attribute (vertices_two).
 crate::vertex_type!(MorphVertex, {
@@ -58,22 +72,8 @@ crate::vertex_type!(MorphVertex, {
     two: "vertices2" => Float32x3,
 });
 
-/// Vertices GL draws of the course's 50: whole triangles only.
-const DRAWN: u32 = 48;
-
-const OWN: &[ParamSpec] = &[ParamSpec::real(
-    "time",
-    &[0.0],
-    -1e9,
-    1e9,
-    "seconds (the shader gets milliseconds; a clock in a window, Space pauses)",
-)];
-
-fn params() -> Params {
-    let mut p = Params::new(OWN);
-    p.extend(ROTATION);
-    p
-}
+/// Vertices GL draws of the course's 50: whole triangles only (the mesh holds those).
+const DRAWN: usize = 48;
 
 /// The `time` uniform: the state's seconds × 1000. The shader only uses `sin(0.001·time)`, so
 /// the seconds are wrapped by 2π first (in double): the same value below 2π s, and a window left
@@ -95,56 +95,4 @@ pub fn course_triangles() -> Vec<MorphVertex> {
         triangles.vertex(|c| c.one = v.one);
     }
     triangles.end()
-}
-
-struct Morph {
-    params: Params,
-    stage: UstcStage,
-    uniforms: Uniforms<MorphUniforms>,
-    program: Program<MorphVertex>,
-    mesh: GpuMesh<MorphVertex>,
-}
-
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, "morph", Vec3::new(0.0, 0.0, 4.0));
-    let uniforms = Uniforms::new(cx.gpu, "morph.params", MorphUniforms { time: 0.0 });
-    let mut program = Program::new(cx, "morph", "morph.vert", "pass_color.frag", RenderState::default())?;
-    program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
-    let mesh = GpuMesh::new(cx.gpu, "morph.triangles", &course_triangles(), None);
-    Ok(Box::new(Morph {
-        params: params(),
-        stage,
-        uniforms,
-        program,
-        mesh,
-    }))
-}
-
-impl Lab for Morph {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        self.stage.input(&mut self.params, input)
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn animated(&self) -> bool {
-        true
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        self.uniforms.value.time = time_uniform(self.params.f64("time"));
-        self.uniforms.upload(frame.gpu);
-        self.stage.upload(frame.gpu, &self.params, frame.width, frame.height);
-        let mut pass = frame.pass("morph", Load::Clear([0.0; 3]));
-        self.program.draw_range(&mut pass, &self.mesh, 0..DRAWN);
-        Ok(())
-    }
 }

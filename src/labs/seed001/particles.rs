@@ -8,47 +8,69 @@
 
 use glam::{Mat4, Vec3};
 
-use crate::error::Result;
 use crate::geometry::shapes::{particle_velocities, PARTICLE_COUNT};
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::gpu::Gpu;
+use crate::lab::{FilesTaken, Input, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+use crate::render::{Bind, Computed, GpuMesh, RenderState};
 
 use crate::labs::seed001::immediate::Immediate;
 use crate::labs::seed001::stage::{UstcStage, ROTATION};
 
-/// Seed 001, §1.5.
-pub static INFO: LabInfo = LabInfo {
-    name: "particles",
-    title: "ref001",
-    label: "particle system",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text(
-        "Space pauses the clock; r: restart at t = 0; g/G: g ∓0.5; m/M: m ∓0.25 (≥ 0.25); left drag rotates",
-    ),
-    files: FilesTaken::NONE,
+/// Seed 001, §1.5: the `Particles` block's `g` and `m` are parameters, its `t` the clock
+/// `time` as is (no wrap: the course's t grows).
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "particles",
+        title: "ref001",
+        label: "particle system",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: Keys::rows(
+            &[
+                KeyRow::step(&[C('g'), C('G')], "g", 0.5),
+                KeyRow::step(&[C('m'), C('M')], "m", 0.25),
+            ],
+            "Space pauses the clock; r: restart at t = 0; left drag rotates",
+        ),
+        files: FilesTaken::NONE,
+    },
+    params: &[
+        &[
+            ParamSpec::real(
+                "time",
+                &[0.0],
+                -1e9,
+                1e9,
+                "t in seconds (a clock in a window; Space pauses, r restarts)",
+            ),
+            ParamSpec::real("g", &[-2.0], -1000.0, 1000.0, "gravity (g G)"),
+            ParamSpec::real("m", &[1.0], 0.25, 1000.0, "mass (m M)"),
+        ],
+        ROTATION,
+    ],
+    animated: true,
+    title: None,
+    build: |cx, p| {
+        let stage = Fountain {
+            stage: UstcStage::new(cx.gpu, "particles", Vec3::new(0.0, 1.0, 4.0)),
+            points: GpuMesh::new(cx.gpu, "particles.points", &course_points(), None),
+        };
+        Shaded::build(cx, "particles", p, stage, &LOOK, Vec::new())
+    },
+};
+
+static LOOK: Look = Look {
+    // GL_POINTS at GL's default point size 1 (the only size WebGPU draws).
+    passes: &[Pass::new("particles.vert", "particles.frag")
+        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::PointList))],
+    draw: crate::lab::Draw::All,
+    hook: Some(|p: &Params, c: &mut Computed| c.set("t", &[p.f("time")])),
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
-
-/// The `Particles` block of `particles.vert`: `uniform float g, m, t;`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct ParticlesUniforms {
-    /// `g`: gravity.
-    pub g: f32,
-    /// `m`: mass.
-    pub m: f32,
-    /// `t`: time in seconds.
-    pub t: f32,
-}
-crate::uniform_block!(ParticlesUniforms, "Particles", { g: "g", m: "m", t: "t" });
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 /// One particle: `glVertexAttrib3fv(vel, …); glVertex3f(0, −1, 0);`.
 #[repr(C)]
@@ -63,24 +85,6 @@ crate::vertex_type!(ParticleVertex, {
     position: "vertex_position" => Float32x3,
     vel: "vel" => Float32x3,
 });
-
-const OWN: &[ParamSpec] = &[
-    ParamSpec::real(
-        "time",
-        &[0.0],
-        -1e9,
-        1e9,
-        "t in seconds (a clock in a window; Space pauses, r restarts)",
-    ),
-    ParamSpec::real("g", &[-2.0], -1000.0, 1000.0, "gravity (g G)"),
-    ParamSpec::real("m", &[1.0], 0.25, 1000.0, "mass (m M)"),
-];
-
-fn params() -> Params {
-    let mut p = Params::new(OWN);
-    p.extend(ROTATION);
-    p
-}
 
 /// The 2000 particles as the pinned loop sends them: for each, `glVertexAttrib3fv(vel, v_i)`
 /// then `glVertex3f(0, −1, 0)` inside `glBegin(GL_POINTS)`.
@@ -113,78 +117,27 @@ pub fn gl_point_rule(projection: Mat4, width: u32) -> Mat4 {
     shift * projection
 }
 
-struct Particles {
-    params: Params,
+/// The frame with the points drawn by GL's rule ([`gl_point_rule`]), and key `r`.
+struct Fountain {
     stage: UstcStage,
-    uniforms: Uniforms<ParticlesUniforms>,
-    program: Program<ParticleVertex>,
     points: GpuMesh<ParticleVertex>,
 }
 
-fn uniforms_of(p: &Params) -> ParticlesUniforms {
-    ParticlesUniforms {
-        g: p.f("g"),
-        m: p.f("m"),
-        t: p.f("time"),
+impl Stage for Fountain {
+    type Vertex = ParticleVertex;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        if input == Input::Key('r') {
+            p.put("time", &[0.0]);
+            return true;
+        }
+        self.stage.input(p, input)
     }
-}
-
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, "particles", Vec3::new(0.0, 1.0, 4.0));
-    let p = params();
-    let uniforms = Uniforms::new(cx.gpu, "particles.params", uniforms_of(&p));
-    // GL_POINTS at GL's default point size 1 (the only size WebGPU draws).
-    let state = RenderState::default().topology(wgpu::PrimitiveTopology::PointList);
-    let mut program = Program::new(cx, "particles", "particles.vert", "particles.frag", state)?;
-    program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
-    let points = GpuMesh::new(cx.gpu, "particles.points", &course_points(), None);
-    Ok(Box::new(Particles {
-        params: p,
-        stage,
-        uniforms,
-        program,
-        points,
-    }))
-}
-
-impl Lab for Particles {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.stage.transform.bind()]
     }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        let (name, delta) = match input {
-            Input::Key('r') => {
-                self.params.put("time", &[0.0]);
-                return true;
-            }
-            Input::Key('g') => ("g", -0.5),
-            Input::Key('G') => ("g", 0.5),
-            Input::Key('m') => ("m", -0.25),
-            Input::Key('M') => ("m", 0.25),
-            _ => return self.stage.input(&mut self.params, input),
-        };
-        self.params.step(name, delta);
-        true
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn animated(&self) -> bool {
-        true
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        self.uniforms.value = uniforms_of(&self.params);
-        self.uniforms.upload(frame.gpu);
-        let projection = gl_point_rule(UstcStage::projection(frame.width, frame.height), frame.width);
-        self.stage.upload_with(frame.gpu, &self.params, projection);
-        let mut pass = frame.pass("particles", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, &self.points);
-        Ok(())
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<ParticleVertex> {
+        let projection = gl_point_rule(UstcStage::projection(width, height), width);
+        self.stage.upload_with(gpu, p, projection);
+        &self.points
     }
 }

@@ -196,3 +196,28 @@ impl<V: VertexType + 'static> crate::lab::Stage for OnMesh<V> {
         &self.mesh
     }
 }
+
+/// The frame as the runner draws it ([`crate::lab::Stage`]): one of the lab's meshes, the one a
+/// choice parameter names (meshes in the choice's order).
+pub struct OnPicked<V: VertexType> {
+    /// The frame.
+    pub stage: UstcStage,
+    /// The meshes, indexed by the choice.
+    pub meshes: Vec<GpuMesh<V>>,
+    /// The choice parameter.
+    pub choice: &'static str,
+}
+
+impl<V: VertexType + 'static> crate::lab::Stage for OnPicked<V> {
+    type Vertex = V;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
+    }
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.stage.transform.bind()]
+    }
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
+        self.stage.upload(gpu, p, width, height);
+        &self.meshes[p.index_of(self.choice).min(self.meshes.len() - 1)]
+    }
+}

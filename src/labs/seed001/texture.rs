@@ -7,33 +7,56 @@
 
 use glam::Vec3;
 
-use crate::error::Result;
 use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
 use crate::mesh::Mesh;
-use crate::params::Params;
-use crate::render::{sampler, Bind, Frame, GpuMesh, Load, Program, RenderState, SamplerDesc, Texture};
+use crate::render::{sampler, Bind, GpuMesh, SamplerDesc, Texture};
 
-use crate::labs::seed001::stage::{UstcStage, ROTATION};
+use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
 
-/// Seed 001, §1.9.
-pub static INFO: LabInfo = LabInfo {
-    name: "texture",
-    title: "ref001",
-    label: "texture mapping",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text("left drag rotates"),
-    files: FilesTaken::NONE,
+/// Seed 001, §1.9: no uniform block besides the Transform; the image and its sampler are the
+/// lab's own bindings.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "texture",
+        title: "ref001",
+        label: "texture mapping",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: Keys::text("left drag rotates"),
+        files: FilesTaken::NONE,
+    },
+    params: &[ROTATION],
+    animated: false,
+    title: None,
+    build: |cx, p| {
+        let image = images::uvgrid();
+        let texture = Texture::new(cx.gpu, "texture.uvgrid", image.width, image.height, 1, &[image.rgba]);
+        // GL_REPEAT on s and t, GL_LINEAR for both filters, no mipmaps.
+        let sampler = sampler(cx.gpu, "texture.sampler", &SamplerDesc::default());
+        let (vertices, indices) = textured_teapot();
+        let stage = OnMesh {
+            stage: UstcStage::new(cx.gpu, "texture", Vec3::new(0.0, 0.0, 4.0)),
+            mesh: GpuMesh::new(cx.gpu, "texture.teapot", &vertices, Some(&indices)),
+        };
+        let own = vec![
+            Bind::texture("myTexture", &texture),
+            Bind::sampler("myTextureSampler", &sampler),
+        ];
+        Shaded::build(cx, "texture", p, stage, &LOOK, own)
+    },
+};
+
+static LOOK: Look = Look {
+    passes: &[Pass::new("texture.vert", "texture.frag")],
+    draw: crate::lab::Draw::All,
+    hook: None,
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 /// A GLUT vertex with freeglut's solid-teapot texture coordinates.
 #[repr(C)]
@@ -67,64 +90,4 @@ pub fn textured_teapot() -> (Vec<TexturedVertex>, Vec<u32>) {
         })
         .collect();
     (vertices, mesh.indices)
-}
-
-fn params() -> Params {
-    Params::new(ROTATION)
-}
-
-struct TextureLab {
-    params: Params,
-    stage: UstcStage,
-    program: Program<TexturedVertex>,
-    teapot: GpuMesh<TexturedVertex>,
-}
-
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, "texture", Vec3::new(0.0, 0.0, 4.0));
-    let image = images::uvgrid();
-    let texture = Texture::new(cx.gpu, "texture.uvgrid", image.width, image.height, 1, &[image.rgba]);
-    // GL_REPEAT on s and t, GL_LINEAR for both filters, no mipmaps.
-    let sampler = sampler(cx.gpu, "texture.sampler", &SamplerDesc::default());
-    let mut program = Program::new(cx, "texture", "texture.vert", "texture.frag", RenderState::default())?;
-    program.bind(
-        cx.gpu,
-        vec![
-            stage.transform.bind(),
-            Bind::texture("myTexture", &texture),
-            Bind::sampler("myTextureSampler", &sampler),
-        ],
-    )?;
-    let (vertices, indices) = textured_teapot();
-    let teapot = GpuMesh::new(cx.gpu, "texture.teapot", &vertices, Some(&indices));
-    Ok(Box::new(TextureLab {
-        params: params(),
-        stage,
-        program,
-        teapot,
-    }))
-}
-
-impl Lab for TextureLab {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        self.stage.input(&mut self.params, input)
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        self.stage.upload(frame.gpu, &self.params, frame.width, frame.height);
-        let mut pass = frame.pass("texture", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, &self.teapot);
-        Ok(())
-    }
 }

@@ -16,35 +16,75 @@ use bytemuck::Zeroable;
 use glam::Vec3;
 
 use crate::error::{Error, Result};
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::gpu::Gpu;
+use crate::lab::{
+    FilesTaken, Input, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Stage, DOWN, LEFT,
+    PAGE_DOWN, PAGE_UP, RIGHT, UP,
+};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, Load, Program, RenderState, Uniforms};
+use crate::render::{Bind, GpuMesh, Uniforms};
 use crate::shader::CompiledShader;
 
 use crate::labs::seed001::gl_light::{GlLight, COURSE};
-use crate::labs::seed001::stage::{Solids, UstcStage, OBJECT, ROTATION};
+use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
 
-/// Seed 001, §1.2.
-pub static INFO: LabInfo = LabInfo {
-    name: "uniform_arrays",
-    title: "ref001",
-    label: "uniform vectors and arrays",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text(
-        "e: setter style (whole arrays / element by element; same image); ←/→ ↑/↓ PageUp/PageDown: light ±0.25;\n\
-           h/H: shininess ∓5; 1-4: objects; left drag rotates",
-    ),
-    files: FilesTaken::NONE,
+/// Seed 001, §1.2: both blocks are the stage's (`Course`): the `UniformArrays` block as the
+/// course's setters leave it for `mode`, and the GL light state.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "uniform_arrays",
+        title: "ref001",
+        label: "uniform vectors and arrays",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: Keys::rows(
+            &[
+                KeyRow::cycle(&[C('e')], "mode"),
+                KeyRow::step(&[LEFT, RIGHT], "lx", 0.25),
+                KeyRow::step(&[DOWN, UP], "ly", 0.25),
+                KeyRow::step(&[PAGE_DOWN, PAGE_UP], "lz", 0.25),
+                KeyRow::step(&[C('h'), C('H')], "shininess", 5.0),
+            ],
+            "1-4: objects; left drag rotates",
+        ),
+        files: FilesTaken::NONE,
+    },
+    params: &[
+        &[ParamSpec::choice(
+            "mode",
+            &[0.0],
+            &["arrays", "elements"],
+            "setter style: 0 glUniform*v on whole arrays, 1 element by element (e)",
+        )],
+        OBJECT,
+        ROTATION,
+        COURSE.params,
+    ],
+    animated: false,
+    title: None,
+    build: |cx, p| {
+        let shader = cx.source.compile(LOOK.passes[0].frag)?;
+        let modes = [course_uniforms(&shader, 0)?, course_uniforms(&shader, 1)?];
+        let stage = Course {
+            solid: OnSolid::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0)),
+            light: GlLight::new(cx.gpu, "uniform_arrays", &COURSE),
+            block: Uniforms::new(cx.gpu, "uniform_arrays.params", modes[0]),
+            modes,
+        };
+        Shaded::build(cx, "uniform_arrays", p, stage, &LOOK, Vec::new())
+    },
+};
+
+static LOOK: Look = Look {
+    passes: &[Pass::new("uniform_arrays.vert", "uniform_arrays.frag")],
+    draw: crate::lab::Draw::All,
+    hook: None,
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 /// The `UniformArrays` block of `uniform_arrays.frag` (std140: a float, then 16-byte slots).
 #[repr(C)]
@@ -76,21 +116,6 @@ const SPEC_INTENSITY: f32 = 0.98;
 const SC: [f32; 4] = [0.8, 0.8, 0.8, 1.0];
 const THRESHOLD: [f32; 2] = [0.5, 0.25];
 const COLORS: [f32; 12] = [0.4, 0.4, 0.8, 1.0, 0.2, 0.2, 0.4, 1.0, 0.1, 0.1, 0.1, 1.0];
-
-const OWN: &[ParamSpec] = &[ParamSpec::choice(
-    "mode",
-    &[0.0],
-    &["arrays", "elements"],
-    "setter style: 0 glUniform*v on whole arrays, 1 element by element (e)",
-)];
-
-fn params() -> Params {
-    let mut p = Params::new(OWN);
-    p.extend(OBJECT);
-    p.extend(ROTATION);
-    p.extend(COURSE.params);
-    p
-}
 
 /// A uniform location as `glGetUniformLocation` returns it: where a member (or an element of
 /// an array member) starts, and the elements from there on.
@@ -219,75 +244,30 @@ pub fn course_uniforms(shader: &CompiledShader, mode: usize) -> Result<UniformAr
     Ok(value)
 }
 
-struct UniformArrays {
-    params: Params,
-    stage: UstcStage,
+/// GLUT's solid with the GL light state and the `UniformArrays` block of the current `mode`
+/// (each computed once, by [`course_uniforms`] on the fragment shader).
+struct Course {
+    solid: OnSolid,
     light: GlLight,
-    uniforms: Uniforms<UniformArraysUniforms>,
-    program: Program<Vertex>,
-    solids: Solids,
+    block: Uniforms<UniformArraysUniforms>,
+    modes: [UniformArraysUniforms; 2],
 }
 
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0));
-    let light = GlLight::new(cx.gpu, "uniform_arrays", &COURSE);
-    let mut program = Program::new(
-        cx,
-        "uniform_arrays",
-        "uniform_arrays.vert",
-        "uniform_arrays.frag",
-        RenderState::default(),
-    )?;
-    let uniforms = Uniforms::new(
-        cx.gpu,
-        "uniform_arrays.params",
-        course_uniforms(program.shaders().1, 0)?,
-    );
-    program.bind(
-        cx.gpu,
-        vec![stage.transform.bind(), light.uniforms.bind(), uniforms.bind()],
-    )?;
-    Ok(Box::new(UniformArrays {
-        params: params(),
-        stage,
-        light,
-        uniforms,
-        program,
-        solids: Solids::default(),
-    }))
-}
-
-impl Lab for UniformArrays {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
+impl Stage for Course {
+    type Vertex = Vertex;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.solid.input(p, input)
     }
-    fn params(&self) -> &Params {
-        &self.params
+    fn binds(&self) -> Vec<Bind> {
+        let mut binds = self.solid.binds();
+        binds.push(self.light.uniforms.bind());
+        binds.push(self.block.bind());
+        binds
     }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        match input {
-            Input::Key('e') => {
-                self.params.cycle("mode");
-                true
-            }
-            _ => self.light.input(&mut self.params, input) || self.stage.input(&mut self.params, input),
-        }
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        let gpu = frame.gpu;
-        self.uniforms.value = course_uniforms(self.program.shaders().1, self.params.index_of("mode"))?;
-        self.uniforms.upload(gpu);
-        self.light.upload(gpu, &self.params);
-        self.stage.upload(gpu, &self.params, frame.width, frame.height);
-        let mesh = self.solids.get(gpu, UstcStage::object(&self.params));
-        let mut pass = frame.pass("uniform_arrays", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, mesh);
-        Ok(())
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
+        self.light.upload(gpu, p);
+        self.block.value = self.modes[p.index_of("mode").min(1)];
+        self.block.upload(gpu);
+        self.solid.prepare(gpu, p, width, height)
     }
 }
