@@ -19,7 +19,6 @@ use common::{gpu, output_dir};
 use shaderlab::lab::{LabContext, LabEntry};
 use shaderlab::labs;
 use shaderlab::labs::common::TransformUniforms;
-use shaderlab::labs::seed000::phong::PhongUniforms;
 use shaderlab::metrics::{coverage, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::render::{Program, RenderState, Uniforms};
@@ -484,6 +483,30 @@ fn glsl2wgsl_tool() {
 // ---------------------------------------------------------------------------------------------
 // Uniform layout check
 
+/// `PhongParams` as a Rust struct (the phong lab fills the block by name, with no struct).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct PhongUniforms {
+    light_position: [f32; 3],
+    ka: f32,
+    ambient_color: [f32; 3],
+    kd: f32,
+    diffuse_color: [f32; 3],
+    ks: f32,
+    specular_color: [f32; 3],
+    shininess: f32,
+}
+shaderlab::uniform_block!(PhongUniforms, "PhongParams", {
+    light_position: "lightPosition",
+    ka: "Ka",
+    ambient_color: "ambientColor",
+    kd: "Kd",
+    diffuse_color: "diffuseColor",
+    ks: "Ks",
+    specular_color: "specularColor",
+    shininess: "shininess",
+});
+
 /// `PhongParams` with `Ka` before `lightPosition`: every offset of the first 16 bytes is wrong.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -527,7 +550,7 @@ fn mismatched_uniform_struct_is_rejected() {
     let frag = ShaderSource::Embedded.compile("phong.frag").unwrap();
     let block = frag.uniform_block("PhongParams").expect("PhongParams reflected");
     assert_eq!(block.member("Ka").map(|m| m.offset), Some(12));
-    check_layout::<PhongUniforms>("PhongUniforms", &block).expect("the real struct matches");
+    check_layout::<PhongUniforms>("PhongUniforms", &block).expect("the right struct matches");
     assert_layout_message(check_layout::<BadPhongUniforms>("BadPhongUniforms", &block).unwrap_err());
     // Binding the struct to a program runs the same check, and names both sides.
     let source = ShaderSource::Embedded;
@@ -550,7 +573,8 @@ fn mismatched_uniform_struct_is_rejected() {
         Err(Error::Binding(message)) => assert_layout_message(Error::Layout(message)),
         other => panic!("binding must reject the struct, got {:?}", other.err()),
     }
-    // A member's type counts, not only its offset: `int Ka` in an edited copy is refused.
+    // A member's type counts, not only its offset: `int Ka` in an edited copy is refused, by
+    // the lab too (it fills the block by name: Ka = 0.1 is no int).
     let copy = ShaderCopy::new("int_ka");
     let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
     std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
@@ -561,9 +585,21 @@ fn mismatched_uniform_struct_is_rejected() {
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
     };
+    let block =
+        Program::<shaderlab::mesh::Vertex>::new(&cx, "int_ka", "phong.vert", "phong.frag", RenderState::default())
+            .unwrap()
+            .block("PhongParams")
+            .cloned()
+            .unwrap();
+    let err = check_layout::<PhongUniforms>("PhongUniforms", &block).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("field `ka: f32` does not fit GLSL block PhongParams member `int Ka` (use i32)"),
+        "{err}"
+    );
     let err = (labs::PHONG.new)(&cx).err().expect("int Ka must be rejected");
     assert!(
-        matches!(&err, Error::Binding(m) if m.contains("field `ka: f32` does not fit GLSL block PhongParams member `int Ka` (use i32)")),
+        matches!(&err, Error::Layout(m) if m.contains("`Ka` (int Ka) takes whole numbers") && m.contains("got 0.1")),
         "{err}"
     );
 }

@@ -60,6 +60,11 @@ pub trait Scene {
     fn programs(&mut self) -> Vec<&mut dyn AnyProgram>;
     /// Records one frame.
     fn render(&mut self, p: &Params, frame: &mut Frame<'_>) -> Result<()>;
+    /// What the window title adds after the recipe's: state that is no parameter (a fly
+    /// camera that left its start); empty for most scenes.
+    fn status(&self, _p: &Params) -> String {
+        String::new()
+    }
 }
 
 /// Drives a [`Recipe`].
@@ -107,10 +112,11 @@ impl Lab for Runner {
         self.recipe.animated
     }
     fn title(&self) -> String {
-        match self.recipe.title {
+        let title = match self.recipe.title {
             Some(title) => title(&self.recipe.info, &self.params),
             None => params_title(&self.recipe.info, &self.params),
-        }
+        };
+        title + &self.scene.status(&self.params)
     }
 }
 
@@ -132,6 +138,10 @@ pub trait Stage: 'static {
     }
     /// Writes its blocks for a `width` × `height` frame and returns the mesh to draw.
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Self::Vertex>;
+    /// Its part of the window title ([`Scene::status`]).
+    fn status(&self, _p: &Params) -> String {
+        String::new()
+    }
 }
 
 /// A fixed mesh and no matrices (2D labs drawn in clip space).
@@ -283,6 +293,9 @@ impl<S: Stage> Scene for Shaded<S> {
     }
     fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
         self.programs.iter_mut().map(|p| p as &mut dyn AnyProgram).collect()
+    }
+    fn status(&self, p: &Params) -> String {
+        self.stage.status(p)
     }
     fn render(&mut self, p: &Params, frame: &mut Frame<'_>) -> Result<()> {
         if let Some(hook) = self.look.hook {

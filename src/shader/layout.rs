@@ -642,9 +642,50 @@ pub fn get_member<T: UniformBlock>(value: &T, block: &BlockLayout, name: &str) -
 #[cfg(test)]
 mod layout_tests {
     use super::*;
-    use crate::labs::seed000::phong::PhongUniforms;
     use crate::shader::{compile_text, embedded_source, ShaderSource};
     use naga::ShaderStage;
+
+    /// `PhongParams` as a Rust struct (the lab fills it by name now, with no struct).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+    struct PhongUniforms {
+        light_position: [f32; 3],
+        ka: f32,
+        ambient_color: [f32; 3],
+        kd: f32,
+        diffuse_color: [f32; 3],
+        ks: f32,
+        specular_color: [f32; 3],
+        shininess: f32,
+    }
+    crate::uniform_block!(PhongUniforms, "PhongParams", {
+        light_position: "lightPosition",
+        ka: "Ka",
+        ambient_color: "ambientColor",
+        kd: "Kd",
+        diffuse_color: "diffuseColor",
+        ks: "Ks",
+        specular_color: "specularColor",
+        shininess: "shininess",
+    });
+
+    /// Every member of `block` is fed by the lab's parameter of that name, with as many values
+    /// (what [`ParamBlock`](crate::render::ParamBlock) checks when the lab is built).
+    fn fed_by_params(block: &BlockLayout, lab: &crate::lab::LabEntry) {
+        let params = (lab.params)();
+        for member in &block.members {
+            let value = params
+                .get(&member.name)
+                .unwrap_or_else(|| panic!("{}: no parameter feeds `{}`", lab.info.name, member.declaration()));
+            assert_eq!(
+                value.len(),
+                member.components,
+                "{}: `{}`",
+                lab.info.name,
+                member.declaration()
+            );
+        }
+    }
 
     fn phong_params_with(edit: impl Fn(&str) -> String) -> BlockLayout {
         let params = edit(embedded_source("phong_params.glsl").unwrap());
@@ -683,22 +724,24 @@ mod layout_tests {
     #[test]
     fn every_lab_block_still_matches() {
         use crate::labs::common::TransformUniforms;
-        use crate::labs::seed000::displacement::DisplacementUniforms;
+        use crate::labs::{DISPLACEMENT, PHONG};
         let block = |file: &str, name: &str| {
             let shader = ShaderSource::Embedded.compile(file).unwrap();
             shader
                 .uniform_block(name)
                 .unwrap_or_else(|| panic!("{file} declares {name}"))
         };
+        // Phong's and displacement's blocks are filled by name: every member has its parameter
+        // (displacement's `time` is the clock wrapped by the lab's hook).
         for frag in ["phong.frag", "phong_flat.frag", "phong_blinn.frag"] {
-            check_layout::<PhongUniforms>("PhongUniforms", &block(frag, "PhongParams")).unwrap();
+            let params = block(frag, "PhongParams");
+            check_layout::<PhongUniforms>("PhongUniforms", &params).unwrap();
+            fed_by_params(&params, PHONG);
         }
-        check_layout::<PhongUniforms>("PhongUniforms", &block("phong_gouraud.vert", "PhongParams")).unwrap();
-        check_layout::<DisplacementUniforms>(
-            "DisplacementUniforms",
-            &block("displacement.vert", "DisplacementParams"),
-        )
-        .unwrap();
+        let params = block("phong_gouraud.vert", "PhongParams");
+        check_layout::<PhongUniforms>("PhongUniforms", &params).unwrap();
+        fed_by_params(&params, PHONG);
+        fed_by_params(&block("displacement.vert", "DisplacementParams"), DISPLACEMENT);
         for vert in ["position_rgb.vert", "normal_rgb.vert"] {
             check_layout::<TransformUniforms>("TransformUniforms", &block(vert, "Transform")).unwrap();
         }

@@ -7,11 +7,12 @@ pub mod displacement;
 pub mod noise;
 pub mod normal_rgb;
 pub mod phong;
-mod plain;
 pub mod position_rgb;
 
-use crate::lab::{Key::C, KeyRow};
+use crate::lab::{Key::C, KeyRow, Keys, LabInfo};
 use crate::params::{ParamSpec, Params};
+
+use stage::title_000;
 
 /// The simplex noise is periodic in `time` along (1,1,1): its lattice repeats every 289 skewed
 /// units, and a shift of t along (1,1,1) moves the skewed coordinates by 2t, so t = 289/2.
@@ -38,21 +39,6 @@ pub(crate) fn noise_time(p: &Params) -> f32 {
     }) as f32
 }
 
-/// The shade keys of exercises 4 and 5: `R/G/B` +0.05, `r/g/b` -0.05 on the noise colour.
-pub(crate) fn shade_key(p: &mut Params, key: char) -> bool {
-    let (channel, delta) = match key {
-        'R' => (0, 0.05),
-        'r' => (0, -0.05),
-        'G' => (1, 0.05),
-        'g' => (1, -0.05),
-        'B' => (2, 0.05),
-        'b' => (2, -0.05),
-        _ => return false,
-    };
-    p.step_clamped("shade", channel, delta, 0.0, 1.0);
-    true
-}
-
 /// The shade keys of exercises 4 and 5: `r/R`, `g/G`, `b/B` ∓/±0.05 on the noise colour,
 /// within [0, 1] (`--set` takes any value).
 pub(crate) const SHADE_KEYS: &[KeyRow] = &[
@@ -60,3 +46,11 @@ pub(crate) const SHADE_KEYS: &[KeyRow] = &[
     KeyRow::channel(&[C('g'), C('G')], "shade", 1, 0.05, 0.0, 1.0),
     KeyRow::channel(&[C('b'), C('B')], "shade", 2, 0.05, 0.0, 1.0),
 ];
+
+/// The keys of the exercises that are the stage alone (1 and 2).
+pub(crate) const STAGE_KEYS: Keys = Keys::text("1-4: cube, sphere, torus, teapot; left drag rotates");
+
+/// The title of the exercises that are the stage alone (1 and 2).
+pub(crate) fn stage_title(info: &LabInfo, p: &Params) -> String {
+    title_000(info, p, "drag to rotate, 1-4 objects", "")
+}

@@ -16,10 +16,10 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{FilesTaken, Input, Key::C, KeyRow, Keys, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
-use crate::render::{AnyProgram, Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+use crate::render::{AnyProgram, Computed, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, Uniforms};
 use crate::shader::ShaderSource;
 use crate::tess::Object;
 
@@ -33,10 +33,9 @@ pub static INFO: LabInfo = LabInfo {
     label: "Phong",
     lecture: "000 CMP211 Lab05",
     size: (640, 360),
-    keys: crate::lab::Keys::text(
-        "W/A/S/D: camera ±0.1 (light stays put); X/Y/Z x/y/z: light ±0.1; < >: Ka ∓0.05; [ ]: Kd ∓0.05;\n\
-           { }: Ks ∓0.05; H/h: shininess ±1; R/G/B r/g/b: diffuse colour ±0.01; m: shading model;\n\
-           1-4: objects; left drag rotates",
+    keys: Keys::rows(
+        KEYS,
+        "W/A/S/D: camera ±0.1 (light stays put); 1-4: objects; left drag rotates",
     ),
     files: FilesTaken::NONE,
 };
@@ -53,40 +52,24 @@ pub static ENTRY: LabEntry = LabEntry {
     new,
 };
 
-/// The `PhongParams` block of `phong_params.glsl` (std140: each vec3 shares 16 bytes with the float after it).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct PhongUniforms {
-    /// `lightPosition`, eye space.
-    pub light_position: [f32; 3],
-    /// `Ka`.
-    pub ka: f32,
-    /// `ambientColor`.
-    pub ambient_color: [f32; 3],
-    /// `Kd`.
-    pub kd: f32,
-    /// `diffuseColor`.
-    pub diffuse_color: [f32; 3],
-    /// `Ks`.
-    pub ks: f32,
-    /// `specularColor`.
-    pub specular_color: [f32; 3],
-    /// `shininess`.
-    pub shininess: f32,
-}
-crate::uniform_block!(PhongUniforms, "PhongParams", {
-    light_position: "lightPosition",
-    ka: "Ka",
-    ambient_color: "ambientColor",
-    kd: "Kd",
-    diffuse_color: "diffuseColor",
-    ks: "Ks",
-    specular_color: "specularColor",
-    shininess: "shininess",
-});
-
 /// Bound on light and camera coordinates.
 const REACH: f64 = 50.0;
+
+/// The keys on one parameter each (W/A/S/D move two: [`Phong::walk`]). Coefficients and
+/// colours within [0, 1], shininess within [6, 200], the light within ±50.
+const KEYS: &[KeyRow] = &[
+    KeyRow::channel(&[C('x'), C('X')], "lightPosition", 0, 0.1, -REACH, REACH),
+    KeyRow::channel(&[C('y'), C('Y')], "lightPosition", 1, 0.1, -REACH, REACH),
+    KeyRow::channel(&[C('z'), C('Z')], "lightPosition", 2, 0.1, -REACH, REACH),
+    KeyRow::channel(&[C('<'), C('>')], "Ka", 0, 0.05, 0.0, 1.0),
+    KeyRow::channel(&[C('['), C(']')], "Kd", 0, 0.05, 0.0, 1.0),
+    KeyRow::channel(&[C('{'), C('}')], "Ks", 0, 0.05, 0.0, 1.0),
+    KeyRow::channel(&[C('h'), C('H')], "shininess", 0, 1.0, 6.0, 200.0),
+    KeyRow::channel(&[C('r'), C('R')], "diffuseColor", 0, 0.01, 0.0, 1.0),
+    KeyRow::channel(&[C('g'), C('G')], "diffuseColor", 1, 0.01, 0.0, 1.0),
+    KeyRow::channel(&[C('b'), C('B')], "diffuseColor", 2, 0.01, 0.0, 1.0),
+    KeyRow::cycle(&[C('m')], "shading"),
+];
 
 /// The shading models, in the order key `m` cycles through them, with their shader files.
 const MODELS: [(&str, &str, &str); 4] = [
@@ -152,7 +135,8 @@ fn params() -> Params {
 struct Phong {
     params: Params,
     stage: GlutStage,
-    uniforms: Uniforms<PhongUniforms>,
+    /// The `PhongParams` block, filled by name from the parameters.
+    uniforms: ParamBlock,
     models: HashMap<usize, Program<Vertex>>,
     /// The model drawn last (the fallback while a chosen one does not build).
     drawn: usize,
@@ -167,14 +151,13 @@ struct Phong {
     marker_mesh: GpuMesh<Vertex>,
 }
 
-fn build_model(
-    cx: &LabContext,
-    stage: &GlutStage,
-    uniforms: &Uniforms<PhongUniforms>,
-    model: usize,
-) -> Result<Program<Vertex>> {
+fn program_of(cx: &LabContext, model: usize) -> Result<Program<Vertex>> {
     let (name, vert, frag) = MODELS[model];
-    let mut program = Program::new(cx, &format!("phong.{name}"), vert, frag, RenderState::default())?;
+    Program::new(cx, &format!("phong.{name}"), vert, frag, RenderState::default())
+}
+
+fn build_model(cx: &LabContext, stage: &GlutStage, uniforms: &ParamBlock, model: usize) -> Result<Program<Vertex>> {
+    let mut program = program_of(cx, model)?;
     program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
     Ok(program)
 }
@@ -189,8 +172,13 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         },
     );
     let p = params();
-    let uniforms = Uniforms::new(cx.gpu, "phong.params", uniforms_of(&p));
-    let model = build_model(cx, &stage, &uniforms, PHONG)?;
+    // Every member of `PhongParams` is the parameter of its name.
+    let mut model = program_of(cx, PHONG)?;
+    let layout = model
+        .block("PhongParams")
+        .ok_or_else(|| Error::Binding(format!("{} declares no PhongParams block", MODELS[PHONG].2)))?;
+    let uniforms = ParamBlock::new(cx.gpu, "phong.params", layout, &p, &Computed::default())?;
+    model.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
     let marker_transform = Uniforms::new(
         cx.gpu,
         "light_marker.transform",
@@ -220,19 +208,6 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         marker_transform,
         marker_mesh,
     }))
-}
-
-fn uniforms_of(p: &Params) -> PhongUniforms {
-    PhongUniforms {
-        light_position: p.v3("lightPosition"),
-        ka: p.f("Ka"),
-        ambient_color: p.v3("ambientColor"),
-        kd: p.f("Kd"),
-        diffuse_color: p.v3("diffuseColor"),
-        ks: p.f("Ks"),
-        specular_color: p.v3("specularColor"),
-        shininess: p.f("shininess"),
-    }
 }
 
 impl Phong {
@@ -288,35 +263,16 @@ impl Lab for Phong {
         &mut self.params
     }
     fn input(&mut self, input: Input) -> bool {
-        let p = &mut self.params;
         match input {
             Input::Key('a' | 'A') => self.walk(-0.1, 0.0),
             Input::Key('d' | 'D') => self.walk(0.1, 0.0),
             Input::Key('w' | 'W') => self.walk(0.0, -0.1),
             Input::Key('s' | 'S') => self.walk(0.0, 0.1),
-            Input::Key(c @ ('X' | 'Y' | 'Z')) => {
-                p.step_clamped("lightPosition", (c as u8 - b'X') as usize, 0.1, -REACH, REACH)
-            }
-            Input::Key(c @ ('x' | 'y' | 'z')) => {
-                p.step_clamped("lightPosition", (c as u8 - b'x') as usize, -0.1, -REACH, REACH)
-            }
-            Input::Key(c @ ('R' | 'G' | 'B')) => {
-                p.step_clamped("diffuseColor", "RGB".find(c).unwrap_or(0), 0.01, 0.0, 1.0)
-            }
-            Input::Key(c @ ('r' | 'g' | 'b')) => {
-                p.step_clamped("diffuseColor", "rgb".find(c).unwrap_or(0), -0.01, 0.0, 1.0)
-            }
-            Input::Key('H') => p.step_clamped("shininess", 0, 1.0, 6.0, 200.0),
-            Input::Key('h') => p.step_clamped("shininess", 0, -1.0, 6.0, 200.0),
-            Input::Key('[') => p.step_clamped("Kd", 0, -0.05, 0.0, 1.0),
-            Input::Key(']') => p.step_clamped("Kd", 0, 0.05, 0.0, 1.0),
-            Input::Key('{') => p.step_clamped("Ks", 0, -0.05, 0.0, 1.0),
-            Input::Key('}') => p.step_clamped("Ks", 0, 0.05, 0.0, 1.0),
-            Input::Key('<') => p.step_clamped("Ka", 0, -0.05, 0.0, 1.0),
-            Input::Key('>') => p.step_clamped("Ka", 0, 0.05, 0.0, 1.0),
-            Input::Key('m') => {
-                p.cycle("shading");
-                self.cycling = true;
+            _ if INFO.keys.apply(&mut self.params, input) => {
+                // Key `m` skips models that do not build ([`Phong::ensure_model`]).
+                if input == Input::Key('m') {
+                    self.cycling = true;
+                }
             }
             _ => return self.stage.input(&mut self.params, input),
         }
@@ -369,7 +325,7 @@ impl Lab for Phong {
             });
         }
         self.drawn = self.params.index_of("shading");
-        self.uniforms.value = uniforms_of(&self.params);
+        self.uniforms.fill(&self.params, &Computed::default())?;
         self.uniforms.upload(gpu);
         // The original's gluLookAt uses camera.x and camera.z only.
         let [x, _, z] = self.params.v3("camera");

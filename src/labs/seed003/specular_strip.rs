@@ -32,32 +32,42 @@ use glam::{Mat4, Vec3};
 
 use crate::camera::fly::{FlyCamera, FlyStart, Move};
 use crate::camera::gl_to_wgpu_depth;
-use crate::error::Result;
 use crate::geometry::shapes::{bezier_strip, StripVertex};
-use crate::lab::{params_title, FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo, Special};
+use crate::gpu::Gpu;
+use crate::lab::{Draw, FilesTaken, Input, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Special, Stage};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+use crate::render::{Bind, GpuMesh, RenderState, Uniforms};
 
-/// `specular_strip`.
-pub static INFO: LabInfo = LabInfo {
-    name: "specular_strip",
-    title: "ref003",
-    label: "Bezier strip, specular light",
-    lecture: "003 LETI lab 5",
-    size: (640, 480),
-    keys: crate::lab::Keys::text(
-        "W/S: forward/back; A/D: left/right; E/Q: up/down; Left/Right: yaw ∓2°; Up/Down: pitch ±2°;\n\
-           left drag looks around (0.1° per pixel); r: camera back to the parameters' state",
-    ),
-    files: FilesTaken::NONE,
+/// `specular_strip`: the strip seen by the live camera ([`Fly`]), one pass.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "specular_strip",
+        title: "ref003",
+        label: "Bezier strip, specular light",
+        lecture: "003 LETI lab 5",
+        size: (640, 480),
+        keys: Keys::text(
+            "W/S: forward/back; A/D: left/right; E/Q: up/down; Left/Right: yaw ∓2°; Up/Down: pitch ±2°;\n\
+               left drag looks around (0.1° per pixel); r: camera back to the parameters' state",
+        ),
+        files: FilesTaken::NONE,
+    },
+    params: &[PARAMS],
+    animated: false,
+    title: None,
+    build: |cx, p| Shaded::build(cx, "specular_strip", p, Fly::new(cx.gpu, p), &LOOK, Vec::new()),
+};
+
+static LOOK: Look = Look {
+    passes: &[Pass::new("specular_strip.vert", "specular_strip.frag")
+        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))],
+    draw: Draw::All,
+    hook: None,
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 crate::vertex_type!(StripVertex, {
     position: "objectPosition" => Float32x3,
@@ -156,10 +166,6 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::real("lightz", &[0.0], -1000.0, 1000.0, "lightPos.z"),
 ];
 
-fn params() -> Params {
-    Params::new(PARAMS)
-}
-
 /// The camera start state the parameters name.
 pub fn start_of(p: &Params) -> FlyStart {
     FlyStart {
@@ -172,8 +178,9 @@ pub fn start_of(p: &Params) -> FlyStart {
     }
 }
 
-struct SpecularStrip {
-    params: Params,
+/// The strip and the report's live camera: its keys and mouse, and the `Strip` block (the
+/// camera's matrices and position, the light of the parameters).
+pub struct Fly {
     /// The live camera.
     camera: FlyCamera,
     /// The start state `camera` was last put into.
@@ -181,45 +188,31 @@ struct SpecularStrip {
     /// The last mouse position of a left-button drag.
     mouse: (i32, i32),
     uniforms: Uniforms<StripUniforms>,
-    program: Program<StripVertex>,
     strip: GpuMesh<StripVertex>,
 }
 
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let params = params();
-    let start = start_of(&params);
-    let camera = FlyCamera::from_start(&start);
-    let uniforms = Uniforms::new(
-        cx.gpu,
-        "specular_strip.params",
-        StripUniforms::new(&camera, 640.0 / 480.0, [0.0; 3]),
-    );
-    let state = RenderState::default().topology(wgpu::PrimitiveTopology::TriangleStrip);
-    let mut program = Program::new(
-        cx,
-        "specular_strip",
-        "specular_strip.vert",
-        "specular_strip.frag",
-        state,
-    )?;
-    program.bind(cx.gpu, vec![uniforms.bind()])?;
-    let strip = GpuMesh::new(cx.gpu, "specular_strip.strip", &bezier_strip(), None);
-    Ok(Box::new(SpecularStrip {
-        params,
-        camera,
-        start,
-        mouse: (0, 0),
-        uniforms,
-        program,
-        strip,
-    }))
-}
+impl Fly {
+    /// The strip, and the camera in the parameters' start state.
+    pub fn new(gpu: &Gpu, p: &Params) -> Fly {
+        let start = start_of(p);
+        let camera = FlyCamera::from_start(&start);
+        Fly {
+            uniforms: Uniforms::new(
+                gpu,
+                "specular_strip.params",
+                StripUniforms::new(&camera, 640.0 / 480.0, [0.0; 3]),
+            ),
+            camera,
+            start,
+            mouse: (0, 0),
+            strip: GpuMesh::new(gpu, "specular_strip.strip", &bezier_strip(), None),
+        }
+    }
 
-impl SpecularStrip {
     /// Puts the camera into the parameters' start state if they changed since it was last put
     /// there.
-    fn sync(&mut self) {
-        let start = start_of(&self.params);
+    fn sync(&mut self, p: &Params) {
+        let start = start_of(p);
         if start != self.start {
             self.start = start;
             self.camera = FlyCamera::from_start(&start);
@@ -227,18 +220,10 @@ impl SpecularStrip {
     }
 }
 
-impl Lab for SpecularStrip {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        self.sync();
+impl Stage for Fly {
+    type Vertex = StripVertex;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.sync(p);
         let camera = &mut self.camera;
         match input {
             Input::Key(c) => match c.to_ascii_lowercase() {
@@ -271,33 +256,28 @@ impl Lab for SpecularStrip {
         }
         true
     }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.uniforms.bind()]
     }
-    fn title(&self) -> String {
-        let base = params_title(&INFO, &self.params);
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<StripVertex> {
+        self.sync(p);
+        let light = [p.f("lightx"), p.f("lighty"), p.f("lightz")];
+        let aspect = width as f32 / height.max(1) as f32;
+        self.uniforms.value = StripUniforms::new(&self.camera, aspect, light);
+        self.uniforms.upload(gpu);
+        &self.strip
+    }
+    /// The live camera, once it has left the parameters' start state.
+    fn status(&self, p: &Params) -> String {
         let c = &self.camera;
-        if *c == FlyCamera::from_start(&start_of(&self.params)) {
-            base
+        if *c == FlyCamera::from_start(&start_of(p)) {
+            String::new()
         } else {
             let Vec3 { x, y, z } = c.position;
             format!(
-                "{base} | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}",
+                " | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}",
                 c.yaw, c.pitch
             )
         }
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        self.sync();
-        let light = [
-            self.params.f("lightx"),
-            self.params.f("lighty"),
-            self.params.f("lightz"),
-        ];
-        self.uniforms.value = StripUniforms::new(&self.camera, frame.aspect(), light);
-        self.uniforms.upload(frame.gpu);
-        let mut pass = frame.pass("specular_strip", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, &self.strip);
-        Ok(())
     }
 }
