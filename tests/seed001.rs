@@ -88,7 +88,8 @@ fn centroid(image: &RgbImage, pick: impl Fn([u8; 3]) -> bool) -> (f64, f64, usiz
 
 #[test]
 fn gl_light_block_has_specs_values_and_keys() {
-    use shaderlab::labs::seed001::gl_light::{key_step, state, BUMP, COURSE};
+    use shaderlab::lab::Keys;
+    use shaderlab::labs::seed001::gl_light::{state, BUMP, COURSE};
     use shaderlab::params::Params;
     let s = state(&COURSE, &Params::new(COURSE.params));
     let p = s.front_light_product[0];
@@ -102,24 +103,40 @@ fn gl_light_block_has_specs_values_and_keys() {
     assert_eq!(b.front_light_product[0].diffuse, [0.9, 0.7, 0.5, 1.0]);
     assert_eq!(b.front_light_product[0].ambient[..3], [0.0; 3]);
     assert_eq!(b.light_source[0].position, [1.5, 1.5, -2.0, 1.0]);
-    // Keys: arrows, PageUp/PageDown, h/H within [1, 128].
+    // Keys (the setups' key rows): arrows, PageUp/PageDown, h/H within [1, 128].
+    let (course, bump) = (Keys::rows(COURSE.keys, ""), Keys::rows(BUMP.keys, ""));
     let mut params = Params::new(COURSE.params);
     for _ in 0..30 {
-        let (name, delta) = key_step(&COURSE, Input::Key('H')).expect("H is a light key");
-        params.step(name, delta);
+        assert!(course.apply(&mut params, Input::Key('H')), "H is a light key");
     }
     assert_eq!(params.f("shininess"), 128.0);
     for _ in 0..30 {
-        let (name, delta) = key_step(&COURSE, Input::Key('h')).expect("h is a light key");
-        params.step(name, delta);
+        assert!(course.apply(&mut params, Input::Key('h')), "h is a light key");
     }
     assert_eq!(params.f("shininess"), 1.0);
-    assert_eq!(key_step(&COURSE, Input::Special(Special::Left)), Some(("lx", -0.25)));
-    assert_eq!(key_step(&COURSE, Input::Special(Special::Up)), Some(("ly", 0.25)));
-    assert_eq!(key_step(&COURSE, Input::Special(Special::PageUp)), Some(("lz", 0.25)));
-    assert_eq!(key_step(&BUMP, Input::Special(Special::Down)), Some(("bly", -0.25)));
-    assert_eq!(key_step(&BUMP, Input::Special(Special::PageDown)), Some(("blz", -0.25)));
-    assert_eq!(key_step(&BUMP, Input::Key('h')), None);
+    // One key changes one parameter by its step: (key, parameter, value after one press).
+    let press = |keys: &Keys, params: &Params, input: Input, name: &str, expected: f32| {
+        let mut after = params.clone();
+        assert!(keys.apply(&mut after, input), "{input:?} is a light key");
+        assert_eq!(after.f(name), expected, "{input:?} on {name}");
+        let changed = after
+            .specs()
+            .iter()
+            .filter(|s| after.get(s.name) != params.get(s.name))
+            .count();
+        assert_eq!(changed, 1, "{input:?} changes {name} alone");
+    };
+    let at = Params::new(COURSE.params);
+    press(&course, &at, Input::Special(Special::Left), "lx", 1.75);
+    press(&course, &at, Input::Special(Special::Up), "ly", 2.25);
+    press(&course, &at, Input::Special(Special::PageUp), "lz", 2.25);
+    let at = Params::new(BUMP.params);
+    press(&bump, &at, Input::Special(Special::Down), "bly", 1.25);
+    press(&bump, &at, Input::Special(Special::PageDown), "blz", -2.25);
+    assert!(
+        !bump.apply(&mut at.clone(), Input::Key('h')),
+        "the bump light has no shininess key"
+    );
 }
 
 #[test]

@@ -4,13 +4,17 @@
 //! calls; the products are what GL derives from them. The light position is set while the
 //! modelview is the identity, so it is in eye space exactly as given.
 //!
-//! Keys (SPEC §1, "light keys"): `←`/`→` x ∓0.25, `↑`/`↓` y ±0.25, `PageUp`/`PageDown` z ±0.25,
-//! `h`/`H` shininess −/+5 within [1, 128] (`GL_SHININESS` must be ≤ 128).
+//! Rust computes the whole block ([`state`]), so it stays a typed struct; [`Lit`] adds it to a
+//! stage for the runner.
+//!
+//! Keys (SPEC §1, "light keys", as rows: [`COURSE_KEYS`], [`BUMP_KEYS`]): `←`/`→` x ∓0.25,
+//! `↑`/`↓` y ±0.25, `PageUp`/`PageDown` z ±0.25, `h`/`H` shininess −/+5 within [1, 128]
+//! (`GL_SHININESS` must be ≤ 128).
 
 use crate::gpu::Gpu;
-use crate::lab::{Input, Special};
+use crate::lab::{Input, Key::C, KeyRow, Keys, Stage, DOWN, LEFT, PAGE_DOWN, PAGE_UP, RIGHT, UP};
 use crate::params::{ParamSpec, Params};
-use crate::render::Uniforms;
+use crate::render::{Bind, Faces, GpuMesh, Uniforms};
 
 /// `struct LightSourceParameters` of `gl_light.glsl` (the members the course reads).
 #[repr(C)]
@@ -91,6 +95,8 @@ fn product(material: [f32; 4], light: [f32; 4]) -> [f32; 4] {
 pub struct LightSetup {
     /// Parameters: the three position coordinates first, then (optionally) `shininess`.
     pub params: &'static [ParamSpec],
+    /// The keys that move them ([`COURSE_KEYS`], [`BUMP_KEYS`]).
+    pub keys: &'static [KeyRow],
     /// `GL_LIGHT0`'s colours (its position comes from the parameters, w = 1).
     pub light: LightSourceParameters,
     /// The front material (its shininess comes from a `shininess` parameter when there is one).
@@ -103,6 +109,25 @@ const WHITE: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
 /// Range of the light coordinates.
 const REACH: f64 = 50.0;
 
+/// Step of the light keys.
+const STEP: f64 = 0.25;
+
+/// SPEC §1's light keys: `←`/`→` lx ∓0.25, `↓`/`↑` ly ∓0.25, PageDown/PageUp lz ∓0.25, `h`/`H`
+/// shininess ∓5 (within its range [1, 128]).
+pub const COURSE_KEYS: [KeyRow; 4] = [
+    KeyRow::step(&[LEFT, RIGHT], "lx", STEP),
+    KeyRow::step(&[DOWN, UP], "ly", STEP),
+    KeyRow::step(&[PAGE_DOWN, PAGE_UP], "lz", STEP),
+    KeyRow::step(&[C('h'), C('H')], "shininess", 5.0),
+];
+
+/// The bump light's keys: as [`COURSE_KEYS`] on blx, bly, blz (no shininess).
+pub const BUMP_KEYS: [KeyRow; 3] = [
+    KeyRow::step(&[LEFT, RIGHT], "blx", STEP),
+    KeyRow::step(&[DOWN, UP], "bly", STEP),
+    KeyRow::step(&[PAGE_DOWN, PAGE_UP], "blz", STEP),
+];
+
 /// SPEC §1's light: position (lx, ly, lz, 1) = (2, 2, 2, 1) in eye space, ambient 0.2, diffuse
 /// and specular 1; material ambient = diffuse (0.2, 0.3, 0.8), specular 1, shininess 40.
 pub const COURSE: LightSetup = LightSetup {
@@ -112,6 +137,7 @@ pub const COURSE: LightSetup = LightSetup {
         ParamSpec::real("lz", &[2.0], -REACH, REACH, "light z, eye space (PageUp PageDown)"),
         ParamSpec::real("shininess", &[40.0], 1.0, 128.0, "GL_SHININESS (h H)"),
     ],
+    keys: &COURSE_KEYS,
     light: LightSourceParameters {
         ambient: [0.2, 0.2, 0.2, 1.0],
         diffuse: WHITE,
@@ -137,6 +163,7 @@ pub const BUMP: LightSetup = LightSetup {
         ParamSpec::real("bly", &[1.5], -REACH, REACH, "light y, eye space (↑ ↓)"),
         ParamSpec::real("blz", &[-2.0], -REACH, REACH, "light z, eye space (PageUp PageDown)"),
     ],
+    keys: &BUMP_KEYS,
     light: LightSourceParameters {
         ambient: BLACK,
         diffuse: WHITE,
@@ -152,25 +179,6 @@ pub const BUMP: LightSetup = LightSetup {
         _pad: [0.0; 3],
     },
 };
-
-/// Step of the light keys.
-const STEP: f64 = 0.25;
-
-/// The parameter a light key changes, and by how much.
-pub fn key_step(setup: &LightSetup, input: Input) -> Option<(&'static str, f64)> {
-    let names = setup.params;
-    Some(match input {
-        Input::Special(Special::Left) => (names[0].name, -STEP),
-        Input::Special(Special::Right) => (names[0].name, STEP),
-        Input::Special(Special::Up) => (names[1].name, STEP),
-        Input::Special(Special::Down) => (names[1].name, -STEP),
-        Input::Special(Special::PageUp) => (names[2].name, STEP),
-        Input::Special(Special::PageDown) => (names[2].name, -STEP),
-        Input::Key('h') if names.len() > 3 => (names[3].name, -5.0),
-        Input::Key('H') if names.len() > 3 => (names[3].name, 5.0),
-        _ => return None,
-    })
-}
 
 /// The block's value for a setup at the current parameters.
 pub fn state(setup: &LightSetup, params: &Params) -> GlLightUniforms {
@@ -214,20 +222,52 @@ impl GlLight {
         }
     }
 
-    /// The light keys; false for any other input.
+    /// The light keys ([`LightSetup::keys`]); false for any other input.
     pub fn input(&self, params: &mut Params, input: Input) -> bool {
-        match key_step(self.setup, input) {
-            Some((name, delta)) => {
-                params.step(name, delta);
-                true
-            }
-            None => false,
-        }
+        Keys::rows(self.setup.keys, "").apply(params, input)
     }
 
     /// Writes the block for the current parameters.
     pub fn upload(&mut self, gpu: &Gpu, params: &Params) {
         self.uniforms.value = state(self.setup, params);
         self.uniforms.upload(gpu);
+    }
+}
+
+/// A [`Stage`] lit by GL's light: the stage's blocks plus the `GlLight` block, written for the
+/// parameters every frame. The light keys are the lab's key rows ([`LightSetup::keys`]).
+pub struct Lit<S: Stage> {
+    /// The stage.
+    pub stage: S,
+    /// The light.
+    pub light: GlLight,
+}
+
+impl<S: Stage> Lit<S> {
+    /// `stage` lit by `setup`.
+    pub fn new(gpu: &Gpu, label: &str, setup: &'static LightSetup, stage: S) -> Self {
+        Lit {
+            light: GlLight::new(gpu, label, setup),
+            stage,
+        }
+    }
+}
+
+impl<S: Stage> Stage for Lit<S> {
+    type Vertex = S::Vertex;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
+    }
+    fn binds(&self) -> Vec<Bind> {
+        let mut binds = self.stage.binds();
+        binds.push(self.light.uniforms.bind());
+        binds
+    }
+    fn faces(&self, p: &Params) -> Option<Faces> {
+        self.stage.faces(p)
+    }
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<S::Vertex> {
+        self.light.upload(gpu, p);
+        self.stage.prepare(gpu, p, width, height)
     }
 }

@@ -1,5 +1,5 @@
 //! The course's modified Phong (Blinn, no distance term) lighting, per vertex and per fragment:
-//! the one lab behind seed 001's `phong_vertex` (§1.7) and `phong_fragment` (§1.8), which differ
+//! the one scene behind seed 001's `phong_vertex` (§1.7) and `phong_fragment` (§1.8), which differ
 //! in which program draws by default. Both read GL's light and material (`gl_light.glsl`): light
 //! (2, 2, 2) in eye space, material (0.2, 0.3, 0.8) with a white highlight of shininess 40.
 //!
@@ -14,13 +14,13 @@
 use glam::Vec3;
 
 use crate::error::Result;
-use crate::lab::{Input, Lab, LabContext, LabInfo};
+use crate::lab::{Input, Key::C, KeyRow, Keys, LabContext, Scene, Stage};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, Load, Program, RenderState};
+use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
 
-use crate::labs::seed001::gl_light::{GlLight, COURSE};
-use crate::labs::seed001::stage::{Solids, UstcStage, OBJECT, ROTATION};
+use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
+use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
 
 /// Where the lighting is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,10 +31,17 @@ pub enum Shading {
     Fragment,
 }
 
-/// The keys line both labs show.
-pub const KEYS: &str =
-    "c: compare per vertex (left) with per fragment (right); ←/→ ↑/↓ PageUp/PageDown: light ±0.25;\n\
-                        h/H: shininess ∓5; 1-4: objects; left drag rotates";
+/// The key rows of both labs: `c` compare, then the light keys.
+const ROWS: &[KeyRow] = &[
+    KeyRow::toggle(&[C('c')], "compare"),
+    COURSE_KEYS[0],
+    COURSE_KEYS[1],
+    COURSE_KEYS[2],
+    COURSE_KEYS[3],
+];
+
+/// The keys both labs show.
+pub const KEYS: Keys = Keys::rows(ROWS, "1-4: objects; left drag rotates");
 
 const OWN: &[ParamSpec] = &[ParamSpec::flag(
     "compare",
@@ -43,55 +50,38 @@ const OWN: &[ParamSpec] = &[ParamSpec::flag(
 )];
 
 /// The parameters of both labs.
-pub fn params() -> Params {
-    let mut p = Params::new(OBJECT);
-    p.extend(ROTATION);
-    p.extend(COURSE.params);
-    p.extend(OWN);
-    p
-}
+pub const PARAMS: &[&[ParamSpec]] = &[OBJECT, ROTATION, COURSE.params, OWN];
 
+/// Both programs on one lit frame.
 struct ModifiedPhong {
-    info: &'static LabInfo,
+    label: &'static str,
     shading: Shading,
-    params: Params,
-    stage: UstcStage,
-    light: GlLight,
+    stage: Lit<OnSolid>,
     per_vertex: Program<Vertex>,
     per_fragment: Program<Vertex>,
-    solids: Solids,
 }
 
-/// Builds the lab drawn by default with `shading`.
-pub fn new(cx: &LabContext, info: &'static LabInfo, shading: Shading) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, info.name, Vec3::new(0.0, 0.0, 4.0));
-    let light = GlLight::new(cx.gpu, info.name, &COURSE);
-    let bindings = || vec![stage.transform.bind(), light.uniforms.bind()];
-    let mut per_vertex = Program::new(
-        cx,
-        &format!("{}.per_vertex", info.name),
-        "phong_vertex.vert",
-        "pass_color.frag",
-        RenderState::default(),
-    )?;
-    per_vertex.bind(cx.gpu, bindings())?;
-    let mut per_fragment = Program::new(
-        cx,
-        &format!("{}.per_fragment", info.name),
-        "phong_fragment.vert",
-        "phong_fragment.frag",
-        RenderState::default(),
-    )?;
-    per_fragment.bind(cx.gpu, bindings())?;
+/// Builds the scene drawn by default with `shading`.
+pub fn build(cx: &LabContext, label: &'static str, shading: Shading) -> Result<Box<dyn Scene>> {
+    let stage = Lit::new(
+        cx.gpu,
+        label,
+        &COURSE,
+        OnSolid::new(cx.gpu, label, Vec3::new(0.0, 0.0, 4.0)),
+    );
+    let program = |suffix: &str, vert: &str, frag: &str| -> Result<Program<Vertex>> {
+        let mut program = Program::new(cx, &format!("{label}.{suffix}"), vert, frag, RenderState::GL)?;
+        program.bind(cx.gpu, stage.binds())?;
+        Ok(program)
+    };
+    let per_vertex = program("per_vertex", "phong_vertex.vert", "pass_color.frag")?;
+    let per_fragment = program("per_fragment", "phong_fragment.vert", "phong_fragment.frag")?;
     Ok(Box::new(ModifiedPhong {
-        info,
+        label,
         shading,
-        params: params(),
         stage,
-        light,
         per_vertex,
         per_fragment,
-        solids: Solids::default(),
     }))
 }
 
@@ -105,44 +95,22 @@ pub fn compare_viewports(width: u32, height: u32) -> [(u32, u32, u32); 2] {
     [(x, y, side), (half + x, y, side)]
 }
 
-impl Lab for ModifiedPhong {
-    fn info(&self) -> &'static LabInfo {
-        self.info
+impl Scene for ModifiedPhong {
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
     }
-    fn params(&self) -> &Params {
-        &self.params
+    fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
+        vec![&mut self.per_vertex, &mut self.per_fragment]
     }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        match input {
-            Input::Key('c') => {
-                self.params.toggle("compare");
-                true
-            }
-            _ => self.light.input(&mut self.params, input) || self.stage.input(&mut self.params, input),
-        }
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.per_vertex.reload(cx)?;
-        self.per_fragment.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        let gpu = frame.gpu;
+    fn render(&mut self, p: &Params, frame: &mut Frame<'_>) -> Result<()> {
         let (width, height) = (frame.width, frame.height);
-        let compare = self.params.on("compare");
-        self.light.upload(gpu, &self.params);
+        let compare = p.on("compare");
         let viewports = compare_viewports(width, height);
-        if compare {
-            // Both halves are squares: one projection (aspect 1) for the one scene.
-            let side = viewports[0].2;
-            self.stage.upload(gpu, &self.params, side, side);
-        } else {
-            self.stage.upload(gpu, &self.params, width, height);
-        }
-        let mesh = self.solids.get(gpu, UstcStage::object(&self.params));
-        let mut pass = frame.pass(self.info.name, Load::Clear([0.0; 3]));
+        // Compared, both halves are squares: one projection (aspect 1) for the one scene.
+        let side = viewports[0].2;
+        let (w, h) = if compare { (side, side) } else { (width, height) };
+        let mesh = self.stage.prepare(frame.gpu, p, w, h);
+        let mut pass = frame.pass(self.label, Load::Clear([0.0; 3]));
         if compare {
             for ((x, y, side), program) in viewports.into_iter().zip([&self.per_vertex, &self.per_fragment]) {
                 pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);

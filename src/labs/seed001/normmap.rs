@@ -6,49 +6,55 @@
 //!
 //! Keys: as `bump` (light keys move blx, bly, blz; left drag rotates).
 
-use crate::error::Result;
 use crate::geometry::images;
-use crate::lab::{FilesTaken, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{Draw, FilesTaken, LabEntry, LabInfo, Look, Pass, Recipe};
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
 use crate::labs::seed001::tangent_bump;
 
-/// Seed 001, §1.12.
-pub static INFO: LabInfo = LabInfo {
-    name: "normmap",
-    title: "ref001",
-    label: "normalization cube map",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text(tangent_bump::KEYS),
-    files: FilesTaken::NONE,
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params: tangent_bump::params,
-    new,
+/// Seed 001, §1.12: `bump` with the cube map on unit 1.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "normmap",
+        title: "ref001",
+        label: "normalization cube map",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: tangent_bump::KEYS,
+        files: FilesTaken::NONE,
+    },
+    params: tangent_bump::PARAMS,
+    animated: false,
+    title: None,
+    build: |cx, p| {
+        let faces = images::normalization_cube(CUBE_SIZE);
+        let cube = Texture::new(cx.gpu, "normmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
+        let clamp = wgpu::AddressMode::ClampToEdge;
+        let sampler = sampler(
+            cx.gpu,
+            "normmap.cube_sampler",
+            &SamplerDesc {
+                wrap: [clamp; 3],
+                ..SamplerDesc::default()
+            },
+        );
+        let unit1 = vec![
+            Bind::texture("normMap", &cube),
+            Bind::sampler("normMapSampler", &sampler),
+        ];
+        tangent_bump::build(cx, "normmap", p, &LOOK, unit1)
+    },
 };
 
 /// Texels per side of each face of the normalization cube map.
 const CUBE_SIZE: u32 = 32;
 
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let faces = images::normalization_cube(CUBE_SIZE);
-    let cube = Texture::new(cx.gpu, "normmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
-    let clamp = wgpu::AddressMode::ClampToEdge;
-    let sampler = sampler(
-        cx.gpu,
-        "normmap.cube_sampler",
-        &SamplerDesc {
-            wrap: [clamp; 3],
-            ..SamplerDesc::default()
-        },
-    );
-    let unit1 = vec![
-        Bind::texture("normMap", &cube),
-        Bind::sampler("normMapSampler", &sampler),
-    ];
-    tangent_bump::build(cx, &INFO, "normmap.frag", Some(unit1))
-}
+static LOOK: Look = Look {
+    passes: &[Pass::new("bump.vert", "normmap.frag")],
+    draw: Draw::All,
+    hook: None,
+    clear: [0.0; 3],
+};
+
+/// The list entry.
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);

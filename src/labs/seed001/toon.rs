@@ -9,87 +9,44 @@
 
 use glam::Vec3;
 
-use crate::error::Result;
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
-use crate::mesh::Vertex;
-use crate::params::Params;
-use crate::render::{Frame, Load, Program, RenderState};
+use crate::lab::{Draw, FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
 
-use crate::labs::seed001::gl_light::{GlLight, COURSE};
-use crate::labs::seed001::stage::{Solids, UstcStage, OBJECT, ROTATION};
+use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
+use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
 
-/// Seed 001, §1.6.
-pub static INFO: LabInfo = LabInfo {
-    name: "toon",
-    title: "ref001",
-    label: "toon shading",
-    lecture: "001 USTC GLSL (III)",
-    size: (512, 512),
-    keys: crate::lab::Keys::text(
-        "←/→ ↑/↓ PageUp/PageDown: light ±0.25; h/H: shininess ∓5; 1-4: objects; left drag rotates",
-    ),
-    files: FilesTaken::NONE,
+/// Seed 001, §1.6: the Transform and GlLight blocks come from the stage.
+pub static RECIPE: Recipe = Recipe {
+    info: LabInfo {
+        name: "toon",
+        title: "ref001",
+        label: "toon shading",
+        lecture: "001 USTC GLSL (III)",
+        size: (512, 512),
+        keys: Keys::rows(&COURSE_KEYS, "1-4: objects; left drag rotates"),
+        files: FilesTaken::NONE,
+    },
+    params: &[OBJECT, ROTATION, COURSE.params],
+    animated: false,
+    title: None,
+    build: |cx, p| {
+        let stage = OnSolid::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
+        Shaded::build(
+            cx,
+            "toon",
+            p,
+            Lit::new(cx.gpu, "toon", &COURSE, stage),
+            &LOOK,
+            Vec::new(),
+        )
+    },
+};
+
+static LOOK: Look = Look {
+    passes: &[Pass::new("toon.vert", "pass_color.frag")],
+    draw: Draw::All,
+    hook: None,
+    clear: [0.0; 3],
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
-
-fn params() -> Params {
-    let mut p = Params::new(OBJECT);
-    p.extend(ROTATION);
-    p.extend(COURSE.params);
-    p
-}
-
-struct Toon {
-    params: Params,
-    stage: UstcStage,
-    light: GlLight,
-    program: Program<Vertex>,
-    solids: Solids,
-}
-
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
-    let stage = UstcStage::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
-    let light = GlLight::new(cx.gpu, "toon", &COURSE);
-    let mut program = Program::new(cx, "toon", "toon.vert", "pass_color.frag", RenderState::default())?;
-    program.bind(cx.gpu, vec![stage.transform.bind(), light.uniforms.bind()])?;
-    Ok(Box::new(Toon {
-        params: params(),
-        stage,
-        light,
-        program,
-        solids: Solids::default(),
-    }))
-}
-
-impl Lab for Toon {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        self.light.input(&mut self.params, input) || self.stage.input(&mut self.params, input)
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        let gpu = frame.gpu;
-        self.light.upload(gpu, &self.params);
-        self.stage.upload(gpu, &self.params, frame.width, frame.height);
-        let mesh = self.solids.get(gpu, UstcStage::object(&self.params));
-        let mut pass = frame.pass("toon", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, mesh);
-        Ok(())
-    }
-}
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);

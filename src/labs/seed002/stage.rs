@@ -13,8 +13,11 @@ use glam::{Mat4, Vec3};
 
 use crate::camera;
 use crate::gpu::Gpu;
+use crate::lab::Stage;
+use crate::labs::common::TransformUniforms;
 use crate::mesh::Vertex;
-use crate::render::GpuMesh;
+use crate::params::Params;
+use crate::render::{Bind, GpuMesh, Uniforms};
 use crate::tess::Object;
 
 /// `gluPerspective(60, 1, 0.1, 100)`: the course passes aspect 1 whatever the window.
@@ -46,6 +49,45 @@ pub fn model_zyx(rx: f32, ry: f32, rz: f32) -> Mat4 {
 pub fn teapot(gpu: &Gpu, label: &str) -> GpuMesh<Vertex> {
     let mesh = Object::Teapot.mesh();
     GpuMesh::new(gpu, label, &mesh.vertices, Some(&mesh.indices))
+}
+
+/// The model matrix and the `gluLookAt` eye a lab computes from its parameters.
+pub type Pose = fn(&Params) -> (Mat4, Vec3);
+
+/// The stage as the runner draws it ([`Stage`]): the teapot, turned by the lab's [`Pose`], seen
+/// through [`projection_stack`] (whatever the window's aspect), as the `Transform` block.
+pub struct Teapot {
+    pose: Pose,
+    transform: Uniforms<TransformUniforms>,
+    mesh: GpuMesh<Vertex>,
+}
+
+impl Teapot {
+    /// The teapot of lab `label`, posed by `pose`.
+    pub fn new(gpu: &Gpu, label: &str, pose: Pose) -> Self {
+        Teapot {
+            pose,
+            transform: Uniforms::new(
+                gpu,
+                &format!("{label}.transform"),
+                TransformUniforms::new(Mat4::IDENTITY, projection_stack(EYE)),
+            ),
+            mesh: teapot(gpu, &format!("{label}.teapot")),
+        }
+    }
+}
+
+impl Stage for Teapot {
+    type Vertex = Vertex;
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.transform.bind()]
+    }
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, _width: u32, _height: u32) -> &GpuMesh<Vertex> {
+        let (model, eye) = (self.pose)(p);
+        self.transform.value = TransformUniforms::new(model, projection_stack(eye));
+        self.transform.upload(gpu);
+        &self.mesh
+    }
 }
 
 #[cfg(test)]
