@@ -83,14 +83,12 @@ impl ParamBlock {
                     scratch.extend(v.iter().map(|&x| x as f32));
                     &scratch
                 }
-                (None, None) => {
-                    return Err(Error::Layout(format!(
+                (None, None) => return Err(Error::Layout(format!(
                     "{}: uniform block {} member `{}` has no parameter of that name and no value computed by the lab",
                     self.label,
                     self.layout.name,
                     member.declaration()
-                )))
-                }
+                ))),
             };
             set_member_bytes(&mut self.bytes, &self.layout, &member.name, values)
                 .map_err(|e| Error::Layout(format!("{}: {e}", self.label)))?;
