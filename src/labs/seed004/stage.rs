@@ -3,8 +3,8 @@
 //! the "Smooth Suzanne" vertex normals), turned by `M = rotate(xangle, X)·rotate(yangle, Y)`
 //! that a left-button drag changes by 0.5° per pixel, seen from (0, 0, 4) through
 //! `perspective(45°, aspect, 0.1, 100)`; the matrices MV, MVP and NM computed in float as glm
-//! does and sent as one uniform block (`suzanne_transform.glsl`): the [`Model`] stage, which answers for the parameters
-//! `xangle` and `yangle`.
+//! does and sent as one uniform block (`suzanne_transform.glsl`). [`Model`] is the stage the
+//! runner draws; it answers for the parameters `xangle` and `yangle`.
 
 use glam::{Mat4, Vec3};
 

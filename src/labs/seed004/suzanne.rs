@@ -42,7 +42,7 @@ const fn files(texture: bool) -> FilesTaken {
     }
 }
 
-/// A pass list of one look: drawn whole, on black, every uniform but the matrices a parameter.
+/// A colour exercise's look: its pass drawn on black, no values computed.
 pub const fn look(passes: &'static [Pass]) -> Look {
     Look {
         passes,
@@ -213,9 +213,12 @@ pub fn light(p: &Params, c: &mut Computed) {
 
 /// The model lit by the model `shading` picks, on its VBO (flat: the face normals).
 pub fn shade(cx: &LabContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> {
-    let normals = |p: &Params| match p.index_of("shading") {
-        0 => Normals::Face,
-        _ => Normals::Vertex,
+    let normals = |p: &Params| {
+        if p.index_of("shading") == Shading::Flat as usize {
+            Normals::Face
+        } else {
+            Normals::Vertex
+        }
     };
     Shaded::build(cx, name, p, Model::new(cx, name, normals), &LIT, Vec::new())
 }
