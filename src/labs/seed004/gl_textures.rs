@@ -1,6 +1,7 @@
 //! 2D textures with GL's texture parameters, as seed 004 sets them (`glTexParameteri` wrap,
 //! MIN and MAG filters, `glGenerateMipmap`), and the lecture's two pictures: the course's
-//! checker and its "BMP" texture (`assets/uvgrid.bmp`, or the user's `--texture FILE`).
+//! checker and its "BMP" texture (`assets/uvgrid.bmp`, or the user's `--texture FILE`); and
+//! the scene of the labs that sample them ([`Sampled`]), switching textures and parameters.
 //!
 //! GL picks the magnification filter where the level of detail λ ≤ 0 and the minification
 //! filter where λ > 0, also for the non-mipmapped minification filters `GL_NEAREST` and
@@ -12,8 +13,9 @@ use std::path::Path;
 use crate::error::Result;
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
-use crate::lab::UserFile;
-use crate::render::{sampler, Bind, SamplerDesc, Texture};
+use crate::lab::{Input, LabContext, Pass, Scene, Stage, UserFile};
+use crate::params::Params;
+use crate::render::{sampler, AnyProgram, Bind, Frame, Load, Program, SamplerDesc, Texture};
 
 /// `GL_TEXTURE_MIN_FILTER`, numbered as texparams' `min` parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -167,5 +169,61 @@ pub fn bmp(gpu: &Gpu, user: Option<&UserFile<Image>>) -> Result<GlTexture> {
             let picture = images::decode_image(path, UVGRID_BMP)?;
             GlTexture::new(gpu, "texture.bmp", &bottom_row_first(&picture), path)
         }
+    }
+}
+
+/// A stage drawn by one pass sampling texture unit 0 (`tex`, `tex_sampler`): the texture and
+/// the GL parameters `pick` chooses for the parameters, bound again when they change
+/// (`glBindTexture`, `glTexParameteri`).
+pub struct Sampled<S: Stage> {
+    label: String,
+    stage: S,
+    program: Program<S::Vertex>,
+    textures: Vec<GlTexture>,
+    pick: fn(&Params) -> (usize, TexParams),
+    bound: Option<(usize, TexParams)>,
+}
+
+impl<S: Stage> Sampled<S> {
+    /// Compiles `pass`; the first frame binds the stage's blocks and the texture picked.
+    pub fn build(
+        cx: &LabContext,
+        name: &str,
+        stage: S,
+        pass: Pass,
+        textures: Vec<GlTexture>,
+        pick: fn(&Params) -> (usize, TexParams),
+    ) -> Result<Box<dyn Scene>> {
+        Ok(Box::new(Sampled {
+            label: name.to_owned(),
+            stage,
+            program: Program::new(cx, name, pass.vert, pass.frag, pass.state)?,
+            textures,
+            pick,
+            bound: None,
+        }))
+    }
+}
+
+impl<S: Stage> Scene for Sampled<S> {
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
+    }
+    fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
+        vec![&mut self.program]
+    }
+    fn render(&mut self, p: &Params, frame: &mut Frame<'_>) -> Result<()> {
+        let want = (self.pick)(p);
+        if self.bound != Some(want) {
+            let (i, params) = want;
+            let mut binds = self.stage.binds();
+            binds.extend(self.textures[i].bind(frame.gpu, "tex", "tex_sampler", params));
+            self.program.bind(frame.gpu, binds)?;
+            self.bound = Some(want);
+        }
+        let mesh = self.stage.prepare(frame.gpu, p, frame.width, frame.height);
+        let mut pass = frame.pass(&self.label, Load::Clear([0.0; 3]));
+        self.program.draw(&mut pass, mesh);
+        Ok(())
     }
 }

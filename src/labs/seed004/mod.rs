@@ -1,12 +1,11 @@
-//! Seed 004, OpenGL III – Basic Shaders: Suzanne ([`stage`]) with normals as colour,
-//! textures ([`gl_textures`]) and the three shading models ([`lit`]).
+//! Seed 004, OpenGL III – Basic Shaders: the model ([`stage`]) with normals as colour,
+//! textured ([`gl_textures`]) and lit, each family of exercises a recipe builder
+//! ([`suzanne`]), and the texture parameters on a floor ([`texparams`]).
 
 pub mod stage;
 
 pub mod gl_textures;
-pub mod lit;
-pub mod plain;
-pub mod textured;
+pub mod suzanne;
 
 pub mod suzanne_flat;
 pub mod suzanne_gouraud;
@@ -17,3 +16,18 @@ pub mod suzanne_smooth;
 pub mod suzanne_texture;
 pub mod suzanne_texture_color;
 pub mod texparams;
+
+use crate::lab::{FilesTaken, Keys, LabInfo};
+
+/// The lecture's exercise `name`: the course's window title, 640 × 480.
+pub const fn info(name: &'static str, label: &'static str, keys: Keys, files: FilesTaken) -> LabInfo {
+    LabInfo {
+        name,
+        title: "OpenGL III",
+        label,
+        lecture: "004 OpenGL III – Basic Shaders",
+        size: (640, 480),
+        keys,
+        files,
+    }
+}

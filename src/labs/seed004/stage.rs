@@ -3,17 +3,17 @@
 //! the "Smooth Suzanne" vertex normals), turned by `M = rotate(xangle, X)·rotate(yangle, Y)`
 //! that a left-button drag changes by 0.5° per pixel, seen from (0, 0, 4) through
 //! `perspective(45°, aspect, 0.1, 100)`; the matrices MV, MVP and NM computed in float as glm
-//! does and sent as one uniform block (`suzanne_transform.glsl`). Labs compose it with their own
-//! programs and uniforms; it answers for the parameters `xangle` and `yangle`.
+//! does and sent as one uniform block (`suzanne_transform.glsl`). [`Model`] is the stage the
+//! runner draws; it answers for the parameters `xangle` and `yangle`.
 
 use glam::{Mat4, Vec3};
 
 use crate::camera::{self, glm};
 use crate::geometry::obj::{self, ObjCorner};
 use crate::gpu::Gpu;
-use crate::lab::{Input, LabContext};
+use crate::lab::{Input, LabContext, Stage};
 use crate::params::{ParamSpec, Params};
-use crate::render::{GpuMesh, Uniforms};
+use crate::render::{Bind, GpuMesh, Uniforms};
 
 use crate::labs::common::std140_mat3;
 
@@ -97,19 +97,23 @@ pub enum Normals {
     Vertex,
 }
 
-/// The model, its rotation and the Matrices block.
-pub struct SuzanneStage {
+/// The stage as the runner draws it ([`Stage`]): the model, its rotation and the Matrices
+/// block, drawing the VBO `normals` picks for the parameters (one exercise's own, or the
+/// shading model's).
+pub struct Model {
     /// Where the left button was last seen while held.
     drag: Option<(i32, i32)>,
     /// The Matrices block.
     pub matrices: Uniforms<SuzanneMatrices>,
     faces: GpuMesh<ObjCorner>,
     smooth: GpuMesh<ObjCorner>,
+    /// Which normals to draw.
+    pub normals: fn(&Params) -> Normals,
 }
 
-impl SuzanneStage {
+impl Model {
     /// Uploads the model (`--model`, else the shipped Suzanne) with both kinds of normals.
-    pub fn new(cx: &LabContext, label: &str) -> Self {
+    pub fn new(cx: &LabContext, label: &str, normals: fn(&Params) -> Normals) -> Self {
         let suzanne;
         let model = match &cx.files.model {
             Some(file) => &file.data,
@@ -119,24 +123,21 @@ impl SuzanneStage {
             }
         };
         let matrices = SuzanneMatrices::new(Mat4::IDENTITY, view(), 4.0 / 3.0);
-        SuzanneStage {
+        Model {
             drag: None,
             matrices: Uniforms::new(cx.gpu, &format!("{label}.matrices"), matrices),
             faces: GpuMesh::new(cx.gpu, &format!("{label}.faces"), &model.corners, None),
             smooth: GpuMesh::new(cx.gpu, &format!("{label}.smooth"), &model.smooth, None),
+            normals,
         }
     }
+}
 
-    /// The VBO with these normals.
-    pub fn mesh(&self, normals: Normals) -> &GpuMesh<ObjCorner> {
-        match normals {
-            Normals::Face => &self.faces,
-            Normals::Vertex => &self.smooth,
-        }
-    }
+impl Stage for Model {
+    type Vertex = ObjCorner;
 
     /// Left-button drag: yangle += 0.5° per pixel of x, xangle += 0.5° per pixel of y.
-    pub fn input(&mut self, params: &mut Params, input: Input) -> bool {
+    fn input(&mut self, params: &mut Params, input: Input) -> bool {
         match input {
             Input::Press(x, y) => {
                 self.drag = Some((x, y));
@@ -161,33 +162,18 @@ impl SuzanneStage {
         }
     }
 
-    /// Writes the Matrices block for the current angles and a window of `aspect`.
-    pub fn upload(&mut self, gpu: &Gpu, params: &Params, aspect: f32) {
-        let m = model(params.f("xangle"), params.f("yangle"));
-        self.matrices.value = SuzanneMatrices::new(m, view(), aspect);
-        self.matrices.upload(gpu);
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.matrices.bind()]
     }
-}
 
-/// The stage as the runner draws it ([`crate::lab::Stage`]): the VBO `normals` picks for the
-/// parameters (a lab's own, or the shading model's).
-pub struct Model {
-    /// The stage.
-    pub stage: SuzanneStage,
-    /// Which normals to draw.
-    pub normals: fn(&Params) -> Normals,
-}
-
-impl crate::lab::Stage for Model {
-    type Vertex = ObjCorner;
-    fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.stage.input(p, input)
-    }
-    fn binds(&self) -> Vec<crate::render::Bind> {
-        vec![self.stage.matrices.bind()]
-    }
+    /// Writes the Matrices block for the current angles and returns the VBO `normals` picks.
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<ObjCorner> {
-        self.stage.upload(gpu, p, width as f32 / height.max(1) as f32);
-        self.stage.mesh((self.normals)(p))
+        let m = model(p.f("xangle"), p.f("yangle"));
+        self.matrices.value = SuzanneMatrices::new(m, view(), width as f32 / height.max(1) as f32);
+        self.matrices.upload(gpu);
+        match (self.normals)(p) {
+            Normals::Face => &self.faces,
+            Normals::Vertex => &self.smooth,
+        }
     }
 }

@@ -4,35 +4,16 @@
 //!
 //! Keys: left drag rotates (0.5° per pixel).
 
-use crate::lab::{FilesTaken, LabEntry, LabInfo};
-
-use crate::labs::seed004::plain::{self, Plain};
+use crate::lab::{LabEntry, Look, Pass, Recipe};
 use crate::labs::seed004::stage::Normals;
+use crate::labs::seed004::suzanne::{colour, draw, look};
 
 /// Seed 004 §4.3.
-pub static INFO: LabInfo = LabInfo {
-    name: "suzanne_smooth",
-    title: "OpenGL III",
-    label: "smooth",
-    lecture: "004 OpenGL III – Basic Shaders",
-    size: (640, 480),
-    keys: crate::lab::Keys::text("left drag rotates (0.5° per pixel)"),
-    files: FilesTaken {
-        model: true,
-        ..FilesTaken::NONE
-    },
-};
+pub static RECIPE: Recipe = colour("suzanne_smooth", "smooth", |cx, p| {
+    draw(cx, p, RECIPE.info.name, &LOOK, |_| Normals::Vertex)
+});
 
-static PLAIN: Plain = Plain {
-    info: &INFO,
-    vert: "suzanne_normal_matrix.vert",
-    frag: "suzanne_normal_color.frag",
-    normals: Normals::Vertex,
-};
+static LOOK: Look = look(&[Pass::new("suzanne_normal_matrix.vert", "suzanne_normal_color.frag")]);
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params: plain::params,
-    new: |cx| plain::new(cx, &PLAIN),
-};
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);

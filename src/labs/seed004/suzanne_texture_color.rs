@@ -3,33 +3,13 @@
 //!
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
-use crate::lab::{FilesTaken, LabEntry, LabInfo};
-
-use crate::labs::seed004::textured::{self, Textured};
+use crate::lab::{LabEntry, Recipe};
+use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.5.
-pub static INFO: LabInfo = LabInfo {
-    name: "suzanne_texture_color",
-    title: "OpenGL III",
-    label: "texture × colour",
-    lecture: "004 OpenGL III – Basic Shaders",
-    size: (640, 480),
-    keys: crate::lab::Keys::text("t: checker / BMP texture; left drag rotates (0.5 degrees per pixel)"),
-    files: FilesTaken {
-        model: true,
-        texture: true,
-        ..FilesTaken::NONE
-    },
-};
-
-static TEXTURED: Textured = Textured {
-    info: &INFO,
-    frag: "suzanne_texture_color.frag",
-};
+pub static RECIPE: Recipe = textured("suzanne_texture_color", "texture × colour", |cx, _| {
+    sample(cx, RECIPE.info.name, "suzanne_texture_color.frag")
+});
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params: textured::params,
-    new: |cx| textured::new(cx, &TEXTURED),
-};
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);

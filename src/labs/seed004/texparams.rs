@@ -14,64 +14,69 @@ use crate::camera::glm;
 use crate::error::Result;
 use crate::geometry::obj::ObjCorner;
 use crate::geometry::shapes;
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo};
+use crate::gpu::Gpu;
+use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabContext, LabEntry, Pass, Recipe, Scene, Stage};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Frame, GpuMesh, Load, Program, RenderState, Uniforms};
+use crate::render::{Bind, GpuMesh, Uniforms};
 
-use crate::labs::seed004::gl_textures::{self, GlTexture, MinFilter, TexParams, MAG_FILTERS, MIN_FILTERS, WRAPS};
+use crate::labs::seed004::gl_textures::{
+    self, GlTexture, MinFilter, Sampled, TexParams, MAG_FILTERS, MIN_FILTERS, WRAPS,
+};
+use crate::labs::seed004::info;
 use crate::labs::seed004::stage::SuzanneMatrices;
 
 /// Seed 004 §4.6.
-pub static INFO: LabInfo = LabInfo {
-    name: "texparams",
-    title: "OpenGL III",
-    label: "texture parameters",
-    lecture: "004 OpenGL III – Basic Shaders",
-    size: (640, 480),
-    keys: crate::lab::Keys::text("w: wrap_s; W: wrap_t; m: min filter; M: mag filter (each cycles)"),
-    files: FilesTaken {
-        texture: true,
-        ..FilesTaken::NONE
-    },
+pub static RECIPE: Recipe = Recipe {
+    info: info(
+        "texparams",
+        "texture parameters",
+        Keys::rows(
+            &[
+                KeyRow::cycle(&[C('w')], "wrap_s"),
+                KeyRow::cycle(&[C('W')], "wrap_t"),
+                KeyRow::cycle(&[C('m')], "min"),
+                KeyRow::cycle(&[C('M')], "mag"),
+            ],
+            "",
+        ),
+        FilesTaken {
+            texture: true,
+            ..FilesTaken::NONE
+        },
+    ),
+    params: &[&[
+        ParamSpec::choice(
+            "wrap_s",
+            &[0.0],
+            WRAPS,
+            "GL_TEXTURE_WRAP_S: 0 REPEAT, 1 CLAMP_TO_EDGE (w)",
+        ),
+        ParamSpec::choice(
+            "wrap_t",
+            &[0.0],
+            WRAPS,
+            "GL_TEXTURE_WRAP_T: 0 REPEAT, 1 CLAMP_TO_EDGE (W)",
+        ),
+        ParamSpec::choice(
+            "min",
+            &[0.0],
+            MIN_FILTERS,
+            "GL_TEXTURE_MIN_FILTER: 0 LINEAR_MIPMAP_NEAREST, 1 NEAREST, 2 LINEAR, 3 LINEAR_MIPMAP_LINEAR (m)",
+        ),
+        ParamSpec::choice(
+            "mag",
+            &[0.0],
+            MAG_FILTERS,
+            "GL_TEXTURE_MAG_FILTER: 0 NEAREST, 1 LINEAR (M)",
+        ),
+    ]],
+    animated: false,
+    title: None,
+    build,
 };
 
 /// The list entry.
-pub static ENTRY: LabEntry = LabEntry {
-    info: &INFO,
-    params,
-    new,
-};
-
-const OWN: &[ParamSpec] = &[
-    ParamSpec::choice(
-        "wrap_s",
-        &[0.0],
-        WRAPS,
-        "GL_TEXTURE_WRAP_S: 0 REPEAT, 1 CLAMP_TO_EDGE (w)",
-    ),
-    ParamSpec::choice(
-        "wrap_t",
-        &[0.0],
-        WRAPS,
-        "GL_TEXTURE_WRAP_T: 0 REPEAT, 1 CLAMP_TO_EDGE (W)",
-    ),
-    ParamSpec::choice(
-        "min",
-        &[0.0],
-        MIN_FILTERS,
-        "GL_TEXTURE_MIN_FILTER: 0 LINEAR_MIPMAP_NEAREST, 1 NEAREST, 2 LINEAR, 3 LINEAR_MIPMAP_LINEAR (m)",
-    ),
-    ParamSpec::choice(
-        "mag",
-        &[0.0],
-        MAG_FILTERS,
-        "GL_TEXTURE_MAG_FILTER: 0 NEAREST, 1 LINEAR (M)",
-    ),
-];
-
-fn params() -> Params {
-    Params::new(OWN)
-}
+pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 /// V = `lookAt((0, 0.5, 3), (0, −1, −3), (0, 1, 0))`; M = identity.
 pub fn view() -> Mat4 {
@@ -87,17 +92,28 @@ pub fn tex_params(p: &Params) -> TexParams {
     }
 }
 
-struct TexParamsLab {
-    params: Params,
+/// The floor seen through [`view`], with the Matrices block of the model's shaders.
+struct Floor {
     matrices: Uniforms<SuzanneMatrices>,
-    floor: GpuMesh<ObjCorner>,
-    texture: GlTexture,
-    program: Program<ObjCorner>,
-    /// The texture parameters bound now.
-    bound: Option<TexParams>,
+    mesh: GpuMesh<ObjCorner>,
 }
 
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
+impl Stage for Floor {
+    type Vertex = ObjCorner;
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.matrices.bind()]
+    }
+    fn prepare(&mut self, gpu: &Gpu, _p: &Params, width: u32, height: u32) -> &GpuMesh<ObjCorner> {
+        let aspect = width as f32 / height.max(1) as f32;
+        self.matrices.value = SuzanneMatrices::new(Mat4::IDENTITY, view(), aspect);
+        self.matrices.upload(gpu);
+        &self.mesh
+    }
+}
+
+/// The floor drawn by the shaders of 4.4, sampling the checker (or `--texture`) with the
+/// parameters' texture parameters.
+fn build(cx: &LabContext, _p: &Params) -> Result<Box<dyn Scene>> {
     let texture = match &cx.files.texture {
         Some(file) => GlTexture::new(
             cx.gpu,
@@ -107,60 +123,11 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
         )?,
         None => gl_textures::checker(cx.gpu)?,
     };
-    let program = Program::new(
-        cx,
-        "texparams",
-        "suzanne_normal_matrix.vert",
-        "suzanne_texture.frag",
-        RenderState::default(),
-    )?;
     let matrices = SuzanneMatrices::new(Mat4::IDENTITY, view(), 4.0 / 3.0);
-    Ok(Box::new(TexParamsLab {
-        params: params(),
+    let floor = Floor {
         matrices: Uniforms::new(cx.gpu, "texparams.matrices", matrices),
-        floor: GpuMesh::new(cx.gpu, "texparams.floor", &shapes::texparams_floor(), None),
-        texture,
-        program,
-        bound: None,
-    }))
-}
-
-impl Lab for TexParamsLab {
-    fn info(&self) -> &'static LabInfo {
-        &INFO
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn input(&mut self, input: Input) -> bool {
-        let name = match input {
-            Input::Key('w') => "wrap_s",
-            Input::Key('W') => "wrap_t",
-            Input::Key('m') => "min",
-            Input::Key('M') => "mag",
-            _ => return false,
-        };
-        self.params.cycle(name);
-        true
-    }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        self.program.reload(cx)
-    }
-    fn render(&mut self, frame: &mut Frame<'_>) -> Result<()> {
-        let gpu = frame.gpu;
-        let want = tex_params(&self.params);
-        if self.bound != Some(want) {
-            let [texture, sampler] = self.texture.bind(gpu, "tex", "tex_sampler", want);
-            self.program.bind(gpu, vec![self.matrices.bind(), texture, sampler])?;
-            self.bound = Some(want);
-        }
-        self.matrices.value = SuzanneMatrices::new(Mat4::IDENTITY, view(), frame.aspect());
-        self.matrices.upload(gpu);
-        let mut pass = frame.pass("texparams", Load::Clear([0.0; 3]));
-        self.program.draw(&mut pass, &self.floor);
-        Ok(())
-    }
+        mesh: GpuMesh::new(cx.gpu, "texparams.floor", &shapes::texparams_floor(), None),
+    };
+    let pass = Pass::new("suzanne_normal_matrix.vert", "suzanne_texture.frag");
+    Sampled::build(cx, "texparams", floor, pass, vec![texture], |p| (0, tex_params(p)))
 }
