@@ -427,7 +427,7 @@ fn unclear_loader_cases_get_clear_messages() {
         "{}",
         run.stderr
     );
-    // A member of another type than the Rust struct's.
+    // A member of another type than its parameter feeds (the block is filled by name).
     let dir = test_dir("loader_int_ka");
     let shaders = shaders_with(&dir, "");
     let params = Path::new(&shaders).join("phong_params.glsl");
@@ -437,7 +437,7 @@ fn unclear_loader_cases_get_clear_messages() {
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     assert!(
         run.stderr
-            .contains("`ka: f32` does not fit GLSL block PhongParams member `int Ka`"),
+            .contains("parameter `Ka` (int Ka) takes whole numbers"),
         "{}",
         run.stderr
     );
