@@ -436,8 +436,7 @@ fn unclear_loader_cases_get_clear_messages() {
     let run = run_in(&dir, "phong", &["--shaders", &shaders, "--screenshot", "out.png"], &[]);
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     assert!(
-        run.stderr
-            .contains("parameter `Ka` (int Ka) takes whole numbers"),
+        run.stderr.contains("parameter `Ka` (int Ka) takes whole numbers"),
         "{}",
         run.stderr
     );

@@ -104,6 +104,19 @@ impl KeyRow {
         }
     }
 
+    /// As [`KeyRow::step`], clamped to `[lo, hi]` instead of the declared range.
+    pub const fn clamped(keys: &'static [Key], param: &'static str, step: f64, lo: f64, hi: f64) -> KeyRow {
+        KeyRow {
+            keys,
+            param,
+            act: Act::Step {
+                step,
+                component: None,
+                within: Some((lo, hi)),
+            },
+        }
+    }
+
     /// Key `i` of `keys` sets `param` to `i`.
     pub const fn pick(keys: &'static [Key], param: &'static str) -> KeyRow {
         KeyRow {
@@ -160,10 +173,20 @@ impl KeyRow {
     pub fn help(&self) -> String {
         let keys: Vec<String> = self.keys.iter().map(|k| k.name()).collect();
         let what = match self.act {
-            Act::Step { step, component, .. } => match component {
-                Some(c) => format!("{}[{c}] -/+{step}", self.param),
-                None => format!("{} -/+{step}", self.param),
-            },
+            Act::Step {
+                step,
+                component,
+                within,
+            } => {
+                let param = match component {
+                    Some(c) => format!("{}[{c}]", self.param),
+                    None => self.param.to_owned(),
+                };
+                match within {
+                    Some((lo, hi)) => format!("{param} -/+{step} within [{lo}, {hi}]"),
+                    None => format!("{param} -/+{step}"),
+                }
+            }
             Act::Pick => format!("{} 0..{}", self.param, self.keys.len() - 1),
             Act::Toggle => format!("toggle {}", self.param),
             Act::Cycle => format!("next {}", self.param),
@@ -261,7 +284,7 @@ mod tests {
     fn rows_write_the_help() {
         assert_eq!(
             KEYS.help(),
-            "h/H: h -/+0.5;\nr/R: shade[0] -/+0.25;\n1/2/3: shading 0..2;\np: toggle fixpos;\nm: next shading;\nLeft/Right: h -/+0.25;\nleft drag rotates"
+            "h/H: h -/+0.5;\nr/R: shade[0] -/+0.25 within [0, 1];\n1/2/3: shading 0..2;\np: toggle fixpos;\nm: next shading;\nLeft/Right: h -/+0.25;\nleft drag rotates"
         );
         assert_eq!(
             KEYS.params().collect::<Vec<_>>(),

@@ -35,6 +35,28 @@ pub struct LabInfo {
     pub files: FilesTaken,
 }
 
+impl LabInfo {
+    /// A lab that takes no files named on the command line.
+    pub const fn new(
+        name: &'static str,
+        title: &'static str,
+        label: &'static str,
+        lecture: &'static str,
+        size: (u32, u32),
+        keys: Keys,
+    ) -> LabInfo {
+        LabInfo {
+            name,
+            title,
+            label,
+            lecture,
+            size,
+            keys,
+            files: FilesTaken::NONE,
+        }
+    }
+}
+
 /// Which files named on the command line a lab draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FilesTaken {

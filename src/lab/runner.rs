@@ -37,7 +37,7 @@ impl Recipe {
     }
 }
 
-/// The list entry of a described lab: `pub static ENTRY: LabEntry = entry!(RECIPE);`.
+/// The list entry of a described lab (`labs::register!` makes one per recipe).
 #[macro_export]
 macro_rules! entry {
     ($recipe:path) => {
@@ -163,6 +163,8 @@ pub struct Pass {
     pub frag: &'static str,
     /// Its state.
     pub state: RenderState,
+    /// Its name in labels and messages (`flat`); empty: its number.
+    pub name: &'static str,
 }
 
 impl Pass {
@@ -172,7 +174,13 @@ impl Pass {
             vert,
             frag,
             state: RenderState::GL,
+            name: "",
         }
+    }
+
+    /// With a name for labels and messages.
+    pub const fn named(self, name: &'static str) -> Pass {
+        Pass { name, ..self }
     }
 
     /// With another state.
@@ -206,6 +214,34 @@ pub struct Look {
     pub clear: [f64; 3],
 }
 
+impl Look {
+    /// Every pass drawn in order on black, every block member a parameter.
+    pub const fn new(passes: &'static [Pass]) -> Look {
+        Look {
+            passes,
+            draw: Draw::All,
+            hook: None,
+            clear: [0.0; 3],
+        }
+    }
+
+    /// With values computed per frame.
+    pub const fn hook(self, hook: Hook) -> Look {
+        Look {
+            hook: Some(hook),
+            ..self
+        }
+    }
+
+    /// Drawing only the pass the choice `param` names.
+    pub const fn pick(self, param: &'static str) -> Look {
+        Look {
+            draw: Draw::Pick(param),
+            ..self
+        }
+    }
+}
+
 /// A stage drawn by passes whose uniform blocks are the stage's, the lab's own resources
 /// (textures) or, for every other block, a [`ParamBlock`] filled by name.
 pub struct Shaded<S: Stage> {
@@ -237,10 +273,10 @@ impl<S: Stage> Shaded<S> {
         let mut given = stage.binds();
         given.extend(own);
         for (i, pass) in look.passes.iter().enumerate() {
-            let label = if look.passes.len() == 1 {
-                name.to_owned()
-            } else {
-                format!("{name}.{i}")
+            let label = match (look.passes.len(), pass.name) {
+                (1, _) => name.to_owned(),
+                (_, "") => format!("{name}.{i}"),
+                (_, pass) => format!("{name}.{pass}"),
             };
             let mut program = Program::new(cx, &label, pass.vert, pass.frag, pass.state)?;
             let mut binds = Vec::new();

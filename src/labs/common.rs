@@ -5,7 +5,7 @@ use glam::{Mat3, Mat4};
 
 use crate::camera;
 use crate::lab::Input;
-use crate::params::Params;
+use crate::params::{ParamSpec, Params};
 use crate::tess::Object;
 
 /// The shared transform block of `transform.glsl`: the GL 2.0 built-in matrices.
@@ -101,3 +101,21 @@ impl GlutMouse {
         }
     }
 }
+
+/// `glRotatef` about x, the vertical drag's angle.
+pub const XANGLE: ParamSpec = ParamSpec::real(
+    "xangle",
+    &[0.0],
+    -36000.0,
+    36000.0,
+    "glRotatef about x, degrees (mouse: vertical drag)",
+);
+
+/// `glRotatef` about y, the horizontal drag's angle.
+pub const YANGLE: ParamSpec = ParamSpec::real(
+    "yangle",
+    &[0.0],
+    -36000.0,
+    36000.0,
+    "glRotatef about y, degrees (mouse: horizontal drag)",
+);

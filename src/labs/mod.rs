@@ -3,6 +3,22 @@
 //! [`ALL`], that examples, the bench, the tests and `find` read. A lab's module, shaders
 //! (`shaders_glsl/NAME.*`) and example (`examples/NAME.rs`) share its name.
 
+/// Declares `info(name, title, label, keys)`: the [`LabInfo`](crate::lab::LabInfo) of a lab of
+/// one lecture (its lecture name and window size).
+macro_rules! lecture {
+    ($lecture:literal, $size:expr) => {
+        /// A lab of this lecture: its name, the original's window title, the effect, its keys.
+        pub const fn info(
+            name: &'static str,
+            title: &'static str,
+            label: &'static str,
+            keys: crate::lab::Keys,
+        ) -> crate::lab::LabInfo {
+            crate::lab::LabInfo::new(name, title, label, $lecture, $size, keys)
+        }
+    };
+}
+
 pub mod common;
 pub mod legacy;
 pub mod seed000;
@@ -14,24 +30,31 @@ pub mod seed004;
 use crate::lab::LabEntry;
 
 /// Registers every lab once: a `pub static NAME: &LabEntry` per lab, and [`ALL`] in this order.
+/// A lab is its module's `RECIPE` (driven by [`crate::lab::Runner`]), or its own `ENTRY` where
+/// it implements [`crate::lab::Lab`] by hand (`by hand`).
 macro_rules! register {
-    ($($path:path => $name:ident,)*) => {
+    ($($path:path => $name:ident $($by:ident $hand:ident)?,)*) => {
         $(
             #[doc = concat!("The `", stringify!($path), "` lab.")]
-            pub static $name: &LabEntry = {
-                use $path as module;
-                &module::ENTRY
-            };
+            pub static $name: &LabEntry = register!(@entry $($hand)? $path);
         )*
         /// Every lab, in lecture order.
         pub static ALL: &[&LabEntry] = &[$($name),*];
     };
+    (@entry hand $path:path) => {{
+        use $path as module;
+        &module::ENTRY
+    }};
+    (@entry $path:path) => {{
+        use $path as module;
+        &crate::entry!(module::RECIPE)
+    }};
 }
 
 register! {
     seed000::position_rgb => POSITION_RGB,
     seed000::normal_rgb => NORMAL_RGB,
-    seed000::phong => PHONG,
+    seed000::phong => PHONG by hand,
     seed000::noise => NOISE,
     seed000::displacement => DISPLACEMENT,
     seed001::height => HEIGHT,
@@ -60,7 +83,7 @@ register! {
     seed004::suzanne_flat => SUZANNE_FLAT,
     seed004::suzanne_gouraud => SUZANNE_GOURAUD,
     seed004::suzanne_phong => SUZANNE_PHONG,
-    legacy => LEGACY,
+    legacy => LEGACY by hand,
 }
 
 /// The lab called `name`.

@@ -6,7 +6,7 @@
 //! closes the cracks. Keys: `[`/`]` displacement ∓0.01 (clamped to [0, 1]), `R/r G/g B/b` ±0.05
 //! on the shade, `1`-`4` objects, mouse drag rotates, Space pauses the clock.
 
-use crate::lab::{Draw, FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
 use crate::params::{ParamSpec, Params};
 use crate::render::Computed;
 use crate::tess::Object;
@@ -23,7 +23,7 @@ const SPLIT: &[Object] = &[Object::Torus];
 
 /// `[`/`]` on the strength, then the shade keys.
 const KEYS: &[KeyRow] = &[
-    KeyRow::channel(&[C('['), C(']')], "displacement", 0, 0.01, 0.0, 1.0),
+    KeyRow::clamped(&[C('['), C(']')], "displacement", 0.01, 0.0, 1.0),
     SHADE_KEYS[0],
     SHADE_KEYS[1],
     SHADE_KEYS[2],
@@ -32,15 +32,12 @@ const KEYS: &[KeyRow] = &[
 /// Exercise 5: the `DisplacementParams` block's `shade` and `displacement` are parameters, its
 /// `time` the wrapped clock; `smooth` is the stage's ([`Solid`]).
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "displacement",
-        title: "Lab05-5",
-        label: "displacement",
-        lecture: "000 CMP211 Lab05",
-        size: (640, 360),
-        keys: Keys::rows(KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "displacement",
+        "Lab05-5",
+        "displacement",
+        Keys::rows(KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
+    ),
     params: &[
         &[
             ParamSpec::real(
@@ -83,12 +80,5 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("displacement.vert", "displacement.frag")],
-    draw: Draw::All,
-    hook: Some(|p: &Params, c: &mut Computed| c.set("time", &[noise_time(p)])),
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("displacement.vert", "displacement.frag")])
+    .hook(|p: &Params, c: &mut Computed| c.set("time", &[noise_time(p)]));

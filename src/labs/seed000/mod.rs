@@ -54,3 +54,5 @@ pub(crate) const STAGE_KEYS: Keys = Keys::text("1-4: cube, sphere, torus, teapot
 pub(crate) fn stage_title(info: &LabInfo, p: &Params) -> String {
     title_000(info, p, "drag to rotate, 1-4 objects", "")
 }
+
+lecture!("000 CMP211 Lab05", (640, 360));

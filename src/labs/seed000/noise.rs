@@ -3,7 +3,7 @@
 //! with a clock in seconds. Keys: `R/r G/g B/b` ±0.05 on the shade colour (clamped to [0, 1]),
 //! `1`-`4` objects, mouse drag rotates, Space pauses the clock.
 
-use crate::lab::{Draw, FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 use crate::params::{ParamSpec, Params};
 use crate::render::Computed;
 use crate::tess::Object;
@@ -19,15 +19,12 @@ const SPLIT: &[Object] = &[Object::Torus, Object::Teapot];
 
 /// Exercise 4: the `NoiseParams` block's `shade` is a parameter, its `time` the wrapped clock.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "noise",
-        title: "Lab05-4",
-        label: "simplex noise",
-        lecture: "000 CMP211 Lab05",
-        size: (640, 360),
-        keys: Keys::rows(SHADE_KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "noise",
+        "Lab05-4",
+        "simplex noise",
+        Keys::rows(SHADE_KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
+    ),
     params: &[
         &[ParamSpec::real(
             "shade",
@@ -52,12 +49,5 @@ pub static RECIPE: Recipe = Recipe {
     build: |cx, p| Shaded::build(cx, "noise", p, Solid::new(cx.gpu, "noise", SPLIT), &LOOK, Vec::new()),
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("noise.vert", "noise.frag")],
-    draw: Draw::All,
-    hook: Some(|p: &Params, c: &mut Computed| c.set("time", &[noise_time(p)])),
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("noise.vert", "noise.frag")])
+    .hook(|p: &Params, c: &mut Computed| c.set("time", &[noise_time(p)]));

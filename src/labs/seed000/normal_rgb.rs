@@ -1,7 +1,7 @@
 //! Exercise 2, normal → RGB (`Lab05-2`): `normalize(gl_NormalMatrix * gl_Normal)` in eye space
 //! as colour; negative components clamp to 0. Keys: `1`-`4` objects, mouse drag rotates.
 
-use crate::lab::{Draw, FilesTaken, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Look, Pass, Recipe, Shaded};
 use crate::tess::Object;
 
 use crate::labs::seed000::stage::{Solid, PARAMS_000};
@@ -14,15 +14,7 @@ const SPLIT: &[Object] = &[Object::Torus];
 
 /// Exercise 2: the stage and one pass, no uniforms of its own.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "normal_rgb",
-        title: "Lab05-2",
-        label: "normal to RGB",
-        lecture: "000 CMP211 Lab05",
-        size: (640, 360),
-        keys: STAGE_KEYS,
-        files: FilesTaken::NONE,
-    },
+    info: super::info("normal_rgb", "Lab05-2", "normal to RGB", STAGE_KEYS),
     params: &[PARAMS_000],
     animated: false,
     title: Some(stage_title),
@@ -32,12 +24,4 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("normal_rgb.vert", "normal_rgb.frag")],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("normal_rgb.vert", "normal_rgb.frag")]);

@@ -16,7 +16,7 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
-use crate::lab::{FilesTaken, Input, Key::C, KeyRow, Keys, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{Input, Key::C, KeyRow, Keys, Lab, LabContext, LabEntry, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Computed, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, Uniforms};
@@ -27,18 +27,15 @@ use crate::labs::common::TransformUniforms;
 use crate::labs::seed000::stage::{title_000, GlutStage, StageConfig, PARAMS_000};
 
 /// Exercise 3.
-pub static INFO: LabInfo = LabInfo {
-    name: "phong",
-    title: "Lab05-3",
-    label: "Phong",
-    lecture: "000 CMP211 Lab05",
-    size: (640, 360),
-    keys: Keys::rows(
+pub static INFO: LabInfo = super::info(
+    "phong",
+    "Lab05-3",
+    "Phong",
+    Keys::rows(
         KEYS,
         "W/A/S/D: camera ±0.1 (light stays put); 1-4: objects; left drag rotates",
     ),
-    files: FilesTaken::NONE,
-};
+);
 
 /// The objects drawn outside faces first ([`GlutStage::faces`]: same pixels, fewer fragments
 /// shaded). Measured (issue 14, `--set faces=mesh` against `outside_first`, 7 alternating
@@ -61,10 +58,10 @@ const KEYS: &[KeyRow] = &[
     KeyRow::channel(&[C('x'), C('X')], "lightPosition", 0, 0.1, -REACH, REACH),
     KeyRow::channel(&[C('y'), C('Y')], "lightPosition", 1, 0.1, -REACH, REACH),
     KeyRow::channel(&[C('z'), C('Z')], "lightPosition", 2, 0.1, -REACH, REACH),
-    KeyRow::channel(&[C('<'), C('>')], "Ka", 0, 0.05, 0.0, 1.0),
-    KeyRow::channel(&[C('['), C(']')], "Kd", 0, 0.05, 0.0, 1.0),
-    KeyRow::channel(&[C('{'), C('}')], "Ks", 0, 0.05, 0.0, 1.0),
-    KeyRow::channel(&[C('h'), C('H')], "shininess", 0, 1.0, 6.0, 200.0),
+    KeyRow::clamped(&[C('<'), C('>')], "Ka", 0.05, 0.0, 1.0),
+    KeyRow::clamped(&[C('['), C(']')], "Kd", 0.05, 0.0, 1.0),
+    KeyRow::clamped(&[C('{'), C('}')], "Ks", 0.05, 0.0, 1.0),
+    KeyRow::clamped(&[C('h'), C('H')], "shininess", 1.0, 6.0, 200.0),
     KeyRow::channel(&[C('r'), C('R')], "diffuseColor", 0, 0.01, 0.0, 1.0),
     KeyRow::channel(&[C('g'), C('G')], "diffuseColor", 1, 0.01, 0.0, 1.0),
     KeyRow::channel(&[C('b'), C('B')], "diffuseColor", 2, 0.01, 0.0, 1.0),

@@ -2,7 +2,7 @@
 //! + 0.5` — a 4-component normalize with w = 1 — so the object shows its position as colour,
 //! z as red, y as green, x as blue; values above 1 clamp. Keys: `1`-`4` objects, mouse drag rotates.
 
-use crate::lab::{Draw, FilesTaken, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Look, Pass, Recipe, Shaded};
 use crate::tess::Object;
 
 use crate::labs::seed000::stage::{Solid, PARAMS_000};
@@ -15,15 +15,7 @@ const SPLIT: &[Object] = &[Object::Torus];
 
 /// Exercise 1: the stage and one pass, no uniforms of its own.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "position_rgb",
-        title: "Lab05-1",
-        label: "position to RGB",
-        lecture: "000 CMP211 Lab05",
-        size: (640, 360),
-        keys: STAGE_KEYS,
-        files: FilesTaken::NONE,
-    },
+    info: super::info("position_rgb", "Lab05-1", "position to RGB", STAGE_KEYS),
     params: &[PARAMS_000],
     animated: false,
     title: Some(stage_title),
@@ -33,12 +25,4 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("position_rgb.vert", "position_rgb.frag")],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("position_rgb.vert", "position_rgb.frag")]);

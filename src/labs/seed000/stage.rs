@@ -15,7 +15,7 @@ use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Faces, GpuMesh, Uniforms};
 
-use crate::labs::common::{object_key, std140_mat3, GlutMouse, TransformUniforms};
+use crate::labs::common::{object_key, std140_mat3, GlutMouse, TransformUniforms, XANGLE, YANGLE};
 use crate::tess::{self, Object};
 
 /// Seed 000's object order (keys `1`-`4`: cube, sphere, torus, teapot).
@@ -34,20 +34,8 @@ pub struct StageConfig {
 /// normal-matrix study knobs.
 pub const PARAMS_000: &[ParamSpec] = &[
     ParamSpec::choice("object", &[3.0], OBJECTS_000, "object drawn (keys 1-4)"),
-    ParamSpec::real(
-        "xangle",
-        &[0.0],
-        -36000.0,
-        36000.0,
-        "glRotatef about x, degrees (mouse: vertical drag)",
-    ),
-    ParamSpec::real(
-        "yangle",
-        &[0.0],
-        -36000.0,
-        36000.0,
-        "glRotatef about y, degrees (mouse: horizontal drag)",
-    ),
+    XANGLE,
+    YANGLE,
     ParamSpec::real("zangle", &[0.0], -36000.0, 36000.0, "glRotatef about z, degrees"),
     ParamSpec::int(
         "tess",

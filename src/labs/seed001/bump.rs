@@ -10,33 +10,17 @@
 //!
 //! Keys: `←`/`→` blx ∓0.25, `↑`/`↓` bly ±0.25, PageUp/PageDown blz ±0.25; left drag rotates.
 
-use crate::lab::{Draw, FilesTaken, LabEntry, LabInfo, Look, Pass, Recipe};
+use crate::lab::{Look, Pass, Recipe};
 
 use crate::labs::seed001::tangent_bump;
 
 /// Seed 001, §1.11.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "bump",
-        title: "ref001",
-        label: "bump mapping",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: tangent_bump::KEYS,
-        files: FilesTaken::NONE,
-    },
+    info: super::info("bump", "ref001", "bump mapping", tangent_bump::KEYS),
     params: tangent_bump::PARAMS,
     animated: false,
     title: None,
     build: |cx, p| tangent_bump::build(cx, "bump", p, &LOOK, Vec::new()),
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("bump.vert", "bump.frag")],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("bump.vert", "bump.frag")]);

@@ -10,7 +10,7 @@
 use glam::Vec3;
 
 use crate::geometry::images;
-use crate::lab::{FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 use crate::params::Params;
 use crate::render::{sampler, Bind, Computed, SamplerDesc, Texture};
 
@@ -19,15 +19,12 @@ use crate::labs::seed001::stage::{OnSolid, UstcStage, OBJECT, ROTATION};
 /// Seed 001, §1.10: the `EnvMap` block is computed (`env_map`); the cube map and its
 /// sampler are the lab's own bindings.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "envmap",
-        title: "ref001",
-        label: "environment map",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::text("1-4: objects; left drag rotates"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "envmap",
+        "ref001",
+        "environment map",
+        Keys::text("1-4: objects; left drag rotates"),
+    ),
     params: &[OBJECT, ROTATION],
     animated: false,
     title: None,
@@ -48,15 +45,7 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("envmap.vert", "envmap.frag")],
-    draw: crate::lab::Draw::All,
-    hook: Some(env_map),
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("envmap.vert", "envmap.frag")]).hook(env_map);
 
 /// The eye.
 const EYE: Vec3 = Vec3::new(0.0, 0.0, 4.0);

@@ -10,7 +10,7 @@
 use glam::Vec3;
 
 use crate::geometry::shapes::HeightVertex;
-use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
 use crate::params::ParamSpec;
 use crate::render::{GpuMesh, RenderState};
 
@@ -19,15 +19,12 @@ use crate::labs::seed001::stage::{OnPicked, UstcStage, ROTATION};
 
 /// Seed 001, §1.1: no uniform block besides the Transform; `mode` picks the strip.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "height",
-        title: "ref001",
-        label: "custom vertex attribute",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::rows(&[KeyRow::cycle(&[C('v')], "mode")], "left drag rotates"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "height",
+        "ref001",
+        "custom vertex attribute",
+        Keys::rows(&[KeyRow::cycle(&[C('v')], "mode")], "left drag rotates"),
+    ),
     params: &[
         &[ParamSpec::choice(
             "mode",
@@ -52,16 +49,9 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("height.vert", "pass_color.frag")
-        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))],
-    draw: crate::lab::Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look =
+    Look::new(&[Pass::new("height.vert", "pass_color.frag")
+        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))]);
 
 // glVertex2f's x, y and the `height` attribute (GL converts both to the shader's types).
 crate::vertex_type!(HeightVertex, {

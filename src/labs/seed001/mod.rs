@@ -20,3 +20,5 @@ pub mod texture;
 pub mod toon;
 pub mod uniform_arrays;
 pub mod wave;
+
+lecture!("001 USTC GLSL (III)", (512, 512));

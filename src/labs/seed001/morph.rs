@@ -17,7 +17,7 @@ use std::f64::consts::TAU;
 use glam::Vec3;
 
 use crate::geometry::shapes::{morph_vertices, MorphVertex};
-use crate::lab::{FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Computed, GpuMesh};
 
@@ -26,15 +26,12 @@ use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
 
 /// Seed 001, §1.4: the `Morph` block's `time` is [`time_uniform`] of the clock.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "morph",
-        title: "ref001",
-        label: "morphing",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::text("Space pauses the clock; left drag rotates"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "morph",
+        "ref001",
+        "morphing",
+        Keys::text("Space pauses the clock; left drag rotates"),
+    ),
     params: &[
         &[ParamSpec::real(
             "time",
@@ -56,15 +53,8 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("morph.vert", "pass_color.frag")],
-    draw: crate::lab::Draw::All,
-    hook: Some(|p: &Params, c: &mut Computed| c.set("time", &[time_uniform(p.f64("time"))])),
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("morph.vert", "pass_color.frag")])
+    .hook(|p: &Params, c: &mut Computed| c.set("time", &[time_uniform(p.f64("time"))]));
 
 // gl_Vertex (vertices_one) and the vertices2 attribute (vertices_two).
 crate::vertex_type!(MorphVertex, {

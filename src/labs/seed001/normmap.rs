@@ -7,22 +7,14 @@
 //! Keys: as `bump` (light keys move blx, bly, blz; left drag rotates).
 
 use crate::geometry::images;
-use crate::lab::{Draw, FilesTaken, LabEntry, LabInfo, Look, Pass, Recipe};
+use crate::lab::{Look, Pass, Recipe};
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
 use crate::labs::seed001::tangent_bump;
 
 /// Seed 001, §1.12: `bump` with the cube map on unit 1.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "normmap",
-        title: "ref001",
-        label: "normalization cube map",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: tangent_bump::KEYS,
-        files: FilesTaken::NONE,
-    },
+    info: super::info("normmap", "ref001", "normalization cube map", tangent_bump::KEYS),
     params: tangent_bump::PARAMS,
     animated: false,
     title: None,
@@ -49,12 +41,4 @@ pub static RECIPE: Recipe = Recipe {
 /// Texels per side of each face of the normalization cube map.
 const CUBE_SIZE: u32 = 32;
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("bump.vert", "normmap.frag")],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("bump.vert", "normmap.frag")]);

@@ -10,7 +10,7 @@ use glam::{Mat4, Vec3};
 
 use crate::geometry::shapes::{particle_velocities, PARTICLE_COUNT};
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Input, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, Computed, GpuMesh, RenderState};
 
@@ -20,21 +20,18 @@ use crate::labs::seed001::stage::{UstcStage, ROTATION};
 /// Seed 001, §1.5: the `Particles` block's `g` and `m` are parameters, its `t` the clock
 /// `time` as is (no wrap: the course's t grows).
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "particles",
-        title: "ref001",
-        label: "particle system",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::rows(
+    info: super::info(
+        "particles",
+        "ref001",
+        "particle system",
+        Keys::rows(
             &[
                 KeyRow::step(&[C('g'), C('G')], "g", 0.5),
                 KeyRow::step(&[C('m'), C('M')], "m", 0.25),
             ],
             "Space pauses the clock; r: restart at t = 0; left drag rotates",
         ),
-        files: FilesTaken::NONE,
-    },
+    ),
     params: &[
         &[
             ParamSpec::real(
@@ -60,17 +57,11 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    // GL_POINTS at GL's default point size 1 (the only size WebGPU draws).
-    passes: &[Pass::new("particles.vert", "particles.frag")
-        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::PointList))],
-    draw: crate::lab::Draw::All,
-    hook: Some(|p: &Params, c: &mut Computed| c.set("t", &[p.f("time")])),
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+// GL_POINTS at GL's default point size 1 (the only size WebGPU draws).
+static LOOK: Look =
+    Look::new(&[Pass::new("particles.vert", "particles.frag")
+        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::PointList))])
+    .hook(|p: &Params, c: &mut Computed| c.set("t", &[p.f("time")]));
 
 /// One particle: `glVertexAttrib3fv(vel, …); glVertex3f(0, −1, 0);`.
 #[repr(C)]

@@ -1,26 +1,20 @@
 //! Seed 001 `phong_fragment` (SPEC §1.8): the course's modified Phong (Blinn) lighting; N, L and E are interpolated and the lighting is computed per fragment: the highlight is round.
 //! See [`crate::labs::seed001::modified_phong`] for the light, the keys and `compare` (both halves side by side).
 
-use crate::lab::{FilesTaken, LabEntry, LabInfo, Recipe};
+use crate::lab::Recipe;
 
 use crate::labs::seed001::modified_phong::{self, Shading};
 
 /// Seed 001, §1.8.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "phong_fragment",
-        title: "ref001",
-        label: "modified Phong, per fragment",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: modified_phong::KEYS,
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "phong_fragment",
+        "ref001",
+        "modified Phong, per fragment",
+        modified_phong::KEYS,
+    ),
     params: modified_phong::PARAMS,
     animated: false,
     title: None,
     build: |cx, _| modified_phong::build(cx, "phong_fragment", Shading::Fragment),
 };
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

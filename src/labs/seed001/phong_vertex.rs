@@ -1,26 +1,20 @@
 //! Seed 001 `phong_vertex` (SPEC §1.7): the course's modified Phong (Blinn) lighting; the lighting is computed per vertex and its colour interpolated: on the teapot the highlight is blotchy, shaped by the triangles.
 //! See [`crate::labs::seed001::modified_phong`] for the light, the keys and `compare` (both halves side by side).
 
-use crate::lab::{FilesTaken, LabEntry, LabInfo, Recipe};
+use crate::lab::Recipe;
 
 use crate::labs::seed001::modified_phong::{self, Shading};
 
 /// Seed 001, §1.7.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "phong_vertex",
-        title: "ref001",
-        label: "modified Phong, per vertex",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: modified_phong::KEYS,
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "phong_vertex",
+        "ref001",
+        "modified Phong, per vertex",
+        modified_phong::KEYS,
+    ),
     params: modified_phong::PARAMS,
     animated: false,
     title: None,
     build: |cx, _| modified_phong::build(cx, "phong_vertex", Shading::Vertex),
 };
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

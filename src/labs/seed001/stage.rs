@@ -17,7 +17,7 @@ use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms, VertexType};
 use crate::tess::Object;
 
-use crate::labs::common::{object_key, GlutMouse, TransformUniforms};
+use crate::labs::common::{object_key, GlutMouse, TransformUniforms, XANGLE, YANGLE};
 
 /// Seed 001's object numbering.
 pub const OBJECTS_001: &[&str] = &["teapot", "sphere", "torus", "cube"];
@@ -26,22 +26,7 @@ pub const OBJECTS_001: &[&str] = &["teapot", "sphere", "torus", "cube"];
 const OBJECTS: [Object; 4] = [Object::Teapot, Object::Sphere, Object::Torus, Object::Cube];
 
 /// The model rotation every seed-001 exercise has (defaults 0).
-pub const ROTATION: &[ParamSpec] = &[
-    ParamSpec::real(
-        "xangle",
-        &[0.0],
-        -36000.0,
-        36000.0,
-        "glRotatef about x, degrees (mouse: vertical drag)",
-    ),
-    ParamSpec::real(
-        "yangle",
-        &[0.0],
-        -36000.0,
-        36000.0,
-        "glRotatef about y, degrees (mouse: horizontal drag)",
-    ),
-];
+pub const ROTATION: &[ParamSpec] = &[XANGLE, YANGLE];
 
 /// The GLUT solid of the exercises that draw one (default the teapot).
 pub const OBJECT: &[ParamSpec] = &[ParamSpec::choice(

@@ -9,7 +9,7 @@ use glam::Vec3;
 
 use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
-use crate::lab::{FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 use crate::mesh::Mesh;
 use crate::render::{sampler, Bind, GpuMesh, SamplerDesc, Texture};
 
@@ -18,15 +18,7 @@ use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
 /// Seed 001, §1.9: no uniform block besides the Transform; the image and its sampler are the
 /// lab's own bindings.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "texture",
-        title: "ref001",
-        label: "texture mapping",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::text("left drag rotates"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info("texture", "ref001", "texture mapping", Keys::text("left drag rotates")),
     params: &[ROTATION],
     animated: false,
     title: None,
@@ -48,15 +40,7 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("texture.vert", "texture.frag")],
-    draw: crate::lab::Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("texture.vert", "texture.frag")]);
 
 /// A GLUT vertex with freeglut's solid-teapot texture coordinates.
 #[repr(C)]

@@ -9,22 +9,19 @@
 
 use glam::Vec3;
 
-use crate::lab::{Draw, FilesTaken, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
 use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
 
 /// Seed 001, §1.6: the Transform and GlLight blocks come from the stage.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "toon",
-        title: "ref001",
-        label: "toon shading",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::rows(&COURSE_KEYS, "1-4: objects; left drag rotates"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "toon",
+        "ref001",
+        "toon shading",
+        Keys::rows(&COURSE_KEYS, "1-4: objects; left drag rotates"),
+    ),
     params: &[OBJECT, ROTATION, COURSE.params],
     animated: false,
     title: None,
@@ -41,12 +38,4 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("toon.vert", "pass_color.frag")],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("toon.vert", "pass_color.frag")]);

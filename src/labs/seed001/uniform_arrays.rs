@@ -17,39 +17,33 @@ use glam::Vec3;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{
-    FilesTaken, Input, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Stage, DOWN, LEFT,
-    PAGE_DOWN, PAGE_UP, RIGHT, UP,
-};
+use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms};
 use crate::shader::CompiledShader;
 
-use crate::labs::seed001::gl_light::{GlLight, COURSE};
+use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
 use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
 
 /// Seed 001, §1.2: both blocks are the stage's (`Course`): the `UniformArrays` block as the
 /// course's setters leave it for `mode`, and the GL light state.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "uniform_arrays",
-        title: "ref001",
-        label: "uniform vectors and arrays",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::rows(
+    info: super::info(
+        "uniform_arrays",
+        "ref001",
+        "uniform vectors and arrays",
+        Keys::rows(
             &[
                 KeyRow::cycle(&[C('e')], "mode"),
-                KeyRow::step(&[LEFT, RIGHT], "lx", 0.25),
-                KeyRow::step(&[DOWN, UP], "ly", 0.25),
-                KeyRow::step(&[PAGE_DOWN, PAGE_UP], "lz", 0.25),
-                KeyRow::step(&[C('h'), C('H')], "shininess", 5.0),
+                COURSE_KEYS[0],
+                COURSE_KEYS[1],
+                COURSE_KEYS[2],
+                COURSE_KEYS[3],
             ],
             "1-4: objects; left drag rotates",
         ),
-        files: FilesTaken::NONE,
-    },
+    ),
     params: &[
         &[ParamSpec::choice(
             "mode",
@@ -66,9 +60,9 @@ pub static RECIPE: Recipe = Recipe {
     build: |cx, p| {
         let shader = cx.source.compile(LOOK.passes[0].frag)?;
         let modes = [course_uniforms(&shader, 0)?, course_uniforms(&shader, 1)?];
+        let solid = OnSolid::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0));
         let stage = Course {
-            solid: OnSolid::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0)),
-            light: GlLight::new(cx.gpu, "uniform_arrays", &COURSE),
+            lit: Lit::new(cx.gpu, "uniform_arrays", &COURSE, solid),
             block: Uniforms::new(cx.gpu, "uniform_arrays.params", modes[0]),
             modes,
         };
@@ -76,15 +70,7 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("uniform_arrays.vert", "uniform_arrays.frag")],
-    draw: crate::lab::Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("uniform_arrays.vert", "uniform_arrays.frag")]);
 
 /// The `UniformArrays` block of `uniform_arrays.frag` (std140: a float, then 16-byte slots).
 #[repr(C)]
@@ -247,8 +233,7 @@ pub fn course_uniforms(shader: &CompiledShader, mode: usize) -> Result<UniformAr
 /// GLUT's solid with the GL light state and the `UniformArrays` block of the current `mode`
 /// (each computed once, by [`course_uniforms`] on the fragment shader).
 struct Course {
-    solid: OnSolid,
-    light: GlLight,
+    lit: Lit<OnSolid>,
     block: Uniforms<UniformArraysUniforms>,
     modes: [UniformArraysUniforms; 2],
 }
@@ -256,18 +241,16 @@ struct Course {
 impl Stage for Course {
     type Vertex = Vertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.solid.input(p, input)
+        self.lit.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        let mut binds = self.solid.binds();
-        binds.push(self.light.uniforms.bind());
+        let mut binds = self.lit.binds();
         binds.push(self.block.bind());
         binds
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
-        self.light.upload(gpu, p);
         self.block.value = self.modes[p.index_of("mode").min(1)];
         self.block.upload(gpu);
-        self.solid.prepare(gpu, p, width, height)
+        self.lit.prepare(gpu, p, width, height)
     }
 }

@@ -11,7 +11,7 @@ use std::f64::consts::TAU;
 use glam::Vec3;
 
 use crate::geometry::shapes::{wave_grid, ColorVertex};
-use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Computed, GpuMesh};
 
@@ -20,13 +20,11 @@ use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
 /// Seed 001, §1.3: the `Wave` block's `xs`, `zs`, `h` are parameters, its `time` the wrapped
 /// clock ([`wave_time`]).
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "wave",
-        title: "ref001",
-        label: "wave motion",
-        lecture: "001 USTC GLSL (III)",
-        size: (512, 512),
-        keys: Keys::rows(
+    info: super::info(
+        "wave",
+        "ref001",
+        "wave motion",
+        Keys::rows(
             &[
                 KeyRow::step(&[C('h'), C('H')], "h", 0.02),
                 KeyRow::step(&[C('x'), C('X')], "xs", 0.5),
@@ -34,8 +32,7 @@ pub static RECIPE: Recipe = Recipe {
             ],
             "Space pauses the clock; left drag rotates",
         ),
-        files: FilesTaken::NONE,
-    },
+    ),
     params: &[
         &[
             ParamSpec::real("time", &[0.0], -1e9, 1e9, "seconds (a clock in a window; Space pauses)"),
@@ -56,15 +53,8 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("wave.vert", "pass_color.frag")],
-    draw: crate::lab::Draw::All,
-    hook: Some(|p: &Params, c: &mut Computed| c.set("time", &[wave_time(p)])),
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("wave.vert", "pass_color.frag")])
+    .hook(|p: &Params, c: &mut Computed| c.set("time", &[wave_time(p)]));
 
 // gl_Vertex and glColor3f's colour.
 crate::vertex_type!(ColorVertex, {

@@ -20,7 +20,7 @@
 use crate::geometry::images::uvgrid;
 use crate::geometry::shapes::{double_vision_triangle, TexVertex2};
 use crate::gpu::Gpu;
-use crate::lab::{Draw, FilesTaken, Input, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Input, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{sampler, Bind, Computed, GpuMesh, RenderState, SamplerDesc, Texture};
 
@@ -31,15 +31,12 @@ crate::vertex_type!(TexVertex2, {
 
 /// `double_vision`.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "double_vision",
-        title: "ref002",
-        label: "double vision",
-        lecture: "002 Lecture 12",
-        size: (512, 512),
-        keys: Keys::text("[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)"),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "double_vision",
+        "ref002",
+        "double vision",
+        Keys::text("[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)"),
+    ),
     params: &[&[
         ParamSpec::real(
             "left_x",
@@ -71,15 +68,13 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("double_vision.vert", "double_vision.frag").state(RenderState::GL.no_depth())],
-    draw: Draw::All,
-    hook: Some(|p: &Params, c: &mut Computed| {
-        c.set("left_separation", &[p.f("left_x"), p.f("left_y")]);
-        c.set("right_separation", &[p.f("right_x"), p.f("right_y")]);
-    }),
-    clear: [0.0; 3],
-};
+static LOOK: Look =
+    Look::new(&[Pass::new("double_vision.vert", "double_vision.frag").state(RenderState::GL.no_depth())]).hook(
+        |p: &Params, c: &mut Computed| {
+            c.set("left_separation", &[p.f("left_x"), p.f("left_y")]);
+            c.set("right_separation", &[p.f("right_x"), p.f("right_y")]);
+        },
+    );
 
 /// The separation step of keys `[` and `]`.
 const STEP: f64 = 0.02;
@@ -103,6 +98,3 @@ impl Stage for Triangle {
         &self.0
     }
 }
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

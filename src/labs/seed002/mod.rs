@@ -7,3 +7,5 @@ pub mod double_vision;
 pub mod normal_world;
 pub mod phong_dir;
 pub mod twist;
+
+lecture!("002 Lecture 12", (512, 512));

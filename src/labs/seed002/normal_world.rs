@@ -12,7 +12,7 @@
 
 use glam::Vec3;
 
-use crate::lab::{Draw, FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
 use crate::params::ParamSpec;
 
 use crate::labs::seed002::stage::{model_zyx, Teapot};
@@ -22,13 +22,11 @@ const TURNS: f64 = 36000.0;
 
 /// `normal_world`: the shaders read the Transform block alone.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "normal_world",
-        title: "ref002",
-        label: "normal as colour, world space",
-        lecture: "002 Lecture 12",
-        size: (512, 512),
-        keys: Keys::rows(
+    info: super::info(
+        "normal_world",
+        "ref002",
+        "normal as colour, world space",
+        Keys::rows(
             &[
                 KeyRow::step(&[C('x'), C('X')], "rx", 5.0),
                 KeyRow::step(&[C('y'), C('Y')], "ry", 5.0),
@@ -36,8 +34,7 @@ pub static RECIPE: Recipe = Recipe {
             ],
             "",
         ),
-        files: FilesTaken::NONE,
-    },
+    ),
     params: &[&[
         ParamSpec::real(
             "rx",
@@ -75,12 +72,4 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("normal_world.vert", "normal_world.frag")],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("normal_world.vert", "normal_world.frag")]);

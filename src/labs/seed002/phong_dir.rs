@@ -18,7 +18,7 @@
 
 use glam::Mat4;
 
-use crate::lab::{Draw, FilesTaken, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, DOWN, UP};
+use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, DOWN, UP};
 use crate::params::{ParamSpec, Params};
 use crate::render::Computed;
 
@@ -26,21 +26,18 @@ use crate::labs::seed002::stage::{self, Teapot};
 
 /// `phong_dir`.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "phong_dir",
-        title: "ref002",
-        label: "Phong, directional light",
-        lecture: "002 Lecture 12",
-        size: (512, 512),
-        keys: Keys::rows(
+    info: super::info(
+        "phong_dir",
+        "ref002",
+        "Phong, directional light",
+        Keys::rows(
             &[
                 KeyRow::step(&[DOWN, UP], "rx", 5.0),
                 KeyRow::toggle(&[C('p'), C('P')], "fixpos"),
             ],
             "",
         ),
-        files: FilesTaken::NONE,
-    },
+    ),
     params: &[&[
         ParamSpec::real("rx", &[0.0], -36000.0, 36000.0, "glRotated about x, degrees (Up/Down)"),
         ParamSpec::flag(
@@ -57,12 +54,7 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("phong_dir.vert", "phong_dir.frag")],
-    draw: Draw::All,
-    hook: Some(course),
-    clear: [0.0; 3],
-};
+static LOOK: Look = Look::new(&[Pass::new("phong_dir.vert", "phong_dir.frag")]).hook(course);
 
 /// The course's values (SPEC §2.4), and `gl_ModelViewProjectionMatrix` in GL's depth
 /// convention for the model.
@@ -84,6 +76,3 @@ fn course(p: &Params, c: &mut Computed) {
 fn model_rx(rx: f32) -> Mat4 {
     stage::model_zyx(rx, 0.0, 0.0)
 }
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

@@ -9,7 +9,7 @@
 //! Keys: `+`/`-` twisting ±0.25.
 
 use crate::geometry::shapes::twist_grid;
-use crate::lab::{FilesTaken, Flat, Key::C, KeyRow, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded};
+use crate::lab::{Flat, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
 use crate::params::ParamSpec;
 use crate::render::{GpuMesh, RenderState};
 
@@ -24,15 +24,12 @@ crate::vertex_type!(TwistVertex, { position: "vertex_position" => Float32x2 });
 
 /// `twist`: the `Twist` block's `twisting` and `color` are its parameters.
 pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
-        name: "twist",
-        title: "ref002",
-        label: "2D twisting",
-        lecture: "002 Lecture 12",
-        size: (512, 512),
-        keys: Keys::rows(&[KeyRow::step(&[C('-'), C('+')], "twisting", 0.25)], ""),
-        files: FilesTaken::NONE,
-    },
+    info: super::info(
+        "twist",
+        "ref002",
+        "2D twisting",
+        Keys::rows(&[KeyRow::step(&[C('-'), C('+')], "twisting", 0.25)], ""),
+    ),
     params: &[&[
         ParamSpec::real(
             "twisting",
@@ -61,12 +58,4 @@ pub static RECIPE: Recipe = Recipe {
     },
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("twist.vert", "twist.frag").state(RenderState::GL.no_depth())],
-    draw: crate::lab::Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("twist.vert", "twist.frag").state(RenderState::GL.no_depth())]);

@@ -34,7 +34,7 @@ use crate::camera::fly::{FlyCamera, FlyStart, Move};
 use crate::camera::gl_to_wgpu_depth;
 use crate::geometry::shapes::{bezier_strip, StripVertex};
 use crate::gpu::Gpu;
-use crate::lab::{Draw, FilesTaken, Input, Keys, LabEntry, LabInfo, Look, Pass, Recipe, Shaded, Special, Stage};
+use crate::lab::{FilesTaken, Input, Keys, LabInfo, Look, Pass, Recipe, Shaded, Special, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, RenderState, Uniforms};
 
@@ -58,16 +58,8 @@ pub static RECIPE: Recipe = Recipe {
     build: |cx, p| Shaded::build(cx, "specular_strip", p, Fly::new(cx.gpu, p), &LOOK, Vec::new()),
 };
 
-static LOOK: Look = Look {
-    passes: &[Pass::new("specular_strip.vert", "specular_strip.frag")
-        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))],
-    draw: Draw::All,
-    hook: None,
-    clear: [0.0; 3],
-};
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("specular_strip.vert", "specular_strip.frag")
+    .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))]);
 
 crate::vertex_type!(StripVertex, {
     position: "objectPosition" => Float32x3,

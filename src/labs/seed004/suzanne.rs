@@ -17,8 +17,8 @@
 
 use crate::error::Result;
 use crate::lab::{
-    Draw, FilesTaken, Key::C, KeyRow, Keys, LabContext, Look, Pass, Recipe, Scene, Shaded, DOWN, LEFT, PAGE_DOWN,
-    PAGE_UP, RIGHT, UP,
+    FilesTaken, Key::C, KeyRow, Keys, LabContext, Look, Pass, Recipe, Scene, Shaded, DOWN, LEFT, PAGE_DOWN, PAGE_UP,
+    RIGHT, UP,
 };
 use crate::params::{ParamSpec, Params};
 use crate::render::Computed;
@@ -39,16 +39,6 @@ const fn files(texture: bool) -> FilesTaken {
         model: true,
         texture,
         ..FilesTaken::NONE
-    }
-}
-
-/// A colour exercise's look: its pass drawn on black, no values computed.
-pub const fn look(passes: &'static [Pass]) -> Look {
-    Look {
-        passes,
-        draw: Draw::All,
-        hook: None,
-        clear: [0.0; 3],
     }
 }
 
@@ -191,16 +181,13 @@ pub const fn lit(name: &'static str, label: &'static str, start: Shading, build:
 }
 
 /// The three models' passes, `shading` picking one (keys switch without a pause).
-static LIT: Look = Look {
-    passes: &[
-        Pass::new("suzanne_flat.vert", "suzanne_flat.frag"),
-        Pass::new("suzanne_gouraud.vert", "suzanne_gouraud.frag"),
-        Pass::new("suzanne_phong.vert", "suzanne_phong.frag"),
-    ],
-    draw: Draw::Pick("shading"),
-    hook: Some(light),
-    clear: [0.0; 3],
-};
+static LIT: Look = Look::new(&[
+    Pass::new("suzanne_flat.vert", "suzanne_flat.frag").named("flat"),
+    Pass::new("suzanne_gouraud.vert", "suzanne_gouraud.frag").named("gouraud"),
+    Pass::new("suzanne_phong.vert", "suzanne_phong.frag").named("phong"),
+])
+.pick("shading")
+.hook(light);
 
 /// The `Light` block's members that are not parameters as they stand.
 pub fn light(p: &Params, c: &mut Computed) {

@@ -3,13 +3,10 @@
 //!
 //! Keys: see [`crate::labs::seed004::suzanne`] (`1`/`2`/`3` switch to flat, Gouraud, Phong).
 
-use crate::lab::{LabEntry, Recipe};
+use crate::lab::Recipe;
 use crate::labs::seed004::suzanne::{lit, shade, Shading};
 
 /// Seed 004 §4.8.
 pub static RECIPE: Recipe = lit("suzanne_gouraud", "Gouraud shading", Shading::Gouraud, |cx, p| {
     shade(cx, p, RECIPE.info.name)
 });
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

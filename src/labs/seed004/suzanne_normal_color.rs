@@ -4,16 +4,13 @@
 //!
 //! Keys: left drag rotates (0.5° per pixel).
 
-use crate::lab::{LabEntry, Look, Pass, Recipe};
+use crate::lab::{Look, Pass, Recipe};
 use crate::labs::seed004::stage::Normals;
-use crate::labs::seed004::suzanne::{colour, draw, look};
+use crate::labs::seed004::suzanne::{colour, draw};
 
 /// Seed 004 §4.1.
 pub static RECIPE: Recipe = colour("suzanne_normal_color", "normal colour", |cx, p| {
     draw(cx, p, RECIPE.info.name, &LOOK, |_| Normals::Face)
 });
 
-static LOOK: Look = look(&[Pass::new("suzanne_normal_color.vert", "suzanne_normal_color.frag")]);
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
+static LOOK: Look = Look::new(&[Pass::new("suzanne_normal_color.vert", "suzanne_normal_color.frag")]);

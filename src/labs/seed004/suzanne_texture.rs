@@ -4,13 +4,10 @@
 //!
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
-use crate::lab::{LabEntry, Recipe};
+use crate::lab::Recipe;
 use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.4.
 pub static RECIPE: Recipe = textured("suzanne_texture", "texture", |cx, _| {
     sample(cx, RECIPE.info.name, "suzanne_texture.frag")
 });
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

@@ -3,13 +3,10 @@
 //!
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
-use crate::lab::{LabEntry, Recipe};
+use crate::lab::Recipe;
 use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.5.
 pub static RECIPE: Recipe = textured("suzanne_texture_color", "texture × colour", |cx, _| {
     sample(cx, RECIPE.info.name, "suzanne_texture_color.frag")
 });
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);

@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::geometry::obj::ObjCorner;
 use crate::geometry::shapes;
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabContext, LabEntry, Pass, Recipe, Scene, Stage};
+use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabContext, Pass, Recipe, Scene, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms};
 
@@ -74,9 +74,6 @@ pub static RECIPE: Recipe = Recipe {
     title: None,
     build,
 };
-
-/// The list entry.
-pub static ENTRY: LabEntry = crate::entry!(RECIPE);
 
 /// V = `lookAt((0, 0.5, 3), (0, −1, −3), (0, 1, 0))`; M = identity.
 pub fn view() -> Mat4 {
