@@ -197,7 +197,7 @@ pub fn record(
                 let mut encoder = GifEncoder::new_with_speed(w, 10);
                 encoder.set_repeat(Repeat::Infinite).map_err(io::Error::other)?;
                 for k in 0..recording.frames {
-                    let image = frame(k).map_err(|e| failed(e))?;
+                    let image = frame(k).map_err(&mut *failed)?;
                     let delay = image::Delay::from_numer_denom_ms(centis * 10, 1);
                     encoder
                         .encode_frame(image::Frame::from_parts(image, 0, 0, delay))
