@@ -1761,3 +1761,86 @@ fn f10_records_what_the_window_shows_into_a_gif() {
     assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
     lab.escape();
 }
+
+// ---------------------------------------------------------------------------------------------
+// F1: the parameter panel
+// ---------------------------------------------------------------------------------------------
+
+/// F1 shows the panel over the right 300 pixels (the lab's pixels to its left untouched); a
+/// click on its `twisting` slider changes the lab, a key typed into its number field does not
+/// reach the lab, "Reset all" restores the defaults, and once F1 hides it the window is the
+/// `--screenshot` picture again, byte for byte. On both presenters.
+#[test]
+fn f1_panel_edits_parameters_and_hides_to_the_exact_picture() {
+    let x = Xvfb::start("panel");
+    let png = x.dir.join("twist_screenshot.png");
+    let status = Command::new(example("twist"))
+        .arg("--screenshot")
+        .arg(&png)
+        .stdout(Stdio::null())
+        .status()
+        .expect("run --screenshot");
+    assert!(status.success());
+    let expected = image::open(&png).expect("screenshot PNG").to_rgb8();
+    let (w, h) = expected.dimensions();
+    let lab_width = w - 300;
+    let left = |image: &RgbImage| image::imageops::crop_imm(image, 0, 0, lab_width, h).to_image();
+    for present in ["shm", "swapchain"] {
+        let mut lab = x.launch("twist", &[], &[("SHADERLAB_PRESENT", present)]);
+        lab.first_frame();
+        assert_eq!(lab.settled(), expected, "{present}: hidden by default");
+        let default_title = lab.title();
+        lab.keys(&["F1"]);
+        let shown = poll(Duration::from_secs(10), || {
+            let image = lab.capture();
+            (image != expected).then_some(image)
+        })
+        .unwrap_or_else(|| panic!("{present}: F1 showed nothing"));
+        let shown = {
+            sleep_ms(300);
+            let _ = shown;
+            lab.settled()
+        };
+        lab.save(&shown, &format!("panel_{present}"));
+        assert_eq!(
+            left(&shown),
+            left(&expected),
+            "{present}: the lab's pixels left of the panel changed"
+        );
+        // The panel's `twisting` slider (Effect group, second row): a click at its left end.
+        // A person points, then clicks: egui finds the control under the pointer it last saw.
+        let click = |x: i32, y: i32| {
+            lab.x.xdotool(&["mousemove", &x.to_string(), &y.to_string()]);
+            sleep_ms(300);
+            lab.x.xdotool(&["click", "1"]);
+        };
+        click(lab_width as i32 + 75, 148);
+        let title = lab.wait_title(&format!("{present}: the slider moves twisting"), |t| {
+            t != default_title && t.contains("twisting=")
+        });
+        // A key typed into the number field goes to the field, not to the lab's `+` key.
+        click(lab_width as i32 + 193, 148);
+        sleep_ms(300);
+        lab.keys(&["plus"]);
+        sleep_ms(300);
+        assert_eq!(
+            lab.title(),
+            title,
+            "{present}: `+` typed into the panel reached the lab"
+        );
+        // "Reset all", below the Effect group.
+        click(lab_width as i32 + 40, 175);
+        lab.wait_title(&format!("{present}: Reset all"), |t| t == default_title);
+        lab.keys(&["F1"]);
+        let hidden = poll(Duration::from_secs(10), || {
+            let image = lab.capture();
+            (image == expected).then_some(image)
+        });
+        assert!(
+            hidden.is_some(),
+            "{present}: with the panel hidden the window differs from --screenshot"
+        );
+        lab.assert_alive();
+        drop(lab);
+    }
+}

@@ -10,6 +10,7 @@
 mod args;
 mod capture;
 mod headless;
+pub mod panel;
 pub mod record;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;

@@ -89,6 +89,9 @@ fn x<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> Why + '_ {
 }
 
 impl ShmPresenter {
+    /// The colour format it draws in.
+    pub(super) const FORMAT: wgpu::TextureFormat = FORMAT;
+
     /// A presenter for `window` if this adapter, display and visual allow it; otherwise why not.
     pub(super) fn new(gpu: &Gpu, window: &Arc<Window>, width: u32, height: u32) -> Result<Self, Why> {
         match std::env::var("SHADERLAB_PRESENT").as_deref() {

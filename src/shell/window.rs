@@ -52,6 +52,7 @@ struct Presenter {
 
 #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
 impl Presenter {
+    const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Bgra8Unorm;
     fn new(_: &Gpu, _: &Arc<Window>, _: u32, _: u32) -> std::result::Result<Self, String> {
         Err("no shared-memory presenter on this platform".into())
     }
@@ -241,6 +242,15 @@ struct WindowState {
     screenshots: u32,
     /// F10's recording, while one runs.
     capture: Option<super::capture::Capture>,
+    /// F1's parameter panel.
+    panel: super::panel::Panel,
+    /// The last shader error, while one stands (shown in the panel).
+    shader_message: Option<String>,
+    /// Milliseconds between frames, smoothed, and when the last frame was drawn.
+    frame_ms: f64,
+    last_frame: Instant,
+    /// When the frame being drawn started.
+    frame_started: Instant,
 }
 
 impl App {
@@ -399,6 +409,7 @@ impl App {
         } else {
             0.0
         };
+        let panel = super::panel::Panel::new(&window);
         Ok(WindowState {
             entry,
             source: self.source.clone(),
@@ -433,6 +444,11 @@ impl App {
             reload,
             screenshots: 0,
             capture: None,
+            panel,
+            shader_message: None,
+            frame_ms: 0.0,
+            last_frame: Instant::now(),
+            frame_started: Instant::now(),
         })
     }
 }
@@ -566,10 +582,12 @@ impl WindowState {
                     eprintln!("{}: shaders reloaded", self.name());
                 }
                 self.shader_error = false;
+                self.shader_message = None;
             }
             Err(e) => {
                 eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name());
                 self.shader_error = true;
+                self.shader_message = Some(e.to_string());
             }
         }
         self.update_title();
@@ -636,6 +654,89 @@ impl WindowState {
         self.update_title();
     }
 
+    /// Draws the panel (when shown) over what the lab drew into `view`, and acts on what it
+    /// changed or asked for.
+    fn draw_panel(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        format: wgpu::TextureFormat,
+        size: (u32, u32),
+    ) {
+        let now = Instant::now();
+        let ms = now.duration_since(self.last_frame).as_secs_f64() * 1000.0;
+        self.last_frame = now;
+        self.frame_ms = if self.frame_ms == 0.0 {
+            ms
+        } else {
+            0.9 * self.frame_ms + 0.1 * ms
+        };
+        if !self.panel.shown {
+            return;
+        }
+        let draw_ms = self.frame_started.elapsed().as_secs_f64() * 1000.0;
+        let mut files: Vec<(String, String)> = Vec::new();
+        for program in self.lab.programs() {
+            let (v, f) = program.files();
+            files.push((v.to_owned(), f.to_owned()));
+        }
+        let source = match (&self.source, self.reload.is_some()) {
+            (ShaderSource::Dir(dir), true) => format!("from {} (reloads live)", dir.display()),
+            (ShaderSource::Dir(dir), false) => format!("from {}", dir.display()),
+            (ShaderSource::Embedded, _) => "built in".to_owned(),
+        };
+        let status = super::panel::Status {
+            frame_ms: (self.animated() || self.unpaced).then_some(self.frame_ms),
+            draw_ms,
+            files,
+            source,
+            error: self.shader_message.as_deref(),
+            recording: self.capture.as_ref().map(super::capture::Capture::frames),
+        };
+        let (changed, request) = self.panel.draw(
+            &self.gpu,
+            &self.window,
+            encoder,
+            view,
+            format,
+            size,
+            self.lab.as_mut(),
+            &status,
+        );
+        if changed {
+            self.dirty = self.dirty.max(2);
+            self.update_title();
+        }
+        if request == Some(super::panel::Request::WriteShaders) {
+            self.write_shaders();
+        }
+    }
+
+    /// The panel's button: the built-in shaders into `./NAME-shaders/` (a fresh name), then
+    /// live reload from there, as `--shaders DIR` would.
+    fn write_shaders(&mut self) {
+        let mut dir = PathBuf::from(format!("{}-shaders", self.name()));
+        let mut n = 1;
+        while dir.exists() {
+            n += 1;
+            dir = PathBuf::from(format!("{}-shaders-{n}", self.name()));
+        }
+        let written = std::fs::create_dir(&dir).and_then(|()| {
+            crate::shader::embedded_names().try_for_each(|name| {
+                let text = crate::shader::embedded_source(name).unwrap_or_default();
+                std::fs::write(dir.join(name), text)
+            })
+        });
+        if let Err(e) = written {
+            eprintln!("{}: cannot write the shaders to {}: {e}", self.name(), dir.display());
+            return;
+        }
+        let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
+        self.source = ShaderSource::Dir(dir.clone());
+        self.reload = watch(std::slice::from_ref(&dir), &self.files.inputs);
+        println!("shaders: {} (edit them; the lab reloads live)", dir.display());
+    }
+
     fn screenshot(&mut self) {
         let path = self.fresh_name("png");
         let (w, h) = (self.config.width, self.config.height);
@@ -666,6 +767,7 @@ impl WindowState {
         if self.paused() {
             return Ok(());
         }
+        self.frame_started = Instant::now();
         // Pace from the previous deadline (no drift), but never plan a burst to catch up.
         let now = Instant::now();
         self.next_frame = (self.next_frame + self.frame_interval).max(now);
@@ -728,6 +830,8 @@ impl WindowState {
         if let Err(e) = rendered {
             eprintln!("{}: {e}", self.name());
         }
+        let format = self.config.format;
+        self.draw_panel(&mut encoder, &view, format, (w, h));
         self.gpu.queue.submit([encoder.finish()]);
         // A lab may rebuild a program while drawing (a shading model chosen by key); a broken
         // shader file leaves the previous one in place, and the error is shown once.
@@ -766,6 +870,9 @@ impl WindowState {
         if let Err(e) = rendered {
             eprintln!("{}: {e}", self.entry.info.name);
         }
+        let (view, size) = (shm.color.clone(), (shm.width, shm.height));
+        self.draw_panel(&mut encoder, &view, Presenter::FORMAT, size);
+        let Some(shm) = self.shm.as_mut() else { return Ok(()) };
         self.window.pre_present_notify();
         // Drawing as fast as possible keeps one frame in flight (shown while the next renders).
         let presented = shm
@@ -861,6 +968,11 @@ impl WindowState {
             Key::Named(NamedKey::Escape) => event_loop.exit(),
             Key::Named(NamedKey::F12) => self.screenshot(),
             Key::Named(NamedKey::F10) => self.toggle_capture(),
+            Key::Named(NamedKey::F1) => {
+                self.panel.shown = !self.panel.shown;
+                self.dirty = self.dirty.max(2);
+                self.window.request_redraw();
+            }
             Key::Named(NamedKey::Space) if self.lab.animated() => self.toggle_clock(),
             Key::Named(named) => {
                 let special = match named {
@@ -921,6 +1033,25 @@ impl ApplicationHandler for App {
             self.error = Some(e);
             event_loop.exit();
             return;
+        }
+        let is_f1 =
+            matches!(&event, WindowEvent::KeyboardInput { event: k, .. } if k.logical_key == Key::Named(NamedKey::F1));
+        if !is_f1 && state.panel.event(&state.window, &event) {
+            // The panel took it (a click on it, a key typed into one of its fields).
+            state.dirty = state.dirty.max(2);
+            state.window.request_redraw();
+            if let WindowEvent::MouseInput {
+                state: ElementState::Released,
+                ..
+            } = event
+            {
+                state.buttons = 0;
+            }
+            return;
+        }
+        if state.panel.shown && !matches!(event, WindowEvent::RedrawRequested) {
+            // egui answers hover and focus on the next frame.
+            state.dirty = state.dirty.max(2);
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),

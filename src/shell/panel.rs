@@ -1,0 +1,503 @@
+//! The parameter panel (F1): generated from the lab's [`ParamSpec`]s, so every lab (and
+//! `legacy`, whose parameters are its shaders' uniforms and GL state) gets one without a line of
+//! its own. It sits over the right side of the window, hidden by default: hidden, the window
+//! shows exactly the lab's picture.
+//!
+//! [`widgets`] decides each parameter's control and group (tested without a window); [`Panel`]
+//! runs egui on the window's events and draws with egui-wgpu after the lab, into the same
+//! target (the swapchain's frame or the shared-memory presenter's texture).
+
+use crate::lab::Lab;
+use crate::params::{Kind, ParamSpec};
+
+/// How a parameter is edited.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Control {
+    /// A slider over the range, one per component.
+    Slider,
+    /// A drag value, for ranges too wide for a slider (`time`, ±1e30).
+    Drag,
+    /// A whole number: a slider over a small range, a stepper otherwise.
+    Whole,
+    /// A checkbox.
+    Check,
+    /// A combo box of the names.
+    Choice(&'static [&'static str]),
+    /// A colour picker plus its components.
+    Colour,
+}
+
+/// Where a parameter is shown.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Group {
+    /// Object, angles, camera.
+    ObjectView,
+    /// Surface: colours and lighting coefficients.
+    Material,
+    /// The light.
+    Light,
+    /// The clock.
+    Time,
+    /// Everything else the course has.
+    Effect,
+    /// What the port adds (study knobs, faster paths).
+    Port,
+}
+
+impl Group {
+    /// Its heading.
+    pub fn title(self) -> &'static str {
+        match self {
+            Group::ObjectView => "Object & view",
+            Group::Material => "Material",
+            Group::Light => "Light",
+            Group::Time => "Time",
+            Group::Effect => "Effect",
+            Group::Port => "Port additions",
+        }
+    }
+}
+
+/// One parameter's place in the panel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Widget {
+    /// The parameter.
+    pub spec: ParamSpec,
+    /// Its control.
+    pub control: Control,
+    /// Its group.
+    pub group: Group,
+}
+
+/// The panel's width in logical pixels: it covers the right side of the window, the lab's
+/// pixels stay untouched to its left.
+pub const PANEL_WIDTH: f32 = 300.0;
+
+/// Widest range a slider spans; a wider one gets a drag value.
+const SLIDER_SPAN: f64 = 1e4;
+
+/// Widest range of whole numbers a slider spans.
+const WHOLE_SLIDER_SPAN: f64 = 1024.0;
+
+/// The control of a parameter.
+pub fn control_of(spec: &ParamSpec) -> Control {
+    let span = spec.max - spec.min;
+    match spec.kind {
+        Kind::Bool => Control::Check,
+        Kind::Choice(names) => Control::Choice(names),
+        Kind::Int => Control::Whole,
+        Kind::Real if is_colour(spec) => Control::Colour,
+        Kind::Real if span <= SLIDER_SPAN => Control::Slider,
+        Kind::Real => Control::Drag,
+    }
+    .or_whole_drag(span)
+}
+
+impl Control {
+    fn or_whole_drag(self, span: f64) -> Control {
+        match self {
+            Control::Whole if span > WHOLE_SLIDER_SPAN => Control::Drag,
+            other => other,
+        }
+    }
+}
+
+/// A vector of three or four components named as a colour (`diffuseColor`, `shade`, `clear`).
+fn is_colour(spec: &ParamSpec) -> bool {
+    let name = spec.name.to_ascii_lowercase();
+    matches!(spec.default.len(), 3 | 4)
+        && (name.contains("color") || name.contains("colour") || name == "shade" || name == "clear")
+}
+
+/// The group of a parameter, from its name and help (the port's additions say "port").
+pub fn group_of(spec: &ParamSpec) -> Group {
+    let name = spec.name.to_ascii_lowercase();
+    let view = [
+        "object", "xangle", "yangle", "zangle", "rx", "ry", "rz", "scale", "camera", "eye", "tex",
+    ];
+    if spec.help.starts_with("port") {
+        Group::Port
+    } else if name.contains("time") || name == "t" {
+        Group::Time
+    } else if name.contains("light") || ["lx", "ly", "lz", "blx", "bly", "blz"].contains(&name.as_str()) {
+        Group::Light
+    } else if view.contains(&name.as_str()) || name.ends_with("angle") {
+        Group::ObjectView
+    } else if is_colour(spec)
+        || name.starts_with("ka")
+        || name.starts_with("kd")
+        || name.starts_with("ks")
+        || name.contains("shininess")
+        || name.contains("specular")
+        || name.contains("diffuse")
+        || name.contains("ambient")
+    {
+        Group::Material
+    } else {
+        Group::Effect
+    }
+}
+
+/// Every parameter's widget, in group order (declaration order within a group).
+pub fn widgets(specs: &[ParamSpec]) -> Vec<Widget> {
+    let mut widgets: Vec<Widget> = specs
+        .iter()
+        .map(|spec| Widget {
+            spec: *spec,
+            control: control_of(spec),
+            group: group_of(spec),
+        })
+        .collect();
+    widgets.sort_by_key(|w| w.group);
+    widgets
+}
+
+/// What the window shows in the panel besides the parameters.
+pub struct Status<'a> {
+    /// Milliseconds per frame, averaged, while the lab animates; `None` when it draws only on
+    /// change.
+    pub frame_ms: Option<f64>,
+    /// Milliseconds the last frame took to record and submit.
+    pub draw_ms: f64,
+    /// The shader files of each program (vertex, fragment).
+    pub files: Vec<(String, String)>,
+    /// Where shaders are read from, and whether they reload live.
+    pub source: String,
+    /// The last shader error, while one stands.
+    pub error: Option<&'a str>,
+    /// Frames recorded so far by F10, while it records.
+    pub recording: Option<u32>,
+}
+
+/// What the user asked of the window through the panel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Request {
+    /// Write the built-in shaders to a folder and reload from it.
+    WriteShaders,
+}
+
+/// The panel's contents for `lab`; returns whether a parameter changed, and a request.
+pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool, Option<Request>) {
+    let info = lab.info();
+    let mut changed = false;
+    let mut request = None;
+    ui.heading(format!("{} {}", info.title, info.label));
+    ui.label(format!("{} · {}", info.lecture, info.name));
+    ui.label(match status.frame_ms {
+        Some(ms) => format!("{ms:.1} ms/frame · {:.0} FPS", 1000.0 / ms.max(1e-3)),
+        None => format!("draws on change · last frame {:.1} ms", status.draw_ms),
+    });
+    if let Some(frames) = status.recording {
+        ui.colored_label(egui::Color32::RED, format!("● recording: {frames} frames (F10 stops)"));
+    }
+    ui.separator();
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        let widgets = widgets(lab.params().specs());
+        let mut group = None;
+        for w in &widgets {
+            if group != Some(w.group) {
+                group = Some(w.group);
+                ui.add_space(4.0);
+                ui.strong(w.group.title());
+            }
+            changed |= row(ui, lab, w);
+        }
+        ui.add_space(4.0);
+        if ui.button("Reset all").clicked() {
+            let specs: Vec<ParamSpec> = lab.params().specs().to_vec();
+            for spec in specs {
+                let _ = lab.params_mut().set(spec.name, spec.default);
+            }
+            changed = true;
+        }
+        ui.separator();
+        egui::CollapsingHeader::new("Keys and mouse")
+            .default_open(false)
+            .show(ui, |ui| {
+                for line in info.keys.help().split(";\n") {
+                    ui.label(line);
+                }
+                ui.label("F1 panel · F10 record · F12 screenshot · Esc quits");
+            });
+        egui::CollapsingHeader::new("Shaders")
+            .default_open(status.error.is_some())
+            .show(ui, |ui| {
+                for (vert, frag) in &status.files {
+                    ui.monospace(format!("{vert} + {frag}"));
+                }
+                ui.label(&status.source);
+                if let Some(error) = status.error {
+                    ui.colored_label(egui::Color32::LIGHT_RED, error);
+                }
+                if ui
+                    .button("Copy the built-in shaders to a folder and edit them live")
+                    .clicked()
+                {
+                    request = Some(Request::WriteShaders);
+                }
+            });
+    });
+    (changed, request)
+}
+
+/// One parameter's row: its control(s), a reset button, its help on hover.
+fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
+    let spec = &w.spec;
+    let Some(current) = lab.params().get(spec.name).map(<[f64]>::to_vec) else {
+        return false;
+    };
+    let mut values = current.clone();
+    let (lo, hi) = (spec.min, spec.max);
+    ui.horizontal_wrapped(|ui| {
+        let label = ui.label(spec.name);
+        label.on_hover_text(spec.help);
+        match w.control {
+            Control::Check => {
+                let mut on = values[0] != 0.0;
+                if ui.checkbox(&mut on, "").on_hover_text(spec.help).changed() {
+                    values[0] = f64::from(u8::from(on));
+                }
+            }
+            Control::Choice(names) => {
+                let mut index = (values[0].max(0.0) as usize).min(names.len() - 1);
+                egui::ComboBox::from_id_salt(spec.name)
+                    .selected_text(names[index])
+                    .show_ui(ui, |ui| {
+                        for (i, name) in names.iter().enumerate() {
+                            ui.selectable_value(&mut index, i, *name);
+                        }
+                    });
+                values[0] = index as f64;
+            }
+            Control::Colour => {
+                let mut rgb = [values[0] as f32, values[1] as f32, values[2] as f32].map(|c| c.clamp(0.0, 1.0));
+                if egui::widgets::color_picker::color_edit_button_rgb(ui, &mut rgb).changed() {
+                    for (v, c) in values.iter_mut().zip(rgb) {
+                        *v = f64::from(c);
+                    }
+                }
+                for v in values.iter_mut() {
+                    ui.add(egui::DragValue::new(v).range(lo..=hi).speed(0.01).max_decimals(3));
+                }
+            }
+            Control::Slider => {
+                for v in values.iter_mut() {
+                    ui.add(egui::Slider::new(v, lo..=hi).max_decimals(3));
+                }
+            }
+            Control::Whole => {
+                for v in values.iter_mut() {
+                    ui.add(egui::Slider::new(v, lo..=hi).integer());
+                }
+            }
+            Control::Drag => {
+                let whole = spec.kind == Kind::Int;
+                for v in values.iter_mut() {
+                    let speed = if whole { 1.0 } else { (v.abs() * 0.01).max(0.01) };
+                    let drag = egui::DragValue::new(v).range(lo..=hi).speed(speed);
+                    ui.add(if whole {
+                        drag.max_decimals(0)
+                    } else {
+                        drag.max_decimals(4)
+                    });
+                }
+            }
+        }
+        if ui
+            .small_button("reset")
+            .on_hover_text(format!("reset to {}", spec.default_text()))
+            .clicked()
+        {
+            values = spec.default.to_vec();
+        }
+    });
+    if values != current && lab.params_mut().set(spec.name, &values).is_ok() {
+        return true;
+    }
+    false
+}
+
+/// egui on the window: its input state, context and one renderer per target format.
+pub struct Panel {
+    /// Whether it is shown (F1).
+    pub shown: bool,
+    ctx: egui::Context,
+    input: egui_winit::State,
+    renderers: Vec<(wgpu::TextureFormat, egui_wgpu::Renderer)>,
+    /// The logical width it took when last drawn, in physical pixels.
+    pub width_px: u32,
+}
+
+impl Panel {
+    /// A hidden panel for `window`.
+    pub fn new(window: &winit::window::Window) -> Panel {
+        let ctx = egui::Context::default();
+        let input = egui_winit::State::new(
+            ctx.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            Some(window.scale_factor() as f32),
+            None,
+            None,
+        );
+        Panel {
+            shown: false,
+            ctx,
+            input,
+            renderers: Vec::new(),
+            width_px: 0,
+        }
+    }
+
+    /// Feeds a window event to egui while the panel is shown; returns whether egui took it
+    /// (a click on the panel, a key typed into one of its fields), so the lab must not.
+    pub fn event(&mut self, window: &winit::window::Window, event: &winit::event::WindowEvent) -> bool {
+        if !self.shown {
+            return false;
+        }
+        let response = self.input.on_window_event(window, event);
+        let keyboard = matches!(event, winit::event::WindowEvent::KeyboardInput { .. });
+        let pointer = matches!(
+            event,
+            winit::event::WindowEvent::MouseInput { .. }
+                | winit::event::WindowEvent::CursorMoved { .. }
+                | winit::event::WindowEvent::MouseWheel { .. }
+        );
+        (keyboard && self.ctx.egui_wants_keyboard_input())
+            || (pointer && (self.ctx.is_pointer_over_egui() || self.ctx.egui_is_using_pointer()))
+            || (response.consumed && !keyboard && !pointer)
+    }
+
+    /// Runs the panel for this frame and records its drawing into `target` (after the lab's
+    /// pass, keeping its pixels); returns whether a parameter changed, and a request.
+    #[allow(clippy::too_many_arguments)]
+    pub fn draw(
+        &mut self,
+        gpu: &crate::gpu::Gpu,
+        window: &winit::window::Window,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        format: wgpu::TextureFormat,
+        size: (u32, u32),
+        lab: &mut dyn Lab,
+        status: &Status,
+    ) -> (bool, Option<Request>) {
+        if !self.shown {
+            return (false, None);
+        }
+        let raw = self.input.take_egui_input(window);
+        let mut result = (false, None);
+        let output = self.ctx.run_ui(raw, |ui| {
+            let panel = egui::Panel::right("shaderlab.panel")
+                .exact_size(PANEL_WIDTH)
+                .resizable(false)
+                .show(ui, |ui| contents(ui, lab, status));
+            result = panel.inner;
+            self.width_px = (panel.response.rect.width() * ui.ctx().pixels_per_point()).round() as u32;
+        });
+        self.input.handle_platform_output(window, output.platform_output);
+        let jobs = self.ctx.tessellate(output.shapes, output.pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [size.0, size.1],
+            pixels_per_point: output.pixels_per_point,
+        };
+        let renderer = match self.renderers.iter().position(|(f, _)| *f == format) {
+            Some(i) => &mut self.renderers[i].1,
+            None => {
+                let r = egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
+                self.renderers.push((format, r));
+                &mut self.renderers.last_mut().expect("just pushed").1
+            }
+        };
+        for (id, deltas) in &output.textures_delta.set {
+            for delta in deltas {
+                renderer.update_texture(&gpu.device, &gpu.queue, *id, delta);
+            }
+        }
+        let extra = renderer.update_buffers(&gpu.device, &gpu.queue, encoder, &jobs, &screen);
+        if !extra.is_empty() {
+            gpu.queue.submit(extra);
+        }
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("panel.pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        for id in &output.textures_delta.free {
+            renderer.free_texture(id);
+        }
+        result
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_labs_parameters_get_a_widget_of_their_kind_and_range() {
+        for entry in crate::labs::ALL {
+            let params = (entry.params)();
+            let widgets = widgets(params.specs());
+            assert_eq!(widgets.len(), params.specs().len(), "{}", entry.info.name);
+            for w in &widgets {
+                let s = &w.spec;
+                let name = format!("{}.{}", entry.info.name, s.name);
+                match (s.kind, w.control) {
+                    (Kind::Bool, Control::Check) | (Kind::Int, Control::Whole | Control::Drag) => {}
+                    (Kind::Choice(a), Control::Choice(b)) => assert_eq!(a, b, "{name}"),
+                    (Kind::Real, Control::Slider) => assert!(s.max - s.min <= SLIDER_SPAN, "{name}"),
+                    (Kind::Real, Control::Drag) => assert!(s.max - s.min > SLIDER_SPAN, "{name}"),
+                    (Kind::Real, Control::Colour) => assert!(matches!(s.default.len(), 3 | 4), "{name}"),
+                    (kind, control) => panic!("{name}: {kind:?} got {control:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn controls_and_groups_follow_names_kinds_and_ranges() {
+        let find = |lab: &str, name: &str| {
+            let params = (crate::labs::find(lab).unwrap().params)();
+            widgets(params.specs())
+                .into_iter()
+                .find(|w| w.spec.name == name)
+                .unwrap()
+        };
+        assert_eq!(find("phong", "diffuseColor").control, Control::Colour);
+        assert_eq!(find("phong", "diffuseColor").group, Group::Material);
+        assert_eq!(find("noise", "shade").control, Control::Colour);
+        assert_eq!(
+            find("noise", "time").control,
+            Control::Drag,
+            "±1e9 is too wide for a slider"
+        );
+        assert_eq!(find("noise", "time").group, Group::Time);
+        assert_eq!(find("phong", "object").group, Group::ObjectView);
+        assert!(matches!(find("phong", "object").control, Control::Choice(names) if names.contains(&"torus")));
+        assert_eq!(find("phong", "tess").group, Group::Port);
+        assert_eq!(find("suzanne_phong", "lightx").group, Group::Light);
+        assert_eq!(find("suzanne_phong", "ka").control, Control::Slider);
+        assert_eq!(find("suzanne_phong", "ka").group, Group::Material);
+        assert_eq!(find("twist", "twisting").control, Control::Slider);
+        assert_eq!(find("phong_dir", "fixpos").control, Control::Check);
+        // Groups come in order, whatever the declaration order.
+        let params = (crate::labs::PHONG.params)();
+        let groups: Vec<Group> = widgets(params.specs()).iter().map(|w| w.group).collect();
+        assert!(groups.windows(2).all(|g| g[0] <= g[1]), "{groups:?}");
+    }
+}
