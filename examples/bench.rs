@@ -46,7 +46,9 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
     };
+    let bar = shaderlab::shell::progress_bar(labs::ALL.len() as u64, "labs");
     for entry in labs::ALL {
+        bar.inc(1);
         if args
             .only
             .as_ref()
@@ -76,13 +78,16 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
                 lab.params_mut().set_str("object", object)?;
             }
             let r = bench(&gpu, lab.as_mut(), args.frames, w, h, args.gpu_time)?;
-            println!(
-                "| {} | {object} | {w}x{h} | {:.3} | {} |",
-                entry.info.name,
-                r.ms_per_frame,
-                r.gpu_ms.map(|g| format!("{g:.3}")).unwrap_or_else(|| "-".into())
-            );
+            bar.suspend(|| {
+                println!(
+                    "| {} | {object} | {w}x{h} | {:.3} | {} |",
+                    entry.info.name,
+                    r.ms_per_frame,
+                    r.gpu_ms.map(|g| format!("{g:.3}")).unwrap_or_else(|| "-".into())
+                );
+            });
         }
     }
+    bar.finish_and_clear();
     Ok(())
 }

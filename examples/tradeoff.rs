@@ -110,6 +110,8 @@ fn main() -> anyhow::Result<()> {
     let mut lab = (labs::PHONG.new)(&cx)?;
     let mut rows = Vec::new();
     let mut done = 0;
+    // A bar on a terminal; in a log, one line per configuration as before.
+    let bar = shaderlab::shell::progress_bar(total as u64, "configurations");
     for (object, shape) in shapes {
         lab.params_mut().set_str("object", object.name())?;
         let exact_phong = ExactScene {
@@ -150,7 +152,8 @@ fn main() -> anyhow::Result<()> {
                         .as_ref()
                         .map_or(0, |w| w.pixels().zip(image.pixels()).filter(|(a, b)| a != b).count());
                     done += 1;
-                    eprintln!(
+                    bar.set_position(done as u64);
+                    let line = format!(
                         "[{done:>3}/{total}] {:<6} {:<7}{} level {level:>3} ({triangles:>6} triangles): {ms:.3} ms, RMSE {:.2}, max {}, silhouette {:.2} px{}",
                         object.name(),
                         shading.name(),
@@ -160,6 +163,11 @@ fn main() -> anyhow::Result<()> {
                         sil.max_px,
                         if cull { format!(", {changed_px} px changed by culling") } else { String::new() }
                     );
+                    if bar.is_hidden() {
+                        eprintln!("{line}");
+                    } else {
+                        bar.println(line);
+                    }
                     rows.push(Row {
                         shape: object.name(),
                         shading,

@@ -1812,7 +1812,12 @@ fn f1_panel_edits_parameters_and_hides_to_the_exact_picture() {
         let click = |x: i32, y: i32| {
             lab.x.xdotool(&["mousemove", &x.to_string(), &y.to_string()]);
             sleep_ms(300);
-            lab.x.xdotool(&["click", "1"]);
+            lab.x.xdotool(&["mousedown", "1"]);
+            sleep_ms(300);
+            lab.x.xdotool(&["mouseup", "1"]);
+            // egui applies the events of one frame together: a move that lands in the
+            // release's frame would still drag the slider. Let that frame be drawn first.
+            sleep_ms(700);
         };
         click(lab_width as i32 + 75, 148);
         let title = lab.wait_title(&format!("{present}: the slider moves twisting"), |t| {

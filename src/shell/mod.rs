@@ -21,7 +21,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 pub use args::Args;
-pub use headless::{bench, render_into, screenshot, BenchResult};
+pub use headless::{bench, progress_bar, render_into, screenshot, BenchResult};
 
 use crate::error::Error;
 use crate::lab::LabEntry;

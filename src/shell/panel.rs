@@ -326,6 +326,8 @@ pub struct Panel {
     renderers: Vec<(wgpu::TextureFormat, egui_wgpu::Renderer)>,
     /// The logical width it took when last drawn, in physical pixels.
     pub width_px: u32,
+    /// Whether egui asked for another frame soon (an animation, a blinking cursor).
+    pub repaint: bool,
 }
 
 impl Panel {
@@ -346,6 +348,7 @@ impl Panel {
             input,
             renderers: Vec::new(),
             width_px: 0,
+            repaint: false,
         }
     }
 
@@ -383,6 +386,7 @@ impl Panel {
         status: &Status,
     ) -> (bool, Option<Request>) {
         if !self.shown {
+            self.repaint = false;
             return (false, None);
         }
         let raw = self.input.take_egui_input(window);
@@ -395,6 +399,11 @@ impl Panel {
             result = panel.inner;
             self.width_px = (panel.response.rect.width() * ui.ctx().pixels_per_point()).round() as u32;
         });
+        // egui animates (a header opening) over frames it asks for; the window draws them.
+        self.repaint = output
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .is_some_and(|v| v.repaint_delay < std::time::Duration::from_millis(100));
         self.input.handle_platform_output(window, output.platform_output);
         let jobs = self.ctx.tessellate(output.shapes, output.pixels_per_point);
         let screen = egui_wgpu::ScreenDescriptor {

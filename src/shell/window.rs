@@ -707,6 +707,9 @@ impl WindowState {
             self.dirty = self.dirty.max(2);
             self.update_title();
         }
+        if self.panel.repaint {
+            self.dirty = self.dirty.max(2);
+        }
         if request == Some(super::panel::Request::WriteShaders) {
             self.write_shaders();
         }
