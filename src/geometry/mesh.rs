@@ -649,14 +649,14 @@ mod tests {
                     spread * rng.unit(),
                 ];
                 positions.push(p);
-                if rng.next() % 5 == 0 {
+                if rng.next().is_multiple_of(5) {
                     let k = (rng.next() % positions.len() as u64) as usize;
                     positions.push(positions[k]);
                 }
             }
         }
         for _ in 0..200 {
-            let z = |r: &mut Rng| if r.next() % 2 == 0 { 0.0 } else { -0.0 };
+            let z = |r: &mut Rng| if r.next().is_multiple_of(2) { 0.0 } else { -0.0 };
             positions.push([z(&mut rng), z(&mut rng), 1e-6 * rng.unit()]);
         }
         // Values on cell edges: exact multiples of eps, and their neighbours one ulp away.
