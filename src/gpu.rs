@@ -50,7 +50,9 @@ impl Gpu {
     }
 
     /// A context with no window (offscreen rendering, tests, benchmarks): the primary backends
-    /// first, GL if they have no adapter.
+    /// first, GL if they have no adapter. Native only: it blocks, which a browser cannot (there,
+    /// await [`Gpu::new`]).
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn headless() -> Result<Self> {
         match pollster::block_on(Self::new(Self::new_instance(), None)) {
             Err(Error::NoAdapter(first)) => match Self::fallback_instance() {
@@ -103,9 +105,21 @@ impl Gpu {
 
     /// Runs `f` inside a validation error scope and turns a wgpu error into [`Error::Wgpu`].
     pub fn checked<T>(&self, context: &str, f: impl FnOnce() -> T) -> Result<T> {
+        #[cfg(target_arch = "wasm32")]
+        if self.adapter.get_info().backend == wgpu::Backend::BrowserWebGpu {
+            // The browser's WebGPU answers an error scope only later (a promise), and the web
+            // cannot block for it: no scope there, so a validation error reaches the device's
+            // uncaptured-error handler instead of this Result.
+            return Ok(f());
+        }
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = f();
-        match pollster::block_on(scope.pop()) {
+        #[cfg(not(target_arch = "wasm32"))]
+        let error = pollster::block_on(scope.pop());
+        // WebGL2 runs through wgpu-core, which answers a scope at once: the first poll has it.
+        #[cfg(target_arch = "wasm32")]
+        let error = poll_once(scope.pop()).flatten();
+        match error {
             Some(err) => Err(Error::Wgpu {
                 context: context.to_owned(),
                 message: err.to_string(),
@@ -123,5 +137,17 @@ impl Gpu {
                 context: "waiting for the GPU".into(),
                 message: e.to_string(),
             })
+    }
+}
+
+/// The output of a future that is ready on its first poll (none if it is not): the browser
+/// build's stand-in for blocking on a future that never waits.
+#[cfg(target_arch = "wasm32")]
+fn poll_once<F: std::future::Future>(future: F) -> Option<F::Output> {
+    let mut future = std::pin::pin!(future);
+    let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+    match future.as_mut().poll(&mut cx) {
+        std::task::Poll::Ready(output) => Some(output),
+        std::task::Poll::Pending => None,
     }
 }

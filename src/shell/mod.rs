@@ -6,21 +6,35 @@
 //! rendered (parameters are checked against the lab's declaration before the GPU is opened).
 //! Runtime errors (no adapter, broken shader, unwritable file) print one clear message and exit
 //! with 1.
+//!
+//! In the browser build (wasm32) only [`panel`] and [`defaults`] are compiled: the command
+//! line, the offscreen paths, recording and the native window need processes, files, a terminal
+//! and blocking on the GPU.
 
+#[cfg(not(target_arch = "wasm32"))]
 mod args;
+#[cfg(not(target_arch = "wasm32"))]
 mod capture;
+#[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod panel;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod record;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod window;
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;
+#[cfg(not(target_arch = "wasm32"))]
 use std::path::PathBuf;
+#[cfg(not(target_arch = "wasm32"))]
 use std::process::ExitCode;
 
+#[cfg(not(target_arch = "wasm32"))]
 pub use args::Args;
+#[cfg(not(target_arch = "wasm32"))]
 pub use headless::{bench, progress_bar, render_into, screenshot, BenchResult};
 
 use crate::error::Error;
@@ -49,6 +63,7 @@ impl From<Error> for Failure {
 /// directory with that mode; it is kept and reused by the next run, never removed, as several
 /// runs may share it at once). Call it first thing in `main`, before any thread
 /// starts; the lab examples do it through [`main`], the other examples call it themselves.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn ensure_runtime_dir() {
     if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| !d.is_empty()) {
         return;
@@ -76,6 +91,7 @@ pub fn ensure_runtime_dir() {
 /// while the adapters are listed, ~25 ms of every start under Xvfb. An offscreen run
 /// (`--screenshot`, `--bench`) draws into no display, so it skips the layer, unless the user
 /// steers it (`MESA_VK_DEVICE_SELECT`, or `NODEVICE_SELECT` set either way).
+#[cfg(not(target_arch = "wasm32"))]
 fn skip_display_device_select() {
     if std::env::var_os("MESA_VK_DEVICE_SELECT").is_some() || std::env::var_os("NODEVICE_SELECT").is_some() {
         return;
@@ -85,11 +101,13 @@ fn skip_display_device_select() {
 }
 
 /// Entry point of every example: parses arguments, then renders offscreen or opens a window.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn main(entry: &'static LabEntry) -> ExitCode {
     main_from(entry, std::env::args_os().collect())
 }
 
 /// [`main`] with the command line given (program name first): what `shaderlab run NAME …` calls.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> ExitCode {
     ensure_runtime_dir();
     let name = entry.info.name;
@@ -112,6 +130,7 @@ pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> Exi
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     // Everything the user typed is checked before a GPU is opened or a frame drawn.
     let params = args.params(entry)?;
@@ -145,6 +164,7 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
 }
 
 /// Prints a line to stdout; a closed or full stdout is a clean error, not a panic.
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) fn say(line: &str) -> Result<(), Error> {
     let mut out = std::io::stdout().lock();
     writeln!(out, "{line}")
