@@ -51,6 +51,11 @@ pub struct Offscreen {
 }
 
 impl Offscreen {
+    /// The colour format it draws in.
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.format
+    }
+
     /// A target of `width` x `height` (each at least 1) in [`COLOR_FORMAT`].
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
         Self::with_format(gpu, width, height, COLOR_FORMAT)

@@ -150,3 +150,30 @@ fn every_lab_has_its_example_and_every_example_is_a_lab_or_a_tool() {
         );
     }
 }
+
+#[test]
+fn a_texture_the_lab_does_not_provide_is_named() {
+    let dir = output_dir().join("recipes-missing-texture");
+    let _ = std::fs::remove_dir_all(&dir);
+    copy_shaders(&dir);
+    let file = dir.join("twist.frag");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let edited = text.replacen(
+        "void main()",
+        "layout(set = 0, binding = 7) uniform texture2D extra;\nvoid main()",
+        1,
+    );
+    assert_ne!(text, edited, "twist.frag has a main");
+    std::fs::write(&file, edited).unwrap();
+    let cx = shaderlab::lab::LabContext {
+        gpu: gpu(),
+        source: &ShaderSource::Dir(dir.clone()),
+        format: shaderlab::offscreen::COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
+    };
+    let err = match (labs::TWIST.new)(&cx) {
+        Ok(_) => panic!("twist built without the texture its shader declares"),
+        Err(e) => e.to_string(),
+    };
+    assert!(err.contains("`extra`") && err.contains("does not provide"), "{err}");
+}

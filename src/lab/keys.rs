@@ -80,39 +80,33 @@ pub struct KeyRow {
 impl KeyRow {
     /// `keys[0]` subtracts `step` from every component of `param`, `keys[1]` adds it.
     pub const fn step(keys: &'static [Key], param: &'static str, step: f64) -> KeyRow {
-        KeyRow {
-            keys,
-            param,
-            act: Act::Step {
-                step,
-                component: None,
-                within: None,
-            },
-        }
+        Self::stepping(keys, param, step, None, None)
     }
 
     /// As [`KeyRow::step`] on component `c` only, clamped to `[lo, hi]`.
     pub const fn channel(keys: &'static [Key], param: &'static str, c: usize, step: f64, lo: f64, hi: f64) -> KeyRow {
-        KeyRow {
-            keys,
-            param,
-            act: Act::Step {
-                step,
-                component: Some(c),
-                within: Some((lo, hi)),
-            },
-        }
+        Self::stepping(keys, param, step, Some(c), Some((lo, hi)))
     }
 
     /// As [`KeyRow::step`], clamped to `[lo, hi]` instead of the declared range.
     pub const fn clamped(keys: &'static [Key], param: &'static str, step: f64, lo: f64, hi: f64) -> KeyRow {
+        Self::stepping(keys, param, step, None, Some((lo, hi)))
+    }
+
+    const fn stepping(
+        keys: &'static [Key],
+        param: &'static str,
+        step: f64,
+        component: Option<usize>,
+        within: Option<(f64, f64)>,
+    ) -> KeyRow {
         KeyRow {
             keys,
             param,
             act: Act::Step {
                 step,
-                component: None,
-                within: Some((lo, hi)),
+                component,
+                within,
             },
         }
     }

@@ -5,7 +5,7 @@
 //! reload, programs (so the GLSL-versus-WGSL round trip reaches every lab) and the title.
 
 use super::{params_title, Input, Lab, LabContext, LabInfo};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::params::{ParamSpec, Params};
 use crate::render::{
@@ -285,18 +285,10 @@ impl<S: Stage> Shaded<S> {
                     binds.push(g.clone());
                     continue;
                 }
+                // A texture or sampler the lab does not provide is left out: `Program::bind`
+                // names it, as for any program.
                 let BindingKind::Uniform(layout) = &b.kind else {
-                    return Err(Error::Binding(format!(
-                        "{} + {} declare `{}` ({}), which {name} does not provide",
-                        pass.vert,
-                        pass.frag,
-                        b.name,
-                        if matches!(b.kind, BindingKind::Sampler) {
-                            "a sampler"
-                        } else {
-                            "a texture"
-                        }
-                    )));
+                    continue;
                 };
                 if !blocks.iter().any(|k| k.name() == b.name) {
                     blocks.push(ParamBlock::new(

@@ -41,6 +41,8 @@ pub struct Capture {
     /// The last frame, waiting for the next one to know how long it was shown.
     pending: Option<(image::RgbaImage, Instant)>,
     frames: u32,
+    /// Where frames are drawn, kept while the window keeps its size and format.
+    target: Option<Offscreen>,
 }
 
 impl Capture {
@@ -55,6 +57,7 @@ impl Capture {
             encoder: Some(encoder),
             pending: None,
             frames: 0,
+            target: None,
         })
     }
 
@@ -72,8 +75,12 @@ impl Capture {
         height: u32,
         format: wgpu::TextureFormat,
     ) -> Result<()> {
-        let target = Offscreen::with_format(gpu, width, height, format);
-        super::render_into(gpu, lab, &target)?;
+        let fits = |t: &Offscreen| t.width == width && t.height == height && t.format() == format;
+        if !self.target.as_ref().is_some_and(fits) {
+            self.target = Some(Offscreen::with_format(gpu, width, height, format));
+        }
+        let target = self.target.as_ref().expect("made above");
+        super::render_into(gpu, lab, target)?;
         let image = target.read(gpu)?;
         let now = Instant::now();
         if let Some((previous, at)) = self.pending.replace((image, now)) {

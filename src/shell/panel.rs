@@ -85,20 +85,10 @@ pub fn control_of(spec: &ParamSpec) -> Control {
     match spec.kind {
         Kind::Bool => Control::Check,
         Kind::Choice(names) => Control::Choice(names),
-        Kind::Int => Control::Whole,
+        Kind::Int if span <= WHOLE_SLIDER_SPAN => Control::Whole,
         Kind::Real if is_colour(spec) => Control::Colour,
         Kind::Real if span <= SLIDER_SPAN => Control::Slider,
-        Kind::Real => Control::Drag,
-    }
-    .or_whole_drag(span)
-}
-
-impl Control {
-    fn or_whole_drag(self, span: f64) -> Control {
-        match self {
-            Control::Whole if span > WHOLE_SLIDER_SPAN => Control::Drag,
-            other => other,
-        }
+        Kind::Int | Kind::Real => Control::Drag,
     }
 }
 
@@ -324,8 +314,6 @@ pub struct Panel {
     ctx: egui::Context,
     input: egui_winit::State,
     renderers: Vec<(wgpu::TextureFormat, egui_wgpu::Renderer)>,
-    /// The logical width it took when last drawn, in physical pixels.
-    pub width_px: u32,
     /// Whether egui asked for another frame soon (an animation, a blinking cursor).
     pub repaint: bool,
 }
@@ -347,7 +335,6 @@ impl Panel {
             ctx,
             input,
             renderers: Vec::new(),
-            width_px: 0,
             repaint: false,
         }
     }
@@ -397,7 +384,6 @@ impl Panel {
                 .resizable(false)
                 .show(ui, |ui| contents(ui, lab, status));
             result = panel.inner;
-            self.width_px = (panel.response.rect.width() * ui.ctx().pixels_per_point()).round() as u32;
         });
         // egui animates (a header opening) over frames it asks for; the window draws them.
         self.repaint = output
