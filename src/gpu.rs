@@ -78,12 +78,19 @@ impl Gpu {
             .await
             .map_err(|e| Error::NoAdapter(e.to_string()))?;
         let wanted = wgpu::Features::TIMESTAMP_QUERY;
+        // WebGL2 offers less than wgpu's downlevel defaults (no storage buffers, smaller
+        // uniform blocks): ask for what it guarantees there, the downlevel defaults elsewhere.
+        let base = if cfg!(target_arch = "wasm32") && adapter.get_info().backend == wgpu::Backend::Gl {
+            wgpu::Limits::downlevel_webgl2_defaults()
+        } else {
+            wgpu::Limits::downlevel_defaults()
+        };
         let features = adapter.features() & wanted;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("shaderlab.device"),
                 required_features: features,
-                required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+                required_limits: base.using_resolution(adapter.limits()),
                 ..Default::default()
             })
             .await

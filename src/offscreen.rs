@@ -116,17 +116,8 @@ impl Offscreen {
                 message: "short buffer".into(),
             });
         }
-        let mut pixels = self.read_rows(gpu, 4)?;
-        if matches!(
-            self.format,
-            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-        ) {
-            pixels.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
-        }
-        image::RgbaImage::from_raw(self.width, self.height, pixels).ok_or_else(|| Error::Wgpu {
-            context: "reading back the image".into(),
-            message: "short buffer".into(),
-        })
+        self.map_and_wait(gpu)?;
+        self.mapped_rgba()
     }
 
     /// Copies an `Rgba32Float` target to the CPU: the shader's outputs before any 8-bit rounding
@@ -146,6 +137,30 @@ impl Offscreen {
     }
 
     fn read_rows(&self, gpu: &Gpu, bytes_per_pixel: u32) -> Result<Vec<u8>> {
+        self.map_and_wait(gpu)?;
+        self.mapped_rows(bytes_per_pixel)
+    }
+
+    /// [`Offscreen::request_read`], blocking until the buffer is mapped.
+    fn map_and_wait(&self, gpu: &Gpu) -> Result<()> {
+        let (tx, rx) = std::sync::mpsc::channel();
+        self.request_read(gpu, move |r| {
+            let _ = tx.send(r);
+        });
+        gpu.wait()?;
+        rx.recv()
+            .map_err(|e| read_error(e.to_string()))?
+            .map_err(|e| read_error(e.to_string()))
+    }
+
+    /// Copies the colour target into the readback buffer and asks for it to be mapped;
+    /// `mapped` is called once it is (or with why not), after which [`Offscreen::mapped_rgba`]
+    /// has the pixels. [`Offscreen::read`] waits for it; a browser cannot wait, and polls.
+    pub fn request_read(
+        &self,
+        gpu: &Gpu,
+        mapped: impl FnOnce(std::result::Result<(), wgpu::BufferAsyncError>) + wgpu::WasmNotSend + 'static,
+    ) {
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("shaderlab.offscreen.copy"),
         });
@@ -171,34 +186,44 @@ impl Offscreen {
             },
         );
         gpu.queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        gpu.wait()?;
-        rx.recv()
-            .map_err(|e| Error::Wgpu {
-                context: "reading back the image".into(),
-                message: e.to_string(),
-            })?
-            .map_err(|e| Error::Wgpu {
-                context: "reading back the image".into(),
-                message: e.to_string(),
-            })?;
+        self.readback.slice(..).map_async(wgpu::MapMode::Read, mapped);
+    }
+
+    /// The pixels of an 8-bit target once [`Offscreen::request_read`] has mapped them, as RGBA
+    /// with the top row first; the buffer is unmapped for the next read.
+    pub fn mapped_rgba(&self) -> Result<image::RgbaImage> {
+        let mut pixels = self.mapped_rows(4)?;
+        if matches!(
+            self.format,
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        ) {
+            pixels.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
+        }
+        image::RgbaImage::from_raw(self.width, self.height, pixels).ok_or_else(|| read_error("short buffer".into()))
+    }
+
+    fn mapped_rows(&self, bytes_per_pixel: u32) -> Result<Vec<u8>> {
         let row_bytes = (bytes_per_pixel * self.width) as usize;
         let mut pixels = Vec::with_capacity(row_bytes * self.height as usize);
         {
-            let data = slice.get_mapped_range().map_err(|e| Error::Wgpu {
-                context: "reading back the image".into(),
-                message: e.to_string(),
-            })?;
+            let data = self
+                .readback
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|e| read_error(e.to_string()))?;
             for row in data.chunks(self.padded_row as usize).take(self.height as usize) {
                 pixels.extend_from_slice(&row[..row_bytes]);
             }
         }
         self.readback.unmap();
         Ok(pixels)
+    }
+}
+
+fn read_error(message: String) -> Error {
+    Error::Wgpu {
+        context: "reading back the image".into(),
+        message,
     }
 }
 

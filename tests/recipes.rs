@@ -145,7 +145,7 @@ fn every_lab_has_its_example_and_every_example_is_a_lab_or_a_tool() {
         let path = file.unwrap().path();
         let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
         assert!(
-            labs::find(&stem).is_some() || ["bench", "glsl2wgsl", "labs", "tradeoff"].contains(&stem.as_str()),
+            labs::find(&stem).is_some() || ["bench", "glsl2wgsl", "labs", "tradeoff", "web"].contains(&stem.as_str()),
             "examples/{stem}.rs is neither a lab nor a tool"
         );
     }

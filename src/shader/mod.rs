@@ -42,6 +42,9 @@ pub enum ShaderSource {
     Embedded,
     /// A directory on disk with the same file names (`--shaders DIR`, live reload).
     Dir(PathBuf),
+    /// Texts edited in memory (the web page's editor), by file name, over the built-in copies:
+    /// a file not edited reads as [`ShaderSource::Embedded`].
+    Edited(std::sync::Arc<std::collections::BTreeMap<String, String>>),
 }
 
 impl ShaderSource {
@@ -81,7 +84,7 @@ impl ShaderSource {
     /// The path shown in messages for `name`.
     pub fn display_path(&self, name: &str) -> String {
         match self {
-            ShaderSource::Embedded => format!("shaders_glsl/{name}"),
+            ShaderSource::Embedded | ShaderSource::Edited(_) => format!("shaders_glsl/{name}"),
             ShaderSource::Dir(dir) => dir.join(name).display().to_string(),
         }
     }
@@ -94,6 +97,18 @@ impl ShaderSource {
                 .map(str::to_owned)
                 .ok_or_else(|| Error::ShaderNotFound(self.display_path(name))),
             ShaderSource::Dir(dir) => read_shader_file(&resolve_in_dir(dir, name)?),
+            ShaderSource::Edited(texts) => match texts.get(name) {
+                Some(text) => Ok(text.clone()),
+                None => ShaderSource::Embedded.read(name),
+            },
+        }
+    }
+
+    /// The edited text of `name`, if this source holds one ([`ShaderSource::Edited`]).
+    pub fn edited(&self, name: &str) -> Option<&str> {
+        match self {
+            ShaderSource::Edited(texts) => texts.get(name).map(String::as_str),
+            _ => None,
         }
     }
 

@@ -7,14 +7,15 @@
 //! Runtime errors (no adapter, broken shader, unwritable file) print one clear message and exit
 //! with 1.
 //!
-//! In the browser build (wasm32) only [`panel`] and [`defaults`] are compiled: the command
-//! line, the offscreen paths, recording and the native window need processes, files, a terminal
-//! and blocking on the GPU.
+//! In the browser build (wasm32) the page's shell (`web`) takes the window's place, with
+//! [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
+//! the native window need processes, files, a terminal and blocking on the GPU.
 
 #[cfg(not(target_arch = "wasm32"))]
 mod args;
 #[cfg(not(target_arch = "wasm32"))]
 mod capture;
+pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod panel;
@@ -22,6 +23,8 @@ pub mod panel;
 pub mod record;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod window;
 

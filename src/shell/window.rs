@@ -207,13 +207,10 @@ struct WindowState {
     depth: wgpu::TextureView,
     gpu: Gpu,
     lab: Box<dyn Lab>,
+    /// The window's start: the clock's second 0.
     start: Instant,
-    clock_scale: f64,
-    /// The lab's time when the clock (re)started, and whether Space paused it.
-    time_offset: f64,
-    paused_clock: bool,
-    /// The time the clock last wrote, to notice a lab that set its own (e.g. a restart key).
-    last_time: Option<f64>,
+    /// Drives an animated lab's `time` (Space pauses it).
+    clock: super::clock::Clock,
     /// Frames still to draw for a lab that is not animated (input, resize, reload).
     dirty: u32,
     unpaced: bool,
@@ -380,7 +377,7 @@ impl App {
         // Live reload watches the shader folder and the folders of the lab's input files.
         let mut dirs: Vec<std::path::PathBuf> = match &self.source {
             ShaderSource::Dir(dir) => vec![dir.clone()],
-            ShaderSource::Embedded => Vec::new(),
+            ShaderSource::Embedded | ShaderSource::Edited(_) => Vec::new(),
         };
         for input in &self.files.inputs {
             let dir = match input.parent() {
@@ -404,19 +401,13 @@ impl App {
             .map(|d| Instant::now() + d);
         let refresh_millihertz = window.current_monitor().and_then(|m| m.refresh_rate_millihertz());
         window.set_title(&lab.title());
-        let time_offset = if lab.params().has("time") {
-            lab.params().f64("time")
-        } else {
-            0.0
-        };
+        let clock = super::clock::Clock::new(lab.as_ref(), 0.0, clock_scale);
         let panel = super::panel::Panel::new(&window);
         Ok(WindowState {
             entry,
             source: self.source.clone(),
             files: self.files.clone(),
-            time_offset,
-            paused_clock: false,
-            last_time: None,
+            clock,
             dirty: 2,
             unpaced: self.args.unpaced,
             said_too_large,
@@ -431,7 +422,6 @@ impl App {
             gpu,
             lab,
             start: Instant::now(),
-            clock_scale,
             cursor: (0, 0),
             buttons: 0,
             occluded: false,
@@ -684,6 +674,7 @@ impl WindowState {
             (ShaderSource::Dir(dir), true) => format!("from {} (reloads live)", dir.display()),
             (ShaderSource::Dir(dir), false) => format!("from {}", dir.display()),
             (ShaderSource::Embedded, _) => "built in".to_owned(),
+            (ShaderSource::Edited(_), _) => "edited in memory".to_owned(),
         };
         let status = super::panel::Status {
             frame_ms: (self.animated() || self.unpaced).then_some(self.frame_ms),
@@ -923,37 +914,20 @@ impl WindowState {
 
     /// Whether the lab's clock runs (an animated lab, not paused with Space).
     fn animated(&self) -> bool {
-        self.lab.animated() && self.lab.params().has("time") && !self.paused_clock
+        self.clock.runs(self.lab.as_ref())
     }
 
-    /// Advances an animated lab's `time`: the clock since the start, from the time the lab had
-    /// then. A lab that set its own time since (a restart key, a parameter) moves the origin.
+    /// Advances an animated lab's `time` to the clock's.
     fn tick(&mut self) {
-        if !self.animated() {
-            return;
-        }
-        let current = self.lab.params().f64("time");
-        let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
-        if self.last_time.is_some_and(|t| t != current) {
-            self.time_offset = current - elapsed;
-        }
-        let t = self.time_offset + elapsed;
-        self.lab.params_mut().put("time", &[t]);
-        self.last_time = Some(self.lab.params().f64("time"));
+        let now = self.start.elapsed().as_secs_f64();
+        self.clock.tick(self.lab.as_mut(), now);
     }
 
     /// Space: pauses or resumes the clock of an animated lab, keeping its time.
     fn toggle_clock(&mut self) {
-        if !self.lab.animated() {
-            return;
+        if self.clock.toggle(self.lab.as_ref(), self.start.elapsed().as_secs_f64()) {
+            self.dirty = 2;
         }
-        if self.paused_clock {
-            let elapsed = self.start.elapsed().as_secs_f64() * self.clock_scale;
-            self.time_offset = self.lab.params().f64("time") - elapsed;
-            self.last_time = None;
-        }
-        self.paused_clock = !self.paused_clock;
-        self.dirty = 2;
     }
 
     fn input(&mut self, input: Input) {

@@ -22,7 +22,7 @@ use crate::params::{FileArgs, ParamSpec, Params};
 use crate::render::{
     sampler, AnyProgram, Bind, Frame, GpuMesh, Load, Program, RenderState, Resource, SamplerDesc, Texture,
 };
-use crate::shader::CompiledShader;
+use crate::shader::{CompiledShader, ShaderSource};
 use crate::tess::{self, Object};
 
 use crate::labs::seed000::stage::{GlutStage, StageConfig, PARAMS_000};
@@ -73,8 +73,10 @@ const OWN: &[ParamSpec] = &[
     ParamSpec::real("far", &[100.0], 1e-3, 1e7, "gluPerspective far plane"),
 ];
 
-const DEFAULT_VERT: &str = include_str!("./default.vert");
-const DEFAULT_FRAG: &str = include_str!("./default.frag");
+/// The built-in GLSL 1.10 vertex shader (`legacy/default.vert`), drawn when no files are given.
+pub const DEFAULT_VERT: &str = include_str!("./default.vert");
+/// The built-in fragment shader (`legacy/default.frag`).
+pub const DEFAULT_FRAG: &str = include_str!("./default.frag");
 
 /// gluPerspective needs 0 < near < far; GL would draw nothing (or garbage) otherwise.
 fn near_before_far(p: &Params) -> Result<()> {
@@ -105,20 +107,30 @@ fn params() -> Params {
     })
 }
 
-/// Reads and translates the shaders (the built-in pair without files).
-fn sources(files: &[PathBuf]) -> Result<(LegacySource, LegacySource)> {
+/// Reads the shaders (the built-in pair without files). A text edited in memory under the
+/// file's name (the web page's editor, [`ShaderSource::Edited`]) stands in for the file.
+fn sources(files: &[PathBuf], edits: &ShaderSource) -> Result<(LegacySource, LegacySource)> {
+    let one = |name: &str, built_in: Option<&str>, path: Option<&PathBuf>| match (edits.edited(name), built_in, path) {
+        (Some(text), _, _) | (None, Some(text), _) => Ok(LegacySource::new(name, text)),
+        (None, None, Some(path)) => LegacySource::read(path),
+        (None, None, None) => Err(Error::ShaderNotFound(name.to_owned())),
+    };
     match files {
         [] => Ok((
-            LegacySource::new("legacy/default.vert", DEFAULT_VERT),
-            LegacySource::new("legacy/default.frag", DEFAULT_FRAG),
+            one("legacy/default.vert", Some(DEFAULT_VERT), None)?,
+            one("legacy/default.frag", Some(DEFAULT_FRAG), None)?,
         )),
-        [vert, frag] => Ok((LegacySource::read(vert)?, LegacySource::read(frag)?)),
+        [vert, frag] => Ok((
+            one(&vert.to_string_lossy(), None, Some(vert))?,
+            one(&frag.to_string_lossy(), None, Some(frag))?,
+        )),
         _ => Err(Error::Param("legacy takes two files: VERT FRAG".into())),
     }
 }
 
-fn load(files: &[PathBuf]) -> Result<(Translation, CompiledShader, CompiledShader)> {
-    let (vert, frag) = sources(files)?;
+/// Reads and translates the shaders.
+fn load(files: &[PathBuf], edits: &ShaderSource) -> Result<(Translation, CompiledShader, CompiledShader)> {
+    let (vert, frag) = sources(files, edits)?;
     let translation = legacy::translate(&vert, &frag)?;
     let (vs, fs) = translation.compile()?;
     Ok((translation, vs, fs))
@@ -133,7 +145,7 @@ fn declared(translation: &Translation) -> Params {
 
 /// The parameters the shaders declare: GL's state they use and their loose uniforms.
 fn declare(files: &[PathBuf], params: &mut Params) -> Result<()> {
-    let (translation, _, _) = load(files)?;
+    let (translation, _, _) = load(files, &ShaderSource::Embedded)?;
     let base = params.clone();
     params.extend(&translation.params(&|n| base.has(n)));
     Ok(())
@@ -299,7 +311,7 @@ fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
             "legacy: no VERT FRAG given: drawing the built-in GLSL 1.10 pair (legacy/default.vert, legacy/default.frag); run `legacy VERT FRAG` for your own shaders"
         );
     }
-    let (translation, vs, fs) = load(&files)?;
+    let (translation, vs, fs) = load(&files, cx.source)?;
     let params = declared(&translation).with_files(FileArgs {
         names: &["VERT", "FRAG"],
         declare,
@@ -493,7 +505,7 @@ impl Lab for LegacyLab {
         title
     }
     fn reload(&mut self, cx: &LabContext) -> Result<()> {
-        let (translation, vs, fs) = load(&self.files)?;
+        let (translation, vs, fs) = load(&self.files, cx.source)?;
         let mut params = declared(&translation).with_files(FileArgs {
             names: &["VERT", "FRAG"],
             declare,

@@ -1,0 +1,698 @@
+//! The browser's shell: what the window is natively, for a page. The page (`web/index.html`,
+//! built by `scripts/web`) owns the DOM: it lists the labs, builds the controls from
+//! [`WebApp::params`] (the same [`ParamSpec`](crate::params::ParamSpec)s as `--set`, `--help`,
+//! the keys and the F1 panel), forwards keys and mouse on the canvas, and drives
+//! [`WebApp::frame`] from `requestAnimationFrame`. This module drives any lab through its plain
+//! [`Lab`] methods, as the window does, so no lab has a second copy for the web.
+//!
+//! Differences from the native shell, all forced by the browser: start-up is async (no
+//! blocking on the GPU), there are no files (shaders are built in, edits live in memory as
+//! [`ShaderSource::Edited`], user files come from the page as bytes), and a validation error
+//! on WebGPU reaches the console rather than a `Result` ([`crate::Gpu::checked`]).
+//!
+//! Results cross to JavaScript as JSON text (a handful of flat records; written here by
+//! [`json`] rather than pulling serde into the build for them).
+
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+use std::rc::Rc;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use wasm_bindgen::prelude::*;
+
+use crate::gpu::Gpu;
+use crate::lab::{Input, Lab, LabContext, LabEntry, Special, UserFile, UserFiles};
+use crate::offscreen::{depth_texture, Offscreen};
+use crate::params::{Kind, Params};
+use crate::render::Frame;
+use crate::shader::{embedded_source, ShaderSource};
+
+use super::clock::Clock;
+
+/// The course's seed-000 GLSL 1.10 files (the five exercises of Lab05, as the tests run them),
+/// for `legacy` on the page: loaded and editable without any upload.
+const COURSE: &[(&str, &str)] = &[
+    ("lab1.vert", include_str!("../../tests/fixtures/seed000/lab1.vert")),
+    ("lab1.frag", include_str!("../../tests/fixtures/seed000/lab1.frag")),
+    ("lab2.vert", include_str!("../../tests/fixtures/seed000/lab2.vert")),
+    ("lab2.frag", include_str!("../../tests/fixtures/seed000/lab2.frag")),
+    ("lab3.vert", include_str!("../../tests/fixtures/seed000/lab3.vert")),
+    ("lab3.frag", include_str!("../../tests/fixtures/seed000/lab3.frag")),
+    ("lab4.vert", include_str!("../../tests/fixtures/seed000/lab4.vert")),
+    ("lab4.frag", include_str!("../../tests/fixtures/seed000/lab4.frag")),
+    ("lab5.vert", include_str!("../../tests/fixtures/seed000/lab5.vert")),
+    ("lab5.frag", include_str!("../../tests/fixtures/seed000/lab5.frag")),
+];
+
+/// `legacy`'s built-in pair, by the names its messages use.
+const LEGACY_DEFAULT: [&str; 2] = ["legacy/default.vert", "legacy/default.frag"];
+
+/// The largest file the page may hand over (a model or a picture): the native loaders' caps
+/// are per kind and smaller; this one only keeps a wrong pick (a video) out of memory.
+const MAX_FILE_BYTES: usize = 64 << 20;
+
+/// JSON text for a string.
+fn json(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// JSON text for a list of strings.
+fn json_list<'a>(items: impl IntoIterator<Item = &'a str>) -> String {
+    let items: Vec<String> = items.into_iter().map(json).collect();
+    format!("[{}]", items.join(","))
+}
+
+/// A finite number as JSON (JSON has no infinities; the specs' open bounds are ±1e30 or so).
+fn json_number(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v}")
+    } else {
+        "null".into()
+    }
+}
+
+fn js_error(e: impl std::fmt::Display) -> JsValue {
+    JsValue::from_str(&e.to_string())
+}
+
+/// Every lab, in the list's order, as JSON: `name`, `title`, `label`, `lecture`, `width`,
+/// `height`, `keys` (the help text of its keys).
+#[wasm_bindgen]
+pub fn labs() -> String {
+    let items: Vec<String> = crate::labs::ALL
+        .iter()
+        .map(|e| {
+            let i = e.info;
+            format!(
+                "{{\"name\":{},\"title\":{},\"label\":{},\"lecture\":{},\"width\":{},\"height\":{},\"keys\":{}}}",
+                json(i.name),
+                json(i.title),
+                json(i.label),
+                json(i.lecture),
+                i.size.0,
+                i.size.1,
+                json(&i.keys.help())
+            )
+        })
+        .collect();
+    format!("[{}]", items.join(","))
+}
+
+/// The course's GLSL 1.10 files built into the page (`lab1.vert` … `lab5.frag`), as JSON.
+#[wasm_bindgen]
+pub fn course_files() -> String {
+    json_list(COURSE.iter().map(|(name, _)| *name))
+}
+
+/// Starts the page's GPU on `canvas`: `backend` is `webgpu`, `webgl2`, or `auto` (WebGPU when
+/// the browser offers an adapter, WebGL2 otherwise). Opens no lab yet ([`WebApp::open`]).
+#[wasm_bindgen]
+pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Result<WebApp, JsValue> {
+    std::panic::set_hook(Box::new(|info| web_sys::console::error_1(&JsValue::from_str(&info.to_string()))));
+    let backends = match backend.as_str() {
+        "webgpu" => wgpu::Backends::BROWSER_WEBGPU,
+        "webgl2" => wgpu::Backends::GL,
+        "" | "auto" => wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL,
+        other => return Err(js_error(format!("unknown backend `{other}`; valid: auto, webgpu, webgl2"))),
+    };
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = backends;
+    let instance = wgpu::util::new_instance_with_webgpu_detection(desc).await;
+    let surface = instance
+        .create_surface(wgpu::SurfaceTarget::Canvas(canvas.clone()))
+        .map_err(|e| js_error(format!("cannot draw on the canvas with {backend}: {e}")))?;
+    let gpu = Gpu::new(instance, Some(&surface)).await.map_err(js_error)?;
+    gpu.device.on_uncaptured_error(Arc::new(|e| {
+        web_sys::console::error_1(&JsValue::from_str(&format!("wgpu error: {e}")))
+    }));
+    gpu.device.set_device_lost_callback(|reason, message| {
+        web_sys::console::error_1(&JsValue::from_str(&format!("the GPU device was lost ({reason:?}): {message}")))
+    });
+    let caps = surface.get_capabilities(&gpu.adapter);
+    // GL's default framebuffer does no sRGB encoding: a plain UNORM format, as the window; the
+    // browser's preferred one of the two first (it lists that first; another costs a copy).
+    let format = caps
+        .formats
+        .iter()
+        .copied()
+        .find(|f| matches!(f, wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm))
+        .or_else(|| caps.formats.iter().copied().find(|f| !f.is_srgb()))
+        .or_else(|| caps.formats.first().copied())
+        .ok_or_else(|| js_error("the canvas supports no formats"))?;
+    let alpha_mode = if caps.alpha_modes.contains(&wgpu::CompositeAlphaMode::Opaque) {
+        wgpu::CompositeAlphaMode::Opaque
+    } else {
+        caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto)
+    };
+    let config = wgpu::SurfaceConfiguration {
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        format,
+        color_space: Default::default(),
+        width: canvas.width().max(1),
+        height: canvas.height().max(1),
+        desired_maximum_frame_latency: 2,
+        present_mode: wgpu::PresentMode::Fifo,
+        alpha_mode,
+        view_formats: Vec::new(),
+    };
+    surface.configure(&gpu.device, &config);
+    let depth = depth_texture(&gpu.device, config.width, config.height);
+    let texts = COURSE.iter().map(|(n, t)| (n.to_string(), t.to_string())).collect();
+    Ok(WebApp {
+        gpu,
+        surface,
+        config,
+        depth,
+        canvas,
+        open: None,
+        texts,
+        files: UserFiles::default(),
+        pressed: false,
+        now: 0.0,
+        error: None,
+        reading: None,
+    })
+}
+
+/// The lab on the page, and what it was opened with.
+struct Open {
+    entry: &'static LabEntry,
+    lab: Box<dyn Lab>,
+    clock: Clock,
+}
+
+/// The page's GPU, canvas and lab.
+#[wasm_bindgen]
+pub struct WebApp {
+    gpu: Gpu,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    depth: wgpu::TextureView,
+    canvas: web_sys::HtmlCanvasElement,
+    open: Option<Open>,
+    /// Shader texts edited on the page and the course's files, by file name, over the
+    /// built-in shaders (kept across labs: an edited `#include` serves every lab using it).
+    texts: BTreeMap<String, String>,
+    /// Pictures and models the page handed over, and `legacy`'s pair.
+    files: UserFiles,
+    pressed: bool,
+    /// The page's clock, seconds (the last [`WebApp::frame`]).
+    now: f64,
+    /// The last error found while drawing, until the page takes it.
+    error: Option<String>,
+    /// A picture being read back ([`WebApp::read_start`]), and whether it is mapped yet.
+    reading: Option<(Offscreen, Rc<RefCell<Option<Result<(), String>>>>)>,
+}
+
+#[wasm_bindgen]
+impl WebApp {
+    /// `WebGPU` or `WebGL2`, and the adapter's name.
+    pub fn backend(&self) -> String {
+        let info = self.gpu.adapter.get_info();
+        let api = match info.backend {
+            wgpu::Backend::BrowserWebGpu => "WebGPU",
+            wgpu::Backend::Gl => "WebGL2",
+            other => return format!("{other:?}"),
+        };
+        if info.name.is_empty() {
+            api.to_owned()
+        } else {
+            format!("{api} ({})", info.name)
+        }
+    }
+
+    /// Opens lab `name` at the canvas size of the lab, then sets `sets` (lines `name=value`,
+    /// as `--set`; `legacy` also takes `files=VERT,FRAG`, names of the course's files or of
+    /// files handed over by [`WebApp::add_file`]). Returns the sets that were refused, one
+    /// message per line ("" when all were taken); a lab that cannot be built is an error and
+    /// the previous lab stays.
+    pub fn open(&mut self, name: &str, sets: &str, paused: bool) -> Result<String, JsValue> {
+        let entry = crate::labs::find(name).ok_or_else(|| {
+            let names: Vec<&str> = crate::labs::ALL.iter().map(|e| e.info.name).collect();
+            js_error(format!("no lab `{name}`; labs: {}", names.join(", ")))
+        })?;
+        let mut refused = Vec::new();
+        let mut assignments = Vec::new();
+        for line in sets.lines().map(str::trim).filter(|l| !l.is_empty()) {
+            match line.split_once('=') {
+                Some(("files", list)) if entry.info.files.named_textures => {
+                    let pair: Vec<PathBuf> = list.split(',').map(|s| PathBuf::from(s.trim())).collect();
+                    let missing: Vec<String> = pair
+                        .iter()
+                        .map(|p| p.to_string_lossy().into_owned())
+                        .filter(|p| !self.texts.contains_key(p))
+                        .collect();
+                    if pair.len() != 2 {
+                        refused.push(format!("files={list}: legacy takes two files, VERT,FRAG"));
+                    } else if !missing.is_empty() {
+                        refused.push(format!(
+                            "files={list}: no file {}; the page has {}",
+                            missing.join(", "),
+                            self.texts.keys().cloned().collect::<Vec<_>>().join(", ")
+                        ));
+                    } else {
+                        self.files.inputs = pair;
+                    }
+                }
+                Some((key, value)) => assignments.push((key.trim().to_owned(), value.trim().to_owned())),
+                None => refused.push(format!("`{line}`: expected name=value")),
+            }
+        }
+        if !entry.info.files.named_textures {
+            self.files.inputs.clear();
+        }
+        let source = self.shader_source();
+        let cx = LabContext {
+            gpu: &self.gpu,
+            source: &source,
+            format: self.config.format,
+            files: &self.files,
+        };
+        let mut lab = (entry.new)(&cx).map_err(js_error)?;
+        let (width, height) = entry.info.size;
+        self.resize(width, height);
+        for (key, value) in assignments {
+            if let Err(e) = set_checked(lab.params_mut(), &key, &value) {
+                refused.push(e.to_string());
+            }
+        }
+        let clock = Clock::new(lab.as_ref(), self.now, 1.0);
+        let clock = if paused { clock.paused() } else { clock };
+        self.open = Some(Open { entry, lab, clock });
+        self.error = None;
+        Ok(refused.join("\n"))
+    }
+
+    /// The open lab's name.
+    pub fn lab(&self) -> String {
+        self.open.as_ref().map(|o| o.entry.info.name.to_owned()).unwrap_or_default()
+    }
+
+    /// The window title of the native shell: the original's, then the state.
+    pub fn title(&self) -> String {
+        self.open.as_ref().map(|o| o.lab.title()).unwrap_or_default()
+    }
+
+    /// Draws one frame at the page's time `now_ms` (`performance.now()`): the clock of an
+    /// animated lab follows it.
+    pub fn frame(&mut self, now_ms: f64) {
+        self.now = now_ms / 1000.0;
+        let Some(open) = self.open.as_mut() else {
+            return;
+        };
+        open.clock.tick(open.lab.as_mut(), self.now);
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.surface.configure(&self.gpu.device, &self.config);
+                return;
+            }
+            _ => return,
+        };
+        let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("web.frame"),
+            ..Default::default()
+        });
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("web.frame"),
+        });
+        let rendered = open.lab.render(&mut Frame {
+            gpu: &self.gpu,
+            encoder: &mut encoder,
+            color: &view,
+            depth: &self.depth,
+            width: self.config.width,
+            height: self.config.height,
+            timestamps: None,
+        });
+        self.gpu.queue.submit([encoder.finish()]);
+        self.gpu.queue.present(frame);
+        if let Some(e) = rendered.err().or_else(|| open.lab.take_error()) {
+            self.error = Some(e.to_string());
+        }
+    }
+
+    /// Whether the lab's clock runs (an animated lab, not paused): the page draws every
+    /// animation frame then, and only after a change otherwise.
+    pub fn animated(&self) -> bool {
+        self.open.as_ref().is_some_and(|o| o.clock.runs(o.lab.as_ref()))
+    }
+
+    /// A key pressed on the canvas, by the DOM's `KeyboardEvent.key`: the arrows and Page
+    /// Up/Down are GLUT's special keys, Space pauses an animated lab's clock, any other single
+    /// character is the original's keyboard callback. Returns whether the lab took it (the
+    /// page then keeps the browser from scrolling).
+    pub fn key(&mut self, key: &str) -> bool {
+        let Some(open) = self.open.as_mut() else {
+            return false;
+        };
+        let special = match key {
+            "ArrowLeft" => Some(Special::Left),
+            "ArrowRight" => Some(Special::Right),
+            "ArrowUp" => Some(Special::Up),
+            "ArrowDown" => Some(Special::Down),
+            "PageUp" => Some(Special::PageUp),
+            "PageDown" => Some(Special::PageDown),
+            _ => None,
+        };
+        if key == " " && open.clock.toggle(open.lab.as_ref(), self.now) {
+            return true;
+        }
+        match special {
+            Some(s) => {
+                open.lab.input(Input::Special(s));
+                true
+            }
+            None => {
+                let mut chars = key.chars();
+                match (chars.next(), chars.next()) {
+                    (Some(c), None) => {
+                        open.lab.input(Input::Key(c));
+                        true
+                    }
+                    _ => false,
+                }
+            }
+        }
+    }
+
+    /// The mouse on the canvas, in canvas pixels from the top left: `down`, `move`, `up` (the
+    /// left button); a move counts as the original's drag while the button is down.
+    pub fn pointer(&mut self, kind: &str, x: i32, y: i32) -> bool {
+        let Some(open) = self.open.as_mut() else {
+            return false;
+        };
+        let input = match kind {
+            "down" => {
+                self.pressed = true;
+                Input::Press(x, y)
+            }
+            "up" if self.pressed => {
+                self.pressed = false;
+                Input::Release(x, y)
+            }
+            "move" if self.pressed => Input::Drag(x, y),
+            _ => return false,
+        };
+        open.lab.input(input)
+    }
+
+    /// The lab's parameters as JSON: per parameter `name`, `kind` (`real`, `int`, `bool`,
+    /// `choice`), `options` (a choice's names), `min`, `max`, `help`, `value` (as `--set`
+    /// writes it), `values` (the numbers) and `default`.
+    pub fn params(&self) -> String {
+        let Some(open) = self.open.as_ref() else {
+            return "[]".into();
+        };
+        let p = open.lab.params();
+        let items: Vec<String> = p
+            .specs()
+            .iter()
+            .map(|s| {
+                let (kind, options) = match s.kind {
+                    Kind::Real => ("real", "[]".to_owned()),
+                    Kind::Int => ("int", "[]".to_owned()),
+                    Kind::Bool => ("bool", "[]".to_owned()),
+                    Kind::Choice(names) => ("choice", json_list(names.iter().copied())),
+                };
+                let values: Vec<String> = p.get(s.name).unwrap_or(&[]).iter().map(|v| json_number(*v)).collect();
+                format!(
+                    "{{\"name\":{},\"kind\":{},\"options\":{options},\"min\":{},\"max\":{},\"help\":{},\"value\":{},\"values\":[{}],\"default\":{}}}",
+                    json(s.name),
+                    json(kind),
+                    json_number(s.min),
+                    json_number(s.max),
+                    json(s.help),
+                    json(&p.text(s.name)),
+                    values.join(","),
+                    json(&s.default_text())
+                )
+            })
+            .collect();
+        format!("[{}]", items.join(","))
+    }
+
+    /// Sets a parameter from text, as `--set name=value`; returns the refusal ("" when set).
+    pub fn set(&mut self, name: &str, value: &str) -> String {
+        match self.open.as_mut() {
+            Some(open) => set_checked(open.lab.params_mut(), name, value)
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default(),
+            None => "no lab is open".into(),
+        }
+    }
+
+    /// The state a link reproduces: `name=value` per line for every parameter away from its
+    /// default (the running clock's `time` left out), and `legacy`'s `files=`.
+    pub fn state(&self) -> String {
+        let Some(open) = self.open.as_ref() else {
+            return String::new();
+        };
+        let p = open.lab.params();
+        let running = open.clock.runs(open.lab.as_ref());
+        let mut lines: Vec<String> = p
+            .specs()
+            .iter()
+            .filter(|s| p.get(s.name) != Some(s.default) && !(running && s.name == "time"))
+            .map(|s| format!("{}={}", s.name, p.text(s.name)))
+            .collect();
+        if open.entry.info.files.named_textures && !self.files.inputs.is_empty() {
+            let names: Vec<String> = self.files.inputs.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+            lines.insert(0, format!("files={}", names.join(",")));
+        }
+        lines.join("\n")
+    }
+
+    /// Whether the clock is paused (a link then keeps its `time`).
+    pub fn paused(&self) -> bool {
+        self.open.as_ref().is_some_and(|o| o.clock.is_paused())
+    }
+
+    /// The shader files the open lab draws with (each program's two files and what they
+    /// `#include`; `legacy`'s pair), as JSON.
+    pub fn files(&mut self) -> String {
+        json_list(self.file_names().iter().map(String::as_str))
+    }
+
+    /// The text of shader file `name`: as edited on the page, else the built-in one.
+    pub fn source(&self, name: &str) -> String {
+        self.text(name).unwrap_or_default()
+    }
+
+    /// Replaces the text of shader file `name` and recompiles the open lab. Returns the
+    /// compiler's message (`file:line:column: message`, the line and a caret) when the text is
+    /// broken, "" when it built; a broken text leaves the last good pipeline drawing.
+    pub fn edit(&mut self, name: &str, text: &str) -> String {
+        self.texts.insert(name.to_owned(), text.to_owned());
+        self.reload()
+    }
+
+    /// Drops the page's edit of `name` (the built-in text again) and recompiles; as [`edit`](WebApp::edit).
+    pub fn revert(&mut self, name: &str) -> String {
+        match COURSE.iter().find(|(n, _)| *n == name) {
+            Some((n, t)) => {
+                self.texts.insert((*n).to_owned(), (*t).to_owned());
+            }
+            None => {
+                self.texts.remove(name);
+            }
+        }
+        self.reload()
+    }
+
+    /// Takes a file the user picked: GLSL (`.vert`, `.frag`, `.glsl`, `.vs`, `.fs`) becomes
+    /// an editable text by its name (for `legacy`'s `files=`), a picture (`.png`, `.bmp`) the
+    /// texture of the labs that sample one, an `.obj` the model of the Suzanne labs. Returns
+    /// what became of it; a file that cannot be read is an error naming it.
+    pub fn add_file(&mut self, name: &str, bytes: &[u8]) -> Result<String, JsValue> {
+        if bytes.len() > MAX_FILE_BYTES {
+            return Err(js_error(format!(
+                "{name}: {} bytes is more than the page takes ({} MiB)",
+                bytes.len(),
+                MAX_FILE_BYTES >> 20
+            )));
+        }
+        let lower = name.to_ascii_lowercase();
+        let ext = lower.rsplit_once('.').map(|(_, e)| e).unwrap_or("");
+        let path = PathBuf::from(name);
+        match ext {
+            "vert" | "frag" | "glsl" | "vs" | "fs" | "vsh" | "fsh" => {
+                let text = String::from_utf8(bytes.to_vec())
+                    .map_err(|e| js_error(format!("{name}: not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to())))?;
+                self.texts.insert(name.to_owned(), text);
+                Ok(format!("{name}: a shader; legacy draws it with files=VERT,FRAG"))
+            }
+            "png" | "bmp" => {
+                let data = crate::geometry::images::decode_image(&path, bytes).map_err(js_error)?;
+                self.files.texture = Some(UserFile { path, data });
+                Ok(format!("{name}: the texture of the labs that sample one (reopen the lab)"))
+            }
+            "obj" => {
+                let text = String::from_utf8(bytes.to_vec())
+                    .map_err(|e| js_error(format!("{name}: not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to())))?;
+                let data = crate::geometry::obj::parse_obj(name, &text).map_err(js_error)?;
+                self.files.model = Some(UserFile { path, data });
+                Ok(format!("{name}: the model of the Suzanne labs (reopen the lab)"))
+            }
+            _ => Err(js_error(format!(
+                "{name}: not a file the page knows (GLSL .vert/.frag/.glsl, a .png or .bmp picture, an .obj model)"
+            ))),
+        }
+    }
+
+    /// Draws the lab's picture into a texture and starts reading it back through the API (a
+    /// headless browser's WebGPU canvas cannot be read: it has no shared image to copy from).
+    /// [`WebApp::read_result`] has the pixels once the browser mapped them.
+    pub fn read_start(&mut self) -> Result<(), JsValue> {
+        let open = self.open.as_mut().ok_or_else(|| js_error("no lab is open"))?;
+        let target = Offscreen::with_format(&self.gpu, self.config.width, self.config.height, self.config.format);
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("web.read"),
+        });
+        open.lab
+            .render(&mut Frame {
+                gpu: &self.gpu,
+                encoder: &mut encoder,
+                color: &target.color,
+                depth: &target.depth,
+                width: target.width,
+                height: target.height,
+                timestamps: None,
+            })
+            .map_err(js_error)?;
+        self.gpu.queue.submit([encoder.finish()]);
+        let done = Rc::new(RefCell::new(None));
+        let slot = done.clone();
+        target.request_read(&self.gpu, move |r| {
+            *slot.borrow_mut() = Some(r.map_err(|e| e.to_string()));
+        });
+        self.reading = Some((target, done));
+        Ok(())
+    }
+
+    /// The picture [`WebApp::read_start`] asked for: RGBA bytes, top row first, at the
+    /// canvas size; empty while the browser has not mapped them yet.
+    pub fn read_result(&mut self) -> Result<Vec<u8>, JsValue> {
+        // WebGL2 runs through wgpu-core, which maps on a poll; WebGPU maps by itself.
+        let _ = self.gpu.device.poll(wgpu::PollType::Poll);
+        let Some((target, done)) = self.reading.as_ref() else {
+            return Err(js_error("no picture is being read (read_start first)"));
+        };
+        let state = done.borrow_mut().take();
+        match state {
+            None => Ok(Vec::new()),
+            Some(Err(e)) => {
+                self.reading = None;
+                Err(js_error(format!("reading the picture back: {e}")))
+            }
+            Some(Ok(())) => {
+                let image = target.mapped_rgba().map_err(js_error);
+                self.reading = None;
+                Ok(image?.into_raw())
+            }
+        }
+    }
+
+    /// The last error found while drawing, once ("" when none).
+    pub fn take_error(&mut self) -> String {
+        self.error.take().unwrap_or_default()
+    }
+}
+
+/// Sets `name` from text and checks the lab's cross-parameter rules; a refused value is
+/// undone.
+fn set_checked(p: &mut Params, name: &str, value: &str) -> crate::Result<()> {
+    let before = p.clone();
+    let result = p.set_str(name, value).and_then(|_| p.check());
+    if result.is_err() {
+        *p = before;
+    }
+    result
+}
+
+impl WebApp {
+    /// The shaders as the page has them.
+    fn shader_source(&self) -> ShaderSource {
+        ShaderSource::Edited(Arc::new(self.texts.clone()))
+    }
+
+    fn text(&self, name: &str) -> Option<String> {
+        if let Some(t) = self.texts.get(name) {
+            return Some(t.clone());
+        }
+        match name {
+            n if n == LEGACY_DEFAULT[0] => Some(crate::labs::legacy::DEFAULT_VERT.to_owned()),
+            n if n == LEGACY_DEFAULT[1] => Some(crate::labs::legacy::DEFAULT_FRAG.to_owned()),
+            n => embedded_source(n).map(str::to_owned),
+        }
+    }
+
+    fn file_names(&mut self) -> Vec<String> {
+        let Some(open) = self.open.as_mut() else {
+            return Vec::new();
+        };
+        if open.entry.info.files.named_textures {
+            return match self.files.inputs.as_slice() {
+                [] => LEGACY_DEFAULT.iter().map(|s| (*s).to_owned()).collect(),
+                pair => pair.iter().map(|p| p.to_string_lossy().into_owned()).collect(),
+            };
+        }
+        let mut names: Vec<String> = Vec::new();
+        for program in open.lab.programs() {
+            let (v, f) = program.shaders();
+            for shader in [v, f] {
+                for (file, _) in &shader.source.line_map {
+                    let name = file.strip_prefix("shaders_glsl/").unwrap_or(file).to_owned();
+                    if !names.contains(&name) {
+                        names.push(name);
+                    }
+                }
+            }
+        }
+        names
+    }
+
+    fn reload(&mut self) -> String {
+        let source = self.shader_source();
+        let Some(open) = self.open.as_mut() else {
+            return String::new();
+        };
+        let cx = LabContext {
+            gpu: &self.gpu,
+            source: &source,
+            format: self.config.format,
+            files: &self.files,
+        };
+        open.lab.reload(&cx).err().map(|e| e.to_string()).unwrap_or_default()
+    }
+
+    /// Sizes the canvas, the surface and the depth buffer to the lab's picture.
+    fn resize(&mut self, width: u32, height: u32) {
+        let max = self.gpu.device.limits().max_texture_dimension_2d;
+        let (width, height) = (width.clamp(1, max), height.clamp(1, max));
+        self.canvas.set_width(width);
+        self.canvas.set_height(height);
+        if (self.config.width, self.config.height) != (width, height) {
+            self.config.width = width;
+            self.config.height = height;
+            self.surface.configure(&self.gpu.device, &self.config);
+            self.depth = depth_texture(&self.gpu.device, width, height);
+        }
+    }
+}
