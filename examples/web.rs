@@ -3,4 +3,4 @@
 //! exports it carries. Natively it is an empty library (`cargo run --example phong` and the
 //! other labs are the native programs).
 #[cfg(target_arch = "wasm32")]
-pub use shaderlab::shell::web::{course_files, labs, start, WebApp};
+pub use shaderlab::shell::web::{course_files, course_state, labs, start, WebApp};

@@ -78,23 +78,7 @@ fn in_tests(rel: &str) -> PathBuf {
 
 /// labref.c's uniforms and state per exercise (lab 3: camera (0,0,5), clear (0.05,0.1,0.2)).
 fn labref_state(lab: u32) -> Vec<(&'static str, &'static str)> {
-    match lab {
-        3 => vec![
-            ("camera", "0,0,5"),
-            ("clear", "0.05,0.1,0.2"),
-            ("lightPosition", "0,1,1"),
-            ("ambientColor", "0.1,0.1,0.1"),
-            ("diffuseColor", "1,0.5,0"),
-            ("specularColor", "1,1,1"),
-            ("Ka", "0.1"),
-            ("Kd", "1"),
-            ("Ks", "1"),
-            ("shininess", "32"),
-        ],
-        4 => vec![("time", "0"), ("shade", "1,1,1")],
-        5 => vec![("time", "0"), ("displacement", "0.5"), ("shade", "1,1,1")],
-        _ => vec![],
-    }
+    shaderlab::labs::legacy::course_state(lab).to_vec()
 }
 
 #[test]

@@ -30,8 +30,9 @@ use crate::shader::{embedded_source, ShaderSource};
 
 use super::clock::Clock;
 
-/// The course's seed-000 GLSL 1.10 files (the five exercises of Lab05, as the tests run them),
-/// for `legacy` on the page: loaded and editable without any upload.
+/// The course's seed-000 GLSL 1.10 files (the five exercises of Lab05, as the tests run them:
+/// the two syntax errors of the printed course mended, `tests/fixtures/seed000-mended`), for
+/// `legacy` on the page: loaded and editable without any upload.
 const COURSE: &[(&str, &str)] = &[
     ("lab1.vert", include_str!("../../tests/fixtures/seed000/lab1.vert")),
     ("lab1.frag", include_str!("../../tests/fixtures/seed000/lab1.frag")),
@@ -40,8 +41,8 @@ const COURSE: &[(&str, &str)] = &[
     ("lab3.vert", include_str!("../../tests/fixtures/seed000/lab3.vert")),
     ("lab3.frag", include_str!("../../tests/fixtures/seed000/lab3.frag")),
     ("lab4.vert", include_str!("../../tests/fixtures/seed000/lab4.vert")),
-    ("lab4.frag", include_str!("../../tests/fixtures/seed000/lab4.frag")),
-    ("lab5.vert", include_str!("../../tests/fixtures/seed000/lab5.vert")),
+    ("lab4.frag", include_str!("../../tests/fixtures/seed000-mended/lab4.frag")),
+    ("lab5.vert", include_str!("../../tests/fixtures/seed000-mended/lab5.vert")),
     ("lab5.frag", include_str!("../../tests/fixtures/seed000/lab5.frag")),
 ];
 
@@ -117,6 +118,20 @@ pub fn labs() -> String {
 #[wasm_bindgen]
 pub fn course_files() -> String {
     json_list(COURSE.iter().map(|(name, _)| *name))
+}
+
+/// The state seed 000's program sets for the course pair whose vertex shader is `vert`
+/// (`lab3.vert`), one `name=value` per line ("" for other files): the page applies it when a
+/// course pair is picked, so the pair draws the original's picture.
+#[wasm_bindgen]
+pub fn course_state(vert: &str) -> String {
+    let lab = vert
+        .strip_prefix("lab")
+        .and_then(|rest| rest.strip_suffix(".vert"))
+        .and_then(|n| n.parse().ok())
+        .filter(|_| COURSE.iter().any(|(name, _)| *name == vert));
+    let state = lab.map(crate::labs::legacy::course_state).unwrap_or(&[]);
+    state.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>().join("\n")
 }
 
 /// Starts the page's GPU on `canvas`: `backend` is `webgpu`, `webgl2`, or `auto` (WebGPU when

@@ -78,6 +78,30 @@ pub const DEFAULT_VERT: &str = include_str!("./default.vert");
 /// The built-in fragment shader (`legacy/default.frag`).
 pub const DEFAULT_FRAG: &str = include_str!("./default.frag");
 
+/// The state seed 000's C program sets for its exercise `lab` (1-5) when it runs the course's
+/// `labN.vert`/`labN.frag`: the uniforms it passes and its camera and clear colour, as `--set`
+/// assignments (exercises 1 and 2 set none). With these the course's files draw the originals'
+/// pictures (`tests/legacy.rs`); the web page applies them when a course pair is picked.
+pub fn course_state(lab: u32) -> &'static [(&'static str, &'static str)] {
+    match lab {
+        3 => &[
+            ("camera", "0,0,5"),
+            ("clear", "0.05,0.1,0.2"),
+            ("lightPosition", "0,1,1"),
+            ("ambientColor", "0.1,0.1,0.1"),
+            ("diffuseColor", "1,0.5,0"),
+            ("specularColor", "1,1,1"),
+            ("Ka", "0.1"),
+            ("Kd", "1"),
+            ("Ks", "1"),
+            ("shininess", "32"),
+        ],
+        4 => &[("time", "0"), ("shade", "1,1,1")],
+        5 => &[("time", "0"), ("displacement", "0.5"), ("shade", "1,1,1")],
+        _ => &[],
+    }
+}
+
 /// gluPerspective needs 0 < near < far; GL would draw nothing (or garbage) otherwise.
 fn near_before_far(p: &Params) -> Result<()> {
     let (near, far) = (p.f64("near"), p.f64("far"));
