@@ -11,10 +11,10 @@
 mod common;
 
 use std::io::{BufRead, BufReader, Read, Write};
-use std::sync::mpsc;
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::mpsc;
 use std::time::Duration;
 
 use image::RgbImage;
@@ -58,7 +58,10 @@ const CASES: &[(&str, &[&str])] = &[
     ("suzanne_texture", &["yangle=40"]),
     ("texparams", &["min=1", "mag=1"]),
     // Plus the uniforms seed 000's program gives lab 3 (labs::legacy::course_state).
-    ("legacy", &["files=lab3.vert,lab3.frag", "object=torus", "xangle=30", "yangle=20"]),
+    (
+        "legacy",
+        &["files=lab3.vert,lab3.frag", "object=torus", "xangle=30", "yangle=20"],
+    ),
 ];
 
 /// A case's assignments, `legacy`'s with the course's state of its pair.
@@ -150,7 +153,8 @@ fn serve(dir: PathBuf) -> (u16, mpsc::Receiver<String>) {
                         let _ = stream.write_all(head.as_bytes()).and_then(|_| stream.write_all(&body));
                     }
                     _ => {
-                        let _ = stream.write_all(b"HTTP/1.1 404 Not Found\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
+                        let _ = stream
+                            .write_all(b"HTTP/1.1 404 Not Found\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
                     }
                 }
             });
@@ -224,7 +228,10 @@ fn base64(text: &str) -> Option<Vec<u8>> {
             _ => return None,
         } as u32)
     };
-    let clean: Vec<u8> = text.bytes().filter(|c| !c.is_ascii_whitespace() && *c != b'=').collect();
+    let clean: Vec<u8> = text
+        .bytes()
+        .filter(|c| !c.is_ascii_whitespace() && *c != b'=')
+        .collect();
     let mut out = Vec::with_capacity(clean.len() * 3 / 4);
     for chunk in clean.chunks(4) {
         let mut n = 0u32;
@@ -343,7 +350,9 @@ fn compare(backend: &str) -> (Vec<String>, Vec<String>, bool) {
                 table.push(format!("{name:16} {backend:7} no adapter: {error}"));
                 break;
             }
-            failures.push(format!("{name}: the page drew nothing (backend `{used}`, error `{error}`)"));
+            failures.push(format!(
+                "{name}: the page drew nothing (backend `{used}`, error `{error}`)"
+            ));
             continue;
         };
         let want = native(name, sets);
@@ -378,7 +387,11 @@ fn compare(backend: &str) -> (Vec<String>, Vec<String>, bool) {
         } else {
             format!("{db:.1} dB")
         };
-        let note = if edges { " (texel edges: see TEXEL_EDGE_CASES)" } else { "" };
+        let note = if edges {
+            " (texel edges: see TEXEL_EDGE_CASES)"
+        } else {
+            ""
+        };
         let api = used.split(' ').next().unwrap_or("");
         table.push(format!("| `{name}` | {api} | {db} | {:.3}%{note} |", off * 100.0));
     }
@@ -415,7 +428,11 @@ fn the_page_draws_what_the_native_build_draws_on_webgpu() {
 #[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
 fn a_broken_edit_names_its_line_and_keeps_the_picture_and_fixing_it_recovers() {
     let server = serve(site());
-    let page = open(&server, "webgl2", &format!("{}&check=edit", query("phong", &["object=torus"])));
+    let page = open(
+        &server,
+        "webgl2",
+        &format!("{}&check=edit", query("phong", &["object=torus"])),
+    );
     let before = page.image("capture").expect("the first picture");
     let broken = page.image("capture-broken").expect("the picture after the broken edit");
     let fixed = page.image("capture-fixed").expect("the picture after the fix");
@@ -430,6 +447,14 @@ fn a_broken_edit_names_its_line_and_keeps_the_picture_and_fixing_it_recovers() {
     );
     assert!(message.contains('^'), "a caret under the column: {message}");
     assert!(page.get("edit-error.after").is_empty(), "the fix compiles");
-    assert_eq!(psnr(&before, &broken), Some(f64::INFINITY), "the last good pipeline keeps drawing");
-    assert_eq!(psnr(&before, &fixed), Some(f64::INFINITY), "the fixed text draws the same picture");
+    assert_eq!(
+        psnr(&before, &broken),
+        Some(f64::INFINITY),
+        "the last good pipeline keeps drawing"
+    );
+    assert_eq!(
+        psnr(&before, &fixed),
+        Some(f64::INFINITY),
+        "the fixed text draws the same picture"
+    );
 }

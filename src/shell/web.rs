@@ -15,8 +15,8 @@
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
-use std::rc::Rc;
 use std::path::PathBuf;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use wasm_bindgen::prelude::*;
@@ -41,8 +41,14 @@ const COURSE: &[(&str, &str)] = &[
     ("lab3.vert", include_str!("../../tests/fixtures/seed000/lab3.vert")),
     ("lab3.frag", include_str!("../../tests/fixtures/seed000/lab3.frag")),
     ("lab4.vert", include_str!("../../tests/fixtures/seed000/lab4.vert")),
-    ("lab4.frag", include_str!("../../tests/fixtures/seed000-mended/lab4.frag")),
-    ("lab5.vert", include_str!("../../tests/fixtures/seed000-mended/lab5.vert")),
+    (
+        "lab4.frag",
+        include_str!("../../tests/fixtures/seed000-mended/lab4.frag"),
+    ),
+    (
+        "lab5.vert",
+        include_str!("../../tests/fixtures/seed000-mended/lab5.vert"),
+    ),
     ("lab5.frag", include_str!("../../tests/fixtures/seed000/lab5.frag")),
 ];
 
@@ -131,19 +137,29 @@ pub fn course_state(vert: &str) -> String {
         .and_then(|n| n.parse().ok())
         .filter(|_| COURSE.iter().any(|(name, _)| *name == vert));
     let state = lab.map(crate::labs::legacy::course_state).unwrap_or(&[]);
-    state.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>().join("\n")
+    state
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Starts the page's GPU on `canvas`: `backend` is `webgpu`, `webgl2`, or `auto` (WebGPU when
 /// the browser offers an adapter, WebGL2 otherwise). Opens no lab yet ([`WebApp::open`]).
 #[wasm_bindgen]
 pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Result<WebApp, JsValue> {
-    std::panic::set_hook(Box::new(|info| web_sys::console::error_1(&JsValue::from_str(&info.to_string()))));
+    std::panic::set_hook(Box::new(|info| {
+        web_sys::console::error_1(&JsValue::from_str(&info.to_string()))
+    }));
     let backends = match backend.as_str() {
         "webgpu" => wgpu::Backends::BROWSER_WEBGPU,
         "webgl2" => wgpu::Backends::GL,
         "" | "auto" => wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL,
-        other => return Err(js_error(format!("unknown backend `{other}`; valid: auto, webgpu, webgl2"))),
+        other => {
+            return Err(js_error(format!(
+                "unknown backend `{other}`; valid: auto, webgpu, webgl2"
+            )))
+        }
     };
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
     desc.backends = backends;
@@ -156,7 +172,9 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
         web_sys::console::error_1(&JsValue::from_str(&format!("wgpu error: {e}")))
     }));
     gpu.device.set_device_lost_callback(|reason, message| {
-        web_sys::console::error_1(&JsValue::from_str(&format!("the GPU device was lost ({reason:?}): {message}")))
+        web_sys::console::error_1(&JsValue::from_str(&format!(
+            "the GPU device was lost ({reason:?}): {message}"
+        )))
     });
     let caps = surface.get_capabilities(&gpu.adapter);
     // GL's default framebuffer does no sRGB encoding: a plain UNORM format, as the window; the
@@ -172,7 +190,10 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
     let alpha_mode = if caps.alpha_modes.contains(&wgpu::CompositeAlphaMode::Opaque) {
         wgpu::CompositeAlphaMode::Opaque
     } else {
-        caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto)
+        caps.alpha_modes
+            .first()
+            .copied()
+            .unwrap_or(wgpu::CompositeAlphaMode::Auto)
     };
     let config = wgpu::SurfaceConfiguration {
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
@@ -315,7 +336,10 @@ impl WebApp {
 
     /// The open lab's name.
     pub fn lab(&self) -> String {
-        self.open.as_ref().map(|o| o.entry.info.name.to_owned()).unwrap_or_default()
+        self.open
+            .as_ref()
+            .map(|o| o.entry.info.name.to_owned())
+            .unwrap_or_default()
     }
 
     /// The window title of the native shell: the original's, then the state.
@@ -488,7 +512,12 @@ impl WebApp {
             .map(|s| format!("{}={}", s.name, p.text(s.name)))
             .collect();
         if open.entry.info.files.named_textures && !self.files.inputs.is_empty() {
-            let names: Vec<String> = self.files.inputs.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+            let names: Vec<String> = self
+                .files
+                .inputs
+                .iter()
+                .map(|p| p.to_string_lossy().into_owned())
+                .collect();
             lines.insert(0, format!("files={}", names.join(",")));
         }
         lines.join("\n")
@@ -548,19 +577,29 @@ impl WebApp {
         let path = PathBuf::from(name);
         match ext {
             "vert" | "frag" | "glsl" | "vs" | "fs" | "vsh" | "fsh" => {
-                let text = String::from_utf8(bytes.to_vec())
-                    .map_err(|e| js_error(format!("{name}: not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to())))?;
+                let text = String::from_utf8(bytes.to_vec()).map_err(|e| {
+                    js_error(format!(
+                        "{name}: not UTF-8 text (invalid byte at offset {})",
+                        e.utf8_error().valid_up_to()
+                    ))
+                })?;
                 self.texts.insert(name.to_owned(), text);
                 Ok(format!("{name}: a shader; legacy draws it with files=VERT,FRAG"))
             }
             "png" | "bmp" => {
                 let data = crate::geometry::images::decode_image(&path, bytes).map_err(js_error)?;
                 self.files.texture = Some(UserFile { path, data });
-                Ok(format!("{name}: the texture of the labs that sample one (reopen the lab)"))
+                Ok(format!(
+                    "{name}: the texture of the labs that sample one (reopen the lab)"
+                ))
             }
             "obj" => {
-                let text = String::from_utf8(bytes.to_vec())
-                    .map_err(|e| js_error(format!("{name}: not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to())))?;
+                let text = String::from_utf8(bytes.to_vec()).map_err(|e| {
+                    js_error(format!(
+                        "{name}: not UTF-8 text (invalid byte at offset {})",
+                        e.utf8_error().valid_up_to()
+                    ))
+                })?;
                 let data = crate::geometry::obj::parse_obj(name, &text).map_err(js_error)?;
                 self.files.model = Some(UserFile { path, data });
                 Ok(format!("{name}: the model of the Suzanne labs (reopen the lab)"))
