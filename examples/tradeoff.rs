@@ -1,11 +1,19 @@
-//! `cargo run --release --example tradeoff -- --out DIR`: speed against accuracy for the Phong
-//! exercise. Sweeps shading model (flat, Gouraud, Phong, Blinn-Phong) x tessellation level for the
+//! `cargo run --release --example tradeoff -- --study NAME|all --out DIR`: speed against
+//! accuracy, one study per lecture's choice, each written as `DIR/NAME.csv` (the Pareto front
+//! marked) and `DIR/NAME.svg`, with `DIR/index.md` listing the charts and what each teaches.
+//!
+//! `phong000` (seed 000's Phong exercise) sweeps shading model (flat, Gouraud, Phong, Blinn-Phong) x tessellation level for the
 //! sphere and the torus, plus Phong with back-face culling (`--set cull=1`, the opt-in that is not
 //! byte-identical; its `changed_px` counts the pixels it changes against the same configuration
 //! drawn whole), measures frame time (GPU timestamps where available, else wall time) and
 //! the error against the exact f64 ray-cast reference (RMSE, maximum per-pixel error, silhouette
-//! error), and writes `tradeoff.csv` and `tradeoff.svg` (error against time, Pareto front marked).
-//! Both are written whole (a temporary file renamed into place): an interrupted or failed run
+//! error), and writes `phong000.csv` and `phong000.svg` (error against time, Pareto front marked).
+//!
+//! `twist` (seed 002) sweeps the grid (quads per side) at three `twisting`s against the exact
+//! per-pixel picture (`shaderlab::study::twist`): pixels wrong, the outline's error in pixels and
+//! frame time, and where `grid=auto` lands.
+//!
+//! Every file is written whole (a temporary file renamed into place): an interrupted or failed run
 //! leaves the previous ones as they were.
 
 use std::fmt::Write as _;
@@ -44,10 +52,17 @@ impl Shading {
     }
 }
 
+/// The studies, in the order `all` runs them.
+const STUDIES: [&str; 2] = ["phong000", "twist"];
+
 #[derive(Parser)]
-#[command(about = "Chart speed against accuracy: shading model x tessellation, against an exact reference")]
+#[command(about = "Chart speed against accuracy in each lecture, against exact references")]
 struct Args {
-    /// Output directory for tradeoff.csv and tradeoff.svg.
+    /// Which study: phong000 (seed 000: shading model x tessellation), twist (seed 002: grid
+    /// resolution), or all.
+    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "twist"])]
+    study: String,
+    /// Output directory for NAME.csv, NAME.svg and index.md.
     #[arg(long, default_value = "tradeoff")]
     out: PathBuf,
     /// Frames timed per configuration.
@@ -78,16 +93,83 @@ struct Row {
 const W: u32 = 640;
 const H: u32 = 360;
 
+/// What a study found, for the index.
+struct Summary {
+    name: &'static str,
+    title: &'static str,
+    /// One sentence of what it teaches, with the CSV's figures.
+    lesson: String,
+}
+
 fn main() -> anyhow::Result<()> {
     shaderlab::shell::ensure_runtime_dir();
     let args = Args::parse();
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
-    let csv = args.out.join("tradeoff.csv");
-    let svg = args.out.join("tradeoff.svg");
-    // Before the half-minute sweep, not after it.
-    check_output_path(&csv)?;
-    check_output_path(&svg)?;
+    let chosen: Vec<&str> = STUDIES
+        .into_iter()
+        .filter(|s| args.study == "all" || args.study == *s)
+        .collect();
+    // Before the sweeps, not after them.
+    for name in &chosen {
+        check_output_path(&args.out.join(format!("{name}.csv")))?;
+        check_output_path(&args.out.join(format!("{name}.svg")))?;
+    }
+    let index = args.out.join("index.md");
+    check_output_path(&index)?;
     let gpu = Gpu::headless()?;
+    let mut summaries = Vec::new();
+    for name in chosen {
+        summaries.push(match name {
+            "phong000" => phong000(&args, &gpu)?,
+            _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
+        });
+    }
+    let mut text = format!(
+        "# Speed against accuracy\n\nWritten by `cargo run --release --example tradeoff -- --study {} --out {}` \
+         on {} ({}). Each chart plots error against frame time; the CSV beside it marks the Pareto front.\n",
+        args.study,
+        args.out.display(),
+        gpu.describe(),
+        today()
+    );
+    for s in &summaries {
+        write!(
+            text,
+            "\n## {}\n\n![{}]({}.svg)\n\n{}\n\nData: [`{}.csv`]({}.csv).\n",
+            s.title, s.name, s.name, s.lesson, s.name, s.name
+        )?;
+    }
+    write_atomic(&index, |w| w.write_all(text.as_bytes()))?;
+    println!("wrote {}", index.display());
+    Ok(())
+}
+
+/// Today's date (UTC), for the index.
+fn today() -> String {
+    let days = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs() / 86_400)
+        .unwrap_or(0) as i64;
+    // Civil from days (H. Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!("{year:04}-{month:02}-{day:02}")
+}
+
+#[path = "tradeoff/twist.rs"]
+mod twist;
+
+/// Seed 000's Phong exercise: shading model x tessellation on the sphere and the torus.
+fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
+    let csv = args.out.join("phong000.csv");
+    let svg = args.out.join("phong000.svg");
     let levels: &[u32] = if args.quick {
         &[4, 8, 16, 32, 64]
     } else {
@@ -191,6 +273,7 @@ fn main() -> anyhow::Result<()> {
     write_csv(&rows, &csv)?;
     chart(&rows, &svg)?;
     println!("wrote {} and {}", csv.display(), svg.display());
+    let mut fronts = Vec::new();
     for shape in ["sphere", "torus"] {
         let front: Vec<String> = rows
             .iter()
@@ -207,8 +290,17 @@ fn main() -> anyhow::Result<()> {
             })
             .collect();
         println!("{shape} Pareto front: {}", front.join("; "));
+        fronts.push(format!("{shape}: {}", front.join("; ")));
     }
-    Ok(())
+    Ok(Summary {
+        name: "phong000",
+        title: "Seed 000: shading model × tessellation (Phong exercise)",
+        lesson: format!(
+            "Per-pixel Phong on a coarse mesh beats Gouraud on a fine one for the same time: the Pareto \
+             front is (shading level, ms per frame, RMSE against the exact ray caster) {}.",
+            fronts.join("; ")
+        ),
+    })
 }
 
 /// A configuration is on the Pareto front when no other one of the same shape is both faster

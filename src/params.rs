@@ -42,6 +42,8 @@ pub struct ParamSpec {
     pub help: &'static str,
     /// One more value accepted outside `[min, max]` (GL's `spotCutoff`: 0..90 or 180).
     pub or: Option<f64>,
+    /// The value the word `auto` stands for (`--set grid=auto`), shown as `auto`.
+    pub auto: Option<f64>,
 }
 
 impl ParamSpec {
@@ -55,12 +57,20 @@ impl ParamSpec {
             kind: Kind::Real,
             help,
             or: None,
+            auto: None,
         }
     }
 
     /// The same parameter, also taking exactly `value` outside its range.
     pub const fn or_exactly(mut self, value: f64) -> Self {
         self.or = Some(value);
+        self
+    }
+
+    /// The same parameter, with the word `auto` standing for `value` (a value in its range
+    /// that the lab reads as "choose for me"), in `--set` and in what is shown.
+    pub const fn with_auto(mut self, value: f64) -> Self {
+        self.auto = Some(value);
         self
     }
 
@@ -74,6 +84,7 @@ impl ParamSpec {
             kind: Kind::Int,
             help,
             or: None,
+            auto: None,
         }
     }
 
@@ -87,6 +98,7 @@ impl ParamSpec {
             kind: Kind::Bool,
             help,
             or: None,
+            auto: None,
         }
     }
 
@@ -105,6 +117,7 @@ impl ParamSpec {
             kind: Kind::Choice(names),
             help,
             or: None,
+            auto: None,
         }
     }
 
@@ -115,6 +128,9 @@ impl ParamSpec {
 }
 
 fn format_value(spec: &ParamSpec, values: &[f64]) -> String {
+    if spec.auto.is_some() && values.len() == 1 && spec.auto == values.first().copied() {
+        return "auto".into();
+    }
     match spec.kind {
         Kind::Choice(names) => values
             .first()
@@ -360,6 +376,9 @@ impl Params {
     /// Sets `name` from text: comma-separated numbers, or a choice's name.
     pub fn set_str(&mut self, name: &str, text: &str) -> Result<()> {
         let i = self.index(name).ok_or_else(|| self.unknown(name))?;
+        if let (Some(auto), "auto") = (self.specs[i].auto, text.trim()) {
+            return self.set(name, &[auto]);
+        }
         if let Kind::Choice(names) = self.specs[i].kind {
             if let Some(k) = names.iter().position(|n| *n == text.trim()) {
                 return self.set(name, &[k as f64]);
@@ -471,6 +490,7 @@ impl Params {
                         .join(", ")
                 ),
                 Kind::Bool => "0 or 1".into(),
+                Kind::Int if s.auto.is_some() => format!("whole number {} or auto", range_text(s)),
                 Kind::Int => format!("whole number {}", range_text(s)),
                 Kind::Real => range_text(s),
             };

@@ -125,6 +125,59 @@ fn twist_keys_step_by_a_quarter() {
     assert!(lab.title().contains("twisting=4.5"), "{}", lab.title());
 }
 
+/// Pixels whose coverage (the shape is (128, 255, 128) on black) differs from the exact
+/// twisted square's at the pixel centres.
+fn wrong_against_exact(image: &RgbImage, twisting: f64) -> usize {
+    let exact = shaderlab::study::twist::exact_mask(twisting, image.width(), image.height());
+    image
+        .pixels()
+        .zip(&exact)
+        .filter(|(p, &inside)| (p.0[1] > 127) != inside)
+        .count()
+}
+
+/// `grid=auto` (port addition): at the course's twisting it draws far fewer vertices than the
+/// course's grid with every edge within half a pixel of its arc; at a strong twisting it
+/// follows the exact spiral better than the course's grid, which folds over the gaps.
+#[test]
+fn twist_grid_auto_follows_the_exact_spiral_with_no_more_vertices_than_needed() {
+    use shaderlab::study::twist::{auto_grid, DEFAULT_BUDGET_PX};
+    let course = wrong_against_exact(&render(labs::TWIST, &[]), 4.25);
+    let auto = wrong_against_exact(&render(labs::TWIST, &[("grid", "auto")]), 4.25);
+    let n = auto_grid(4.25, 512, 512, DEFAULT_BUDGET_PX);
+    println!("twisting 4.25: course grid 100: {course} px wrong; auto {n}: {auto} px wrong");
+    // Measured: 36 and 152 of 262,144 (the auto grid's edges within 0.5 px of their arcs).
+    assert!(course <= 80, "{course}");
+    assert!(auto <= 300, "{auto}");
+    assert!((20..60).contains(&n), "auto grid {n}: far fewer than the course's 100");
+    let course20 = wrong_against_exact(&render(labs::TWIST, &[("twisting", "20")]), 20.0);
+    let auto20 = wrong_against_exact(&render(labs::TWIST, &[("twisting", "20"), ("grid", "auto")]), 20.0);
+    println!("twisting 20: course grid: {course20} px wrong; auto: {auto20} px wrong");
+    // Measured: 2148 and 509.
+    assert!(auto20 * 3 < course20, "{auto20} vs {course20}");
+    let lab = {
+        let mut lab = build(labs::TWIST);
+        lab.params_mut().set_str("grid", "auto").unwrap();
+        lab
+    };
+    assert_eq!(lab.params().text("grid"), "auto");
+}
+
+/// Where the per-vertex method fails (`twisting` at ±1e4): the picture stays two-tone (the
+/// shape's colour or the background, nothing else), covers something and is symmetric in the
+/// sign as the exact picture is (a mirror image). The original does the same arithmetic in
+/// f32 and draws the same kind of noise; the port keeps it.
+#[test]
+fn twist_at_huge_twisting_stays_bounded() {
+    for t in ["10000", "-10000"] {
+        let image = render(labs::TWIST, &[("twisting", t)]);
+        let shape = count(&image, |p| p.0 == [128, 255, 128]);
+        let background = count(&image, |p| p.0 == [0, 0, 0]);
+        assert_eq!(shape + background, (image.width() * image.height()) as usize, "twisting {t}");
+        assert!(shape > 1000, "twisting {t}: {shape} px covered");
+    }
+}
+
 // ---------------------------------------------------------------- double_vision
 
 /// Pixels of row 133 (t = 0.2, inside a grid cell: no horizontal line) whose every channel is

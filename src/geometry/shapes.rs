@@ -243,10 +243,17 @@ pub const TWIST_COUNT: u32 = 100;
 /// i, j in 0..100 (i outer): x = −0.5f + i·size, y = −0.5f + j·size, quad (x,y), (x+size,y),
 /// (x+size,y+size), (x,y+size), split (v0,v1,v2),(v0,v2,v3): 100·100·6 clip-space vertices.
 pub fn twist_grid() -> Vec<[f32; 2]> {
-    let size = 1.0f32 / TWIST_COUNT as f32;
-    let mut quads = Vec::with_capacity((TWIST_COUNT * TWIST_COUNT * 4) as usize);
-    for i in 0..TWIST_COUNT {
-        for j in 0..TWIST_COUNT {
+    twist_grid_n(TWIST_COUNT)
+}
+
+/// [`twist_grid`] with `n` × `n` quads (at least 1) instead of the course's 100: `twist`'s
+/// `grid` parameter, built by the same float loop.
+pub fn twist_grid_n(n: u32) -> Vec<[f32; 2]> {
+    let n = n.max(1);
+    let size = 1.0f32 / n as f32;
+    let mut quads = Vec::with_capacity((n * n * 4) as usize);
+    for i in 0..n {
+        for j in 0..n {
             let x = -0.5f32 + i as f32 * size;
             let y = -0.5f32 + j as f32 * size;
             quads.extend_from_slice(&[[x, y], [x + size, y], [x + size, y + size], [x, y + size]]);

@@ -6,12 +6,21 @@
 //! Course quirk kept (SPEC §6.2 #4): `color` = (0.5, 9.0, 0.5); the 9.0 clamps to 1 in the
 //! UNORM framebuffer, so the shape is (128, 255, 128).
 //!
+//! Port addition (opt-in, SPEC keeps 100): `grid` sets the quads per side, and `grid=auto`
+//! picks the coarsest grid whose every edge stays within half a pixel of the spiral arc it
+//! stands for, for the current `twisting` and picture size
+//! ([`crate::study::twist::auto_grid`]).
+//!
 //! Keys: `+`/`-` twisting ±0.25.
 
-use crate::geometry::shapes::twist_grid;
-use crate::lab::{Flat, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
-use crate::params::ParamSpec;
+use std::collections::HashMap;
+
+use crate::geometry::shapes::twist_grid_n;
+use crate::gpu::Gpu;
+use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
+use crate::params::{ParamSpec, Params};
 use crate::render::{GpuMesh, RenderState};
+use crate::study::twist::{auto_grid, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
 
 /// One vertex of the grid: `glVertex2f(x, y)`.
 #[repr(C)]
@@ -34,8 +43,8 @@ pub static RECIPE: Recipe = Recipe {
         ParamSpec::real(
             "twisting",
             &[4.25],
-            -1000.0,
-            1000.0,
+            -1e6,
+            1e6,
             "radians of turn per unit of radius (+/-)",
         ),
         ParamSpec::real(
@@ -45,17 +54,83 @@ pub static RECIPE: Recipe = Recipe {
             100.0,
             "uniform colour (course: 9.0 clamps to 1 in the framebuffer)",
         ),
+        ParamSpec::int(
+            "grid",
+            &[COURSE_GRID as f64],
+            0.0,
+            MAX_GRID as f64,
+            "quads per side (course: 100); auto (0): the coarsest whose edges stay within half a pixel of the exact spiral",
+        )
+        .with_auto(0.0),
     ]],
     animated: false,
     title: None,
     build: |cx, p| {
-        let grid: Vec<TwistVertex> = twist_grid()
-            .into_iter()
-            .map(|position| TwistVertex { position })
-            .collect();
-        let stage = Flat(GpuMesh::new(cx.gpu, "twist.grid", &grid, None));
+        let mut stage = Grid::default();
+        stage.mesh(cx.gpu, COURSE_GRID);
         Shaded::build(cx, "twist", p, stage, &LOOK, Vec::new())
     },
 };
+
+/// The grid, built for each size asked for (the course's first) and kept.
+#[derive(Default)]
+struct Grid {
+    meshes: HashMap<u32, GpuMesh<TwistVertex>>,
+    /// `auto`'s last choice: (twisting, width, height) → quads per side.
+    auto: Option<((f64, u32, u32), u32)>,
+    /// The grid drawn last.
+    drawn: u32,
+}
+
+impl Grid {
+    fn mesh(&mut self, gpu: &Gpu, n: u32) -> &GpuMesh<TwistVertex> {
+        self.meshes.entry(n).or_insert_with(|| {
+            let grid: Vec<TwistVertex> = twist_grid_n(n)
+                .into_iter()
+                .map(|position| TwistVertex { position })
+                .collect();
+            GpuMesh::new(gpu, "twist.grid", &grid, None)
+        })
+    }
+
+    /// The grid for the state: `grid`, or for `auto` the coarsest within budget (chosen again
+    /// only when `twisting` or the size changes).
+    fn size(&mut self, p: &Params, width: u32, height: u32) -> u32 {
+        match p.f64("grid") as u32 {
+            0 => {
+                let key = (p.f64("twisting"), width, height);
+                match self.auto {
+                    Some((k, n)) if k == key => n,
+                    _ => {
+                        let n = auto_grid(key.0, width, height, DEFAULT_BUDGET_PX);
+                        self.auto = Some((key, n));
+                        n
+                    }
+                }
+            }
+            n => n,
+        }
+    }
+}
+
+impl Stage for Grid {
+    type Vertex = TwistVertex;
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<TwistVertex> {
+        let n = self.size(p, width, height);
+        // Keep the course's grid and the one in use.
+        if !self.meshes.contains_key(&n) {
+            self.meshes.retain(|&k, _| k == COURSE_GRID || k == self.drawn);
+        }
+        self.drawn = n;
+        self.mesh(gpu, n)
+    }
+    fn status(&self, p: &Params) -> String {
+        if p.f64("grid") == 0.0 {
+            format!("grid auto: {}", self.drawn)
+        } else {
+            String::new()
+        }
+    }
+}
 
 static LOOK: Look = Look::new(&[Pass::new("twist.vert", "twist.frag").state(RenderState::GL.no_depth())]);
