@@ -73,8 +73,9 @@ pub struct Widget {
 /// pixels stay untouched to its left.
 pub const PANEL_WIDTH: f32 = 300.0;
 
-/// Widest range a slider spans; a wider one gets a drag value.
-const SLIDER_SPAN: f64 = 1e4;
+/// Widest range a slider spans; a wider one gets a drag value (twist's `twisting`, ±1e4 so
+/// that the per-vertex method's failure can be reached, is the widest slider).
+const SLIDER_SPAN: f64 = 2e4;
 
 /// Widest range of whole numbers a slider spans.
 const WHOLE_SLIDER_SPAN: f64 = 1024.0;

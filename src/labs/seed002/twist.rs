@@ -43,8 +43,8 @@ pub static RECIPE: Recipe = Recipe {
         ParamSpec::real(
             "twisting",
             &[4.25],
-            -1e6,
-            1e6,
+            -1e4,
+            1e4,
             "radians of turn per unit of radius (+/-)",
         ),
         ParamSpec::real(
