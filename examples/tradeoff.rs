@@ -9,6 +9,9 @@
 //! the error against the exact f64 ray-cast reference (RMSE, maximum per-pixel error, silhouette
 //! error), and writes `phong000.csv` and `phong000.svg` (error against time, Pareto front marked).
 //!
+//! `wave` (seed 001) splits each checker cell k × k against a converged 32 × 32 split, at the
+//! course's wave and a stronger one, and shows where `subdiv=auto` lands.
+//!
 //! `twist` (seed 002) sweeps the grid (quads per side) at three `twisting`s against the exact
 //! per-pixel picture (`shaderlab::study::twist`): pixels wrong, the outline's error in pixels and
 //! frame time, and where `grid=auto` lands.
@@ -53,14 +56,14 @@ impl Shading {
 }
 
 /// The studies, in the order `all` runs them.
-const STUDIES: [&str; 2] = ["phong000", "twist"];
+const STUDIES: [&str; 3] = ["phong000", "wave", "twist"];
 
 #[derive(Parser)]
 #[command(about = "Chart speed against accuracy in each lecture, against exact references")]
 struct Args {
-    /// Which study: phong000 (seed 000: shading model x tessellation), twist (seed 002: grid
-    /// resolution), or all.
-    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "twist"])]
+    /// Which study: phong000 (seed 000: shading model x tessellation), wave (seed 001: grid
+    /// subdivision), twist (seed 002: grid resolution), or all.
+    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "twist"])]
     study: String,
     /// Output directory for NAME.csv, NAME.svg and index.md.
     #[arg(long, default_value = "tradeoff")]
@@ -121,6 +124,7 @@ fn main() -> anyhow::Result<()> {
     for name in chosen {
         summaries.push(match name {
             "phong000" => phong000(&args, &gpu)?,
+            "wave" => wave::study(&args.out, args.frames, args.quick, &gpu)?,
             _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
         });
     }
@@ -165,6 +169,8 @@ fn today() -> String {
 
 #[path = "tradeoff/twist.rs"]
 mod twist;
+#[path = "tradeoff/wave.rs"]
+mod wave;
 
 /// Seed 000's Phong exercise: shading model x tessellation on the sphere and the torus.
 fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {

@@ -173,7 +173,11 @@ fn twist_at_huge_twisting_stays_bounded() {
         let image = render(labs::TWIST, &[("twisting", t)]);
         let shape = count(&image, |p| p.0 == [128, 255, 128]);
         let background = count(&image, |p| p.0 == [0, 0, 0]);
-        assert_eq!(shape + background, (image.width() * image.height()) as usize, "twisting {t}");
+        assert_eq!(
+            shape + background,
+            (image.width() * image.height()) as usize,
+            "twisting {t}"
+        );
         assert!(shape > 1000, "twisting {t}: {shape} px covered");
     }
 }

@@ -60,7 +60,8 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
         sizes.push((auto, true));
         for (grid, is_auto) in sizes {
             // auto is measured through the lab's own `grid=auto`, the rest by number.
-            lab.params_mut().set("grid", &[if is_auto { 0.0 } else { f64::from(grid) }])?;
+            lab.params_mut()
+                .set("grid", &[if is_auto { 0.0 } else { f64::from(grid) }])?;
             let timing = bench(gpu, lab.as_mut(), frames, W, H, true)?;
             let image = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
             // The shape is (128, 255, 128) on black.

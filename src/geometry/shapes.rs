@@ -147,8 +147,22 @@ pub const WAVE_CELLS: u32 = 40;
 /// (x_i,0,z_j), (x_i,0,z_j+1), (x_i+1,0,z_j+1), (x_i+1,0,z_j) split (v0,v1,v2),(v0,v2,v3),
 /// coloured (0.1, 0.4, 0.8) if i + j is even, (0.85, 0.9, 1.0) if odd.
 pub fn wave_grid() -> Vec<ColorVertex> {
-    let coord = |i: u32| (-2.0 + 0.1 * f64::from(i)) as f32;
-    let mut quads = Vec::with_capacity((WAVE_CELLS * WAVE_CELLS * 4) as usize);
+    wave_grid_sub(1)
+}
+
+/// [`wave_grid`] with each of the 40×40 checker cells split into `k` × `k` quads of its colour
+/// (`wave`'s `subdiv`; at least 1): the same picture on a flat grid, a finer approximation of
+/// the waving surface. `k = 1` is the course's grid, vertex for vertex.
+pub fn wave_grid_sub(k: u32) -> Vec<ColorVertex> {
+    let k = k.max(1);
+    let coord = |i: u32| -2.0 + 0.1 * f64::from(i);
+    // Sub-vertex a of cell i; the cell's own corners exactly as the course computes them.
+    let sub = |i: u32, a: u32| match a {
+        0 => coord(i) as f32,
+        a if a == k => coord(i + 1) as f32,
+        a => (coord(i) + (coord(i + 1) - coord(i)) * f64::from(a) / f64::from(k)) as f32,
+    };
+    let mut quads = Vec::with_capacity((WAVE_CELLS * WAVE_CELLS * k * k * 4) as usize);
     for i in 0..WAVE_CELLS {
         for j in 0..WAVE_CELLS {
             let color = if (i + j) % 2 == 0 {
@@ -156,9 +170,13 @@ pub fn wave_grid() -> Vec<ColorVertex> {
             } else {
                 [0.85, 0.9, 1.0]
             };
-            let (x0, x1, z0, z1) = (coord(i), coord(i + 1), coord(j), coord(j + 1));
-            for position in [[x0, 0.0, z0], [x0, 0.0, z1], [x1, 0.0, z1], [x1, 0.0, z0]] {
-                quads.push(ColorVertex { position, color });
+            for a in 0..k {
+                for b in 0..k {
+                    let (x0, x1, z0, z1) = (sub(i, a), sub(i, a + 1), sub(j, b), sub(j, b + 1));
+                    for position in [[x0, 0.0, z0], [x0, 0.0, z1], [x1, 0.0, z1], [x1, 0.0, z0]] {
+                        quads.push(ColorVertex { position, color });
+                    }
+                }
             }
         }
     }

@@ -159,7 +159,10 @@ mod tests {
         let e = |n| grid_error_px(n, 4.25, 640, 480);
         assert!(e(10) > e(20) && e(20) > e(40));
         let ratio = e(20) / e(40);
-        assert!((3.5..4.5).contains(&ratio), "error ratio when the grid doubles: {ratio}");
+        assert!(
+            (3.5..4.5).contains(&ratio),
+            "error ratio when the grid doubles: {ratio}"
+        );
     }
 
     #[test]
@@ -167,7 +170,10 @@ mod tests {
         for &t in &[1.0, 4.25, 20.0] {
             let n = auto_grid(t, 640, 480, DEFAULT_BUDGET_PX);
             assert!(grid_error_px(n, t, 640, 480) <= DEFAULT_BUDGET_PX);
-            assert!(n == 1 || grid_error_px(n - 1, t, 640, 480) > DEFAULT_BUDGET_PX, "{t}: {n}");
+            assert!(
+                n == 1 || grid_error_px(n - 1, t, 640, 480) > DEFAULT_BUDGET_PX,
+                "{t}: {n}"
+            );
         }
         // The course's default needs far fewer than the course's 100 quads per side.
         assert!(auto_grid(4.25, 640, 480, DEFAULT_BUDGET_PX) < COURSE_GRID / 2);
