@@ -12,6 +12,9 @@
 //! `wave` (seed 001) splits each checker cell k × k against a converged 32 × 32 split, at the
 //! course's wave and a stronger one, and shows where `subdiv=auto` lands.
 //!
+//! `lighting` (seed 001) sets per-vertex against per-fragment lighting (`phong_vertex`,
+//! `phong_fragment`, `toon`) at increasing tessellation against converged references.
+//!
 //! `normmap` (seed 001) times the lecture's normalization cube map against `normalize`, and
 //! measures what the lookup costs in accuracy.
 //!
@@ -62,15 +65,16 @@ impl Shading {
 }
 
 /// The studies, in the order `all` runs them.
-const STUDIES: [&str; 5] = ["phong000", "wave", "normmap", "twist", "suzanne"];
+const STUDIES: [&str; 6] = ["phong000", "wave", "lighting", "normmap", "twist", "suzanne"];
 
 #[derive(Parser)]
 #[command(about = "Chart speed against accuracy in each lecture, against exact references")]
 struct Args {
     /// Which study: phong000 (seed 000: shading model x tessellation), wave (seed 001: grid
-    /// subdivision), normmap (seed 001: cube map against normalize), twist (seed 002: grid
-    /// resolution), suzanne (seed 004: flat, Gouraud and Phong), or all.
-    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "normmap", "twist", "suzanne"])]
+    /// subdivision), lighting (seed 001: per-vertex against per-fragment), normmap (seed 001:
+    /// cube map against normalize), twist (seed 002: grid resolution), suzanne (seed 004: flat,
+    /// Gouraud and Phong), or all.
+    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "lighting", "normmap", "twist", "suzanne"])]
     study: String,
     /// Output directory for NAME.csv, NAME.svg and index.md.
     #[arg(long, default_value = "tradeoff")]
@@ -134,6 +138,7 @@ fn main() -> anyhow::Result<()> {
             "wave" => wave::study(&args.out, args.frames, args.quick, &gpu)?,
             "suzanne" => suzanne::study(&args.out, args.frames, &gpu)?,
             "normmap" => normmap::study(&args.out, args.frames, &gpu)?,
+            "lighting" => lighting::study(&args.out, args.frames, args.quick, &gpu)?,
             _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
         });
     }
@@ -176,6 +181,8 @@ fn today() -> String {
     format!("{year:04}-{month:02}-{day:02}")
 }
 
+#[path = "tradeoff/lighting.rs"]
+mod lighting;
 #[path = "tradeoff/normmap.rs"]
 mod normmap;
 #[path = "tradeoff/suzanne.rs"]

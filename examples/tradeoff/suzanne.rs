@@ -57,7 +57,7 @@ fn downsample(image: &RgbImage) -> RgbImage {
     })
 }
 
-fn rmse(a: &RgbImage, b: &RgbImage) -> f64 {
+pub fn rmse(a: &RgbImage, b: &RgbImage) -> f64 {
     let sum: f64 = a
         .as_raw()
         .iter()

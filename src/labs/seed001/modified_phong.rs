@@ -20,7 +20,7 @@ use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
-use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
+use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION, TESS};
 
 /// Where the lighting is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,7 +50,7 @@ const OWN: &[ParamSpec] = &[ParamSpec::flag(
 )];
 
 /// The parameters of both labs.
-pub const PARAMS: &[&[ParamSpec]] = &[OBJECT, ROTATION, COURSE.params, OWN];
+pub const PARAMS: &[&[ParamSpec]] = &[OBJECT, ROTATION, COURSE.params, OWN, TESS];
 
 /// Both programs on one lit frame.
 struct ModifiedPhong {

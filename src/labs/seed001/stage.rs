@@ -107,18 +107,40 @@ impl UstcStage {
     }
 }
 
-/// GLUT's four solids at GLUT's levels, uploaded on first use.
+/// A port addition for the labs comparing per-vertex with per-pixel lighting (`phong_vertex`,
+/// `phong_fragment`, `toon`): the tessellation of sphere, torus and teapot, GLUT's by default.
+pub const TESS: &[ParamSpec] = &[ParamSpec::int(
+    "tess",
+    &[0.0],
+    0.0,
+    crate::tess::MAX_LEVEL as f64,
+    "port: tessellation of sphere, torus (slices = stacks) and teapot (0: GLUT's 24, 24, 8)",
+)];
+
+/// GLUT's four solids at GLUT's levels (or the `tess` asked for), uploaded on first use.
 #[derive(Default)]
 pub struct Solids {
-    meshes: HashMap<Object, GpuMesh<Vertex>>,
+    meshes: HashMap<(Object, u32), GpuMesh<Vertex>>,
 }
 
 impl Solids {
     /// The mesh of `object` (`glutSolidTeapot(1)`, `glutSolidSphere(1,24,24)`,
-    /// `glutSolidTorus(0.5,1,24,24)`, `glutSolidCube(1.5)`).
-    pub fn get(&mut self, gpu: &Gpu, object: Object) -> &GpuMesh<Vertex> {
-        self.meshes.entry(object).or_insert_with(|| {
-            let mesh = object.mesh();
+    /// `glutSolidTorus(0.5,1,24,24)`, `glutSolidCube(1.5)`); `level` 0 is GLUT's, another
+    /// tessellates sphere, torus and teapot that finely (the cube has none).
+    pub fn get(&mut self, gpu: &Gpu, object: Object, level: u32) -> &GpuMesh<Vertex> {
+        let level = match object {
+            Object::Cube => 0,
+            _ => level,
+        };
+        if !self.meshes.contains_key(&(object, level)) {
+            // Keep GLUT's levels; of the others only the newest.
+            self.meshes.retain(|&(_, l), _| l == 0);
+        }
+        self.meshes.entry((object, level)).or_insert_with(|| {
+            let mesh = match level {
+                0 => object.mesh(),
+                l => crate::tess::mesh(object, l.clamp(crate::tess::MIN_LEVEL, crate::tess::MAX_LEVEL)),
+            };
             GpuMesh::new(
                 gpu,
                 &format!("mesh.{}", object.name()),
@@ -164,7 +186,8 @@ impl crate::lab::Stage for OnSolid {
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
         self.stage.upload(gpu, p, width, height);
-        self.solids.get(gpu, UstcStage::object(p))
+        let level = if p.has("tess") { p.f64("tess") as u32 } else { 0 };
+        self.solids.get(gpu, UstcStage::object(p), level)
     }
 }
 

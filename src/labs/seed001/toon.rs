@@ -12,7 +12,7 @@ use glam::Vec3;
 use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
-use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
+use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION, TESS};
 
 /// Seed 001, §1.6: the Transform and GlLight blocks come from the stage.
 pub static RECIPE: Recipe = Recipe {
@@ -22,7 +22,7 @@ pub static RECIPE: Recipe = Recipe {
         "toon shading",
         Keys::rows(&COURSE_KEYS, "1-4: objects; left drag rotates"),
     ),
-    params: &[OBJECT, ROTATION, COURSE.params],
+    params: &[OBJECT, ROTATION, COURSE.params, TESS],
     animated: false,
     title: None,
     build: |cx, p| {
