@@ -21,6 +21,9 @@
 //! `suzanne` (seed 004) compares flat, Gouraud and Phong on Suzanne with a 4 × 4-supersampled
 //! per-pixel reference.
 //!
+//! `filtering` (seed 004) sets GL's texture filters on `texparams`' floor against a
+//! 16 × 16-supersampled ground truth.
+//!
 //! `twist` (seed 002) sweeps the grid (quads per side) at three `twisting`s against the exact
 //! per-pixel picture (`shaderlab::study::twist`): pixels wrong, the outline's error in pixels and
 //! frame time, and where `grid=auto` lands.
@@ -65,7 +68,15 @@ impl Shading {
 }
 
 /// The studies, in the order `all` runs them.
-const STUDIES: [&str; 6] = ["phong000", "wave", "lighting", "normmap", "twist", "suzanne"];
+const STUDIES: [&str; 7] = [
+    "phong000",
+    "wave",
+    "lighting",
+    "normmap",
+    "twist",
+    "suzanne",
+    "filtering",
+];
 
 #[derive(Parser)]
 #[command(about = "Chart speed against accuracy in each lecture, against exact references")]
@@ -73,8 +84,8 @@ struct Args {
     /// Which study: phong000 (seed 000: shading model x tessellation), wave (seed 001: grid
     /// subdivision), lighting (seed 001: per-vertex against per-fragment), normmap (seed 001:
     /// cube map against normalize), twist (seed 002: grid resolution), suzanne (seed 004: flat,
-    /// Gouraud and Phong), or all.
-    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "lighting", "normmap", "twist", "suzanne"])]
+    /// Gouraud and Phong), filtering (seed 004: texture filters), or all.
+    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "lighting", "normmap", "twist", "suzanne", "filtering"])]
     study: String,
     /// Output directory for NAME.csv, NAME.svg and index.md.
     #[arg(long, default_value = "tradeoff")]
@@ -139,6 +150,7 @@ fn main() -> anyhow::Result<()> {
             "suzanne" => suzanne::study(&args.out, args.frames, &gpu)?,
             "normmap" => normmap::study(&args.out, args.frames, &gpu)?,
             "lighting" => lighting::study(&args.out, args.frames, args.quick, &gpu)?,
+            "filtering" => filtering::study(&args.out, args.frames, &gpu)?,
             _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
         });
     }
@@ -181,6 +193,8 @@ fn today() -> String {
     format!("{year:04}-{month:02}-{day:02}")
 }
 
+#[path = "tradeoff/filtering.rs"]
+mod filtering;
 #[path = "tradeoff/lighting.rs"]
 mod lighting;
 #[path = "tradeoff/normmap.rs"]

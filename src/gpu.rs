@@ -90,7 +90,12 @@ impl Gpu {
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("shaderlab.device"),
                 required_features: features,
-                required_limits: base.using_resolution(adapter.limits()),
+                required_limits: wgpu::Limits {
+                    // The adapter's own largest buffer: a big offscreen picture (a supersampled
+                    // reference) is read back through one buffer.
+                    max_buffer_size: adapter.limits().max_buffer_size.max(base.max_buffer_size),
+                    ..base.using_resolution(adapter.limits())
+                },
                 ..Default::default()
             })
             .await

@@ -1,0 +1,189 @@
+//! Seed 004 texture filtering on `texparams`' receding floor: GL's MIN filters (NEAREST,
+//! LINEAR, LINEAR_MIPMAP_NEAREST, LINEAR_MIPMAP_LINEAR = trilinear) × MAG filters against a
+//! 16 × 16-supersampled, box-filtered ground truth (the floor drawn 16 times larger with
+//! NEAREST from level 0, each pixel the mean of its 256 point samples): the classic chart of
+//! aliasing (the far squares shimmer) against blur (mipmaps average them to grey), with time.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use image::RgbImage;
+use plotters::prelude::*;
+use shaderlab::fsutil::write_atomic;
+use shaderlab::lab::{LabContext, NO_FILES};
+use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
+use shaderlab::shader::ShaderSource;
+use shaderlab::shell::{bench, screenshot};
+use shaderlab::{labs, Gpu};
+
+use super::suzanne::rmse;
+use super::Summary;
+
+const W: u32 = 640;
+const H: u32 = 480;
+/// Samples per pixel side of the ground truth.
+const SS: u32 = 16;
+
+const MINS: [&str; 4] = ["nearest", "linear", "linear_mipmap_nearest", "linear_mipmap_linear"];
+const MAGS: [&str; 2] = ["nearest", "linear"];
+
+#[derive(Clone, Debug)]
+struct Row {
+    min: &'static str,
+    mag: &'static str,
+    ms: f64,
+    rmse: f64,
+    /// RMSE over the far half of the floor (rows above the middle): where minification is.
+    far_rmse: f64,
+    pareto: bool,
+}
+
+/// `image` box-filtered down by `n` on each side.
+fn downsample(image: &RgbImage, n: u32) -> RgbImage {
+    RgbImage::from_fn(image.width() / n, image.height() / n, |x, y| {
+        let mut sum = [0u32; 3];
+        for j in 0..n {
+            for i in 0..n {
+                let p = image.get_pixel(x * n + i, y * n + j).0;
+                for c in 0..3 {
+                    sum[c] += u32::from(p[c]);
+                }
+            }
+        }
+        let count = n * n;
+        image::Rgb(sum.map(|s| ((s + count / 2) / count) as u8))
+    })
+}
+
+/// The top `rows` rows of an image.
+fn top(image: &RgbImage, rows: u32) -> RgbImage {
+    image::imageops::crop_imm(image, 0, 0, image.width(), rows).to_image()
+}
+
+pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
+    let source = ShaderSource::Embedded;
+    let cx = LabContext {
+        gpu,
+        source: &source,
+        format: COLOR_FORMAT,
+        files: &NO_FILES,
+    };
+    let mut lab = (labs::TEXPARAMS.new)(&cx)?;
+    lab.params_mut().set_str("min", "nearest")?;
+    lab.params_mut().set_str("mag", "nearest")?;
+    eprintln!("filtering: drawing the {}x{} ground truth", W * SS, H * SS);
+    let truth = downsample(&to_rgb(&screenshot(gpu, lab.as_mut(), W * SS, H * SS)?), SS);
+    let mut rows = Vec::new();
+    for min in MINS {
+        for mag in MAGS {
+            lab.params_mut().set_str("min", min)?;
+            lab.params_mut().set_str("mag", mag)?;
+            let image = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
+            let timing = bench(gpu, lab.as_mut(), frames, W, H, true)?;
+            let row = Row {
+                min,
+                mag,
+                ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
+                rmse: rmse(&image, &truth),
+                far_rmse: rmse(&top(&image, H / 2), &top(&truth, H / 2)),
+                pareto: false,
+            };
+            eprintln!(
+                "filtering min {min} mag {mag}: {:.3} ms, RMSE {:.2} (far half {:.2})",
+                row.ms, row.rmse, row.far_rmse
+            );
+            rows.push(row);
+        }
+    }
+    let snapshot = rows.clone();
+    for r in rows.iter_mut() {
+        r.pareto = !snapshot
+            .iter()
+            .any(|o| o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse));
+    }
+    let csv = out.join("filtering.csv");
+    let mut text = String::from("min,mag,ms_per_frame,rmse,far_half_rmse,pareto\n");
+    for r in &rows {
+        writeln!(
+            text,
+            "{},{},{:.4},{:.3},{:.3},{}",
+            r.min, r.mag, r.ms, r.rmse, r.far_rmse, r.pareto
+        )?;
+    }
+    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
+    let svg = out.join("filtering.svg");
+    let mut chart = String::new();
+    draw(&rows, &mut chart)?;
+    write_atomic(&svg, |w| w.write_all(chart.as_bytes()))?;
+    println!("wrote {} and {}", csv.display(), svg.display());
+    let get = |min: &str, mag: &str| rows.iter().find(|r| r.min == min && r.mag == mag).cloned();
+    let lesson = match (
+        get("nearest", "nearest"),
+        get("linear", "linear"),
+        get("linear_mipmap_nearest", "nearest"),
+        get("linear_mipmap_linear", "linear"),
+    ) {
+        (Some(n), Some(l), Some(course), Some(tri)) => format!(
+            "Against the 16×16-supersampled floor (RMSE over the picture, then over its far half), NEAREST aliases ({:.1}, {:.1}) \
+             and LINEAR ({:.1}, {:.1}) still does: one sample per pixel cannot stand for many texels; the course's LINEAR_MIPMAP_NEAREST \
+             gives {:.1} ({:.1}) and trilinear {:.1} ({:.1}), for {:.3} and {:.3} ms against NEAREST's {:.3} ms: in the distance the \
+             right answer is the squares averaged to grey, which is what a mipmap holds.",
+            n.rmse, n.far_rmse, l.rmse, l.far_rmse, course.rmse, course.far_rmse, tri.rmse, tri.far_rmse, course.ms, tri.ms, n.ms
+        ),
+        _ => String::new(),
+    };
+    Ok(Summary {
+        name: "filtering",
+        title: "Seed 004: texture filtering against a 16×16-supersampled ground truth",
+        lesson,
+    })
+}
+
+fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
+    let root = SVGBackend::with_string(svg, (800, 480)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let max_ms = rows.iter().map(|r| r.ms).fold(0.0, f64::max) * 1.3;
+    let min_ms = rows.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.7;
+    let max_y = rows.iter().map(|r| r.rmse).fold(0.0, f64::max) * 1.2;
+    let mut c = ChartBuilder::on(&root)
+        .caption("texparams floor: MIN x MAG filter", ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(55)
+        .build_cartesian_2d(min_ms..max_ms, 0.0..max_y)?;
+    c.configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .x_desc("ms per frame (GPU timestamps, lavapipe)")
+        .y_desc("RMSE vs 16x16-supersampled ground truth")
+        .draw()?;
+    let colours = [
+        RGBColor(120, 120, 120),
+        RGBColor(214, 39, 40),
+        RGBColor(31, 119, 180),
+        RGBColor(44, 160, 44),
+    ];
+    for (min, col) in MINS.iter().zip(colours) {
+        c.draw_series(rows.iter().filter(|r| r.min == *min).map(|r| {
+            if r.mag == "nearest" {
+                Circle::new((r.ms, r.rmse), 6, col.filled())
+            } else {
+                Circle::new((r.ms, r.rmse), 6, col.stroke_width(2))
+            }
+        }))?
+        .label(format!("MIN {min} (filled: MAG nearest)"))
+        .legend(move |(x, y)| Circle::new((x + 10, y), 5, col.filled()));
+    }
+    let mut front: Vec<(f64, f64)> = rows.iter().filter(|r| r.pareto).map(|r| (r.ms, r.rmse)).collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    c.draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    c.configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.9))
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
