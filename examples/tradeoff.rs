@@ -18,6 +18,9 @@
 //! `normmap` (seed 001) times the lecture's normalization cube map against `normalize`, and
 //! measures what the lookup costs in accuracy.
 //!
+//! `bezier` (seed 003) sets the strip's curve tessellation against a converged strip, and where
+//! `segments=auto` lands.
+//!
 //! `suzanne` (seed 004) compares flat, Gouraud and Phong on Suzanne with a 4 × 4-supersampled
 //! per-pixel reference.
 //!
@@ -68,12 +71,13 @@ impl Shading {
 }
 
 /// The studies, in the order `all` runs them.
-const STUDIES: [&str; 7] = [
+const STUDIES: [&str; 8] = [
     "phong000",
     "wave",
     "lighting",
     "normmap",
     "twist",
+    "bezier",
     "suzanne",
     "filtering",
 ];
@@ -84,8 +88,9 @@ struct Args {
     /// Which study: phong000 (seed 000: shading model x tessellation), wave (seed 001: grid
     /// subdivision), lighting (seed 001: per-vertex against per-fragment), normmap (seed 001:
     /// cube map against normalize), twist (seed 002: grid resolution), suzanne (seed 004: flat,
-    /// Gouraud and Phong), filtering (seed 004: texture filters), or all.
-    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "lighting", "normmap", "twist", "suzanne", "filtering"])]
+    /// Gouraud and Phong), filtering (seed 004: texture filters), bezier (seed 003: curve
+    /// tessellation), or all.
+    #[arg(long, default_value = "all", value_parser = ["all", "phong000", "wave", "lighting", "normmap", "twist", "bezier", "suzanne", "filtering"])]
     study: String,
     /// Output directory for NAME.csv, NAME.svg and index.md.
     #[arg(long, default_value = "tradeoff")]
@@ -151,6 +156,7 @@ fn main() -> anyhow::Result<()> {
             "normmap" => normmap::study(&args.out, args.frames, &gpu)?,
             "lighting" => lighting::study(&args.out, args.frames, args.quick, &gpu)?,
             "filtering" => filtering::study(&args.out, args.frames, &gpu)?,
+            "bezier" => bezier::study(&args.out, args.frames, &gpu)?,
             _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
         });
     }
@@ -193,6 +199,8 @@ fn today() -> String {
     format!("{year:04}-{month:02}-{day:02}")
 }
 
+#[path = "tradeoff/bezier.rs"]
+mod bezier;
 #[path = "tradeoff/filtering.rs"]
 mod filtering;
 #[path = "tradeoff/lighting.rs"]

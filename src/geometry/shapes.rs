@@ -357,7 +357,20 @@ pub fn bezier_parameters() -> Vec<f32> {
 /// in float with Qt 6's `QVector3D::normalize` ([`qt_normalize`]): the last vertex (201) keeps
 /// (0, 0, 0), the others come out close to +y.
 pub fn bezier_strip() -> Vec<StripVertex> {
-    let mut vertices: Vec<StripVertex> = bezier_parameters()
+    strip_at(bezier_parameters())
+}
+
+/// [`bezier_strip`] with `segments` equal steps of t from exactly 0 to exactly 1 (at least 1),
+/// the course's normals computed the course's way: `specular_strip`'s `segments` (the course's
+/// float loop is `segments=100`, [`bezier_strip`] itself).
+pub fn bezier_strip_n(segments: u32) -> Vec<StripVertex> {
+    let n = segments.max(1);
+    strip_at((0..=n).map(|k| (f64::from(k) / f64::from(n)) as f32).collect())
+}
+
+/// The strip through the curve points at parameters `ts`.
+fn strip_at(ts: Vec<f32>) -> Vec<StripVertex> {
+    let mut vertices: Vec<StripVertex> = ts
         .into_iter()
         .flat_map(|t| {
             let [x, y] = bezier_point(t);

@@ -32,7 +32,7 @@ use glam::{Mat4, Vec3};
 
 use crate::camera::fly::{FlyCamera, FlyStart, Move};
 use crate::camera::gl_to_wgpu_depth;
-use crate::geometry::shapes::{bezier_strip, StripVertex};
+use crate::geometry::shapes::{bezier_strip, bezier_strip_n, StripVertex};
 use crate::gpu::Gpu;
 use crate::lab::{FilesTaken, Input, Keys, LabInfo, Look, Pass, Recipe, Shaded, Special, Stage};
 use crate::params::{ParamSpec, Params};
@@ -153,6 +153,14 @@ const PARAMS: &[ParamSpec] = &[
         36000.0,
         "start: pitch of that rotate (clamped to ±89°)",
     ),
+    ParamSpec::int(
+        "segments",
+        &[COURSE_SEGMENTS as f64],
+        0.0,
+        MAX_SEGMENTS as f64,
+        "port: steps of t along the curve (course: its float loop, 100); auto (0): the fewest within half a pixel",
+    )
+    .with_auto(0.0),
     ParamSpec::real("lightx", &[0.0], -1000.0, 1000.0, "lightPos.x"),
     ParamSpec::real("lighty", &[0.0], -1000.0, 1000.0, "lightPos.y"),
     ParamSpec::real("lightz", &[0.0], -1000.0, 1000.0, "lightPos.z"),
@@ -181,6 +189,55 @@ pub struct Fly {
     mouse: (i32, i32),
     uniforms: Uniforms<StripUniforms>,
     strip: GpuMesh<StripVertex>,
+    /// The segments `strip` was built with.
+    segments: u32,
+}
+
+/// The course's 100 steps of t (its float loop: [`bezier_strip`]).
+pub const COURSE_SEGMENTS: u32 = 100;
+
+/// The most segments `segments` takes.
+pub const MAX_SEGMENTS: u32 = 10_000;
+
+/// The chord error `segments=auto` allows, in pixels.
+pub const SEGMENTS_BUDGET_PX: f64 = 0.5;
+
+/// The largest turn of the strip's normal between two neighbouring vertices `segments=auto`
+/// allows, in degrees: the strip is lit per vertex normal with a specular exponent of 64, so
+/// the lighting, not the outline, is what a coarse strip gets wrong first.
+pub const SEGMENTS_MAX_TURN_DEG: f64 = 0.5;
+
+/// The fewest equal steps of t for which the strip both stays within [`SEGMENTS_BUDGET_PX`]
+/// of the curve seen by `camera` in a picture `height` pixels tall and turns its normal by at
+/// most [`SEGMENTS_MAX_TURN_DEG`] from vertex to vertex. A quadratic Bézier has the constant
+/// second derivative B'' = 2(P0 − 2P1 + P2), so a chord over a step 1/n strays at most
+/// |B''|/(8n²) from its arc (projected at the distance of the curve's nearest point to the
+/// eye), and its tangent turns at the rate |B' × B''| / |B'|² per unit of t (its largest over
+/// the curve, sampled).
+pub fn auto_segments(camera: &FlyCamera, height: u32) -> u32 {
+    use crate::geometry::shapes::{bezier_point, BEZIER_CONTROL};
+    use glam::DVec2;
+    let [p0, p1, p2] = BEZIER_CONTROL.map(|[x, y]| DVec2::new(f64::from(x), f64::from(y)));
+    let second = 2.0 * (p0 - 2.0 * p1 + p2);
+    let eye = camera.position.as_dvec3();
+    let nearest = (0..=64)
+        .flat_map(|k| {
+            let [x, y] = bezier_point(k as f32 / 64.0);
+            [-0.5, 0.5].map(|z| (glam::DVec3::new(f64::from(x), f64::from(y), z) - eye).length())
+        })
+        .fold(f64::INFINITY, f64::min)
+        .max(1e-3);
+    let pixels_per_unit = f64::from(height) / (2.0 * (f64::from(camera.fov) / 2.0).to_radians().tan() * nearest);
+    let chord = (second.length() * pixels_per_unit / (8.0 * SEGMENTS_BUDGET_PX)).sqrt();
+    let turn_rate = (0..=256)
+        .map(|k| {
+            let t = f64::from(k) / 256.0;
+            let first = 2.0 * (1.0 - t) * (p1 - p0) + 2.0 * t * (p2 - p1);
+            first.perp_dot(second).abs() / first.length_squared().max(1e-12)
+        })
+        .fold(0.0, f64::max);
+    let turn = turn_rate.to_degrees() / SEGMENTS_MAX_TURN_DEG;
+    (chord.max(turn).ceil() as u32).clamp(1, MAX_SEGMENTS)
 }
 
 impl Fly {
@@ -198,6 +255,7 @@ impl Fly {
             start,
             mouse: (0, 0),
             strip: GpuMesh::new(gpu, "specular_strip.strip", &bezier_strip(), None),
+            segments: COURSE_SEGMENTS,
         }
     }
 
@@ -257,17 +315,36 @@ impl Stage for Fly {
         let aspect = width as f32 / height.max(1) as f32;
         self.uniforms.value = StripUniforms::new(&self.camera, aspect, light);
         self.uniforms.upload(gpu);
+        let segments = match p.f64("segments") as u32 {
+            0 => auto_segments(&self.camera, height),
+            n => n,
+        };
+        if segments != self.segments {
+            self.segments = segments;
+            let strip = if segments == COURSE_SEGMENTS {
+                bezier_strip()
+            } else {
+                bezier_strip_n(segments)
+            };
+            self.strip = GpuMesh::new(gpu, "specular_strip.strip", &strip, None);
+        }
         &self.strip
     }
-    /// The live camera, once it has left the parameters' start state.
+    /// The live camera, once it has left the parameters' start state, and `segments=auto`'s
+    /// choice.
     fn status(&self, p: &Params) -> String {
         let c = &self.camera;
-        if *c == FlyCamera::from_start(&start_of(p)) {
+        let auto = if p.f64("segments") == 0.0 {
+            format!(" | segments auto: {}", self.segments)
+        } else {
             String::new()
+        };
+        if *c == FlyCamera::from_start(&start_of(p)) {
+            auto
         } else {
             let Vec3 { x, y, z } = c.position;
             format!(
-                " | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}",
+                " | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}{auto}",
                 c.yaw, c.pitch
             )
         }
