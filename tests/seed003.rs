@@ -231,3 +231,59 @@ fn light_position_moves_the_lighting() {
     assert!(!same(&side, &default));
     assert_eq!(coverage(&side, BLACK), coverage(&default, BLACK));
 }
+
+/// `segments` (port addition): the course's float loop is `segments=100`; other counts step t
+/// exactly from 0 to 1; the picture converges on a finely tessellated strip, and `auto` picks
+/// a count from the curve's bend and the camera (more when the camera comes closer).
+#[test]
+fn strip_segments_converge_and_auto_follows_the_camera() {
+    use shaderlab::geometry::shapes::{bezier_point, bezier_strip_n};
+    let exact = bezier_strip_n(10);
+    assert_eq!(exact.len(), 22);
+    let [x, y] = bezier_point(1.0);
+    assert_eq!(&exact[20].position[..2], &[x, y], "the last step ends at t = 1");
+    let at = |segments: &str, forward: &str| {
+        let mut lab = build(labs::SPECULAR_STRIP);
+        lab.params_mut().set_str("segments", segments).unwrap();
+        lab.params_mut().set_str("forward", forward).unwrap();
+        let image = shot(lab.as_mut());
+        (image, lab.title())
+    };
+    let (course, _) = at("100", "0");
+    assert_eq!(
+        course,
+        shot(build(labs::SPECULAR_STRIP).as_mut()),
+        "segments=100 is the course's strip"
+    );
+    let (reference, _) = at("2000", "0");
+    let off = |a: &RgbImage| {
+        a.pixels()
+            .zip(reference.pixels())
+            .filter(|(p, q)| p.0.iter().zip(q.0.iter()).any(|(x, y)| x.abs_diff(*y) > 25))
+            .count()
+    };
+    let (coarse, _) = at("8", "0");
+    let (auto, title) = at("auto", "0");
+    println!(
+        "px off the 2000-segment strip: 8: {}; course 100: {}; auto: {} ({title})",
+        off(&coarse),
+        off(&course),
+        off(&auto)
+    );
+    // Measured: 3208, 263, 178 (auto 146).
+    assert!(off(&coarse) > 5 * off(&course));
+    assert!(
+        off(&auto) <= off(&course),
+        "auto is at least as close as the course's 100"
+    );
+    assert!(title.contains("segments auto: "), "{title}");
+    let count = |t: &str| -> u32 {
+        t.split("segments auto: ")
+            .nth(1)
+            .and_then(|s| s.split(|c: char| !c.is_ascii_digit()).next())
+            .and_then(|s| s.parse().ok())
+            .unwrap()
+    };
+    let (_, closer) = at("auto", "4");
+    assert!(count(&closer) >= count(&title), "{closer} vs {title}");
+}
