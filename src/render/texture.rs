@@ -136,6 +136,9 @@ pub struct SamplerDesc {
     /// [`Texture::view_for`] this description), else the
     /// `*_MIPMAP_NEAREST` / `*_MIPMAP_LINEAR` choice.
     pub mipmap: Option<wgpu::MipmapFilterMode>,
+    /// Anisotropic filtering: samples along the footprint (1: off, as GL without
+    /// `EXT_texture_filter_anisotropic`; above 1 all three filters must be linear).
+    pub anisotropy: u16,
 }
 
 impl Default for SamplerDesc {
@@ -146,6 +149,7 @@ impl Default for SamplerDesc {
             mag: wgpu::FilterMode::Linear,
             min: wgpu::FilterMode::Linear,
             mipmap: None,
+            anisotropy: 1,
         }
     }
 }
@@ -162,6 +166,7 @@ pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
         // Without mipmaps GL reads level 0 only: the texture's view does that (`view_for`), so
         // the level of detail stays unclamped and GL's mag/min switch point is kept.
         mipmap_filter: desc.mipmap.unwrap_or(wgpu::MipmapFilterMode::Nearest),
+        anisotropy_clamp: desc.anisotropy.max(1),
         ..Default::default()
     })
 }

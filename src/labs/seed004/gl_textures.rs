@@ -58,6 +58,9 @@ pub struct TexParams {
     pub min: MinFilter,
     /// `GL_TEXTURE_MAG_FILTER` is `GL_LINEAR` (else `GL_NEAREST`).
     pub mag_linear: bool,
+    /// `GL_TEXTURE_MAX_ANISOTROPY_EXT` (a port addition; 1: off). Above 1 the sampler is
+    /// trilinear whatever `min` and `mag` say, as anisotropic filtering requires.
+    pub anisotropy: u16,
 }
 
 impl TexParams {
@@ -66,12 +69,14 @@ impl TexParams {
         clamp: [false, false],
         min: MinFilter::LinearMipmapNearest,
         mag_linear: false,
+        anisotropy: 1,
     };
     /// The course's `loadTextureFromBMP`: REPEAT, MIN `GL_LINEAR_MIPMAP_NEAREST`, MAG `GL_LINEAR`.
     pub const BMP: TexParams = TexParams {
         clamp: [false, false],
         min: MinFilter::LinearMipmapNearest,
         mag_linear: true,
+        anisotropy: 1,
     };
 
     fn sampler_desc(&self) -> SamplerDesc {
@@ -97,11 +102,21 @@ impl TexParams {
             MinFilter::Nearest => (FilterMode::Nearest, None),
             MinFilter::Linear => (FilterMode::Linear, None),
         };
+        if self.anisotropy > 1 {
+            return SamplerDesc {
+                wrap: [wrap(self.clamp[0]), wrap(self.clamp[1]), AddressMode::Repeat],
+                mag: FilterMode::Linear,
+                min: FilterMode::Linear,
+                mipmap: Some(MipmapFilterMode::Linear),
+                anisotropy: self.anisotropy,
+            };
+        }
         SamplerDesc {
             wrap: [wrap(self.clamp[0]), wrap(self.clamp[1]), AddressMode::Repeat],
             mag: filter(self.mag_linear),
             min,
             mipmap,
+            anisotropy: 1,
         }
     }
 }

@@ -69,6 +69,13 @@ pub static RECIPE: Recipe = Recipe {
             MAG_FILTERS,
             "GL_TEXTURE_MAG_FILTER: 0 NEAREST, 1 LINEAR (M)",
         ),
+        ParamSpec::int(
+            "aniso",
+            &[1.0],
+            1.0,
+            16.0,
+            "port: anisotropic filtering, samples (1 off; above 1 trilinear + anisotropic, min and mag ignored)",
+        ),
     ]],
     animated: false,
     title: None,
@@ -86,6 +93,7 @@ pub fn tex_params(p: &Params) -> TexParams {
         clamp: [p.index_of("wrap_s") == 1, p.index_of("wrap_t") == 1],
         min: MinFilter::from_index(p.index_of("min")),
         mag_linear: p.index_of("mag") == 1,
+        anisotropy: if p.has("aniso") { p.f64("aniso") as u16 } else { 1 },
     }
 }
 
