@@ -1,6 +1,7 @@
 //! `cargo run --release --example tradeoff -- --study NAME|all --out DIR`: speed against
 //! accuracy, one study per lecture's choice, each written as `DIR/NAME.csv` (the Pareto front
-//! marked) and `DIR/NAME.svg`, with `DIR/index.md` listing the charts and what each teaches.
+//! marked), `DIR/NAME.svg` and `DIR/NAME.md` (its section: chart, lesson, machine, date), with
+//! `DIR/index.md` gathering every study's section found in DIR.
 //!
 //! `phong000` (seed 000's Phong exercise) sweeps shading model (flat, Gouraud, Phong, Blinn-Phong) x tessellation level for the
 //! sphere and the torus, plus Phong with back-face culling (`--set cull=1`, the opt-in that is not
@@ -146,6 +147,9 @@ fn main() -> anyhow::Result<()> {
     }
     let index = args.out.join("index.md");
     check_output_path(&index)?;
+    for name in &chosen {
+        check_output_path(&args.out.join(format!("{name}.md")))?;
+    }
     let gpu = Gpu::headless()?;
     let mut summaries = Vec::new();
     for name in chosen {
@@ -160,20 +164,31 @@ fn main() -> anyhow::Result<()> {
             _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
         });
     }
-    let mut text = format!(
-        "# Speed against accuracy\n\nWritten by `cargo run --release --example tradeoff -- --study {} --out {}` \
-         on {} ({}). Each chart plots error against frame time; the CSV beside it marks the Pareto front.\n",
-        args.study,
-        args.out.display(),
-        gpu.describe(),
-        today()
-    );
+    // Each study's section is kept in NAME.md, so that one study run again leaves the others'
+    // sections in the index as they were.
     for s in &summaries {
-        write!(
-            text,
-            "\n## {}\n\n![{}]({}.svg)\n\n{}\n\nData: [`{}.csv`]({}.csv).\n",
-            s.title, s.name, s.name, s.lesson, s.name, s.name
-        )?;
+        let section = format!(
+            "## {}\n\n![{}]({}.svg)\n\n{}\n\nData: [`{}.csv`]({}.csv); written by `--study {}` on {} ({}).\n",
+            s.title,
+            s.name,
+            s.name,
+            s.lesson,
+            s.name,
+            s.name,
+            s.name,
+            gpu.describe(),
+            today()
+        );
+        write_atomic(&args.out.join(format!("{}.md", s.name)), |w| w.write_all(section.as_bytes()))?;
+    }
+    let mut text = String::from(
+        "# Speed against accuracy\n\nWritten by `cargo run --release --example tradeoff -- --study NAME|all --out DIR`. \
+         Each chart plots error against frame time; the CSV beside it marks the Pareto front.\n",
+    );
+    for name in STUDIES {
+        if let Ok(section) = std::fs::read_to_string(args.out.join(format!("{name}.md"))) {
+            write!(text, "\n{section}")?;
+        }
     }
     write_atomic(&index, |w| w.write_all(text.as_bytes()))?;
     println!("wrote {}", index.display());
@@ -340,12 +355,30 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
         println!("{shape} Pareto front: {}", front.join("; "));
         fronts.push(format!("{shape}: {}", front.join("; ")));
     }
+    // Which shading models make the front, per shape.
+    let makeup: Vec<String> = ["sphere", "torus"]
+        .iter()
+        .map(|shape| {
+            let on: Vec<&Row> = rows.iter().filter(|r| r.shape == *shape && r.pareto).collect();
+            let count = |f: &dyn Fn(&Row) -> bool| on.iter().filter(|r| f(r)).count();
+            format!(
+                "{shape}: {} Gouraud, {} Phong with culling, {} Phong, {} Blinn-Phong, {} flat",
+                count(&|r| r.shading == Shading::Gouraud),
+                count(&|r| r.shading == Shading::Phong && r.cull),
+                count(&|r| r.shading == Shading::Phong && !r.cull),
+                count(&|r| r.shading == Shading::Blinn),
+                count(&|r| r.shading == Shading::Flat)
+            )
+        })
+        .collect();
     Ok(Summary {
         name: "phong000",
         title: "Seed 000: shading model × tessellation (Phong exercise)",
         lesson: format!(
-            "Per-pixel Phong on a coarse mesh beats Gouraud on a fine one for the same time: the Pareto \
-             front is (shading level, ms per frame, RMSE against the exact ray caster) {}.",
+            "On a software rasterizer per-pixel work is what costs: the Pareto front is mostly Gouraud on coarse meshes \
+             and per-pixel Phong drawn with back-face culling on finer ones ({}). The front (shading level: ms per frame, \
+             RMSE against the exact ray caster): {}.",
+            makeup.join("; "),
             fronts.join("; ")
         ),
     })

@@ -134,7 +134,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
         (Some(v), Some(f), Some(vf), Some(ff)) => {
             let why = if v.rmse < 1.25 * f.rmse {
                 "at the course's light and shininess the mesh (its silhouette and facet normals), not where the lighting is \
-                 evaluated, sets the error, so per-fragment lighting buys little until the mesh is fine"
+                 evaluated, sets the error, and per-fragment lighting buys little at any level"
             } else {
                 "per-vertex lighting loses the highlight between vertices, which per-fragment lighting keeps on the same mesh"
             };

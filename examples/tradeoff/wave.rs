@@ -145,11 +145,11 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
     let pick = |s: usize, f: &dyn Fn(&Row) -> bool| rows.iter().find(|r| r.state == s && f(r)).cloned();
     let lesson = match (pick(0, &|r| r.subdiv == 1 && !r.auto), pick(0, &|r| r.auto), pick(1, &|r| r.subdiv == 1 && !r.auto), pick(1, &|r| r.auto)) {
         (Some(c), Some(a), Some(sc), Some(sa)) => format!(
-            "The course's 40×40 grid is almost converged for its own wave ({} px off the 32×-split reference, {:.1} dB, {:.3} ms); \
-             `subdiv=auto` spends {} × the vertices there ({} px off, {:.3} ms) because its bound is conservative. \
-             On a taller, faster wave the course's grid cuts the crests ({} px off, {:.1} dB) and auto's {}×{} split brings it to {} px off \
-             ({:.1} dB) for {:.3} ms against {:.3} ms.",
-            c.off_px, c.psnr, c.ms, a.subdiv * a.subdiv, a.off_px, a.ms, sc.off_px, sc.psnr, sa.subdiv, sa.subdiv, sa.off_px, sa.psnr, sa.ms, sc.ms
+            "At the course's wave its 40×40 grid is {} px off a grid split 32×32 ({:.1} dB, {:.3} ms); `subdiv=auto` splits \
+             each cell {}×{} ({} px off, {:.1} dB, {:.3} ms). On a taller, faster wave the course's grid cuts the crests ({} px off, \
+             {:.1} dB) and auto's {}×{} split brings it to {} px off ({:.1} dB) for {:.3} ms against {:.3} ms: the error follows \
+             h·(xs² + zs²), so a grid fixed for one wave is too coarse or too fine for another.",
+            c.off_px, c.psnr, c.ms, a.subdiv, a.subdiv, a.off_px, a.psnr, a.ms, sc.off_px, sc.psnr, sa.subdiv, sa.subdiv, sa.off_px, sa.psnr, sa.ms, sc.ms
         ),
         _ => "(a quick run)".into(),
     };
