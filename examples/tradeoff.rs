@@ -179,7 +179,9 @@ fn main() -> anyhow::Result<()> {
             gpu.describe(),
             today()
         );
-        write_atomic(&args.out.join(format!("{}.md", s.name)), |w| w.write_all(section.as_bytes()))?;
+        write_atomic(&args.out.join(format!("{}.md", s.name)), |w| {
+            w.write_all(section.as_bytes())
+        })?;
     }
     let mut text = String::from(
         "# Speed against accuracy\n\nWritten by `cargo run --release --example tradeoff -- --study NAME|all --out DIR`. \

@@ -1833,8 +1833,8 @@ fn f1_panel_edits_parameters_and_hides_to_the_exact_picture() {
             title,
             "{present}: `+` typed into the panel reached the lab"
         );
-        // "Reset all", below the Effect group.
-        click(lab_width as i32 + 40, 175);
+        // "Reset all", below the Effect group and the Port additions group (twist's `grid`).
+        click(lab_width as i32 + 40, 220);
         lab.wait_title(&format!("{present}: Reset all"), |t| t == default_title);
         lab.keys(&["F1"]);
         let hidden = poll(Duration::from_secs(10), || {

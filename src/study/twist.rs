@@ -76,6 +76,12 @@ pub fn grid_error_px(n: u32, twisting: f64, width: u32, height: u32) -> f64 {
     let n = n.max(1);
     let size = 2.0 * HALF / n as f64;
     let at = |i: u32, j: u32| [-HALF + i as f64 * size, -HALF + j as f64 * size];
+    // Along an edge the radius changes by at most its length, so the turn by at most
+    // |twisting| · length: past half a radian three samples cannot speak for the arc, and the
+    // grid is too coarse whatever they say.
+    if twisting.abs() * size * std::f64::consts::SQRT_2 > 0.5 {
+        return f64::INFINITY;
+    }
     let sagitta = |a: [f64; 2], b: [f64; 2]| {
         let (ta, tb) = (
             to_px(twist(a, twisting), width, height),

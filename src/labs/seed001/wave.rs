@@ -84,7 +84,7 @@ pub static RECIPE: Recipe = Recipe {
                 &[1.0],
                 0.0,
                 MAX_SUBDIV as f64,
-                "quads per checker cell side (course: 1); auto (0): the fewest within half a pixel of the sine surface",
+                "port: quads per checker cell side (course: 1); auto (0): the fewest within half a pixel of the sine surface",
             )
             .with_auto(0.0),
         ],
@@ -141,7 +141,7 @@ impl Stage for WaveGrid {
     }
     fn status(&self, p: &Params) -> String {
         if p.f64("subdiv") == 0.0 {
-            format!("subdiv auto: {}", self.drawn)
+            format!(" | subdiv auto: {}", self.drawn)
         } else {
             String::new()
         }

@@ -59,7 +59,7 @@ pub static RECIPE: Recipe = Recipe {
             &[COURSE_GRID as f64],
             0.0,
             MAX_GRID as f64,
-            "quads per side (course: 100); auto (0): the coarsest whose edges stay within half a pixel of the exact spiral",
+            "port: quads per side (course: 100); auto (0): the coarsest whose edges stay within half a pixel of the exact spiral",
         )
         .with_auto(0.0),
     ]],
@@ -126,7 +126,7 @@ impl Stage for Grid {
     }
     fn status(&self, p: &Params) -> String {
         if p.f64("grid") == 0.0 {
-            format!("grid auto: {}", self.drawn)
+            format!(" | grid auto: {}", self.drawn)
         } else {
             String::new()
         }

@@ -1,0 +1,72 @@
+//! The references of the speed/accuracy studies (`examples/tradeoff/`), tested on their own:
+//! a converged reference must be what finer and finer drawings approach, and a supersampled
+//! one must change little when sampled finer still. (The exact twisted square is tested in
+//! `src/study/twist.rs`, seed 000's ray caster in `src/study/exact/`, the wave's and the
+//! strip's references in `tests/seed001.rs` and `tests/seed003.rs`.)
+
+mod common;
+
+use image::RgbImage;
+use shaderlab::labs;
+use shaderlab::offscreen::to_rgb;
+
+fn rmse(a: &RgbImage, b: &RgbImage) -> f64 {
+    let sum: f64 = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2))
+        .sum();
+    (sum / a.as_raw().len().max(1) as f64).sqrt()
+}
+
+fn downsample(image: &RgbImage, n: u32) -> RgbImage {
+    RgbImage::from_fn(image.width() / n, image.height() / n, |x, y| {
+        let mut sum = [0u32; 3];
+        for j in 0..n {
+            for i in 0..n {
+                let p = image.get_pixel(x * n + i, y * n + j).0;
+                (0..3).for_each(|c| sum[c] += u32::from(p[c]));
+            }
+        }
+        let count = n * n;
+        image::Rgb(sum.map(|s| ((s + count / 2) / count) as u8))
+    })
+}
+
+/// The `lighting` study's reference (the per-fragment program on a 256-level mesh): the
+/// per-fragment picture approaches it as the mesh refines, level after level.
+#[test]
+fn lighting_reference_is_what_finer_meshes_approach() {
+    let at = |tess: &str| common::render_state(labs::PHONG_FRAGMENT, &[("object", "sphere"), ("tess", tess)]);
+    let reference = at("256");
+    let errors: Vec<f64> = ["8", "24", "96", "192"]
+        .iter()
+        .map(|t| rmse(&at(t), &reference))
+        .collect();
+    println!("phong_fragment sphere RMSE against level 256 at levels 8, 24, 96, 192: {errors:.2?}");
+    // Measured: 14.83, 3.74, 1.02, 0.04.
+    assert!(errors.windows(2).all(|w| w[1] < w[0]), "{errors:?}");
+    assert!(errors[3] < 0.15 * errors[1], "{errors:?}");
+}
+
+/// The `suzanne` study's reference (per-pixel Phong drawn 4 × 4 larger, box-filtered down)
+/// changes little when sampled 8 × 8: the study's errors (RMSE 1.9 and up) are not the
+/// reference's own.
+#[test]
+fn suzanne_supersampled_reference_is_converged() {
+    let gpu = common::gpu();
+    let mut lab = common::build(labs::SUZANNE_PHONG);
+    common::set_state(lab.as_mut(), &[("yangle", "40"), ("shading", "phong")]);
+    let four = downsample(
+        &to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), 2560, 1920).unwrap()),
+        4,
+    );
+    let eight = downsample(
+        &to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), 5120, 3840).unwrap()),
+        8,
+    );
+    let e = rmse(&four, &eight);
+    println!("4x4 against 8x8 supersampling: RMSE {e:.3}"); // measured 0.275
+    assert!(e < 0.8, "RMSE {e:.3}");
+}
