@@ -115,6 +115,18 @@ fn quads_to_triangles<T: Copy>(quads: &[T]) -> Vec<T> {
         .collect()
 }
 
+/// A triangle list of quads split (v0,v1,v2),(v0,v2,v3) (what the grids here return) as each
+/// quad's four corners and the indices of the same two triangles: drawn indexed, a corner is
+/// shaded once instead of in each triangle that uses it, and the triangles, hence the pixels,
+/// are the same.
+pub fn indexed_quads<T: Copy>(list: &[T]) -> (Vec<T>, Vec<u32>) {
+    let corners: Vec<T> = list.chunks_exact(6).flat_map(|t| [t[0], t[1], t[2], t[5]]).collect();
+    let indices = (0..corners.len() as u32 / 4)
+        .flat_map(|q| [0, 1, 2, 0, 2, 3].map(|i| 4 * q + i))
+        .collect();
+    (corners, indices)
+}
+
 /// SPEC §1.1 (001 `height`): the 4 vertices of the `GL_TRIANGLE_STRIP`, in strip order
 /// (draw with a triangle-strip topology): (−1, 1) h 2, (1, 1) h 2, (−1, −1) h −2, (1, −1) h −2.
 pub fn height_quad() -> [HeightVertex; 4] {

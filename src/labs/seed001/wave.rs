@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 
 use glam::Vec3;
 
-use crate::geometry::shapes::{wave_grid_sub, ColorVertex};
+use crate::geometry::shapes::{indexed_quads, wave_grid_sub, ColorVertex};
 use crate::gpu::Gpu;
 use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
@@ -113,14 +113,8 @@ struct WaveGrid {
 impl WaveGrid {
     fn mesh(&mut self, gpu: &Gpu, k: u32) -> &GpuMesh<ColorVertex> {
         self.meshes.entry(k).or_insert_with(|| {
-            // The triangle list is quads split (v0,v1,v2),(v0,v2,v3): drawn indexed, each quad's
-            // four corners are shaded once instead of six times (the same triangles, the same
-            // pixels).
-            let list = wave_grid_sub(k);
-            let corners: Vec<ColorVertex> = list.chunks_exact(6).flat_map(|t| [t[0], t[1], t[2], t[5]]).collect();
-            let indices: Vec<u32> = (0..corners.len() as u32 / 4)
-                .flat_map(|q| [0, 1, 2, 0, 2, 3].map(|i| 4 * q + i))
-                .collect();
+            // Indexed: each quad's four corners are shaded once instead of six times.
+            let (corners, indices) = indexed_quads(&wave_grid_sub(k));
             GpuMesh::new(gpu, "wave.grid", &corners, Some(&indices))
         })
     }

@@ -15,7 +15,7 @@
 
 use std::collections::HashMap;
 
-use crate::geometry::shapes::twist_grid_n;
+use crate::geometry::shapes::{indexed_quads, twist_grid_n};
 use crate::gpu::Gpu;
 use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
@@ -89,7 +89,11 @@ impl Grid {
                 .into_iter()
                 .map(|position| TwistVertex { position })
                 .collect();
-            GpuMesh::new(gpu, "twist.grid", &grid, None)
+            // Indexed: each quad's four corners are turned once instead of six times. (Not
+            // shared between quads: the course computes a quad's far corner as x + size, which
+            // in float is not always its neighbour's near corner.)
+            let (corners, indices) = indexed_quads(&grid);
+            GpuMesh::new(gpu, "twist.grid", &corners, Some(&indices))
         })
     }
 
