@@ -249,7 +249,7 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
     );
     let source = ShaderSource::Embedded;
     let cx = LabContext {
-        gpu: &gpu,
+        gpu,
         source: &source,
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
@@ -289,8 +289,8 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
                 let mut whole: Option<image::RgbImage> = None;
                 for &cull in culls {
                     lab.params_mut().set("cull", &[if cull { 1.0 } else { 0.0 }])?;
-                    let timing = bench(&gpu, lab.as_mut(), args.frames, W, H, true)?;
-                    let image = to_rgb(&screenshot(&gpu, lab.as_mut(), W, H)?);
+                    let timing = bench(gpu, lab.as_mut(), args.frames, W, H, true)?;
+                    let image = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
                     let err = image_error(exact_img, &image)?;
                     let sil = silhouette_error(exact, &mask(&image, [13, 26, 51], 0), W, H)?;
                     let triangles = shaderlab::tess::mesh(object, level).triangle_count();
