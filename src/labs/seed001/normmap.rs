@@ -6,20 +6,50 @@
 //!
 //! Keys: as `bump` (light keys move blx, bly, blz; left drag rotates).
 
+use crate::error::Result;
 use crate::geometry::images;
-use crate::lab::{Look, Pass, Recipe};
+use crate::lab::{Lab, LabContext, Look, Pass, Recipe, Runner, Scene};
+use crate::params::Params;
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
 use crate::labs::seed001::tangent_bump;
 
 /// Seed 001, §1.12: `bump` with the cube map on unit 1.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info("normmap", "ref001", "normalization cube map", tangent_bump::KEYS),
-    params: tangent_bump::PARAMS,
-    animated: false,
-    title: None,
-    build: |cx, p| {
-        let faces = images::normalization_cube(CUBE_SIZE);
+pub static RECIPE: Recipe = recipe::<CUBE_SIZE>();
+
+/// The lab with a cube map of `SIZE` texels per side (the course's is [`CUBE_SIZE`]).
+const fn recipe<const SIZE: u32>() -> Recipe {
+    Recipe {
+        info: super::info("normmap", "ref001", "normalization cube map", tangent_bump::KEYS),
+        params: tangent_bump::PARAMS,
+        animated: false,
+        title: None,
+        build: build::<SIZE>,
+    }
+}
+
+/// The cube-map sizes [`with_cube`] offers (the speed/accuracy study's sweep).
+pub const CUBE_SIZES: [u32; 6] = [4, 8, 16, 32, 64, 128];
+
+static SIZED: [Recipe; 6] = [
+    recipe::<4>(),
+    recipe::<8>(),
+    recipe::<16>(),
+    recipe::<32>(),
+    recipe::<64>(),
+    recipe::<128>(),
+];
+
+/// `normmap` with a cube map of `size` texels per side, one of [`CUBE_SIZES`] (`None` for
+/// another): the lecture's trade between the table's size and its accuracy, for the study.
+pub fn with_cube(cx: &LabContext, size: u32) -> Option<Result<Box<dyn Lab>>> {
+    let i = CUBE_SIZES.iter().position(|&s| s == size)?;
+    Some(Runner::boxed(cx, &SIZED[i]))
+}
+
+fn build<const SIZE: u32>(cx: &LabContext, p: &Params) -> Result<Box<dyn Scene>> {
+    {
+        let faces = images::normalization_cube(SIZE);
         let cube = Texture::new(cx.gpu, "normmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
         let clamp = wgpu::AddressMode::ClampToEdge;
         let sampler = sampler(
@@ -35,8 +65,8 @@ pub static RECIPE: Recipe = Recipe {
             Bind::sampler("normMapSampler", &sampler),
         ];
         tangent_bump::build(cx, "normmap", p, &LOOK, unit1)
-    },
-};
+    }
+}
 
 /// Texels per side of each face of the normalization cube map.
 const CUBE_SIZE: u32 = 32;
