@@ -26,7 +26,7 @@ const H: u32 = 512;
 const LIGHTS: [[&str; 3]; 3] = [["1.5", "1.5", "-2"], ["3", "0", "-0.5"], ["0", "0", "-1"]];
 
 /// Alternations of the timing (bump, normmap, bump, …).
-const ROUNDS: usize = 3;
+const ROUNDS: usize = 5;
 
 #[derive(Clone, Debug)]
 struct Row {
@@ -172,7 +172,7 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
     c.configure_mesh()
         .light_line_style(TRANSPARENT)
         .bold_line_style(RGBColor(225, 225, 225))
-        .x_desc("ms per frame (GPU timestamps, lavapipe; median of 3 alternations)")
+        .x_desc("ms per frame (GPU timestamps, lavapipe; median of 5 alternations)")
         .y_desc("PSNR vs normalize, dB (normalize itself drawn at 100)")
         .draw()?;
     let (blue, red) = (RGBColor(31, 119, 180), RGBColor(214, 39, 40));
