@@ -169,7 +169,8 @@ fn shininess_at_and_beyond_the_ends() {
 /// `normalize` of zero vectors: GLUT's sphere poles (normals exact), the Bézier strip's last
 /// vertex (the course leaves its normal (0, 0, 0): its fragments interpolate a non-zero normal,
 /// so no pixel takes `normalize(0)`), and a zero-area triangle in a user's OBJ (its face normal
-/// is the cross product of two parallel edges, zero; the OBJ loader's smooth normals skip it).
+/// is the cross product of two parallel edges, zero: the OBJ loader keeps it zero
+/// (`normalize_or_zero`), it adds nothing to its corners' smooth normals and covers no pixel).
 #[test]
 fn zero_vectors_never_reach_the_picture() {
     for entry in [labs::PHONG_FRAGMENT, labs::PHONG_VERTEX, labs::TOON] {
