@@ -82,6 +82,12 @@ impl Stage for Teapot {
     fn binds(&self) -> Vec<Bind> {
         vec![self.transform.bind()]
     }
+    /// The teapot's outside faces first (freeglut winds them clockwise, seen from outside):
+    /// the same pixels as GL's mesh order, with the inside faces behind them rejected by the
+    /// depth test before they are shaded.
+    fn faces(&self, _p: &Params) -> Option<crate::render::Faces> {
+        Some(crate::render::Faces::OutsideFirst(wgpu::FrontFace::Cw))
+    }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, _width: u32, _height: u32) -> &GpuMesh<Vertex> {
         let (model, eye) = (self.pose)(p);
         self.transform.value = TransformUniforms::new(model, projection_stack(eye));
