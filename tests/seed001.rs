@@ -1151,10 +1151,7 @@ fn every_001_shader_translates_to_valid_wgsl() {
 
 /// Pixels whose colour differs by more than 10% in a channel.
 fn off_px(a: &RgbImage, b: &RgbImage) -> usize {
-    a.pixels()
-        .zip(b.pixels())
-        .filter(|(p, q)| p.0.iter().zip(q.0.iter()).any(|(x, y)| x.abs_diff(*y) > 25))
-        .count()
+    shaderlab::metrics::pixels_off(a, b, 25).expect("same size")
 }
 
 /// `subdiv` (port addition): splitting the checker cells converges on the curved surface (a

@@ -256,12 +256,7 @@ fn strip_segments_converge_and_auto_follows_the_camera() {
         "segments=100 is the course's strip"
     );
     let (reference, _) = at("2000", "0");
-    let off = |a: &RgbImage| {
-        a.pixels()
-            .zip(reference.pixels())
-            .filter(|(p, q)| p.0.iter().zip(q.0.iter()).any(|(x, y)| x.abs_diff(*y) > 25))
-            .count()
-    };
+    let off = |a: &RgbImage| shaderlab::metrics::pixels_off(a, &reference, 25).expect("same size");
     let (coarse, _) = at("8", "0");
     let (auto, title) = at("auto", "0");
     println!(

@@ -667,16 +667,7 @@ fn texparams_anisotropic_filtering_is_closer_to_the_supersampled_floor() {
     common::set_state(lab.as_mut(), &[("min", "nearest"), ("mag", "nearest")]);
     let big =
         shaderlab::offscreen::to_rgb(&shaderlab::shell::screenshot(common::gpu(), lab.as_mut(), 2560, 1920).unwrap());
-    let truth = RgbImage::from_fn(640, 480, |x, y| {
-        let mut sum = [0u32; 3];
-        for j in 0..4 {
-            for i in 0..4 {
-                let p = big.get_pixel(4 * x + i, 4 * y + j).0;
-                (0..3).for_each(|c| sum[c] += u32::from(p[c]));
-            }
-        }
-        image::Rgb(sum.map(|s| ((s + 8) / 16) as u8))
-    });
+    let truth = shaderlab::metrics::box_downsample(&big, 4);
     let far_rmse = |image: &RgbImage| {
         let n = (640 * 240 * 3) as f64;
         let sum: f64 = (0..240)

@@ -8,30 +8,11 @@ mod common;
 
 use image::RgbImage;
 use shaderlab::labs;
+use shaderlab::metrics::box_downsample;
 use shaderlab::offscreen::to_rgb;
 
 fn rmse(a: &RgbImage, b: &RgbImage) -> f64 {
-    let sum: f64 = a
-        .as_raw()
-        .iter()
-        .zip(b.as_raw())
-        .map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2))
-        .sum();
-    (sum / a.as_raw().len().max(1) as f64).sqrt()
-}
-
-fn downsample(image: &RgbImage, n: u32) -> RgbImage {
-    RgbImage::from_fn(image.width() / n, image.height() / n, |x, y| {
-        let mut sum = [0u32; 3];
-        for j in 0..n {
-            for i in 0..n {
-                let p = image.get_pixel(x * n + i, y * n + j).0;
-                (0..3).for_each(|c| sum[c] += u32::from(p[c]));
-            }
-        }
-        let count = n * n;
-        image::Rgb(sum.map(|s| ((s + count / 2) / count) as u8))
-    })
+    shaderlab::metrics::rmse(a, b).expect("same size")
 }
 
 /// The `lighting` study's reference (the per-fragment program on a 256-level mesh): the
@@ -58,11 +39,11 @@ fn suzanne_supersampled_reference_is_converged() {
     let gpu = common::gpu();
     let mut lab = common::build(labs::SUZANNE_PHONG);
     common::set_state(lab.as_mut(), &[("yangle", "40"), ("shading", "phong")]);
-    let four = downsample(
+    let four = box_downsample(
         &to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), 2560, 1920).unwrap()),
         4,
     );
-    let eight = downsample(
+    let eight = box_downsample(
         &to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), 5120, 3840).unwrap()),
         8,
     );

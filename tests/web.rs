@@ -39,11 +39,7 @@ const MAX_OFF: f64 = 0.0025;
 
 /// The fraction of pixels whose colour differs by more than 10% (26 of 255) in a channel.
 fn off_fraction(a: &RgbImage, b: &RgbImage) -> f64 {
-    let off = a
-        .pixels()
-        .zip(b.pixels())
-        .filter(|(p, q)| p.0.iter().zip(q.0.iter()).any(|(x, y)| x.abs_diff(*y) > 25))
-        .count();
+    let off = shaderlab::metrics::pixels_off(a, b, 25).unwrap_or(usize::MAX);
     off as f64 / (a.width() * a.height()).max(1) as f64
 }
 

@@ -9,7 +9,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
-use shaderlab::metrics::psnr;
+use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
 use shaderlab::shell::{bench, screenshot};
@@ -32,13 +32,6 @@ struct Row {
     off_px: usize,
     psnr: f64,
     pareto: bool,
-}
-
-fn off(a: &image::RgbImage, b: &image::RgbImage) -> usize {
-    a.pixels()
-        .zip(b.pixels())
-        .filter(|(p, q)| p.0.iter().zip(q.0.iter()).any(|(x, y)| x.abs_diff(*y) > 25))
-        .count()
 }
 
 pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
@@ -79,7 +72,7 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
                 segments: used,
                 auto,
                 ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
-                off_px: off(&image, &reference),
+                off_px: pixels_off(&image, &reference, 25).unwrap_or(usize::MAX),
                 psnr: psnr(&image, &reference).unwrap_or(0.0),
                 pareto: false,
             };

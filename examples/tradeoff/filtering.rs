@@ -12,12 +12,12 @@ use image::RgbImage;
 use plotters::prelude::*;
 use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
+use shaderlab::metrics::{box_downsample, rmse};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
-use super::suzanne::rmse;
 use super::Summary;
 
 const W: u32 = 640;
@@ -41,23 +41,6 @@ struct Row {
     pareto: bool,
 }
 
-/// `image` box-filtered down by `n` on each side.
-fn downsample(image: &RgbImage, n: u32) -> RgbImage {
-    RgbImage::from_fn(image.width() / n, image.height() / n, |x, y| {
-        let mut sum = [0u32; 3];
-        for j in 0..n {
-            for i in 0..n {
-                let p = image.get_pixel(x * n + i, y * n + j).0;
-                for c in 0..3 {
-                    sum[c] += u32::from(p[c]);
-                }
-            }
-        }
-        let count = n * n;
-        image::Rgb(sum.map(|s| ((s + count / 2) / count) as u8))
-    })
-}
-
 /// The top `rows` rows of an image.
 fn top(image: &RgbImage, rows: u32) -> RgbImage {
     image::imageops::crop_imm(image, 0, 0, image.width(), rows).to_image()
@@ -75,7 +58,7 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     lab.params_mut().set_str("min", "nearest")?;
     lab.params_mut().set_str("mag", "nearest")?;
     eprintln!("filtering: drawing the {}x{} ground truth", W * SS, H * SS);
-    let truth = downsample(&to_rgb(&screenshot(gpu, lab.as_mut(), W * SS, H * SS)?), SS);
+    let truth = box_downsample(&to_rgb(&screenshot(gpu, lab.as_mut(), W * SS, H * SS)?), SS);
     let mut rows = Vec::new();
     let configs = MINS
         .iter()
@@ -94,8 +77,8 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
                 min,
                 mag,
                 ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
-                rmse: rmse(&image, &truth),
-                far_rmse: rmse(&top(&image, H / 2), &top(&truth, H / 2)),
+                rmse: rmse(&image, &truth).unwrap_or(f64::INFINITY),
+                far_rmse: rmse(&top(&image, H / 2), &top(&truth, H / 2)).unwrap_or(f64::INFINITY),
                 pareto: false,
             };
             eprintln!(

@@ -10,12 +10,12 @@ use std::path::Path;
 use plotters::prelude::*;
 use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, LabEntry, NO_FILES};
+use shaderlab::metrics::rmse;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
-use super::suzanne::rmse;
 use super::Summary;
 
 const W: u32 = 512;
@@ -73,7 +73,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
                     lab: entry.info.name,
                     level,
                     ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
-                    rmse: rmse(&image, &reference),
+                    rmse: rmse(&image, &reference).unwrap_or(f64::INFINITY),
                     pareto: false,
                 };
                 bar.inc(1);

@@ -5,11 +5,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use image::RgbImage;
 use plotters::prelude::*;
 use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
-use shaderlab::metrics::psnr;
+use shaderlab::metrics::{box_downsample, psnr, rmse};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
 use shaderlab::shell::{bench, screenshot};
@@ -40,33 +39,6 @@ struct Row {
     pareto: bool,
 }
 
-/// `image` box-filtered down by `SS` on each side.
-fn downsample(image: &RgbImage) -> RgbImage {
-    RgbImage::from_fn(image.width() / SS, image.height() / SS, |x, y| {
-        let mut sum = [0u32; 3];
-        for j in 0..SS {
-            for i in 0..SS {
-                let p = image.get_pixel(x * SS + i, y * SS + j).0;
-                for c in 0..3 {
-                    sum[c] += u32::from(p[c]);
-                }
-            }
-        }
-        let n = SS * SS;
-        image::Rgb(sum.map(|s| ((s + n / 2) / n) as u8))
-    })
-}
-
-pub fn rmse(a: &RgbImage, b: &RgbImage) -> f64 {
-    let sum: f64 = a
-        .as_raw()
-        .iter()
-        .zip(b.as_raw())
-        .map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2))
-        .sum();
-    (sum / a.as_raw().len().max(1) as f64).sqrt()
-}
-
 pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let source = ShaderSource::Embedded;
     let cx = LabContext {
@@ -82,7 +54,7 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             lab.params_mut().set_str(k, v)?;
         }
         lab.params_mut().set_str("shading", "phong")?;
-        let reference = downsample(&to_rgb(&screenshot(gpu, lab.as_mut(), W * SS, H * SS)?));
+        let reference = box_downsample(&to_rgb(&screenshot(gpu, lab.as_mut(), W * SS, H * SS)?), SS);
         for shading in SHADINGS {
             lab.params_mut().set_str("shading", shading)?;
             let image = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
@@ -92,7 +64,7 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
                 shading,
                 ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
                 psnr: psnr(&image, &reference).unwrap_or(0.0),
-                rmse: rmse(&image, &reference),
+                rmse: rmse(&image, &reference).unwrap_or(f64::INFINITY),
                 pareto: false,
             };
             eprintln!(

@@ -32,6 +32,40 @@ pub fn mse(a: &RgbImage, b: &RgbImage) -> Option<f64> {
     Some(sum / a.as_raw().len().max(1) as f64)
 }
 
+/// Root-mean-square error over the RGB channels (8-bit units); `None` for different sizes.
+pub fn rmse(a: &RgbImage, b: &RgbImage) -> Option<f64> {
+    mse(a, b).map(f64::sqrt)
+}
+
+/// Pixels where some channel differs by more than `threshold` (8-bit units): what a person
+/// sees as a different pixel, where PSNR mixes many small differences with few large ones.
+/// `None` for different sizes.
+pub fn pixels_off(a: &RgbImage, b: &RgbImage, threshold: u8) -> Option<usize> {
+    (a.dimensions() == b.dimensions()).then(|| {
+        a.pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| p.0.iter().zip(q.0.iter()).any(|(x, y)| x.abs_diff(*y) > threshold))
+            .count()
+    })
+}
+
+/// `image` box-filtered down by `n` on each side (each pixel the rounded mean of its n × n
+/// block): a supersampled rendering brought to the size it stands for.
+pub fn box_downsample(image: &RgbImage, n: u32) -> RgbImage {
+    let n = n.max(1);
+    RgbImage::from_fn(image.width() / n, image.height() / n, |x, y| {
+        let mut sum = [0u32; 3];
+        for j in 0..n {
+            for i in 0..n {
+                let p = image.get_pixel(x * n + i, y * n + j).0;
+                (0..3).for_each(|c| sum[c] += u32::from(p[c]));
+            }
+        }
+        let count = n * n;
+        Rgb(sum.map(|s| ((s + count / 2) / count) as u8))
+    })
+}
+
 /// Largest absolute channel difference.
 pub fn max_abs_diff(a: &RgbImage, b: &RgbImage) -> Option<u8> {
     (a.dimensions() == b.dimensions()).then(|| {
@@ -135,4 +169,24 @@ pub fn luma_stats(image: &RgbImage, mask: &[bool]) -> (f64, f64) {
     let mean = values.iter().sum::<f64>() / n;
     let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
     (mean, var)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixels_off_and_box_downsample() {
+        let a = RgbImage::from_fn(4, 4, |x, _| Rgb([if x < 2 { 0 } else { 200 }, 0, 0]));
+        let mut b = a.clone();
+        b.put_pixel(0, 0, Rgb([26, 0, 0]));
+        b.put_pixel(1, 0, Rgb([25, 0, 0]));
+        assert_eq!(pixels_off(&a, &b, 25), Some(1));
+        assert_eq!(pixels_off(&a, &RgbImage::new(2, 2), 25), None);
+        let small = box_downsample(&a, 2);
+        assert_eq!(small.dimensions(), (2, 2));
+        assert_eq!(small.get_pixel(0, 0).0, [0, 0, 0]);
+        assert_eq!(small.get_pixel(1, 1).0, [200, 0, 0]);
+        assert_eq!(rmse(&a, &a), Some(0.0));
+    }
 }
