@@ -218,6 +218,8 @@ fn today() -> String {
 
 #[path = "tradeoff/bezier.rs"]
 mod bezier;
+#[path = "tradeoff/chart.rs"]
+mod chart;
 #[path = "tradeoff/filtering.rs"]
 mod filtering;
 #[path = "tradeoff/lighting.rs"]

@@ -10,7 +10,6 @@ use std::path::Path;
 
 use image::RgbImage;
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{box_downsample, rmse};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -94,7 +93,6 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             .iter()
             .any(|o| o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse));
     }
-    let csv = out.join("filtering.csv");
     let mut text = String::from("min,mag,ms_per_frame,rmse,far_half_rmse,pareto\n");
     for r in &rows {
         writeln!(
@@ -103,12 +101,9 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             r.min, r.mag, r.ms, r.rmse, r.far_rmse, r.pareto
         )?;
     }
-    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
-    let svg = out.join("filtering.svg");
     let mut chart = String::new();
     draw(&rows, &mut chart)?;
-    write_atomic(&svg, |w| w.write_all(chart.as_bytes()))?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    super::chart::write(out, "filtering", &text, &chart)?;
     let get = |min: &str, mag: &str| rows.iter().find(|r| r.min == min && r.mag == mag).cloned();
     let lesson = match (
         get("nearest", "nearest"),

@@ -8,7 +8,6 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, LabEntry, NO_FILES};
 use shaderlab::metrics::rmse;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -103,7 +102,6 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
                 && (o.ms < r.ms || o.rmse < r.rmse)
         });
     }
-    let csv = out.join("lighting.csv");
     let mut text = String::from("object,lab,level,ms_per_frame,rmse,pareto\n");
     for r in &rows {
         writeln!(
@@ -112,12 +110,9 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
             r.object, r.lab, r.level, r.ms, r.rmse, r.pareto
         )?;
     }
-    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
-    let svg = out.join("lighting.svg");
     let mut chart = String::new();
     draw(&rows, &mut chart)?;
-    write_atomic(&svg, |w| w.write_all(chart.as_bytes()))?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    super::chart::write(out, "lighting", &text, &chart)?;
     let find = |lab: &str, level: u32| {
         rows.iter()
             .find(|r| r.object == "sphere" && r.lab == lab && r.level == level)

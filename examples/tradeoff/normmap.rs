@@ -8,7 +8,6 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::labs::seed001::normmap::{with_cube, CUBE_SIZES};
 use shaderlab::metrics::psnr;
@@ -94,7 +93,6 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             });
         }
     }
-    let csv = out.join("normmap.csv");
     let mut text = String::from("light,method,cube_size,ms_per_frame,psnr_vs_normalize_db,pareto\n");
     for r in &rows {
         let pareto = !rows
@@ -115,12 +113,9 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             pareto
         )?;
     }
-    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
-    let svg = out.join("normmap.svg");
     let mut chart = String::new();
     draw(&rows, &mut chart)?;
-    write_atomic(&svg, |w| w.write_all(chart.as_bytes()))?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    super::chart::write(out, "normmap", &text, &chart)?;
     let pairs: Vec<(f64, f64)> = (0..LIGHTS.len())
         .filter_map(|l| {
             let b = rows.iter().find(|r| r.light == l && r.cube == 0)?;

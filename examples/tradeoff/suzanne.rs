@@ -6,7 +6,6 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{box_downsample, psnr, rmse};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -80,7 +79,6 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             .iter()
             .any(|o| o.state == r.state && o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse));
     }
-    let csv = out.join("suzanne.csv");
     let mut text = String::from("state,shading,ms_per_frame,psnr_db,rmse,pareto\n");
     for r in &rows {
         writeln!(
@@ -89,12 +87,9 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             STATES[r.state].0, r.shading, r.ms, r.psnr, r.rmse, r.pareto
         )?;
     }
-    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
-    let svg = out.join("suzanne.svg");
     let mut chart = String::new();
     draw(&rows, &mut chart)?;
-    write_atomic(&svg, |w| w.write_all(chart.as_bytes()))?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    super::chart::write(out, "suzanne", &text, &chart)?;
     let get = |s: usize, shading: &str| rows.iter().find(|r| r.state == s && r.shading == shading).cloned();
     let lesson = match (get(0, "gouraud"), get(0, "phong"), get(1, "gouraud"), get(1, "phong"), get(0, "flat")) {
         (Some(g), Some(p), Some(g1), Some(p1), Some(f)) => format!(

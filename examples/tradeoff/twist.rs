@@ -7,7 +7,6 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
@@ -15,6 +14,7 @@ use shaderlab::shell::{bench, screenshot};
 use shaderlab::study::twist::{auto_grid, exact_mask, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX};
 use shaderlab::{labs, Gpu};
 
+use super::chart::{sweep_panel, Point};
 use super::Summary;
 
 /// The lab's picture size.
@@ -104,7 +104,6 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
                 && (o.ms < r.ms || o.wrong_px < r.wrong_px)
         });
     }
-    let csv = out.join("twist.csv");
     let mut text = String::from("twisting,grid,vertices,ms_per_frame,wrong_px,wrong_pct,grid_error_px,auto,pareto\n");
     for r in &rows {
         writeln!(
@@ -121,12 +120,9 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
             r.pareto
         )?;
     }
-    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
-    let svg = out.join("twist.svg");
     let mut chart_text = String::new();
     draw(&rows, &mut chart_text)?;
-    write_atomic(&svg, |w| w.write_all(chart_text.as_bytes()))?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    super::chart::write(out, "twist", &text, &chart_text)?;
     Ok(Summary {
         name: "twist",
         title: "Seed 002: twist grid resolution against the exact spiral",
@@ -178,57 +174,25 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
     root.fill(&WHITE)?;
     let panels = root.split_evenly((1, TWISTINGS.len()));
     for (panel, twisting) in panels.iter().zip(TWISTINGS) {
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.twisting == twisting).collect();
-        let floor = 0.5;
-        let y = |r: &Row| (r.wrong_px as f64).max(floor);
-        let max_ms = mine.iter().map(|r| r.ms).fold(0.0, f64::max) * 1.2;
-        let min_ms = mine.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.8;
-        let max_y = mine.iter().map(|r| y(r)).fold(1.0, f64::max) * 2.0;
-        let mut c = ChartBuilder::on(panel)
-            .caption(format!("twist, twisting = {twisting}"), ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d((min_ms..max_ms).log_scale(), (floor * 0.8..max_y).log_scale())?;
-        c.configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_desc("ms per frame (GPU timestamps, lavapipe)")
-            .y_desc("pixels wrong vs exact (512x512; 0 drawn at 0.5)")
-            .draw()?;
-        let blue = RGBColor(31, 119, 180);
-        c.draw_series(
-            mine.iter()
-                .filter(|r| !r.auto)
-                .map(|r| Circle::new((r.ms, y(r)), 4, blue.filled())),
-        )?
-        .label("grid N×N")
-        .legend(move |(x, y)| Circle::new((x + 10, y), 4, blue.filled()));
-        c.draw_series(mine.iter().filter(|r| !r.auto).map(|r| {
-            Text::new(
-                format!("{}", r.grid),
-                (r.ms, y(r)),
-                ("sans-serif", 11).into_font().color(&RGBColor(90, 90, 90)),
-            )
-        }))?;
-        let red = RGBColor(214, 39, 40);
-        c.draw_series(
-            mine.iter()
-                .filter(|r| r.auto)
-                .map(|r| TriangleMarker::new((r.ms, y(r)), 8, red.filled())),
-        )?
-        .label("grid=auto")
-        .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 8, red.filled()));
-        let mut front: Vec<(f64, f64)> = mine.iter().filter(|r| r.pareto).map(|r| (r.ms, y(r))).collect();
-        front.sort_by(|a, b| a.0.total_cmp(&b.0));
-        c.draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.9))
-            .draw()?;
+        let points: Vec<Point> = rows
+            .iter()
+            .filter(|r| r.twisting == twisting)
+            .map(|r| Point {
+                ms: r.ms,
+                error: r.wrong_px as f64,
+                label: r.grid.to_string(),
+                auto: r.auto,
+                pareto: r.pareto,
+            })
+            .collect();
+        sweep_panel(
+            panel,
+            &format!("twist, twisting = {twisting}"),
+            "pixels wrong vs exact (512x512; 0 drawn at 0.5)",
+            "grid N×N",
+            "grid=auto",
+            &points,
+        )?;
     }
     root.present()?;
     Ok(())

@@ -7,7 +7,6 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
 use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -15,6 +14,7 @@ use shaderlab::shader::ShaderSource;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
+use super::chart::{sweep_panel, Point};
 use super::Summary;
 
 const W: u32 = 512;
@@ -112,7 +112,6 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
             o.state == r.state && o.ms <= r.ms && o.off_px <= r.off_px && (o.ms < r.ms || o.off_px < r.off_px)
         });
     }
-    let csv = out.join("wave.csv");
     let mut text = String::from("state,subdiv,vertices,ms_per_frame,off_px,psnr_db,auto,pareto\n");
     for r in &rows {
         writeln!(
@@ -128,12 +127,9 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
             r.pareto
         )?;
     }
-    write_atomic(&csv, |w| w.write_all(text.as_bytes()))?;
-    let svg = out.join("wave.svg");
     let mut chart = String::new();
     draw(&rows, &mut chart)?;
-    write_atomic(&svg, |w| w.write_all(chart.as_bytes()))?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    super::chart::write(out, "wave", &text, &chart)?;
     let pick = |s: usize, f: &dyn Fn(&Row) -> bool| rows.iter().find(|r| r.state == s && f(r)).cloned();
     let lesson = match (pick(0, &|r| r.subdiv == 1 && !r.auto), pick(0, &|r| r.auto), pick(1, &|r| r.subdiv == 1 && !r.auto), pick(1, &|r| r.auto)) {
         (Some(c), Some(a), Some(sc), Some(sa)) => format!(
@@ -157,56 +153,25 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
     root.fill(&WHITE)?;
     let panels = root.split_evenly((1, STATES.len()));
     for (s, panel) in panels.iter().enumerate() {
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.state == s).collect();
-        let y = |r: &Row| (r.off_px as f64).max(0.5);
-        let max_ms = mine.iter().map(|r| r.ms).fold(0.0, f64::max) * 1.2;
-        let min_ms = mine.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.8;
-        let max_y = mine.iter().map(|r| y(r)).fold(1.0, f64::max) * 2.0;
-        let mut c = ChartBuilder::on(panel)
-            .caption(format!("wave, {}", STATES[s].0), ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d((min_ms..max_ms).log_scale(), (0.4..max_y).log_scale())?;
-        c.configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_desc("ms per frame (GPU timestamps, lavapipe)")
-            .y_desc("pixels off vs 32x32-split grid (0 at 0.5)")
-            .draw()?;
-        let blue = RGBColor(31, 119, 180);
-        c.draw_series(
-            mine.iter()
-                .filter(|r| !r.auto)
-                .map(|r| Circle::new((r.ms, y(r)), 4, blue.filled())),
-        )?
-        .label("subdiv k")
-        .legend(move |(x, y)| Circle::new((x + 10, y), 4, blue.filled()));
-        c.draw_series(mine.iter().filter(|r| !r.auto).map(|r| {
-            Text::new(
-                format!("{}", r.subdiv),
-                (r.ms, y(r)),
-                ("sans-serif", 11).into_font().color(&RGBColor(90, 90, 90)),
-            )
-        }))?;
-        let red = RGBColor(214, 39, 40);
-        c.draw_series(
-            mine.iter()
-                .filter(|r| r.auto)
-                .map(|r| TriangleMarker::new((r.ms, y(r)), 8, red.filled())),
-        )?
-        .label("subdiv=auto")
-        .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 8, red.filled()));
-        let mut front: Vec<(f64, f64)> = mine.iter().filter(|r| r.pareto).map(|r| (r.ms, y(r))).collect();
-        front.sort_by(|a, b| a.0.total_cmp(&b.0));
-        c.draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.9))
-            .draw()?;
+        let points: Vec<Point> = rows
+            .iter()
+            .filter(|r| r.state == s)
+            .map(|r| Point {
+                ms: r.ms,
+                error: r.off_px as f64,
+                label: r.subdiv.to_string(),
+                auto: r.auto,
+                pareto: r.pareto,
+            })
+            .collect();
+        sweep_panel(
+            panel,
+            &format!("wave, {}", STATES[s].0),
+            "pixels off vs 32x32-split grid (0 at 0.5)",
+            "subdiv k",
+            "subdiv=auto",
+            &points,
+        )?;
     }
     root.present()?;
     Ok(())

@@ -1,0 +1,92 @@
+//! What the studies share: writing a study's CSV and SVG, and the panel of a sweep (one knob's
+//! settings as labelled points, `auto`'s choice marked, the Pareto front drawn) on log-log
+//! axes of frame time against an error that can be zero.
+
+use std::path::Path;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use shaderlab::fsutil::write_atomic;
+
+/// Writes `DIR/NAME.csv` and `DIR/NAME.svg`, each whole, and says so.
+pub fn write(out: &Path, name: &str, csv: &str, svg: &str) -> anyhow::Result<()> {
+    let (csv_path, svg_path) = (out.join(format!("{name}.csv")), out.join(format!("{name}.svg")));
+    write_atomic(&csv_path, |w| w.write_all(csv.as_bytes()))?;
+    write_atomic(&svg_path, |w| w.write_all(svg.as_bytes()))?;
+    println!("wrote {} and {}", csv_path.display(), svg_path.display());
+    Ok(())
+}
+
+/// One setting of a sweep, as a panel draws it.
+pub struct Point {
+    /// Milliseconds per frame.
+    pub ms: f64,
+    /// The error (pixels off or wrong); 0 is drawn at 0.5 on the log axis.
+    pub error: f64,
+    /// The setting, written beside the point.
+    pub label: String,
+    /// `auto`'s choice (a red triangle, no label).
+    pub auto: bool,
+    /// On the Pareto front.
+    pub pareto: bool,
+}
+
+/// A sweep's panel: `series` names the settings, `auto` the knob's `auto`.
+pub fn sweep_panel(
+    panel: &DrawingArea<SVGBackend<'_>, Shift>,
+    caption: &str,
+    y_desc: &str,
+    series: &str,
+    auto: &str,
+    points: &[Point],
+) -> anyhow::Result<()> {
+    let floor = 0.5;
+    let y = |p: &Point| p.error.max(floor);
+    let max_ms = points.iter().map(|p| p.ms).fold(0.0, f64::max) * 1.2;
+    let min_ms = points.iter().map(|p| p.ms).fold(f64::INFINITY, f64::min) * 0.8;
+    let max_y = points.iter().map(y).fold(1.0, f64::max) * 2.0;
+    let mut c = ChartBuilder::on(panel)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d((min_ms..max_ms).log_scale(), (floor * 0.8..max_y).log_scale())?;
+    c.configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .x_desc("ms per frame (GPU timestamps, lavapipe)")
+        .y_desc(y_desc)
+        .draw()?;
+    let blue = RGBColor(31, 119, 180);
+    let settings = || points.iter().filter(|p| !p.auto);
+    c.draw_series(settings().map(|p| Circle::new((p.ms, y(p)), 4, blue.filled())))?
+        .label(series)
+        .legend(move |(x, y)| Circle::new((x + 10, y), 4, blue.filled()));
+    c.draw_series(settings().map(|p| {
+        Text::new(
+            p.label.clone(),
+            (p.ms, y(p)),
+            ("sans-serif", 11).into_font().color(&RGBColor(90, 90, 90)),
+        )
+    }))?;
+    let red = RGBColor(214, 39, 40);
+    c.draw_series(
+        points
+            .iter()
+            .filter(|p| p.auto)
+            .map(|p| TriangleMarker::new((p.ms, y(p)), 8, red.filled())),
+    )?
+    .label(auto)
+    .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 8, red.filled()));
+    let mut front: Vec<(f64, f64)> = points.iter().filter(|p| p.pareto).map(|p| (p.ms, y(p))).collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    c.draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    c.configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.9))
+        .draw()?;
+    Ok(())
+}
