@@ -90,3 +90,20 @@ pub fn sweep_panel(
         .draw()?;
     Ok(())
 }
+
+/// Which rows are on the Pareto front: no other row of the same group (`same`) is at least as
+/// fast and at least as accurate, and better in one of the two.
+pub fn pareto<T>(
+    rows: &[T],
+    same: impl Fn(&T, &T) -> bool,
+    ms: impl Fn(&T) -> f64,
+    error: impl Fn(&T) -> f64,
+) -> Vec<bool> {
+    rows.iter()
+        .map(|r| {
+            !rows
+                .iter()
+                .any(|o| same(o, r) && ms(o) <= ms(r) && error(o) <= error(r) && (ms(o) < ms(r) || error(o) < error(r)))
+        })
+        .collect()
+}

@@ -87,11 +87,9 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
             rows.push(row);
         }
     }
-    let snapshot = rows.clone();
-    for r in rows.iter_mut() {
-        r.pareto = !snapshot
-            .iter()
-            .any(|o| o.ms <= r.ms && o.rmse <= r.rmse && (o.ms < r.ms || o.rmse < r.rmse));
+    let front = super::chart::pareto(&rows, |_, _| true, |r| r.ms, |r| r.rmse);
+    for (r, on) in rows.iter_mut().zip(front) {
+        r.pareto = on;
     }
     let mut text = String::from("min,mag,ms_per_frame,rmse,far_half_rmse,pareto\n");
     for r in &rows {

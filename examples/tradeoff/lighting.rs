@@ -91,16 +91,15 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
     }
     bar.finish_and_clear();
     // The front among the two Phong programs (same formula, same reference); toon is its own.
-    let snapshot = rows.clone();
     let family = |lab: &str| if lab == "toon" { "toon" } else { "phong" };
-    for r in rows.iter_mut() {
-        r.pareto = !snapshot.iter().any(|o| {
-            o.object == r.object
-                && family(o.lab) == family(r.lab)
-                && o.ms <= r.ms
-                && o.rmse <= r.rmse
-                && (o.ms < r.ms || o.rmse < r.rmse)
-        });
+    let front = super::chart::pareto(
+        &rows,
+        |a, b| a.object == b.object && family(a.lab) == family(b.lab),
+        |r| r.ms,
+        |r| r.rmse,
+    );
+    for (r, on) in rows.iter_mut().zip(front) {
+        r.pareto = on;
     }
     let mut text = String::from("object,lab,level,ms_per_frame,rmse,pareto\n");
     for r in &rows {

@@ -95,14 +95,9 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
         }
     }
     bar.finish_and_clear();
-    let snapshot = rows.clone();
-    for r in rows.iter_mut() {
-        r.pareto = !snapshot.iter().any(|o| {
-            o.twisting == r.twisting
-                && o.ms <= r.ms
-                && o.wrong_px <= r.wrong_px
-                && (o.ms < r.ms || o.wrong_px < r.wrong_px)
-        });
+    let front = super::chart::pareto(&rows, |a, b| a.twisting == b.twisting, |r| r.ms, |r| r.wrong_px as f64);
+    for (r, on) in rows.iter_mut().zip(front) {
+        r.pareto = on;
     }
     let mut text = String::from("twisting,grid,vertices,ms_per_frame,wrong_px,wrong_pct,grid_error_px,auto,pareto\n");
     for r in &rows {

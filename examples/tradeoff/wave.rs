@@ -106,11 +106,9 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
         }
     }
     bar.finish_and_clear();
-    let snapshot = rows.clone();
-    for r in rows.iter_mut() {
-        r.pareto = !snapshot.iter().any(|o| {
-            o.state == r.state && o.ms <= r.ms && o.off_px <= r.off_px && (o.ms < r.ms || o.off_px < r.off_px)
-        });
+    let front = super::chart::pareto(&rows, |a, b| a.state == b.state, |r| r.ms, |r| r.off_px as f64);
+    for (r, on) in rows.iter_mut().zip(front) {
+        r.pareto = on;
     }
     let mut text = String::from("state,subdiv,vertices,ms_per_frame,off_px,psnr_db,auto,pareto\n");
     for r in &rows {
