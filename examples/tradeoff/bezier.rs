@@ -11,10 +11,10 @@ use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
-use shaderlab::shell::{bench, screenshot};
+use shaderlab::shell::screenshot;
 use shaderlab::{labs, Gpu};
 
-use super::chart::{sweep_panel, Point};
+use super::chart::{measure_settings, sweep_panel, Point};
 use super::Summary;
 
 const W: u32 = 640;
@@ -51,34 +51,30 @@ pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
         }
         lab.params_mut().set("segments", &[f64::from(REFERENCE)])?;
         let reference = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
-        let mut configs: Vec<(u32, bool)> = counts.iter().map(|&n| (n, false)).collect();
-        configs.push((0, true));
-        for (n, auto) in configs {
-            lab.params_mut().set("segments", &[f64::from(n)])?;
-            let image = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
-            let timing = bench(gpu, lab.as_mut(), frames, W, H, true)?;
-            let used = if auto {
-                lab.title()
-                    .split("segments auto: ")
-                    .nth(1)
-                    .and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next())
-                    .and_then(|t| t.parse().ok())
-                    .unwrap_or(0)
-            } else {
-                n
-            };
+        let measured = measure_settings(
+            gpu,
+            lab.as_mut(),
+            "segments",
+            &counts,
+            "segments auto: ",
+            frames,
+            (W, H),
+            &|_| Ok(()),
+        )?;
+        for m in measured {
             let row = Row {
                 state: s,
-                segments: used,
-                auto,
-                ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
-                off_px: pixels_off(&image, &reference, 25).unwrap_or(usize::MAX),
-                psnr: psnr(&image, &reference).unwrap_or(0.0),
+                segments: m.setting,
+                auto: m.auto,
+                ms: m.ms,
+                off_px: pixels_off(&m.image, &reference, 25).unwrap_or(usize::MAX),
+                psnr: psnr(&m.image, &reference).unwrap_or(0.0),
                 pareto: false,
             };
             eprintln!(
-                "bezier {name} segments {used}{}: {:.3} ms, {} px off, {:.1} dB",
-                if auto { " (auto)" } else { "" },
+                "bezier {name} segments {}{}: {:.3} ms, {} px off, {:.1} dB",
+                row.segments,
+                if row.auto { " (auto)" } else { "" },
                 row.ms,
                 row.off_px,
                 row.psnr

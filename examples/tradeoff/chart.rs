@@ -107,3 +107,55 @@ pub fn pareto<T>(
         })
         .collect()
 }
+
+/// One setting of a knob, drawn and timed.
+pub struct Measured {
+    /// The setting drawn (for `auto`, the one the lab chose, read from its title).
+    pub setting: u32,
+    /// Whether it was `auto` (the knob at 0).
+    pub auto: bool,
+    /// Milliseconds per frame (GPU timestamps where the adapter has them).
+    pub ms: f64,
+    /// The picture, at the study's size.
+    pub image: image::RgbImage,
+}
+
+/// Draws and times `lab` at each of `settings` of its knob `param`, then at `auto` (0, whose
+/// choice the lab's title names after `auto_title`, e.g. `segments auto: `). `after_bench`
+/// puts back what timing changed (an animated lab's clock).
+#[allow(clippy::too_many_arguments)]
+pub fn measure_settings(
+    gpu: &shaderlab::Gpu,
+    lab: &mut dyn shaderlab::Lab,
+    param: &str,
+    settings: &[u32],
+    auto_title: &str,
+    frames: u32,
+    (width, height): (u32, u32),
+    after_bench: &dyn Fn(&mut dyn shaderlab::Lab) -> anyhow::Result<()>,
+) -> anyhow::Result<Vec<Measured>> {
+    let mut out = Vec::new();
+    for (setting, auto) in settings.iter().map(|&s| (s, false)).chain([(0, true)]) {
+        lab.params_mut().set(param, &[f64::from(setting)])?;
+        let image = shaderlab::offscreen::to_rgb(&shaderlab::shell::screenshot(gpu, lab, width, height)?);
+        let timing = shaderlab::shell::bench(gpu, lab, frames, width, height, true)?;
+        after_bench(lab)?;
+        let setting = if auto {
+            lab.title()
+                .split(auto_title)
+                .nth(1)
+                .and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next())
+                .and_then(|t| t.parse().ok())
+                .unwrap_or(0)
+        } else {
+            setting
+        };
+        out.push(Measured {
+            setting,
+            auto,
+            ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
+            image,
+        });
+    }
+    Ok(out)
+}

@@ -11,10 +11,10 @@ use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
-use shaderlab::shell::{bench, screenshot};
+use shaderlab::shell::screenshot;
 use shaderlab::{labs, Gpu};
 
-use super::chart::{sweep_panel, Point};
+use super::chart::{measure_settings, sweep_panel, Point};
 use super::Summary;
 
 const W: u32 = 512;
@@ -61,38 +61,32 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
         }
         lab.params_mut().set("subdiv", &[f64::from(REFERENCE)])?;
         let reference = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
-        let mut configs: Vec<(u32, bool)> = subdivs.iter().map(|&k| (k, false)).collect();
-        configs.push((0, true));
-        for (k, auto) in configs {
-            lab.params_mut().set("subdiv", &[f64::from(k)])?;
-            let image = to_rgb(&screenshot(gpu, lab.as_mut(), W, H)?);
-            // bench moves an animated lab's clock: put the state's time back after it.
-            let timing = bench(gpu, lab.as_mut(), frames, W, H, true)?;
-            lab.params_mut().set_str("time", "0.7")?;
-            let used = if auto {
-                let title = lab.title();
-                title
-                    .split("subdiv auto: ")
-                    .nth(1)
-                    .and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next())
-                    .and_then(|t| t.parse().ok())
-                    .unwrap_or(0)
-            } else {
-                k
-            };
+        // bench moves an animated lab's clock: the state's time goes back after it.
+        let measured = measure_settings(
+            gpu,
+            lab.as_mut(),
+            "subdiv",
+            subdivs,
+            "subdiv auto: ",
+            frames,
+            (W, H),
+            &|lab| Ok(lab.params_mut().set_str("time", "0.7")?),
+        )?;
+        for m in measured {
             let row = Row {
                 state: s,
-                subdiv: used,
-                auto,
-                ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
-                off_px: pixels_off(&image, &reference, 25).unwrap_or(usize::MAX),
-                psnr: psnr(&image, &reference).unwrap_or(0.0),
+                subdiv: m.setting,
+                auto: m.auto,
+                ms: m.ms,
+                off_px: pixels_off(&m.image, &reference, 25).unwrap_or(usize::MAX),
+                psnr: psnr(&m.image, &reference).unwrap_or(0.0),
                 pareto: false,
             };
             bar.inc(1);
             let line = format!(
-                "wave {name} subdiv {used:>2}{}: {:.3} ms, {} px off, {:.1} dB",
-                if auto { " (auto)" } else { "" },
+                "wave {name} subdiv {:>2}{}: {:.3} ms, {} px off, {:.1} dB",
+                row.subdiv,
+                if row.auto { " (auto)" } else { "" },
                 row.ms,
                 row.off_px,
                 row.psnr
