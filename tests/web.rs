@@ -454,3 +454,25 @@ fn a_broken_edit_names_its_line_and_keeps_the_picture_and_fixing_it_recovers() {
         "the fixed text draws the same picture"
     );
 }
+
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_pair_loaded_from_disk_draws_like_the_built_in_one() {
+    let server = serve(site());
+    let sets = sets_of("legacy", CASES.iter().find(|(n, _)| *n == "legacy").unwrap().1);
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let page = open(&server, "webgl2", &format!("{}&check=upload", query("legacy", &sets)));
+    let built_in = page.image("capture").expect("the course's lab3 pair");
+    let mine = page
+        .image("capture-upload")
+        .expect("the same texts as the user's files");
+    let state = page.get("capture-upload.state");
+    println!("after loading: {state}\n{}", page.get("capture-upload.notes"));
+    assert!(state.contains("files=mine.vert,mine.frag"), "{state}");
+    assert!(state.contains("lightPosition=0,1,1"), "the state carried over: {state}");
+    assert_eq!(
+        psnr(&built_in, &mine),
+        Some(f64::INFINITY),
+        "the same texts draw the same picture"
+    );
+}
