@@ -43,10 +43,8 @@ use clap::Parser;
 use plotters::prelude::*;
 use shaderlab::exact::{image_error, silhouette_error, ExactScene, Shape, Specular};
 use shaderlab::fsutil::{check_output_path, write_atomic};
-use shaderlab::lab::LabContext;
 use shaderlab::metrics::mask;
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu, Object};
 
@@ -249,13 +247,7 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
         gpu.describe(),
         args.frames
     );
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-    };
+    let cx = chart::context(gpu);
     let mut lab = (labs::PHONG.new)(&cx)?;
     let mut rows = Vec::new();
     let mut done = 0;
@@ -312,11 +304,7 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
                         sil.max_px,
                         if cull { format!(", {changed_px} px changed by culling") } else { String::new() }
                     );
-                    if bar.is_hidden() {
-                        eprintln!("{line}");
-                    } else {
-                        bar.println(line);
-                    }
+                    chart::say(&bar, line);
                     rows.push(Row {
                         shape: object.name(),
                         shading,

@@ -7,10 +7,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{pixels_off, psnr};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::screenshot;
 use shaderlab::{labs, Gpu};
 
@@ -36,13 +34,7 @@ struct Row {
 
 pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let counts = [2u32, 4, 6, 8, 12, 16, 24, 32, 48, 64, 100, 200];
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     for (s, (name, state)) in STATES.iter().enumerate() {
         let mut lab = (labs::SPECULAR_STRIP.new)(&cx)?;

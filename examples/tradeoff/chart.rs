@@ -159,3 +159,26 @@ pub fn measure_settings(
     }
     Ok(out)
 }
+
+/// The built-in shaders, for [`context`].
+static EMBEDDED: shaderlab::shader::ShaderSource = shaderlab::shader::ShaderSource::Embedded;
+
+/// What every study builds its labs with: the GPU, the built-in shaders, the offscreen format,
+/// no user files.
+pub fn context(gpu: &shaderlab::Gpu) -> shaderlab::lab::LabContext<'_> {
+    shaderlab::lab::LabContext {
+        gpu,
+        source: &EMBEDDED,
+        format: shaderlab::offscreen::COLOR_FORMAT,
+        files: &shaderlab::lab::NO_FILES,
+    }
+}
+
+/// One line of a sweep's progress: above the bar on a terminal, on stderr in a log.
+pub fn say(bar: &indicatif::ProgressBar, line: String) {
+    if bar.is_hidden() {
+        eprintln!("{line}");
+    } else {
+        bar.println(line);
+    }
+}

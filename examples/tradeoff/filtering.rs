@@ -10,10 +10,8 @@ use std::path::Path;
 
 use image::RgbImage;
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{box_downsample, rmse};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
@@ -46,13 +44,7 @@ fn top(image: &RgbImage, rows: u32) -> RgbImage {
 }
 
 pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut lab = (labs::TEXPARAMS.new)(&cx)?;
     lab.params_mut().set_str("min", "nearest")?;
     lab.params_mut().set_str("mag", "nearest")?;

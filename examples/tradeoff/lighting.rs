@@ -8,10 +8,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, LabEntry, NO_FILES};
+use shaderlab::lab::LabEntry;
 use shaderlab::metrics::rmse;
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
@@ -46,13 +45,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
     } else {
         &[6, 8, 12, 16, 24, 32, 48, 64, 96, 128]
     };
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     let bar = shaderlab::shell::progress_bar((2 * 3 * levels.len()) as u64, "configurations");
     for object in ["sphere", "torus"] {
@@ -80,11 +73,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
                     "{object} {} level {level}: {:.3} ms, RMSE {:.2}",
                     row.lab, row.ms, row.rmse
                 );
-                if bar.is_hidden() {
-                    eprintln!("{line}");
-                } else {
-                    bar.println(line);
-                }
+                super::chart::say(&bar, line);
                 rows.push(row);
             }
         }

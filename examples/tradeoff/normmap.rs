@@ -8,11 +8,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::labs::seed001::normmap::{with_cube, CUBE_SIZES};
 use shaderlab::metrics::psnr;
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
@@ -37,13 +35,7 @@ struct Row {
 }
 
 pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut bump = (labs::BUMP.new)(&cx)?;
     let mut cubes = Vec::new();
     for size in CUBE_SIZES {

@@ -6,10 +6,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{box_downsample, psnr, rmse};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
@@ -39,13 +37,7 @@ struct Row {
 }
 
 pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     for (s, (name, state)) in STATES.iter().enumerate() {
         let mut lab = (labs::SUZANNE_PHONG.new)(&cx)?;

@@ -7,9 +7,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, NO_FILES};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::study::twist::{auto_grid, exact_mask, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX};
 use shaderlab::{labs, Gpu};
@@ -41,13 +39,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
     } else {
         &[2, 4, 6, 8, 12, 16, 24, 32, 48, 64, 100, 150, 200, 300, 400]
     };
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut lab = (labs::TWIST.new)(&cx)?;
     let mut rows = Vec::new();
     let total = TWISTINGS.len() * (grids.len() + 1);
@@ -86,11 +78,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
                 row.ms,
                 row.grid_px
             );
-            if bar.is_hidden() {
-                eprintln!("{line}");
-            } else {
-                bar.println(line);
-            }
+            super::chart::say(&bar, line);
             rows.push(row);
         }
     }

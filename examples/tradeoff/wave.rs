@@ -7,10 +7,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use shaderlab::lab::{LabContext, NO_FILES};
 use shaderlab::metrics::{pixels_off, psnr};
-use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
-use shaderlab::shader::ShaderSource;
+use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::screenshot;
 use shaderlab::{labs, Gpu};
 
@@ -45,13 +43,7 @@ struct Row {
 
 pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
     let subdivs: &[u32] = if quick { &[1, 2, 4] } else { &[1, 2, 3, 4, 6, 8, 12, 16] };
-    let source = ShaderSource::Embedded;
-    let cx = LabContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &NO_FILES,
-    };
+    let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     let bar = shaderlab::shell::progress_bar((STATES.len() * (subdivs.len() + 1)) as u64, "configurations");
     for (s, (name, state)) in STATES.iter().enumerate() {
@@ -91,11 +83,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
                 row.off_px,
                 row.psnr
             );
-            if bar.is_hidden() {
-                eprintln!("{line}");
-            } else {
-                bar.println(line);
-            }
+            super::chart::say(&bar, line);
             rows.push(row);
         }
     }
