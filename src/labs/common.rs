@@ -6,6 +6,7 @@ use glam::{Mat3, Mat4};
 use crate::camera;
 use crate::lab::Input;
 use crate::params::{ParamSpec, Params};
+use crate::render::Faces;
 use crate::tess::Object;
 
 /// The shared transform block of `transform.glsl`: the GL 2.0 built-in matrices.
@@ -119,3 +120,31 @@ pub const YANGLE: ParamSpec = ParamSpec::real(
     36000.0,
     "glRotatef about y, degrees (mouse: horizontal drag)",
 );
+
+/// The port's face order (`--set faces=...`), for the labs that draw a solid with the depth
+/// test: `auto` is the lab's measured choice, `mesh` GL's mesh order, `outside_first` the
+/// outside faces first and then the others ([`Faces::OutsideFirst`]). All three give the same
+/// pixels except at exact depth ties (tests/faces.rs); outside first shades fewer fragments.
+pub const FACES: ParamSpec = ParamSpec::choice(
+    "faces",
+    &[0.0],
+    &["auto", "mesh", "outside_first"],
+    "port, same pixels: face order; auto = the lab's measured choice, mesh = GL's, \
+     outside_first = outside faces first, then the others",
+);
+
+/// The faces to draw by the [`FACES`] parameter: `auto` draws outside first when
+/// `auto_outside_first` (the lab measured it faster), `winding` being how the solid's outside
+/// faces are wound. A lab without the parameter draws its faces as `auto` says.
+pub fn faces(params: &Params, auto_outside_first: bool, winding: wgpu::FrontFace) -> Faces {
+    let outside_first = match params.text("faces").as_str() {
+        "mesh" => false,
+        "outside_first" => true,
+        _ => auto_outside_first,
+    };
+    if outside_first {
+        Faces::OutsideFirst(winding)
+    } else {
+        Faces::AsStated
+    }
+}

@@ -15,7 +15,7 @@ use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Faces, GpuMesh, Uniforms};
 
-use crate::labs::common::{object_key, std140_mat3, GlutMouse, TransformUniforms, XANGLE, YANGLE};
+use crate::labs::common::{self, object_key, std140_mat3, GlutMouse, TransformUniforms, XANGLE, YANGLE};
 use crate::tess::{self, Object};
 
 /// Seed 000's object order (keys `1`-`4`: cube, sphere, torus, teapot).
@@ -51,13 +51,7 @@ pub const PARAMS_000: &[ParamSpec] = &[
         100.0,
         "port study: glScalef after the rotations",
     ),
-    ParamSpec::choice(
-        "faces",
-        &[0.0],
-        &["auto", "mesh", "outside_first"],
-        "port, same pixels: face order; auto = the lab's measured choice per object, mesh = GL's, \
-         outside_first = outside faces first, then the others",
-    ),
+    common::FACES,
     ParamSpec::flag(
         "cull",
         &[0.0],
@@ -143,16 +137,7 @@ impl GlutStage {
         if params.on("cull") {
             return Faces::OutsideOnly(winding);
         }
-        let outside_first = match params.text("faces").as_str() {
-            "mesh" => false,
-            "outside_first" => true,
-            _ => split.contains(&object),
-        };
-        if outside_first {
-            Faces::OutsideFirst(winding)
-        } else {
-            Faces::AsStated
-        }
+        common::faces(params, split.contains(&object), winding)
     }
 
     /// The GLUT programs' input: keys `1`-`4` choose the object, the left button drags

@@ -58,6 +58,7 @@ pub static RECIPE: Recipe = Recipe {
             100.0,
             "port study: gluLookAt eye, looking at the origin (colours stay world-space)",
         ),
+        crate::labs::common::FACES,
     ]],
     animated: false,
     title: None,

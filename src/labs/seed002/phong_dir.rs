@@ -45,6 +45,7 @@ pub static RECIPE: Recipe = Recipe {
             &[0.0],
             "0: position from gl_Position (course bug), 1: from gl_Vertex (p)",
         ),
+        crate::labs::common::FACES,
     ]],
     animated: false,
     title: None,

@@ -82,11 +82,11 @@ impl Stage for Teapot {
     fn binds(&self) -> Vec<Bind> {
         vec![self.transform.bind()]
     }
-    /// The teapot's outside faces first (freeglut winds them clockwise, seen from outside):
-    /// the same pixels as GL's mesh order, with the inside faces behind them rejected by the
-    /// depth test before they are shaded.
-    fn faces(&self, _p: &Params) -> Option<crate::render::Faces> {
-        Some(crate::render::Faces::OutsideFirst(wgpu::FrontFace::Cw))
+    /// By the `faces` parameter; in `auto`, the teapot's outside faces first (freeglut winds
+    /// them clockwise, seen from outside): the same pixels as GL's mesh order, with the inside
+    /// faces behind them rejected by the depth test before they are shaded.
+    fn faces(&self, p: &Params) -> Option<crate::render::Faces> {
+        Some(crate::labs::common::faces(p, true, wgpu::FrontFace::Cw))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, _width: u32, _height: u32) -> &GpuMesh<Vertex> {
         let (model, eye) = (self.pose)(p);
