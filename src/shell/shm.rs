@@ -329,13 +329,21 @@ impl ShmPresenter {
             return Err("a frame larger than its segment".into());
         }
         let slice = frame.buffer.slice(..bytes as u64);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        gpu.device
-            .poll(wgpu::PollType::Wait {
+        let mapped = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let flag = mapped.clone();
+        slice.map_async(wgpu::MapMode::Read, move |_| {
+            flag.store(true, std::sync::atomic::Ordering::Release)
+        });
+        // The frame is ready when its buffer is mapped: poll for that briefly, then block
+        // (see Gpu::poll_then_wait).
+        gpu.poll_then_wait(
+            |_| mapped.load(std::sync::atomic::Ordering::Acquire),
+            wgpu::PollType::Wait {
                 submission_index: Some(frame.submission.clone()),
                 timeout: None,
-            })
-            .map_err(x("waiting for the frame"))?;
+            },
+        )
+        .map_err(x("waiting for the frame"))?;
         {
             let view = slice.get_mapped_range().map_err(x("reading the frame"))?;
             // SAFETY: the segment is `size >= bytes` bytes mapped here for the presenter's
