@@ -281,4 +281,21 @@ fn strip_segments_converge_and_auto_follows_the_camera() {
     };
     let (_, closer) = at("auto", "4");
     assert!(count(&closer) >= count(&title), "{closer} vs {title}");
+    // One lab whose camera moves: auto's choice is kept between frames (it is cached by eye
+    // position, field of view and height) and is what a fresh lab at the new eye chooses. (At
+    // every eye reachable here the normal's turn, not the chord, sets it: 146.)
+    let mut lab = build(labs::SPECULAR_STRIP);
+    lab.params_mut().set_str("segments", "auto").unwrap();
+    shot(lab.as_mut());
+    let far = lab.title();
+    shot(lab.as_mut());
+    assert_eq!(lab.title(), far, "the same state keeps its choice");
+    lab.params_mut().set_str("forward", "4").unwrap();
+    shot(lab.as_mut());
+    assert_eq!(
+        count(&lab.title()),
+        count(&closer),
+        "{} vs a fresh lab's {closer}",
+        lab.title()
+    );
 }

@@ -191,6 +191,9 @@ pub struct Fly {
     strip: GpuMesh<StripVertex>,
     /// The segments `strip` was built with.
     segments: u32,
+    /// `segments=auto`'s last choice and what it depends on (eye position and field of view
+    /// as bits, picture height): chosen again only when one of them changes, not every frame.
+    auto: Option<([u32; 5], u32)>,
 }
 
 /// The course's 100 steps of t (its float loop: [`bezier_strip`]).
@@ -256,6 +259,7 @@ impl Fly {
             mouse: (0, 0),
             strip: GpuMesh::new(gpu, "specular_strip.strip", &bezier_strip(), None),
             segments: COURSE_SEGMENTS,
+            auto: None,
         }
     }
 
@@ -316,7 +320,18 @@ impl Stage for Fly {
         self.uniforms.value = StripUniforms::new(&self.camera, aspect, light);
         self.uniforms.upload(gpu);
         let segments = match p.f64("segments") as u32 {
-            0 => auto_segments(&self.camera, height),
+            0 => {
+                let [x, y, z] = self.camera.position.to_array().map(f32::to_bits);
+                let key = [x, y, z, self.camera.fov.to_bits(), height];
+                match self.auto {
+                    Some((k, n)) if k == key => n,
+                    _ => {
+                        let n = auto_segments(&self.camera, height);
+                        self.auto = Some((key, n));
+                        n
+                    }
+                }
+            }
             n => n,
         };
         if segments != self.segments {
