@@ -216,12 +216,26 @@ fn an_interrupted_recording_leaves_no_file() {
         assert!(started.elapsed().as_secs() < 60, "the recording never started");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
+    // Ctrl-C is SIGINT. A shell that starts a job in the background without job control
+    // makes it ignore SIGINT, children inherit that, and the recorder leaves an ignored signal
+    // alone by design (as under `nohup`): under such a parent, SIGTERM, which the same handler
+    // serves, stands in for it.
+    let signal = if sigint_ignored() { "-TERM" } else { "-INT" };
     Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([signal, &child.id().to_string()])
         .status()
         .unwrap();
     let status = child.wait().unwrap();
     assert!(!status.success());
     assert_eq!(listing(&dir), ["long.gif"], "the temporary file is gone");
     assert_eq!(fs::read(dir.join("long.gif")).unwrap(), b"an older recording");
+}
+
+/// Whether this process ignores SIGINT (inherited from a background job's shell).
+fn sigint_ignored() -> bool {
+    // SAFETY: sigaction only reads the current disposition into a zeroed struct.
+    unsafe {
+        let mut old: libc::sigaction = std::mem::zeroed();
+        libc::sigaction(libc::SIGINT, std::ptr::null(), &mut old) == 0 && old.sa_sigaction == libc::SIG_IGN
+    }
 }
