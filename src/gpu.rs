@@ -13,12 +13,20 @@ pub const POLL_BEFORE_WAIT: std::time::Duration = std::time::Duration::from_micr
 #[cfg(not(target_arch = "wasm32"))]
 fn poll_before_wait() -> std::time::Duration {
     static CHOSEN: std::sync::OnceLock<std::time::Duration> = std::sync::OnceLock::new();
-    *CHOSEN.get_or_init(|| {
-        std::env::var("SHADERLAB_POLL_US")
-            .ok()
-            .and_then(|v| v.trim().parse::<u64>().ok())
-            .map(|us| std::time::Duration::from_micros(us.min(1_000_000)))
-            .unwrap_or(POLL_BEFORE_WAIT)
+    *CHOSEN.get_or_init(|| match std::env::var("SHADERLAB_POLL_US") {
+        Err(_) => POLL_BEFORE_WAIT,
+        Ok(v) => match v.trim().parse::<u64>() {
+            Ok(us) => std::time::Duration::from_micros(us.min(1_000_000)),
+            Err(_) => {
+                // A measuring knob: a typo should not silently measure something else.
+                eprintln!(
+                    "shaderlab: SHADERLAB_POLL_US={v:?} is not a whole number of microseconds; \
+                     polling {} µs before blocking",
+                    POLL_BEFORE_WAIT.as_micros()
+                );
+                POLL_BEFORE_WAIT
+            }
+        },
     })
 }
 
