@@ -482,15 +482,9 @@ fn draw_chart(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
             .map(|r| (r.ms, r.rmse.max(min_rmse)))
             .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
-        c.draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        chart::pareto_line(&mut c, front.clone())?;
         c.draw_series(front.iter().map(|&p| Circle::new(p, 7, BLACK.stroke_width(1))))?;
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.9))
-            .draw()?;
+        chart::legend(&mut c, SeriesLabelPosition::UpperRight)?;
     }
     root.present()?;
     Ok(())

@@ -32,7 +32,7 @@ pub struct Point {
 }
 
 /// A sweep's panel: `series` names the settings, `auto` the knob's `auto`.
-pub fn sweep_panel(
+fn sweep_panel(
     panel: &DrawingArea<SVGBackend<'_>, Shift>,
     caption: &str,
     y_desc: &str,
@@ -78,13 +78,59 @@ pub fn sweep_panel(
     )?
     .label(auto)
     .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 8, red.filled()));
-    let mut front: Vec<(f64, f64)> = points.iter().filter(|p| p.pareto).map(|p| (p.ms, y(p))).collect();
+    pareto_line(
+        &mut c,
+        points.iter().filter(|p| p.pareto).map(|p| (p.ms, y(p))).collect(),
+    )?;
+    legend(&mut c, SeriesLabelPosition::UpperRight)
+}
+
+/// A chart of sweep panels side by side, `size` pixels, one per `(caption, points)` ([`sweep_panel`]
+/// with `y_desc`, `series` and `auto`), into `svg`.
+pub fn sweep_chart(
+    svg: &mut String,
+    size: (u32, u32),
+    panels: Vec<(String, Vec<Point>)>,
+    y_desc: &str,
+    series: &str,
+    auto: &str,
+) -> anyhow::Result<()> {
+    let root = SVGBackend::with_string(svg, size).into_drawing_area();
+    root.fill(&WHITE)?;
+    for (area, (caption, points)) in root.split_evenly((1, panels.len())).iter().zip(panels) {
+        sweep_panel(area, &caption, y_desc, series, auto, &points)?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// The Pareto front as a black line through `front`'s points in order of time, in the legend.
+pub fn pareto_line<X, Y>(
+    c: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<X, Y>>,
+    mut front: Vec<(f64, f64)>,
+) -> anyhow::Result<()>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
     c.draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
         .label("Pareto front")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    Ok(())
+}
+
+/// The legend box every study's chart draws, at `position`.
+pub fn legend<'a, X, Y>(
+    c: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    position: SeriesLabelPosition,
+) -> anyhow::Result<()>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
     c.configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(position)
         .border_style(BLACK)
         .background_style(WHITE.mix(0.9))
         .draw()?;

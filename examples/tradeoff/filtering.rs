@@ -15,6 +15,7 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
+use super::chart::{legend, pareto_line};
 use super::Summary;
 
 const W: u32 = 640;
@@ -165,16 +166,11 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
         .label(format!("MIN {min} (filled: MAG nearest)"))
         .legend(move |(x, y)| Circle::new((x + 10, y), 5, col.filled()));
     }
-    let mut front: Vec<(f64, f64)> = rows.iter().filter(|r| r.pareto).map(|r| (r.ms, r.rmse)).collect();
-    front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    c.draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
-        .label("Pareto front")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
-    c.configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.9))
-        .draw()?;
+    pareto_line(
+        &mut c,
+        rows.iter().filter(|r| r.pareto).map(|r| (r.ms, r.rmse)).collect(),
+    )?;
+    legend(&mut c, SeriesLabelPosition::UpperRight)?;
     root.present()?;
     Ok(())
 }

@@ -14,6 +14,7 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
+use super::chart::legend;
 use super::Summary;
 
 const W: u32 = 512;
@@ -183,11 +184,7 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
         c.draw_series(front.iter().map(|&p| Circle::new(p, 7, BLACK.stroke_width(1))))?
             .label("Pareto front (Phong)")
             .legend(|(x, y)| Circle::new((x + 10, y), 6, BLACK.stroke_width(1)));
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.9))
-            .draw()?;
+        legend(&mut c, SeriesLabelPosition::UpperRight)?;
     }
     root.present()?;
     Ok(())

@@ -14,6 +14,7 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
+use super::chart::legend;
 use super::Summary;
 
 const W: u32 = 512;
@@ -184,11 +185,7 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
             ("sans-serif", 11).into_font().color(&RGBColor(90, 90, 90)),
         )
     }))?;
-    c.configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.9))
-        .draw()?;
+    legend(&mut c, SeriesLabelPosition::LowerRight)?;
     root.present()?;
     Ok(())
 }

@@ -6,13 +6,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use plotters::prelude::*;
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::study::twist::{auto_grid, exact_mask, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX};
 use shaderlab::{labs, Gpu};
 
-use super::chart::{sweep_panel, Point};
+use super::chart::{sweep_chart, Point};
 use super::Summary;
 
 /// The lab's picture size.
@@ -153,30 +152,29 @@ fn lesson(rows: &[Row]) -> String {
 }
 
 fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
-    let root = SVGBackend::with_string(svg, (1500, 500)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((1, TWISTINGS.len()));
-    for (panel, twisting) in panels.iter().zip(TWISTINGS) {
-        let points: Vec<Point> = rows
-            .iter()
-            .filter(|r| r.twisting == twisting)
-            .map(|r| Point {
-                ms: r.ms,
-                error: r.wrong_px as f64,
-                label: r.grid.to_string(),
-                auto: r.auto,
-                pareto: r.pareto,
-            })
-            .collect();
-        sweep_panel(
-            panel,
-            &format!("twist, twisting = {twisting}"),
-            "pixels wrong vs exact (512x512; 0 drawn at 0.5)",
-            "grid N×N",
-            "grid=auto",
-            &points,
-        )?;
-    }
-    root.present()?;
-    Ok(())
+    let panels = TWISTINGS
+        .iter()
+        .map(|&twisting| {
+            let points = rows
+                .iter()
+                .filter(|r| r.twisting == twisting)
+                .map(|r| Point {
+                    ms: r.ms,
+                    error: r.wrong_px as f64,
+                    label: r.grid.to_string(),
+                    auto: r.auto,
+                    pareto: r.pareto,
+                })
+                .collect();
+            (format!("twist, twisting = {twisting}"), points)
+        })
+        .collect();
+    sweep_chart(
+        svg,
+        (1500, 500),
+        panels,
+        "pixels wrong vs exact (512x512; 0 drawn at 0.5)",
+        "grid N×N",
+        "grid=auto",
+    )
 }

@@ -6,13 +6,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use plotters::prelude::*;
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::screenshot;
 use shaderlab::{labs, Gpu};
 
-use super::chart::{measure_settings, sweep_panel, Point};
+use super::chart::{measure_settings, sweep_chart, Point};
 use super::Summary;
 
 const W: u32 = 512;
@@ -129,30 +128,28 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
 }
 
 fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
-    let root = SVGBackend::with_string(svg, (1100, 480)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((1, STATES.len()));
-    for (s, panel) in panels.iter().enumerate() {
-        let points: Vec<Point> = rows
-            .iter()
-            .filter(|r| r.state == s)
-            .map(|r| Point {
-                ms: r.ms,
-                error: r.off_px as f64,
-                label: r.subdiv.to_string(),
-                auto: r.auto,
-                pareto: r.pareto,
-            })
-            .collect();
-        sweep_panel(
-            panel,
-            &format!("wave, {}", STATES[s].0),
-            "pixels off vs 32x32-split grid (0 at 0.5)",
-            "subdiv k",
-            "subdiv=auto",
-            &points,
-        )?;
-    }
-    root.present()?;
-    Ok(())
+    let panels = (0..STATES.len())
+        .map(|s| {
+            let points = rows
+                .iter()
+                .filter(|r| r.state == s)
+                .map(|r| Point {
+                    ms: r.ms,
+                    error: r.off_px as f64,
+                    label: r.subdiv.to_string(),
+                    auto: r.auto,
+                    pareto: r.pareto,
+                })
+                .collect();
+            (format!("wave, {}", STATES[s].0), points)
+        })
+        .collect();
+    sweep_chart(
+        svg,
+        (1100, 480),
+        panels,
+        "pixels off vs 32x32-split grid (0 at 0.5)",
+        "subdiv k",
+        "subdiv=auto",
+    )
 }
