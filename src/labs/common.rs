@@ -137,9 +137,11 @@ pub const FACES: ParamSpec = ParamSpec::choice(
 /// `auto_outside_first` (the lab measured it faster), `winding` being how the solid's outside
 /// faces are wound. A lab without the parameter draws its faces as `auto` says.
 pub fn faces(params: &Params, auto_outside_first: bool, winding: wgpu::FrontFace) -> Faces {
-    let outside_first = match params.text("faces").as_str() {
-        "mesh" => false,
-        "outside_first" => true,
+    // By index in FACES' names (a lab without the parameter reads 0, `auto`): no text is
+    // formatted per frame.
+    let outside_first = match params.index_of("faces") {
+        1 => false,
+        2 => true,
         _ => auto_outside_first,
     };
     if outside_first {
