@@ -28,17 +28,15 @@ const fn recipe<const SIZE: u32>() -> Recipe {
     }
 }
 
-/// The cube-map sizes [`with_cube`] offers (the speed/accuracy study's sweep).
-pub const CUBE_SIZES: [u32; 6] = [4, 8, 16, 32, 64, 128];
-
-static SIZED: [Recipe; 6] = [
-    recipe::<4>(),
-    recipe::<8>(),
-    recipe::<16>(),
-    recipe::<32>(),
-    recipe::<64>(),
-    recipe::<128>(),
-];
+/// The sizes and their labs from one list, so the two cannot disagree.
+macro_rules! cube_sizes {
+    ($($size:literal),*) => {
+        /// The cube-map sizes [`with_cube`] offers (the speed/accuracy study's sweep).
+        pub const CUBE_SIZES: [u32; [$($size),*].len()] = [$($size),*];
+        static SIZED: [Recipe; CUBE_SIZES.len()] = [$(recipe::<$size>()),*];
+    };
+}
+cube_sizes!(4, 8, 16, 32, 64, 128);
 
 /// `normmap` with a cube map of `size` texels per side, one of [`CUBE_SIZES`] (`None` for
 /// another): the lecture's trade between the table's size and its accuracy, for the study.
@@ -48,24 +46,22 @@ pub fn with_cube(cx: &LabContext, size: u32) -> Option<Result<Box<dyn Lab>>> {
 }
 
 fn build<const SIZE: u32>(cx: &LabContext, p: &Params) -> Result<Box<dyn Scene>> {
-    {
-        let faces = images::normalization_cube(SIZE);
-        let cube = Texture::new(cx.gpu, "normmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
-        let clamp = wgpu::AddressMode::ClampToEdge;
-        let sampler = sampler(
-            cx.gpu,
-            "normmap.cube_sampler",
-            &SamplerDesc {
-                wrap: [clamp; 3],
-                ..SamplerDesc::default()
-            },
-        );
-        let unit1 = vec![
-            Bind::texture("normMap", &cube),
-            Bind::sampler("normMapSampler", &sampler),
-        ];
-        tangent_bump::build(cx, "normmap", p, &LOOK, unit1)
-    }
+    let faces = images::normalization_cube(SIZE);
+    let cube = Texture::new(cx.gpu, "normmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
+    let clamp = wgpu::AddressMode::ClampToEdge;
+    let sampler = sampler(
+        cx.gpu,
+        "normmap.cube_sampler",
+        &SamplerDesc {
+            wrap: [clamp; 3],
+            ..SamplerDesc::default()
+        },
+    );
+    let unit1 = vec![
+        Bind::texture("normMap", &cube),
+        Bind::sampler("normMapSampler", &sampler),
+    ];
+    tangent_bump::build(cx, "normmap", p, &LOOK, unit1)
 }
 
 /// Texels per side of each face of the normalization cube map.
