@@ -51,3 +51,39 @@ fn suzanne_supersampled_reference_is_converged() {
     println!("4x4 against 8x8 supersampling: RMSE {e:.3}"); // measured 0.275
     assert!(e < 0.8, "RMSE {e:.3}");
 }
+
+/// The README quotes each study's lesson from `docs/tradeoff/index.md` (the run's own words):
+/// after a new run, `scripts/sync-lessons` copies them; until then this fails, naming the study.
+#[test]
+fn readme_lessons_match_the_index() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let index = std::fs::read_to_string(format!("{root}/docs/tradeoff/index.md")).unwrap();
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let mut studies = 0;
+    for section in index.split("\n## ").skip(1) {
+        let lines: Vec<&str> = section.lines().collect();
+        let title = lines[0].trim();
+        let image = lines.iter().position(|l| l.starts_with("![")).expect("a chart under each heading");
+        let lesson = lines[image + 1..].iter().find(|l| !l.trim().is_empty()).expect("a lesson under each chart");
+        // The README's copy sits under a bold heading of the same title.
+        let at = readme
+            .find(&format!("**{title}**"))
+            .unwrap_or_else(|| panic!("README has no heading **{title}**"));
+        let next = readme[at + 2..].find("\n**").map_or(readme.len(), |n| at + 2 + n);
+        assert!(
+            readme[at..next].lines().any(|l| l == *lesson),
+            "README's lesson for \"{title}\" is not the index's; run scripts/sync-lessons"
+        );
+        studies += 1;
+    }
+    assert_eq!(studies, 8, "docs/tradeoff/index.md should hold the eight studies");
+    // The README dates the run it shows: the index's date must appear in that paragraph.
+    let date = index
+        .lines()
+        .find(|l| l.starts_with("Data:"))
+        .and_then(|l| l.rsplit('(').next())
+        .and_then(|s| s.get(..10))
+        .expect("a Data line ending in its date");
+    let shown = readme.find("`docs/tradeoff/` holds the run shown here").expect("the README's paragraph on the run");
+    assert!(readme[shown..shown + 200].contains(date), "README's run date is not the index's {date}");
+}

@@ -1,4 +1,5 @@
-//! Seed 002 `twist`: the course draws a 100 × 100 grid (60,000 vertices) and turns each vertex;
+//! Seed 002 `twist`: the course draws a 100 × 100 grid (60,000 vertices; the lab shades its
+//! 26,244 distinct corners) and turns each vertex;
 //! the exact picture is known per pixel (`shaderlab::study::twist`). Grid resolution against
 //! pixels wrong and frame time, at the course's `twisting` and two stronger ones, and where
 //! `grid=auto` lands.
@@ -6,6 +7,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use shaderlab::geometry::shapes::{indexed_quads, twist_grid_n};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::study::twist::{auto_grid, exact_mask, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX};
@@ -25,6 +27,9 @@ const TWISTINGS: [f64; 3] = [4.25, 20.0, 100.0];
 struct Row {
     twisting: f64,
     grid: u32,
+    /// Distinct corners the lab shades: the course's 6·N² `glVertex` calls welded where their
+    /// bits agree (`shapes::indexed_quads`).
+    corners: usize,
     ms: f64,
     wrong_px: usize,
     grid_px: f64,
@@ -64,6 +69,7 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
             let row = Row {
                 twisting,
                 grid,
+                corners: indexed_quads(&twist_grid_n(grid)).0.len(),
                 ms: timing.gpu_ms.unwrap_or(timing.ms_per_frame),
                 wrong_px,
                 grid_px: grid_error_px(grid, twisting, W, H),
@@ -86,14 +92,15 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
     for (r, on) in rows.iter_mut().zip(front) {
         r.pareto = on;
     }
-    let mut text = String::from("twisting,grid,vertices,ms_per_frame,wrong_px,wrong_pct,grid_error_px,auto,pareto\n");
+    let mut text = String::from("twisting,grid,vertices,corners,ms_per_frame,wrong_px,wrong_pct,grid_error_px,auto,pareto\n");
     for r in &rows {
         writeln!(
             text,
-            "{},{},{},{:.4},{},{:.4},{:.4},{},{}",
+            "{},{},{},{},{:.4},{},{:.4},{:.4},{},{}",
             r.twisting,
             r.grid,
             6 * r.grid * r.grid,
+            r.corners,
             r.ms,
             r.wrong_px,
             100.0 * r.wrong_px as f64 / f64::from(W * H),
@@ -124,19 +131,21 @@ fn lesson(rows: &[Row]) -> String {
         .cloned();
     match (course, auto, finest_strong) {
         (Some(c), Some(a), Some(f)) => format!(
-            "At the course's twisting {} the course's {}×{} grid ({} vertices) leaves {} px wrong in {:.3} ms; \
-             `grid=auto` picks {}×{} ({} vertices, every edge within {} px of its arc) and leaves {} px wrong in {:.3} ms ({:.1}× faster). \
+            "At the course's twisting {} the course's {}×{} grid ({} vertices, drawn as {} distinct corners) leaves {} px wrong in {:.3} ms; \
+             `grid=auto` picks {}×{} ({} vertices, {} corners, every edge within {} px of its arc) and leaves {} px wrong in {:.3} ms ({:.1}× faster). \
              Per-vertex twisting fails when the turn between neighbouring vertices grows: at twisting {} even the \
              {}×{} grid leaves {} px wrong (edges off their arcs by up to {:.1} px), because straight edges between vertices cut the spiral.",
             c.twisting,
             c.grid,
             c.grid,
             6 * c.grid * c.grid,
+            c.corners,
             c.wrong_px,
             c.ms,
             a.grid,
             a.grid,
             6 * a.grid * a.grid,
+            a.corners,
             DEFAULT_BUDGET_PX,
             a.wrong_px,
             a.ms,
