@@ -281,21 +281,34 @@ fn strip_segments_converge_and_auto_follows_the_camera() {
     };
     let (_, closer) = at("auto", "4");
     assert!(count(&closer) >= count(&title), "{closer} vs {title}");
-    // One lab whose camera moves: auto's choice is kept between frames (it is cached by eye
-    // position, field of view and height) and is what a fresh lab at the new eye chooses. (At
-    // every eye reachable here the normal's turn, not the chord, sets it: 146.)
+    // One lab whose camera and picture height change: auto's choice is cached by eye position,
+    // field of view and height, and must follow each. At most eyes the normal's turn sets it
+    // (146 at any height); one step down and four forward put the eye beside the strip's edge, where
+    // a 4800-pixel-tall picture needs 162 for its chords: a cache that missed the eye or the
+    // height would keep 146 there.
+    let tall = |lab: &mut dyn Lab| {
+        shaderlab::shell::screenshot(common::gpu(), lab, 64, 4800).expect("a tall screenshot");
+        count(&lab.title())
+    };
     let mut lab = build(labs::SPECULAR_STRIP);
     lab.params_mut().set_str("segments", "auto").unwrap();
     shot(lab.as_mut());
     let far = lab.title();
     shot(lab.as_mut());
     assert_eq!(lab.title(), far, "the same state keeps its choice");
+    assert_eq!(
+        tall(lab.as_mut()),
+        146,
+        "at the start eye the turn bound decides at any height"
+    );
+    lab.params_mut().set_str("up", "-1").unwrap();
     lab.params_mut().set_str("forward", "4").unwrap();
+    assert_eq!(tall(lab.as_mut()), 162, "the eye moved: the choice follows it");
     shot(lab.as_mut());
     assert_eq!(
         count(&lab.title()),
-        count(&closer),
-        "{} vs a fresh lab's {closer}",
-        lab.title()
+        146,
+        "back to 480 rows: the choice follows the height"
     );
+    assert_eq!(tall(lab.as_mut()), 162, "and back to 4800");
 }

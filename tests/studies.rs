@@ -63,8 +63,14 @@ fn readme_lessons_match_the_index() {
     for section in index.split("\n## ").skip(1) {
         let lines: Vec<&str> = section.lines().collect();
         let title = lines[0].trim();
-        let image = lines.iter().position(|l| l.starts_with("![")).expect("a chart under each heading");
-        let lesson = lines[image + 1..].iter().find(|l| !l.trim().is_empty()).expect("a lesson under each chart");
+        let image = lines
+            .iter()
+            .position(|l| l.starts_with("!["))
+            .expect("a chart under each heading");
+        let lesson = lines[image + 1..]
+            .iter()
+            .find(|l| !l.trim().is_empty())
+            .expect("a lesson under each chart");
         // The README's copy sits under a bold heading of the same title.
         let at = readme
             .find(&format!("**{title}**"))
@@ -84,6 +90,11 @@ fn readme_lessons_match_the_index() {
         .and_then(|l| l.rsplit('(').next())
         .and_then(|s| s.get(..10))
         .expect("a Data line ending in its date");
-    let shown = readme.find("`docs/tradeoff/` holds the run shown here").expect("the README's paragraph on the run");
-    assert!(readme[shown..shown + 200].contains(date), "README's run date is not the index's {date}");
+    let shown = readme
+        .find("`docs/tradeoff/` holds the run shown here")
+        .expect("the README's paragraph on the run");
+    assert!(
+        readme[shown..shown + 200].contains(date),
+        "README's run date is not the index's {date}"
+    );
 }

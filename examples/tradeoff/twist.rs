@@ -92,7 +92,8 @@ pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<
     for (r, on) in rows.iter_mut().zip(front) {
         r.pareto = on;
     }
-    let mut text = String::from("twisting,grid,vertices,corners,ms_per_frame,wrong_px,wrong_pct,grid_error_px,auto,pareto\n");
+    let mut text =
+        String::from("twisting,grid,vertices,corners,ms_per_frame,wrong_px,wrong_pct,grid_error_px,auto,pareto\n");
     for r in &rows {
         writeln!(
             text,
