@@ -439,23 +439,12 @@ fn draw_chart(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
         let min_ms = mine.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.9;
         let max_rmse = mine.iter().map(|r| r.rmse).fold(0.0, f64::max) * 1.5;
         let min_rmse = mine.iter().map(|r| r.rmse).fold(f64::INFINITY, f64::min).max(0.01) * 0.7;
-        let mut c = ChartBuilder::on(panel)
-            .caption(
-                format!("Phong exercise, {shape}: error against frame time"),
-                ("sans-serif", 18),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d((min_ms..max_ms).log_scale(), (min_rmse..max_rmse).log_scale())?;
-        c.configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_labels(6)
-            .y_labels(6)
-            .x_desc("ms per frame (GPU timestamps, lavapipe)")
-            .y_desc("RMSE vs exact ray-cast (8-bit levels)")
-            .draw()?;
+        let mut c = chart::axes(
+            panel,
+            &format!("Phong exercise, {shape}: error against frame time"),
+            ((min_ms..max_ms).log_scale(), chart::MS_AXIS),
+            ((min_rmse..max_rmse).log_scale(), "RMSE vs exact ray-cast (8-bit levels)"),
+        )?;
         for shading in Shading::ALL {
             let col = color(shading);
             let pts: Vec<(f64, f64)> = mine

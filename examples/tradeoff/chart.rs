@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use shaderlab::fsutil::write_atomic;
@@ -45,18 +46,12 @@ fn sweep_panel(
     let max_ms = points.iter().map(|p| p.ms).fold(0.0, f64::max) * 1.2;
     let min_ms = points.iter().map(|p| p.ms).fold(f64::INFINITY, f64::min) * 0.8;
     let max_y = points.iter().map(y).fold(1.0, f64::max) * 2.0;
-    let mut c = ChartBuilder::on(panel)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d((min_ms..max_ms).log_scale(), (floor * 0.8..max_y).log_scale())?;
-    c.configure_mesh()
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(RGBColor(225, 225, 225))
-        .x_desc("ms per frame (GPU timestamps, lavapipe)")
-        .y_desc(y_desc)
-        .draw()?;
+    let mut c = axes(
+        panel,
+        caption,
+        ((min_ms..max_ms).log_scale(), MS_AXIS),
+        ((floor * 0.8..max_y).log_scale(), y_desc),
+    )?;
     let blue = RGBColor(31, 119, 180);
     let settings = || points.iter().filter(|p| !p.auto);
     c.draw_series(settings().map(|p| Circle::new((p.ms, y(p)), 4, blue.filled())))?
@@ -104,6 +99,38 @@ pub fn sweep_chart(
     Ok(())
 }
 
+/// The frame-time axis of every chart here.
+pub const MS_AXIS: &str = "ms per frame (GPU timestamps, lavapipe)";
+
+/// A panel's chart as every study draws it: its caption above, frame time along x and the
+/// error along y (each a range and its description), light grey grid lines only at labels.
+pub fn axes<'a, 'b, X, Y>(
+    panel: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    caption: &str,
+    (x, x_desc): (X, &str),
+    (y, y_desc): (Y, &str),
+) -> anyhow::Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<X::CoordDescType, Y::CoordDescType>>>
+where
+    X: AsRangedCoord<Value = f64>,
+    Y: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
+    Y::CoordDescType: ValueFormatter<f64>,
+{
+    let mut c = ChartBuilder::on(panel)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x, y)?;
+    c.configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()?;
+    Ok(c)
+}
+
 /// The Pareto front as a black line through `front`'s points in order of time, in the legend.
 pub fn pareto_line<X, Y>(
     c: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<X, Y>>,
@@ -121,8 +148,8 @@ where
 }
 
 /// The legend box every study's chart draws, at `position`.
-pub fn legend<'a, X, Y>(
-    c: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+pub fn legend<'a, 'b: 'a, X, Y>(
+    c: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
     position: SeriesLabelPosition,
 ) -> anyhow::Result<()>
 where

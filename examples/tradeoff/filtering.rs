@@ -15,7 +15,7 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
-use super::chart::{legend, pareto_line};
+use super::chart::{axes, legend, pareto_line, MS_AXIS};
 use super::Summary;
 
 const W: u32 = 640;
@@ -129,18 +129,12 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
     let max_ms = rows.iter().map(|r| r.ms).fold(0.0, f64::max) * 1.3;
     let min_ms = rows.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.7;
     let max_y = rows.iter().map(|r| r.rmse).fold(0.0, f64::max) * 1.2;
-    let mut c = ChartBuilder::on(&root)
-        .caption("texparams floor: MIN x MAG filter", ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(55)
-        .build_cartesian_2d(min_ms..max_ms, 0.0..max_y)?;
-    c.configure_mesh()
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(RGBColor(225, 225, 225))
-        .x_desc("ms per frame (GPU timestamps, lavapipe)")
-        .y_desc("RMSE vs 16x16-supersampled ground truth")
-        .draw()?;
+    let mut c = axes(
+        &root,
+        "texparams floor: MIN x MAG filter",
+        (min_ms..max_ms, MS_AXIS),
+        (0.0..max_y, "RMSE vs 16x16-supersampled ground truth"),
+    )?;
     let colours = [
         RGBColor(120, 120, 120),
         RGBColor(214, 39, 40),

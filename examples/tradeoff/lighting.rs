@@ -14,7 +14,7 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
-use super::chart::legend;
+use super::chart::{axes, legend, MS_AXIS};
 use super::Summary;
 
 const W: u32 = 512;
@@ -147,18 +147,12 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
         let min_ms = mine.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min) * 0.8;
         let max_y = mine.iter().map(|r| r.rmse).fold(0.0, f64::max) * 1.5;
         let min_y = mine.iter().map(|r| r.rmse).fold(f64::INFINITY, f64::min).max(0.05) * 0.7;
-        let mut c = ChartBuilder::on(panel)
-            .caption(format!("seed 001 lighting, {object}"), ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d((min_ms..max_ms).log_scale(), (min_y..max_y).log_scale())?;
-        c.configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_desc("ms per frame (GPU timestamps, lavapipe)")
-            .y_desc("RMSE vs converged per-fragment reference")
-            .draw()?;
+        let mut c = axes(
+            panel,
+            &format!("seed 001 lighting, {object}"),
+            ((min_ms..max_ms).log_scale(), MS_AXIS),
+            ((min_y..max_y).log_scale(), "RMSE vs converged per-fragment reference"),
+        )?;
         let colours = [
             ("phong_vertex", RGBColor(214, 39, 40)),
             ("phong_fragment", RGBColor(31, 119, 180)),

@@ -14,7 +14,7 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::{labs, Gpu};
 
-use super::chart::legend;
+use super::chart::{axes, legend};
 use super::Summary;
 
 const W: u32 = 512;
@@ -148,21 +148,12 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
     root.fill(&WHITE)?;
     let max_ms = rows.iter().map(|r| r.ms).fold(0.0, f64::max) * 1.2;
     let min_db = rows.iter().map(|r| r.psnr).fold(f64::INFINITY, f64::min).min(60.0) - 5.0;
-    let mut c = ChartBuilder::on(&root)
-        .caption(
-            "bump (normalize) against normmap (cube maps of 4 to 128 texels)",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(55)
-        .build_cartesian_2d(0.0..max_ms, min_db..100.0)?;
-    c.configure_mesh()
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(RGBColor(225, 225, 225))
-        .x_desc("ms per frame (GPU timestamps, lavapipe; median of 5 alternations)")
-        .y_desc("PSNR vs normalize, dB (normalize itself drawn at 100)")
-        .draw()?;
+    let mut c = axes(
+        &root,
+        "bump (normalize) against normmap (cube maps of 4 to 128 texels)",
+        (0.0..max_ms, "ms per frame (GPU timestamps, lavapipe; median of 5 alternations)"),
+        (min_db..100.0, "PSNR vs normalize, dB (normalize itself drawn at 100)"),
+    )?;
     let (blue, red) = (RGBColor(31, 119, 180), RGBColor(214, 39, 40));
     c.draw_series(
         rows.iter()
