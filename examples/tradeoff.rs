@@ -443,7 +443,10 @@ fn draw_chart(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
             panel,
             &format!("Phong exercise, {shape}: error against frame time"),
             ((min_ms..max_ms).log_scale(), chart::MS_AXIS),
-            ((min_rmse..max_rmse).log_scale(), "RMSE vs exact ray-cast (8-bit levels)"),
+            (
+                (min_rmse..max_rmse).log_scale(),
+                "RMSE vs exact ray-cast (8-bit levels)",
+            ),
         )?;
         for shading in Shading::ALL {
             let col = color(shading);

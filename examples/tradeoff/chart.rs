@@ -102,6 +102,9 @@ pub fn sweep_chart(
 /// The frame-time axis of every chart here.
 pub const MS_AXIS: &str = "ms per frame (GPU timestamps, lavapipe)";
 
+/// A chart drawn into an SVG string, with axes of range types `X` and `Y`.
+pub type Chart<'a, 'b, X, Y> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>;
+
 /// A panel's chart as every study draws it: its caption above, frame time along x and the
 /// error along y (each a range and its description), light grey grid lines only at labels.
 pub fn axes<'a, 'b, X, Y>(
@@ -109,7 +112,7 @@ pub fn axes<'a, 'b, X, Y>(
     caption: &str,
     (x, x_desc): (X, &str),
     (y, y_desc): (Y, &str),
-) -> anyhow::Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<X::CoordDescType, Y::CoordDescType>>>
+) -> anyhow::Result<Chart<'a, 'b, X::CoordDescType, Y::CoordDescType>>
 where
     X: AsRangedCoord<Value = f64>,
     Y: AsRangedCoord<Value = f64>,

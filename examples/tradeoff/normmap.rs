@@ -151,7 +151,10 @@ fn draw(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {
     let mut c = axes(
         &root,
         "bump (normalize) against normmap (cube maps of 4 to 128 texels)",
-        (0.0..max_ms, "ms per frame (GPU timestamps, lavapipe; median of 5 alternations)"),
+        (
+            0.0..max_ms,
+            "ms per frame (GPU timestamps, lavapipe; median of 5 alternations)",
+        ),
         (min_db..100.0, "PSNR vs normalize, dB (normalize itself drawn at 100)"),
     )?;
     let (blue, red) = (RGBColor(31, 119, 180), RGBColor(214, 39, 40));

@@ -47,6 +47,15 @@ impl Object {
     pub fn mesh(self) -> Mesh {
         mesh(self, glut_level(self))
     }
+
+    /// How the object's outside faces are wound seen from outside: GLUT's cube, sphere and
+    /// torus counter-clockwise, its teapot clockwise (see [`Mesh::teapot`]).
+    pub fn outside_winding(self) -> wgpu::FrontFace {
+        match self {
+            Object::Teapot => wgpu::FrontFace::Cw,
+            _ => wgpu::FrontFace::Ccw,
+        }
+    }
 }
 
 /// Smallest level offered.

@@ -123,30 +123,48 @@ pub const YANGLE: ParamSpec = ParamSpec::real(
 
 /// The port's face order (`--set faces=...`), for the labs that draw a solid with the depth
 /// test: `auto` is the lab's measured choice, `mesh` GL's mesh order, `outside_first` the
-/// outside faces first and then the others ([`Faces::OutsideFirst`]). All three give the same
-/// pixels except at exact depth ties (tests/faces.rs); outside first shades fewer fragments.
+/// outside faces first and then the others in two draws ([`Faces::OutsideFirst`]),
+/// `facing_first` one draw of the triangles reordered for the view, those facing the eye first
+/// ([`crate::render::facing_first`]). All give the same pixels except at exact depth ties
+/// (tests/faces.rs); the last two shade fewer fragments.
 pub const FACES: ParamSpec = ParamSpec::choice(
     "faces",
     &[0.0],
-    &["auto", "mesh", "outside_first"],
+    &["auto", "mesh", "outside_first", "facing_first"],
     "port, same pixels: face order; auto = the lab's measured choice, mesh = GL's, \
-     outside_first = outside faces first, then the others",
+     outside_first = outside faces first, then the others; facing_first = reordered for the view",
 );
 
-/// The faces to draw by the [`FACES`] parameter: `auto` draws outside first when
-/// `auto_outside_first` (the lab measured it faster), `winding` being how the solid's outside
-/// faces are wound. A lab without the parameter draws its faces as `auto` says.
-pub fn faces(params: &Params, auto_outside_first: bool, winding: wgpu::FrontFace) -> Faces {
-    // By index in FACES' names (a lab without the parameter reads 0, `auto`): no text is
-    // formatted per frame.
-    let outside_first = match params.index_of("faces") {
-        1 => false,
-        2 => true,
-        _ => auto_outside_first,
-    };
-    if outside_first {
-        Faces::OutsideFirst(winding)
-    } else {
-        Faces::AsStated
+/// A face order of [`FACES`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaceOrder {
+    /// GL's: the mesh's order.
+    Mesh,
+    /// Two draws: the faces wound as the outside, then the others ([`Faces::OutsideFirst`]).
+    OutsideFirst,
+    /// One draw, the triangles facing the eye first for the view ([`crate::render::ViewOrdered`]).
+    FacingFirst,
+}
+
+impl FaceOrder {
+    /// The order the [`FACES`] parameter asks for, `auto` being the lab's measured choice. A lab
+    /// without the parameter draws as `auto` says. Read by index (no text formatted per frame).
+    pub fn of(params: &Params, auto: FaceOrder) -> FaceOrder {
+        match params.index_of("faces") {
+            1 => FaceOrder::Mesh,
+            2 => FaceOrder::OutsideFirst,
+            3 => FaceOrder::FacingFirst,
+            _ => auto,
+        }
+    }
+
+    /// What the programs draw for this order, `winding` being how the solid's outside faces
+    /// are wound: two culled draws for [`FaceOrder::OutsideFirst`], every face once otherwise
+    /// (facing-first is an order of the mesh's indices, not of the programs).
+    pub fn faces(self, winding: wgpu::FrontFace) -> Faces {
+        match self {
+            FaceOrder::OutsideFirst => Faces::OutsideFirst(winding),
+            FaceOrder::Mesh | FaceOrder::FacingFirst => Faces::AsStated,
+        }
     }
 }

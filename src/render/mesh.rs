@@ -74,7 +74,8 @@ impl<V: VertexType> GpuMesh<V> {
                 Some(gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("{label}.indices")),
                     contents: bytemuck::cast_slice(idx),
-                    usage: wgpu::BufferUsages::INDEX,
+                    // COPY_DST: [`ViewOrdered`] rewrites the order of the same indices.
+                    usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
                 })),
                 idx.len() as u32,
             ),
@@ -104,5 +105,137 @@ impl<V: VertexType> GpuMesh<V> {
             }
             None => pass.draw(range, 0..1),
         }
+    }
+}
+
+/// `indices`' triangles reordered for the view `mvp` (object to clip space): first those that
+/// face the eye (wound `outside` on screen), then the others, each group in mesh order.
+///
+/// With `GL_LESS` the nearest fragment wins whatever the order, except at exact depth ties, so
+/// this draws the same pixels as mesh order (tests/faces.rs checks it lab by lab), while the
+/// faces turned away arrive after the ones in front of them and fail the early depth test
+/// instead of being shaded. It is one draw, where [`Faces::OutsideFirst`](super::Faces) draws
+/// the mesh twice (its vertices shaded twice). A triangle with a corner at or behind the eye
+/// (w ≤ 0) counts as turned away: its order only costs time, never a pixel.
+pub fn facing_first(positions: &[[f32; 3]], indices: &[u32], mvp: glam::Mat4, outside: wgpu::FrontFace) -> Vec<u32> {
+    let screen: Vec<Option<glam::Vec2>> = positions
+        .iter()
+        .map(|&p| {
+            let c = mvp * glam::Vec3::from_array(p).extend(1.0);
+            (c.w > 0.0).then(|| glam::Vec2::new(c.x, c.y) / c.w)
+        })
+        .collect();
+    let faces_eye = |t: &[u32]| match [t[0], t[1], t[2]].map(|i| screen.get(i as usize).copied().flatten()) {
+        [Some(a), Some(b), Some(c)] => {
+            let area = (b - a).perp_dot(c - a);
+            match outside {
+                wgpu::FrontFace::Ccw => area > 0.0,
+                wgpu::FrontFace::Cw => area < 0.0,
+            }
+        }
+        _ => false,
+    };
+    let (mut front, mut back) = (Vec::with_capacity(indices.len()), Vec::new());
+    for t in indices.chunks_exact(3) {
+        if faces_eye(t) {
+            front.extend_from_slice(t);
+        } else {
+            back.extend_from_slice(t);
+        }
+    }
+    front.extend(back);
+    front
+}
+
+/// An indexed mesh drawn in mesh order or, for a view, with the triangles facing the eye first
+/// ([`facing_first`]; the labs' `faces=facing_first`). The order is rewritten into the same
+/// index buffer only when the view (or the choice) changes: a still picture costs nothing per
+/// frame, a turning one a sort on the CPU and one `write_buffer`.
+pub struct ViewOrdered<V: VertexType> {
+    mesh: GpuMesh<V>,
+    positions: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+    /// The view (bits of the matrix, winding) the buffer holds the order for; `None`: mesh order.
+    ordered_for: Option<([u32; 16], bool)>,
+}
+
+impl<V: VertexType> ViewOrdered<V> {
+    /// Uploads the mesh, in mesh order; `positions` are the vertices' object-space positions
+    /// (what the order is computed from), one per vertex.
+    pub fn new(gpu: &Gpu, label: &str, vertices: &[V], indices: Vec<u32>, positions: Vec<[f32; 3]>) -> Self {
+        ViewOrdered {
+            mesh: GpuMesh::new(gpu, label, vertices, Some(&indices)),
+            positions,
+            indices,
+            ordered_for: None,
+        }
+    }
+
+    /// The mesh to draw: facing the eye first for `view` (object-to-clip matrix and the
+    /// winding of the mesh's outside), or in mesh order for `None`.
+    pub fn get(&mut self, gpu: &Gpu, view: Option<(glam::Mat4, wgpu::FrontFace)>) -> &GpuMesh<V> {
+        let want = view.map(|(mvp, outside)| (mvp.to_cols_array().map(f32::to_bits), outside == wgpu::FrontFace::Ccw));
+        // An empty mesh has no index buffer to write.
+        if want != self.ordered_for && !self.indices.is_empty() {
+            let order = match view {
+                Some((mvp, outside)) => facing_first(&self.positions, &self.indices, mvp, outside),
+                None => self.indices.clone(),
+            };
+            if let Some(buffer) = &self.mesh.indices {
+                gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(&order));
+            }
+            self.ordered_for = want;
+        }
+        &self.mesh
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::facing_first;
+    use glam::Mat4;
+
+    /// Four triangles in the z = 0 plane seen through the identity (x right, y up): 0 and 2
+    /// counter-clockwise, 1 clockwise, 3 with a corner behind the eye (w < 0).
+    fn scene() -> (Vec<[f32; 3]>, Vec<u32>, Mat4) {
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 0.0, 5.0],
+        ];
+        let indices = vec![0, 1, 2, 0, 2, 1, 1, 3, 2, 0, 1, 4];
+        // w = 1 - z/4: the fifth vertex (z = 5) is behind the eye.
+        let mvp = Mat4::from_cols_array(&[
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -0.25, 0.0, 0.0, 0.0, 1.0,
+        ]);
+        (positions, indices, mvp)
+    }
+
+    #[test]
+    fn facing_triangles_come_first_each_group_in_mesh_order() {
+        let (positions, indices, mvp) = scene();
+        assert_eq!(
+            facing_first(&positions, &indices, mvp, wgpu::FrontFace::Ccw),
+            [0, 1, 2, 1, 3, 2, 0, 2, 1, 0, 1, 4]
+        );
+        // The teapot's outside is clockwise: then the clockwise triangle leads.
+        assert_eq!(
+            facing_first(&positions, &indices, mvp, wgpu::FrontFace::Cw),
+            [0, 2, 1, 0, 1, 2, 1, 3, 2, 0, 1, 4]
+        );
+    }
+
+    #[test]
+    fn the_order_is_a_permutation_of_whole_triangles() {
+        let (positions, indices, mvp) = scene();
+        let order = facing_first(&positions, &indices, mvp.transpose(), wgpu::FrontFace::Ccw);
+        let triangles = |v: &[u32]| {
+            let mut t: Vec<[u32; 3]> = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+            t.sort();
+            t
+        };
+        assert_eq!(triangles(&order), triangles(&indices));
     }
 }

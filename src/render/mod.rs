@@ -27,7 +27,7 @@ mod texture;
 mod uniforms;
 
 pub use frame::{Frame, Load};
-pub use mesh::{GpuMesh, VertexAttr, VertexType};
+pub use mesh::{facing_first, GpuMesh, VertexAttr, VertexType, ViewOrdered};
 pub use param_block::{Computed, ParamBlock};
 pub use program::{
     reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Faces, Program, RenderState,

@@ -7,6 +7,7 @@
 //! on the shade, `1`-`4` objects, mouse drag rotates, Space pauses the clock.
 
 use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
+use crate::labs::common::FaceOrder;
 use crate::params::{ParamSpec, Params};
 use crate::render::Computed;
 use crate::tess::Object;
@@ -14,12 +15,14 @@ use crate::tess::Object;
 use crate::labs::seed000::stage::{title_000, Solid, PARAMS_000};
 use crate::labs::seed000::{noise_time, NOISE_PARAMS, SHADE_KEYS};
 
-/// The objects drawn outside faces first ([`GlutStage::faces`](super::stage::GlutStage::faces):
-/// same pixels, fewer fragments shaded). Measured (issue 14, `--set faces=mesh` against
-/// `outside_first`, 7 alternating pairs): torus 0.93; cube 1.02, sphere 1.02, teapot 1.00: the
-/// vertex shader (noise per vertex) is dear, so the second pass over the geometry does not pay
-/// there.
-const SPLIT: &[Object] = &[Object::Torus];
+/// The face order by object ([`GlutStage::face_order`](super::stage::GlutStage::face_order):
+/// same pixels, fewer fragments shaded). Measured (7 alternating pairs, wall time of the new
+/// order over the old): issue 14's `outside_first` against mesh order, torus 0.93, cube 1.02,
+/// sphere 1.02, teapot 1.00 (the vertex shader, noise per vertex, is dear, so a second pass over
+/// the geometry does not pay); issue 22's one-pass `facing_first` at the bench view (rotate
+/// 30,45,0), torus 0.936 against outside_first, teapot 0.997 against mesh order (left as GL
+/// draws: the displaced teapot's order for the undisplaced one gains nothing).
+const AUTO: &[(Object, FaceOrder)] = &[(Object::Torus, FaceOrder::FacingFirst)];
 
 /// `[`/`]` on the strength, then the shade keys.
 const KEYS: &[KeyRow] = &[
@@ -75,7 +78,7 @@ pub static RECIPE: Recipe = Recipe {
         title_000(info, p, &summary, "") + smooth
     }),
     build: |cx, p| {
-        let stage = Solid::new(cx.gpu, "displacement", SPLIT);
+        let stage = Solid::new(cx.gpu, "displacement", AUTO);
         Shaded::build(cx, "displacement", p, stage, &LOOK, Vec::new())
     },
 };

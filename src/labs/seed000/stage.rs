@@ -13,9 +13,9 @@ use crate::gpu::Gpu;
 use crate::lab::{Input, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Faces, GpuMesh, Uniforms};
+use crate::render::{Faces, GpuMesh, Uniforms, ViewOrdered};
 
-use crate::labs::common::{self, object_key, std140_mat3, GlutMouse, TransformUniforms, XANGLE, YANGLE};
+use crate::labs::common::{self, object_key, std140_mat3, FaceOrder, GlutMouse, TransformUniforms, XANGLE, YANGLE};
 use crate::tess::{self, Object};
 
 /// Seed 000's object order (keys `1`-`4`: cube, sphere, torus, teapot).
@@ -88,7 +88,7 @@ pub struct GlutStage {
     /// Where the eye is (a lab may move it, e.g. Phong's W/A/S/D).
     pub eye: Vec3,
     mouse: GlutMouse,
-    meshes: HashMap<(Object, u32, bool), GpuMesh<Vertex>>,
+    meshes: HashMap<(Object, u32, bool), ViewOrdered<Vertex>>,
     /// The Transform block of the object.
     pub transform: Uniforms<TransformUniforms>,
 }
@@ -117,27 +117,27 @@ impl GlutStage {
             .unwrap_or(Object::Teapot)
     }
 
-    /// How the object's outside faces are wound seen from outside: GLUT's cube, sphere and
-    /// torus counter-clockwise, its teapot clockwise (see [`crate::mesh::Mesh::teapot`]).
-    pub fn outside_winding(object: Object) -> wgpu::FrontFace {
-        match object {
-            Object::Teapot => wgpu::FrontFace::Cw,
-            _ => wgpu::FrontFace::Ccw,
-        }
+    /// The face order for the current object by the `faces` parameter; in `auto`, the order
+    /// `auto` lists for the object (each lab lists what it measured faster), mesh order for an
+    /// object it does not list.
+    pub fn face_order(params: &Params, auto: &[(Object, FaceOrder)]) -> FaceOrder {
+        let object = Self::object(params);
+        let measured = auto
+            .iter()
+            .find(|(o, _)| *o == object)
+            .map_or(FaceOrder::Mesh, |&(_, f)| f);
+        FaceOrder::of(params, measured)
     }
 
     /// The faces a lab's program draws for the current object. With `cull` on, the outside
-    /// faces only ([`Faces::OutsideOnly`], back-face culling: not exact, an opt-in). Otherwise by
-    /// the `faces` parameter: in `auto`, outside faces first for the objects in `split`
-    /// ([`Faces::OutsideFirst`]: the same pixels, fewer fragments shaded; each lab lists the
-    /// objects where it measured faster) and every face in mesh order for the others.
-    pub fn faces(params: &Params, split: &[Object]) -> Faces {
-        let object = Self::object(params);
-        let winding = Self::outside_winding(object);
+    /// faces only ([`Faces::OutsideOnly`], back-face culling: not exact, an opt-in); otherwise
+    /// as [`GlutStage::face_order`] says ([`FaceOrder::faces`]).
+    pub fn faces(params: &Params, auto: &[(Object, FaceOrder)]) -> Faces {
+        let winding = Self::object(params).outside_winding();
         if params.on("cull") {
             return Faces::OutsideOnly(winding);
         }
-        common::faces(params, split.contains(&object), winding)
+        Self::face_order(params, auto).faces(winding)
     }
 
     /// The GLUT programs' input: keys `1`-`4` choose the object, the left button drags
@@ -179,7 +179,9 @@ impl GlutStage {
     }
 
     /// Writes the Transform block for a `width` x `height` viewport and returns the mesh to
-    /// draw (built on first use; GLUT's levels stay cached, of the others only the one in use).
+    /// draw (built on first use; GLUT's levels stay cached, of the others only the one in use),
+    /// its triangles facing the eye first when `order` says so (and `cull` is off).
+    #[allow(clippy::too_many_arguments)]
     pub fn prepare(
         &mut self,
         gpu: &Gpu,
@@ -188,9 +190,11 @@ impl GlutStage {
         height: u32,
         faithful: bool,
         smooth: bool,
+        order: FaceOrder,
     ) -> &GpuMesh<Vertex> {
         let modelview = self.modelview(params);
-        let mut transform = TransformUniforms::new(modelview, self.projection(width, height));
+        let projection = self.projection(width, height);
+        let mut transform = TransformUniforms::new(modelview, projection);
         if params.on("naive_nm") {
             transform.normal_matrix = std140_mat3(Mat3::from_mat4(modelview));
         }
@@ -203,16 +207,23 @@ impl GlutStage {
             self.meshes
                 .retain(|&(o, l, _), _| o != object || l == tess::glut_level(o));
         }
-        self.meshes.entry(key).or_insert_with(|| {
-            let mesh = tess::mesh(object, level);
-            let mesh: Mesh = if smooth { mesh.welded() } else { mesh };
-            GpuMesh::new(
-                gpu,
-                &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }),
-                &mesh.vertices,
-                Some(&mesh.indices),
-            )
-        })
+        let view = (order == FaceOrder::FacingFirst && !params.on("cull"))
+            .then(|| (projection * modelview, object.outside_winding()));
+        self.meshes
+            .entry(key)
+            .or_insert_with(|| {
+                let mesh = tess::mesh(object, level);
+                let mesh: Mesh = if smooth { mesh.welded() } else { mesh };
+                let positions = mesh.vertices.iter().map(|v| v.position).collect();
+                ViewOrdered::new(
+                    gpu,
+                    &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }),
+                    &mesh.vertices,
+                    mesh.indices,
+                    positions,
+                )
+            })
+            .get(gpu, view)
     }
 }
 
@@ -223,21 +234,21 @@ pub const CAMERA_000: StageConfig = StageConfig {
 };
 
 /// The stage as the runner draws it ([`crate::lab::Stage`]): the chosen solid at GLUT's level
-/// (smoothed, at the level of a port-only mode, when the lab has `smooth` on), the objects in
-/// `split` outside faces first ([`GlutStage::faces`]).
+/// (smoothed, at the level of a port-only mode, when the lab has `smooth` on), each object in
+/// the face order `auto` lists for it ([`GlutStage::face_order`]).
 pub struct Solid {
     /// The stage.
     pub stage: GlutStage,
-    /// Objects measured faster drawn outside faces first.
-    pub split: &'static [Object],
+    /// The face order the lab measured faster, by object (mesh order for the others).
+    pub auto: &'static [(Object, FaceOrder)],
 }
 
 impl Solid {
     /// Seed 000's stage for lab `label`.
-    pub fn new(gpu: &Gpu, label: &str, split: &'static [Object]) -> Self {
+    pub fn new(gpu: &Gpu, label: &str, auto: &'static [(Object, FaceOrder)]) -> Self {
         Solid {
             stage: GlutStage::new(gpu, label, CAMERA_000),
-            split,
+            auto,
         }
     }
 }
@@ -251,10 +262,11 @@ impl crate::lab::Stage for Solid {
         vec![self.stage.transform.bind()]
     }
     fn faces(&self, p: &Params) -> Option<Faces> {
-        Some(GlutStage::faces(p, self.split))
+        Some(GlutStage::faces(p, self.auto))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
         let smooth = p.has("smooth") && p.on("smooth");
-        self.stage.prepare(gpu, p, width, height, !smooth, smooth)
+        let order = GlutStage::face_order(p, self.auto);
+        self.stage.prepare(gpu, p, width, height, !smooth, smooth, order)
     }
 }

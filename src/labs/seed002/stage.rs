@@ -14,10 +14,10 @@ use glam::{Mat4, Vec3};
 use crate::camera;
 use crate::gpu::Gpu;
 use crate::lab::Stage;
-use crate::labs::common::TransformUniforms;
+use crate::labs::common::{FaceOrder, TransformUniforms};
 use crate::mesh::Vertex;
 use crate::params::Params;
-use crate::render::{Bind, GpuMesh, Uniforms};
+use crate::render::{Bind, GpuMesh, Uniforms, ViewOrdered};
 use crate::tess::Object;
 
 /// `gluPerspective(60, 1, 0.1, 100)`: the course passes aspect 1 whatever the window.
@@ -45,11 +45,20 @@ pub fn model_zyx(rx: f32, ry: f32, rz: f32) -> Mat4 {
     camera::gl_rotate(rz, Vec3::Z) * camera::gl_rotate(ry, Vec3::Y) * camera::gl_rotate(rx, Vec3::X)
 }
 
-/// `glutSolidTeapot(1.0)` (freeglut's mesh) on the GPU.
-pub fn teapot(gpu: &Gpu, label: &str) -> GpuMesh<Vertex> {
+/// `glutSolidTeapot(1.0)` (freeglut's mesh) on the GPU, to be drawn in mesh order or facing
+/// the eye first.
+pub fn teapot(gpu: &Gpu, label: &str) -> ViewOrdered<Vertex> {
     let mesh = Object::Teapot.mesh();
-    GpuMesh::new(gpu, label, &mesh.vertices, Some(&mesh.indices))
+    let positions = mesh.vertices.iter().map(|v| v.position).collect();
+    ViewOrdered::new(gpu, label, &mesh.vertices, mesh.indices, positions)
 }
+
+/// The face order of both labs' teapot in `auto`: the triangles facing the eye first. Measured
+/// (default state, 7 alternating pairs, wall time of the new order over the old): outside
+/// faces first against mesh order took `phong_dir` from 1.083 to 0.855 of the original; one
+/// draw facing first against outside faces first (two draws) is 0.841 for `phong_dir` and
+/// 0.972 for `normal_world`.
+const AUTO: FaceOrder = FaceOrder::FacingFirst;
 
 /// The model matrix and the `gluLookAt` eye a lab computes from its parameters.
 pub type Pose = fn(&Params) -> (Mat4, Vec3);
@@ -59,7 +68,7 @@ pub type Pose = fn(&Params) -> (Mat4, Vec3);
 pub struct Teapot {
     pose: Pose,
     transform: Uniforms<TransformUniforms>,
-    mesh: GpuMesh<Vertex>,
+    mesh: ViewOrdered<Vertex>,
 }
 
 impl Teapot {
@@ -82,17 +91,20 @@ impl Stage for Teapot {
     fn binds(&self) -> Vec<Bind> {
         vec![self.transform.bind()]
     }
-    /// By the `faces` parameter; in `auto`, the teapot's outside faces first (freeglut winds
-    /// them clockwise, seen from outside): the same pixels as GL's mesh order, with the inside
-    /// faces behind them rejected by the depth test before they are shaded.
+    /// By the `faces` parameter ([`AUTO`] in `auto`; freeglut winds the teapot's outside
+    /// clockwise): the same pixels as GL's mesh order, with the inside faces behind them
+    /// rejected by the depth test before they are shaded.
     fn faces(&self, p: &Params) -> Option<crate::render::Faces> {
-        Some(crate::labs::common::faces(p, true, wgpu::FrontFace::Cw))
+        Some(FaceOrder::of(p, AUTO).faces(wgpu::FrontFace::Cw))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, _width: u32, _height: u32) -> &GpuMesh<Vertex> {
         let (model, eye) = (self.pose)(p);
-        self.transform.value = TransformUniforms::new(model, projection_stack(eye));
+        let projection = projection_stack(eye);
+        self.transform.value = TransformUniforms::new(model, projection);
         self.transform.upload(gpu);
-        &self.mesh
+        let view =
+            (FaceOrder::of(p, AUTO) == FaceOrder::FacingFirst).then(|| (projection * model, wgpu::FrontFace::Cw));
+        self.mesh.get(gpu, view)
     }
 }
 

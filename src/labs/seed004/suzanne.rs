@@ -26,6 +26,7 @@ use crate::render::Computed;
 use super::gl_textures::{self, Sampled, TexParams};
 use super::info;
 use super::stage::{Model, Normals, ANGLES};
+use crate::labs::common::FaceOrder;
 
 /// How a recipe builds its scene.
 type Build = fn(&LabContext, &Params) -> Result<Box<dyn Scene>>;
@@ -96,7 +97,11 @@ pub fn sample(cx: &LabContext, name: &str, frag: &'static str) -> Result<Box<dyn
         gl_textures::checker(cx.gpu)?,
         gl_textures::bmp(cx.gpu, cx.files.texture.as_ref())?,
     ];
-    let model = Model::new(cx, name, |_| Normals::Vertex);
+    let mut model = Model::new(cx, name, |_| Normals::Vertex);
+    // Mesh order: where a face in front and one behind tie in depth at the silhouette, the
+    // texture's seams colour them differently, so reordering shows (1 px at 1 of 17 views
+    // drawn facing first; tests/faces.rs).
+    model.auto = |_| FaceOrder::Mesh;
     Sampled::build(
         cx,
         name,
@@ -207,10 +212,9 @@ pub fn shade(cx: &LabContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> 
             Normals::Vertex
         }
     };
-    let mut model = Model::new(cx, name, normals);
-    // Per-pixel Phong is the one shading model dear enough per fragment to pay for a second
-    // draw; in 12 views (the default and 11 rotations) its pictures are byte-identical either
-    // way (tests/faces.rs).
-    model.outside_first = |p| p.index_of("shading") == Shading::Phong as usize;
+    // Flat shading (the face-normal VBO) keeps mesh order (see `Model::auto`); Gouraud and
+    // Phong colour both sides of a shared edge alike and draw facing the eye first
+    // (tests/faces.rs: byte-identical at 17 views).
+    let model = Model::new(cx, name, normals);
     Shaded::build(cx, name, p, model, &LIT, Vec::new())
 }
