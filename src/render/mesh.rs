@@ -74,7 +74,7 @@ impl<V: VertexType> GpuMesh<V> {
                 Some(gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("{label}.indices")),
                     contents: bytemuck::cast_slice(idx),
-                    // COPY_DST: [`ViewOrdered`] rewrites the order of the same indices.
+                    // COPY_DST: [`ViewOrdered`] rewrites the order of the same triangles.
                     usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
                 })),
                 idx.len() as u32,
@@ -147,46 +147,62 @@ pub fn facing_first(positions: &[[f32; 3]], indices: &[u32], mvp: glam::Mat4, ou
     front
 }
 
-/// An indexed mesh drawn in mesh order or, for a view, with the triangles facing the eye first
-/// ([`facing_first`]; the labs' `faces=facing_first`). The order is rewritten into the same
-/// index buffer only when the view (or the choice) changes: a still picture costs nothing per
-/// frame, a turning one a sort on the CPU and one `write_buffer`.
+/// A mesh drawn in mesh order or, for a view, with its triangles facing the eye first
+/// ([`facing_first`]; the labs' `faces=facing_first`). Mesh order draws the mesh as given,
+/// indexed or not, untouched; the view's order is drawn through an indexed copy built on first
+/// use, whose index buffer is rewritten only when the view changes: a still picture costs
+/// nothing per frame, a turning one a sort on the CPU and one `write_buffer`.
 pub struct ViewOrdered<V: VertexType> {
-    mesh: GpuMesh<V>,
+    label: String,
+    plain: GpuMesh<V>,
+    ordered: Option<GpuMesh<V>>,
+    vertices: Vec<V>,
     positions: Vec<[f32; 3]>,
+    /// Mesh order's triangles (for an unindexed mesh, every vertex in turn).
     indices: Vec<u32>,
-    /// The view (bits of the matrix, winding) the buffer holds the order for; `None`: mesh order.
+    /// The view (bits of the matrix, winding) `ordered` holds the order for.
     ordered_for: Option<([u32; 16], bool)>,
 }
 
 impl<V: VertexType> ViewOrdered<V> {
-    /// Uploads the mesh, in mesh order; `positions` are the vertices' object-space positions
-    /// (what the order is computed from), one per vertex.
-    pub fn new(gpu: &Gpu, label: &str, vertices: &[V], indices: Vec<u32>, positions: Vec<[f32; 3]>) -> Self {
+    /// Uploads the mesh as [`GpuMesh::new`] does; `positions` are the vertices' object-space
+    /// positions (what the order is computed from), one per vertex.
+    pub fn new(gpu: &Gpu, label: &str, vertices: &[V], indices: Option<Vec<u32>>, positions: Vec<[f32; 3]>) -> Self {
+        let plain = GpuMesh::new(gpu, label, vertices, indices.as_deref());
         ViewOrdered {
-            mesh: GpuMesh::new(gpu, label, vertices, Some(&indices)),
+            label: format!("{label}.facing_first"),
+            plain,
+            ordered: None,
+            vertices: vertices.to_vec(),
+            indices: indices.unwrap_or_else(|| (0..vertices.len() as u32).collect()),
             positions,
-            indices,
             ordered_for: None,
         }
     }
 
     /// The mesh to draw: facing the eye first for `view` (object-to-clip matrix and the
-    /// winding of the mesh's outside), or in mesh order for `None`.
+    /// winding of the mesh's outside), or as given for `None`.
     pub fn get(&mut self, gpu: &Gpu, view: Option<(glam::Mat4, wgpu::FrontFace)>) -> &GpuMesh<V> {
-        let want = view.map(|(mvp, outside)| (mvp.to_cols_array().map(f32::to_bits), outside == wgpu::FrontFace::Ccw));
-        // An empty mesh has no index buffer to write.
-        if want != self.ordered_for && !self.indices.is_empty() {
-            let order = match view {
-                Some((mvp, outside)) => facing_first(&self.positions, &self.indices, mvp, outside),
-                None => self.indices.clone(),
-            };
-            if let Some(buffer) = &self.mesh.indices {
-                gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(&order));
+        let Some((mvp, outside)) = view else {
+            return &self.plain;
+        };
+        if self.indices.is_empty() {
+            return &self.plain;
+        }
+        let want = Some((mvp.to_cols_array().map(f32::to_bits), outside == wgpu::FrontFace::Ccw));
+        if want != self.ordered_for || self.ordered.is_none() {
+            let order = facing_first(&self.positions, &self.indices, mvp, outside);
+            match &self.ordered {
+                Some(GpuMesh {
+                    indices: Some(buffer), ..
+                }) => {
+                    gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(&order));
+                }
+                _ => self.ordered = Some(GpuMesh::new(gpu, &self.label, &self.vertices, Some(&order))),
             }
             self.ordered_for = want;
         }
-        &self.mesh
+        self.ordered.as_ref().unwrap_or(&self.plain)
     }
 }
 

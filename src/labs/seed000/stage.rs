@@ -219,7 +219,7 @@ impl GlutStage {
                     gpu,
                     &format!("mesh.{}.{level}{}", object.name(), if smooth { ".smooth" } else { "" }),
                     &mesh.vertices,
-                    mesh.indices,
+                    Some(mesh.indices),
                     positions,
                 )
             })

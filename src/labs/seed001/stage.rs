@@ -166,7 +166,7 @@ impl Solids {
                     gpu,
                     &format!("mesh.{}", object.name()),
                     &mesh.vertices,
-                    mesh.indices,
+                    Some(mesh.indices),
                     positions,
                 )
             })

@@ -50,7 +50,7 @@ pub fn model_zyx(rx: f32, ry: f32, rz: f32) -> Mat4 {
 pub fn teapot(gpu: &Gpu, label: &str) -> ViewOrdered<Vertex> {
     let mesh = Object::Teapot.mesh();
     let positions = mesh.vertices.iter().map(|v| v.position).collect();
-    ViewOrdered::new(gpu, label, &mesh.vertices, mesh.indices, positions)
+    ViewOrdered::new(gpu, label, &mesh.vertices, Some(mesh.indices), positions)
 }
 
 /// The face order of both labs' teapot in `auto`: the triangles facing the eye first. Measured

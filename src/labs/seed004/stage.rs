@@ -143,15 +143,14 @@ impl Model {
     }
 }
 
-/// An OBJ's corners (three per triangle, as the course's VBO holds them) drawn through an
-/// index list, so that [`ViewOrdered`] can reorder the triangles.
+/// An OBJ's corners, three per triangle, as the course's VBO holds them (drawn unindexed in
+/// mesh order: drawn indexed, two pixels of `yangle=180` come out otherwise).
 fn corners(gpu: &Gpu, label: &str, corners: &[ObjCorner]) -> ViewOrdered<ObjCorner> {
-    let indices = (0..corners.len() as u32).collect();
     let positions = corners
         .iter()
         .map(|c| [c.position[0], c.position[1], c.position[2]])
         .collect();
-    ViewOrdered::new(gpu, label, corners, indices, positions)
+    ViewOrdered::new(gpu, label, corners, None, positions)
 }
 
 impl Model {
