@@ -217,3 +217,36 @@ fn later_lectures_reordered_faces_change_no_pixel() {
         }
     }
 }
+
+/// A mesh too large to sort every frame is drawn in its last order while the view moves and
+/// sorted once it holds still for a frame; a small one is sorted in the frame its view changes.
+#[test]
+fn large_meshes_are_sorted_once_the_view_holds_still() {
+    use shaderlab::render::{ViewOrdered, SORT_EVERY_FRAME};
+    let gpu = common::gpu();
+    let view = |turn: f32| {
+        let mvp = shaderlab::camera::glu_perspective(45.0, 1.0, 0.1, 100.0)
+            * glam::Mat4::from_translation(glam::Vec3::new(0.0, 0.0, -4.0))
+            * glam::Mat4::from_rotation_y(turn);
+        Some((mvp, wgpu::FrontFace::Ccw))
+    };
+    for (level, large) in [(24, false), (200, true)] {
+        let mesh = shaderlab::tess::mesh(Object::Torus, level);
+        assert_eq!(mesh.indices.len() / 3 > SORT_EVERY_FRAME, large, "level {level}");
+        let positions = mesh.vertices.iter().map(|v| v.position).collect();
+        let mut ordered = ViewOrdered::new(gpu, "torus", &mesh.vertices, Some(mesh.indices), positions);
+        let plain: *const _ = ordered.get(gpu, None);
+        let first: *const _ = ordered.get(gpu, view(0.0));
+        assert_eq!(std::ptr::eq(first, plain), large, "level {level}: first view");
+        let still: *const _ = ordered.get(gpu, view(0.0));
+        assert!(
+            !std::ptr::eq(still, plain),
+            "level {level}: a view held still is sorted for"
+        );
+        let moved: *const _ = ordered.get(gpu, view(0.5));
+        assert!(
+            !std::ptr::eq(moved, plain),
+            "level {level}: once sorted, the sorted copy is drawn"
+        );
+    }
+}
