@@ -150,36 +150,24 @@ type Case = (
     &'static [&'static str],
 );
 
-/// Seeds 001, 002 and 004 reorder their faces too, where it measured faster: seed 001's
-/// GLUT solids, seed 002's teapot (freeglut winds it clockwise) and Suzanne (counter-clockwise,
-/// as Blender writes it). In every order their pictures must be mesh order's, at the default
-/// view and 16 pseudo-random ones.
+/// Seeds 001, 002 and 004 reorder faces in `auto` where it measured faster and where 1000
+/// random views came out byte-identical to mesh order: seed 001's torus, `phong_dir`'s teapot
+/// (freeglut winds it clockwise), Suzanne under per-pixel Phong (counter-clockwise, as Blender
+/// writes it). Facing first and `auto` must draw mesh order's pictures, at the default
+/// view and 99 pseudo-random ones. Left in mesh order, and out of this test, because reordering
+/// showed 1 px at an exact depth tie in some views: seed 001's teapot and cube (its near plane
+/// at 0.1), `envmap`, `normal_world`, and Suzanne Gouraud, smooth, flat, textured and
+/// normal-coloured.
 #[test]
 fn later_lectures_reordered_faces_change_no_pixel() {
     let mut rng = Rng(0x5EED_0000_0000_0022);
-    // Not here: Suzanne on the face-normal VBO (flat, normal_color, normal_matrix) and textured,
-    // whose `auto` is mesh order because reordering shows where faces tie in depth (each face its
-    // own colour; the texture's seams): 1 px in some views.
-    let cases: [Case; 9] = [
-        ("normal_world", &["rx", "ry", "rz"], (512, 512), &[]),
+    let cases: [Case; 6] = [
         ("phong_dir", &["rx"], (512, 512), &[]),
         ("suzanne_phong", &["xangle", "yangle"], (640, 480), &[]),
-        ("suzanne_gouraud", &["xangle", "yangle"], (640, 480), &[]),
-        ("suzanne_smooth", &["xangle", "yangle"], (640, 480), &[]),
-        ("toon", &["xangle", "yangle"], (640, 480), &["teapot", "torus"]),
-        (
-            "uniform_arrays",
-            &["xangle", "yangle"],
-            (640, 480),
-            &["teapot", "torus"],
-        ),
-        ("phong_vertex", &["xangle", "yangle"], (640, 480), &["teapot", "torus"]),
-        (
-            "phong_fragment",
-            &["xangle", "yangle"],
-            (640, 480),
-            &["teapot", "torus"],
-        ),
+        ("toon", &["xangle", "yangle"], (640, 480), &["torus"]),
+        ("uniform_arrays", &["xangle", "yangle"], (640, 480), &["torus"]),
+        ("phong_vertex", &["xangle", "yangle"], (640, 480), &["torus"]),
+        ("phong_fragment", &["xangle", "yangle"], (640, 480), &["torus"]),
     ];
     for (name, angles, (w, h), objects) in cases {
         let mut lab = common::lab(labs::find(name).expect("listed"));
@@ -189,7 +177,7 @@ fn later_lectures_reordered_faces_change_no_pixel() {
             if !object.is_empty() {
                 lab.set_str("object", object).expect("object");
             }
-            for view in 0..17 {
+            for view in 0..100 {
                 let turn: Vec<f32> = angles
                     .iter()
                     .map(|_| if view == 0 { 0.0 } else { rng.angle() })
@@ -199,7 +187,9 @@ fn later_lectures_reordered_faces_change_no_pixel() {
                 }
                 lab.set_str("faces", "mesh").expect("faces");
                 let mesh = lab.rgb(w, h);
-                for faces in ORDERS {
+                // (Outside faces first, two draws culled by the rasteriser, no lab's `auto` now,
+                // settles a tie differently from the CPU's facing test in some of these views.)
+                for faces in ["facing_first", "auto"] {
                     lab.set_str("faces", faces).expect("faces");
                     let n = differing(&mesh, &lab.rgb(w, h));
                     assert_eq!(
@@ -212,6 +202,40 @@ fn later_lectures_reordered_faces_change_no_pixel() {
                 assert!(
                     lit > (w * h / 50) as usize,
                     "{name} {object} angles {turn:?}: only {lit} pixels differ from the background"
+                );
+            }
+        }
+    }
+}
+
+/// The seed-000 solids `auto` draws facing the eye first (teapot and torus), at 200 more
+/// pseudo-random views than the test above: `auto` against mesh order.
+#[test]
+fn seed_000_auto_order_changes_no_pixel_at_many_views() {
+    let mut rng = Rng(0x5EED_0000_0000_0A00);
+    for entry in [
+        labs::POSITION_RGB,
+        labs::NORMAL_RGB,
+        labs::PHONG,
+        labs::NOISE,
+        labs::DISPLACEMENT,
+    ] {
+        let mut lab = common::lab(entry);
+        for object in [Object::Torus, Object::Teapot] {
+            lab.set_object(object);
+            for _ in 0..200 {
+                let angles = [rng.angle(), rng.angle(), rng.angle()];
+                lab.set_angles(angles);
+                lab.set_str("faces", "mesh").expect("faces");
+                let mesh = lab.rgb(640, 360);
+                lab.set_str("faces", "auto").expect("faces");
+                let n = differing(&mesh, &lab.rgb(640, 360));
+                assert_eq!(
+                    n,
+                    0,
+                    "{} {} angles {angles:?}: {n} pixels differ between mesh order and auto",
+                    entry.info.name,
+                    object.name()
                 );
             }
         }

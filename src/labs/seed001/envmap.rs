@@ -14,6 +14,7 @@ use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 use crate::params::Params;
 use crate::render::{sampler, Bind, Computed, SamplerDesc, Texture};
 
+use crate::labs::common::FaceOrder;
 use crate::labs::seed001::stage::{OnSolid, UstcStage, OBJECT, ROTATION};
 
 /// Seed 001, §1.10: the `EnvMap` block is computed (`env_map`); the cube map and its
@@ -41,7 +42,11 @@ pub static RECIPE: Recipe = Recipe {
             },
         );
         let own = vec![Bind::texture("texMap", &cube), Bind::sampler("texMapSampler", &sampler)];
-        Shaded::build(cx, "envmap", p, OnSolid::new(cx.gpu, "envmap", EYE), &LOOK, own)
+        // Mesh order for every solid: the reflection colours the two sides of a silhouette
+        // edge differently, and reordered the teapot showed 1 px in 1 of 40 random views.
+        let mut stage = OnSolid::new(cx.gpu, "envmap", EYE);
+        stage.auto = |_| FaceOrder::Mesh;
+        Shaded::build(cx, "envmap", p, stage, &LOOK, own)
     },
 };
 

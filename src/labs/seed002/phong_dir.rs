@@ -22,6 +22,7 @@ use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, DOWN, UP};
 use crate::params::{ParamSpec, Params};
 use crate::render::Computed;
 
+use crate::labs::common::FaceOrder;
 use crate::labs::seed002::stage::{self, Teapot};
 
 /// `phong_dir`.
@@ -50,7 +51,14 @@ pub static RECIPE: Recipe = Recipe {
     animated: false,
     title: None,
     build: |cx, p| {
-        let stage = Teapot::new(cx.gpu, "phong_dir", |p| (model_rx(p.f("rx")), stage::EYE));
+        // Facing the eye first: 0.841 of outside faces first (two draws), itself 0.855 against
+        // 1.083 of the original in mesh order; 1000 random views byte-identical to mesh order.
+        let stage = Teapot::new(
+            cx.gpu,
+            "phong_dir",
+            |p| (model_rx(p.f("rx")), stage::EYE),
+            FaceOrder::FacingFirst,
+        );
         Shaded::build(cx, "phong_dir", p, stage, &LOOK, Vec::new())
     },
 };

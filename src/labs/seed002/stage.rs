@@ -53,13 +53,6 @@ pub fn teapot(gpu: &Gpu, label: &str) -> ViewOrdered<Vertex> {
     ViewOrdered::new(gpu, label, &mesh.vertices, Some(mesh.indices), positions)
 }
 
-/// The face order of both labs' teapot in `auto`: the triangles facing the eye first. Measured
-/// (default state, 7 alternating pairs, wall time of the new order over the old): outside
-/// faces first against mesh order took `phong_dir` from 1.083 to 0.855 of the original; one
-/// draw facing first against outside faces first (two draws) is 0.841 for `phong_dir` and
-/// 0.972 for `normal_world`.
-const AUTO: FaceOrder = FaceOrder::FacingFirst;
-
 /// The model matrix and the `gluLookAt` eye a lab computes from its parameters.
 pub type Pose = fn(&Params) -> (Mat4, Vec3);
 
@@ -69,11 +62,13 @@ pub struct Teapot {
     pose: Pose,
     transform: Uniforms<TransformUniforms>,
     mesh: ViewOrdered<Vertex>,
+    /// The face order of `faces=auto`.
+    auto: FaceOrder,
 }
 
 impl Teapot {
-    /// The teapot of lab `label`, posed by `pose`.
-    pub fn new(gpu: &Gpu, label: &str, pose: Pose) -> Self {
+    /// The teapot of lab `label`, posed by `pose`, drawn in `auto`'s face order by default.
+    pub fn new(gpu: &Gpu, label: &str, pose: Pose, auto: FaceOrder) -> Self {
         Teapot {
             pose,
             transform: Uniforms::new(
@@ -82,6 +77,7 @@ impl Teapot {
                 TransformUniforms::new(Mat4::IDENTITY, projection_stack(EYE)),
             ),
             mesh: teapot(gpu, &format!("{label}.teapot")),
+            auto,
         }
     }
 }
@@ -91,11 +87,11 @@ impl Stage for Teapot {
     fn binds(&self) -> Vec<Bind> {
         vec![self.transform.bind()]
     }
-    /// By the `faces` parameter ([`AUTO`] in `auto`; freeglut winds the teapot's outside
-    /// clockwise): the same pixels as GL's mesh order, with the inside faces behind them
-    /// rejected by the depth test before they are shaded.
+    /// By the `faces` parameter (the lab's order in `auto`; freeglut winds the teapot's
+    /// outside clockwise): the same pixels as GL's mesh order but at exact depth ties, with
+    /// the inside faces behind them rejected by the depth test before they are shaded.
     fn faces(&self, p: &Params) -> Option<crate::render::Faces> {
-        Some(FaceOrder::of(p, AUTO).faces(wgpu::FrontFace::Cw))
+        Some(FaceOrder::of(p, self.auto).faces(wgpu::FrontFace::Cw))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, _width: u32, _height: u32) -> &GpuMesh<Vertex> {
         let (model, eye) = (self.pose)(p);
@@ -103,7 +99,7 @@ impl Stage for Teapot {
         self.transform.value = TransformUniforms::new(model, projection);
         self.transform.upload(gpu);
         let view =
-            (FaceOrder::of(p, AUTO) == FaceOrder::FacingFirst).then(|| (projection * model, wgpu::FrontFace::Cw));
+            (FaceOrder::of(p, self.auto) == FaceOrder::FacingFirst).then(|| (projection * model, wgpu::FrontFace::Cw));
         self.mesh.get(gpu, view)
     }
 }

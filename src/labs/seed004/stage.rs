@@ -110,13 +110,13 @@ pub struct Model {
     smooth: ViewOrdered<ObjCorner>,
     /// Which normals to draw.
     pub normals: fn(&Params) -> Normals,
-    /// The face order of `faces=auto` ([`FaceOrder`]) on the vertex-normal VBO: the triangles
-    /// facing the eye first unless a lab sets otherwise. On the face-normal VBO `auto` is mesh
-    /// order whatever this says: each face has its own colour there, so where a face in front
-    /// and one behind tie in depth at the silhouette the order shows (1 px in some views). Measured (7 alternating pairs, wall time against mesh
-    /// order, default view): Gouraud 0.941, smooth 0.973, texture 0.930, normal colour 0.987,
-    /// normal matrix 0.982; per-pixel Phong 0.925 against outside faces first (two draws,
-    /// itself 14 % less CPU than mesh order).
+    /// The face order of `faces=auto` ([`FaceOrder`]) on the vertex-normal VBO: mesh order
+    /// unless a lab sets otherwise. On the face-normal VBO `auto` is mesh order whatever this
+    /// says: each face has its own colour there, so where a face in front and one behind tie
+    /// in depth at the silhouette the order shows (1 px in some views). Measured facing first
+    /// (7 alternating pairs, wall time against mesh order, default view): Gouraud 0.941, smooth
+    /// 0.973, texture 0.930, normal colour 0.987, normal matrix 0.982; per-pixel Phong 0.925
+    /// against outside faces first (two draws, itself 14 % less CPU than mesh order).
     pub auto: fn(&Params) -> FaceOrder,
 }
 
@@ -138,7 +138,7 @@ impl Model {
             faces: corners(cx.gpu, &format!("{label}.faces"), &model.corners),
             smooth: corners(cx.gpu, &format!("{label}.smooth"), &model.smooth),
             normals,
-            auto: |_| FaceOrder::FacingFirst,
+            auto: |_| FaceOrder::Mesh,
         }
     }
 }

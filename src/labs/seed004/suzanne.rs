@@ -97,11 +97,7 @@ pub fn sample(cx: &LabContext, name: &str, frag: &'static str) -> Result<Box<dyn
         gl_textures::checker(cx.gpu)?,
         gl_textures::bmp(cx.gpu, cx.files.texture.as_ref())?,
     ];
-    let mut model = Model::new(cx, name, |_| Normals::Vertex);
-    // Mesh order: where a face in front and one behind tie in depth at the silhouette, the
-    // texture's seams colour them differently, so reordering shows (1 px at 1 of 17 views
-    // drawn facing first; tests/faces.rs).
-    model.auto = |_| FaceOrder::Mesh;
+    let model = Model::new(cx, name, |_| Normals::Vertex);
     Sampled::build(
         cx,
         name,
@@ -212,9 +208,17 @@ pub fn shade(cx: &LabContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> 
             Normals::Vertex
         }
     };
-    // Flat shading (the face-normal VBO) keeps mesh order (see `Model::auto`); Gouraud and
-    // Phong colour both sides of a shared edge alike and draw facing the eye first
-    // (tests/faces.rs: byte-identical at 17 views).
-    let model = Model::new(cx, name, normals);
+    // Per-pixel Phong draws facing the eye first: 1100 random views byte-identical to mesh
+    // order. The others keep mesh order: reordered, Gouraud showed 1 px in 1 of 100 views,
+    // and so did the smooth, textured and normal-colour exercises (flat, on the face-normal
+    // VBO, see `Model::auto`).
+    let mut model = Model::new(cx, name, normals);
+    model.auto = |p| {
+        if p.index_of("shading") == Shading::Phong as usize {
+            FaceOrder::FacingFirst
+        } else {
+            FaceOrder::Mesh
+        }
+    };
     Shaded::build(cx, name, p, model, &LIT, Vec::new())
 }
