@@ -222,6 +222,7 @@ impl GlutStage {
                     Some(mesh.indices),
                     positions,
                 )
+                .unguarded()
             })
             .get(gpu, view)
     }

@@ -40,17 +40,28 @@ pub const OBJECT: &[ParamSpec] = &[
     common::FACES,
 ];
 
-/// The face order of `faces=auto` for the lit solids (toon, uniform_arrays, phong_vertex,
-/// phong_fragment): the torus's triangles facing the eye first ([`FaceOrder::FacingFirst`]:
-/// the same pixels, fewer fragments shaded; 1000 random views of each of the four labs
-/// byte-identical to mesh order), the others in mesh order. Measured (7 alternating pairs,
-/// wall time against mesh order, default view): torus 0.674, 0.651, 0.943, 0.884; teapot 0.911,
-/// 0.928, 0.979, 1.015, but this camera's near plane at 0.1 leaves the teapot exact depth ties
-/// at its silhouette that the order decides (1 px in 1-4 of 1000 views), as the cube has (1 px
-/// at `xangle=10 yangle=200`); the sphere's mesh order already draws its near half first.
+/// The face order of `faces=auto` for `toon`: the torus's triangles facing the eye first
+/// ([`FaceOrder::FacingFirst`]: the same pixels, fewer fragments shaded), the others in mesh
+/// order. Measured (alternating pairs, wall time against mesh order, default view): torus
+/// 0.943; teapot 0.994 (15 pairs) and 1.023 (9 pairs), no gain for the cheapest shading; the
+/// sphere's mesh order already draws its near half first, and the cube gains nothing.
 pub fn torus_facing_first(object: Object) -> FaceOrder {
     match object {
         Object::Torus => FaceOrder::FacingFirst,
+        _ => FaceOrder::Mesh,
+    }
+}
+
+/// The face order of `faces=auto` for the other lit solids (uniform_arrays, phong_vertex,
+/// phong_fragment): teapot and torus facing the eye first. Wall time against mesh order
+/// (alternating pairs, default view): torus 0.674, 0.884, 0.651; teapot 0.923, 0.945, 0.936
+/// (9 pairs of 1000 frames; CPU time 0.898, 0.952, 0.920). The teapot's exact depth ties (its
+/// spout and handle pass through its body, and this camera's near plane at 0.1 makes depths
+/// coarse) are what [`crate::render::TieGuard`] keeps in mesh order: 1000 random views of each
+/// lab byte-identical to mesh order, where without it 2-6 of 1000 showed 1 px.
+pub fn teapot_and_torus_facing_first(object: Object) -> FaceOrder {
+    match object {
+        Object::Torus | Object::Teapot => FaceOrder::FacingFirst,
         _ => FaceOrder::Mesh,
     }
 }
@@ -181,7 +192,8 @@ pub struct OnSolid {
     /// The frame.
     pub stage: UstcStage,
     solids: Solids,
-    /// The face order of `faces=auto`, by solid ([`torus_facing_first`] unless the lab sets it).
+    /// The face order of `faces=auto`, by solid ([`teapot_and_torus_facing_first`] unless the
+    /// lab sets it).
     pub auto: fn(Object) -> FaceOrder,
 }
 
@@ -191,7 +203,7 @@ impl OnSolid {
         OnSolid {
             stage: UstcStage::new(gpu, label, eye),
             solids: Solids::default(),
-            auto: torus_facing_first,
+            auto: teapot_and_torus_facing_first,
         }
     }
 }
@@ -238,6 +250,45 @@ impl<V: VertexType + 'static> crate::lab::Stage for OnMesh<V> {
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
         self.stage.upload(gpu, p, width, height);
         &self.mesh
+    }
+}
+
+/// The frame as the runner draws it ([`crate::lab::Stage`]): the lab's own mesh of a solid in
+/// the face order the `faces` parameter asks for ([`FACES`]; `auto`: [`OnOrdered::auto`]).
+pub struct OnOrdered<V: VertexType> {
+    /// The frame.
+    pub stage: UstcStage,
+    /// The mesh, with its positions for the CPU's facing test.
+    pub mesh: ViewOrdered<V>,
+    /// How the solid's outside faces are wound.
+    pub outside: wgpu::FrontFace,
+    /// The face order of `faces=auto`.
+    pub auto: FaceOrder,
+}
+
+/// The face order parameter alone, for the labs on [`OnOrdered`].
+pub const FACES: &[ParamSpec] = &[common::FACES];
+
+impl<V: VertexType + 'static> crate::lab::Stage for OnOrdered<V> {
+    type Vertex = V;
+    fn input(&mut self, p: &mut Params, input: Input) -> bool {
+        self.stage.input(p, input)
+    }
+    fn binds(&self) -> Vec<Bind> {
+        vec![self.stage.transform.bind()]
+    }
+    fn faces(&self, p: &Params) -> Option<Faces> {
+        Some(FaceOrder::of(p, self.auto).faces(self.outside))
+    }
+    fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
+        self.stage.upload(gpu, p, width, height);
+        let view = (FaceOrder::of(p, self.auto) == FaceOrder::FacingFirst).then(|| {
+            (
+                UstcStage::projection(width, height) * self.stage.modelview(p),
+                self.outside,
+            )
+        });
+        self.mesh.get(gpu, view)
     }
 }
 

@@ -10,16 +10,18 @@ use glam::Vec3;
 use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
 use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
+use crate::labs::common::FaceOrder;
 use crate::mesh::Mesh;
-use crate::render::{sampler, Bind, GpuMesh, SamplerDesc, Texture};
+use crate::render::{sampler, Bind, SamplerDesc, Texture, ViewOrdered};
+use crate::tess::Object;
 
-use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
+use crate::labs::seed001::stage::{OnOrdered, UstcStage, FACES, ROTATION};
 
 /// Seed 001, §1.9: no uniform block besides the Transform; the image and its sampler are the
 /// lab's own bindings.
 pub static RECIPE: Recipe = Recipe {
     info: super::info("texture", "ref001", "texture mapping", Keys::text("left drag rotates")),
-    params: &[ROTATION],
+    params: &[ROTATION, FACES],
     animated: false,
     title: None,
     build: |cx, p| {
@@ -28,9 +30,14 @@ pub static RECIPE: Recipe = Recipe {
         // GL_REPEAT on s and t, GL_LINEAR for both filters, no mipmaps.
         let sampler = sampler(cx.gpu, "texture.sampler", &SamplerDesc::default());
         let (vertices, indices) = textured_teapot();
-        let stage = OnMesh {
+        // Facing the eye first: 0.979 of mesh order (wall, 11 alternating pairs; CPU 0.960),
+        // 1000 random views byte-identical to it.
+        let positions = vertices.iter().map(|v| v.position).collect();
+        let stage = OnOrdered {
             stage: UstcStage::new(cx.gpu, "texture", Vec3::new(0.0, 0.0, 4.0)),
-            mesh: GpuMesh::new(cx.gpu, "texture.teapot", &vertices, Some(&indices)),
+            mesh: ViewOrdered::new(cx.gpu, "texture.teapot", &vertices, Some(indices), positions),
+            outside: Object::Teapot.outside_winding(),
+            auto: FaceOrder::FacingFirst,
         };
         let own = vec![
             Bind::texture("myTexture", &texture),

@@ -12,7 +12,7 @@ use glam::Vec3;
 use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
-use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION, TESS};
+use crate::labs::seed001::stage::{torus_facing_first, OnSolid, OBJECT, ROTATION, TESS};
 
 /// Seed 001, §1.6: the Transform and GlLight blocks come from the stage.
 pub static RECIPE: Recipe = Recipe {
@@ -26,7 +26,8 @@ pub static RECIPE: Recipe = Recipe {
     animated: false,
     title: None,
     build: |cx, p| {
-        let stage = OnSolid::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
+        let mut stage = OnSolid::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
+        stage.auto = torus_facing_first;
         Shaded::build(
             cx,
             "toon",

@@ -91,13 +91,18 @@ pub const fn textured(name: &'static str, label: &'static str, build: Build) -> 
 const TEXTURED_KEYS: &[KeyRow] = &[KeyRow::cycle(&[C('t')], "tex")];
 
 /// The model's vertex-normal VBO drawn by the vertex shader of 4.2 and `frag`, sampling the
-/// texture `tex` chooses with its own parameters.
-pub fn sample(cx: &LabContext, name: &str, frag: &'static str) -> Result<Box<dyn Scene>> {
+/// texture `tex` chooses with its own parameters, in `auto`'s face order by default.
+pub fn sample(cx: &LabContext, name: &str, frag: &'static str, auto: FaceOrder) -> Result<Box<dyn Scene>> {
     let textures = vec![
         gl_textures::checker(cx.gpu)?,
         gl_textures::bmp(cx.gpu, cx.files.texture.as_ref())?,
     ];
-    let model = Model::new(cx, name, |_| Normals::Vertex);
+    let mut model = Model::new(cx, name, |_| Normals::Vertex);
+    model.auto = match auto {
+        FaceOrder::FacingFirst => |_| FaceOrder::FacingFirst,
+        FaceOrder::OutsideFirst => |_| FaceOrder::OutsideFirst,
+        FaceOrder::Mesh => |_| FaceOrder::Mesh,
+    };
     Sampled::build(
         cx,
         name,
@@ -208,17 +213,10 @@ pub fn shade(cx: &LabContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> 
             Normals::Vertex
         }
     };
-    // Per-pixel Phong draws facing the eye first: 1100 random views byte-identical to mesh
-    // order. The others keep mesh order: reordered, Gouraud showed 1 px in 1 of 100 views,
-    // and so did the smooth, textured and normal-colour exercises (flat, on the face-normal
-    // VBO, see `Model::auto`).
+    // Gouraud and per-pixel Phong draw facing the eye first (flat keeps mesh order on the
+    // face-normal VBO, see `Model::auto`): 1000 random views of each byte-identical to mesh
+    // order.
     let mut model = Model::new(cx, name, normals);
-    model.auto = |p| {
-        if p.index_of("shading") == Shading::Phong as usize {
-            FaceOrder::FacingFirst
-        } else {
-            FaceOrder::Mesh
-        }
-    };
+    model.auto = |_| FaceOrder::FacingFirst;
     Shaded::build(cx, name, p, model, &LIT, Vec::new())
 }

@@ -5,9 +5,11 @@
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
 use crate::lab::Recipe;
+use crate::labs::common::FaceOrder;
 use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.4.
 pub static RECIPE: Recipe = textured("suzanne_texture", "texture", |cx, _| {
-    sample(cx, RECIPE.info.name, "suzanne_texture.frag")
+    // Facing the eye first: 0.947 of mesh order (wall, 9 alternating pairs; CPU 0.939).
+    sample(cx, RECIPE.info.name, "suzanne_texture.frag", FaceOrder::FacingFirst)
 });

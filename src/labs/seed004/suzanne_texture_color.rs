@@ -4,9 +4,11 @@
 //! Keys: `t` toggles checker / BMP; left drag rotates (0.5° per pixel).
 
 use crate::lab::Recipe;
+use crate::labs::common::FaceOrder;
 use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.5.
 pub static RECIPE: Recipe = textured("suzanne_texture_color", "texture × colour", |cx, _| {
-    sample(cx, RECIPE.info.name, "suzanne_texture_color.frag")
+    // Mesh order: facing the eye first measured 0.990 of it (wall, 9 pairs), no gain.
+    sample(cx, RECIPE.info.name, "suzanne_texture_color.frag", FaceOrder::Mesh)
 });
