@@ -111,6 +111,12 @@ impl UstcStage {
         view * camera::gl_rotate(params.f("xangle"), Vec3::X) * camera::gl_rotate(params.f("yangle"), Vec3::Y)
     }
 
+    /// Object to clip space for a `width` x `height` viewport: [`Self::projection`] times
+    /// [`Self::modelview`] (what the facing test of `faces=facing_first` needs).
+    pub fn object_to_clip(&self, params: &Params, width: u32, height: u32) -> Mat4 {
+        Self::projection(width, height) * self.modelview(params)
+    }
+
     /// `gluPerspective(45, (float)w/h, 0.1, 100)` for a viewport, in wgpu's depth convention.
     pub fn projection(width: u32, height: u32) -> Mat4 {
         let (fovy, near, far) = PERSPECTIVE;
@@ -234,7 +240,7 @@ impl crate::lab::Stage for OnSolid {
         let level = if p.has("tess") { p.f64("tess") as u32 } else { 0 };
         let object = UstcStage::object(p);
         let view = (FaceOrder::of(p, (self.auto)(object)) == FaceOrder::FacingFirst)
-            .then(|| UstcStage::projection(width, height) * self.stage.modelview(p));
+            .then(|| self.stage.object_to_clip(p, width, height));
         self.solids.get(gpu, object, level, view)
     }
 }
@@ -282,12 +288,8 @@ impl<V: VertexType + 'static> crate::lab::Stage for OnOrdered<V> {
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
         self.stage.upload(gpu, p, width, height);
-        let view = (FaceOrder::of(p, self.auto) == FaceOrder::FacingFirst).then(|| {
-            (
-                UstcStage::projection(width, height) * self.stage.modelview(p),
-                self.outside,
-            )
-        });
+        let view = (FaceOrder::of(p, self.auto) == FaceOrder::FacingFirst)
+            .then(|| (self.stage.object_to_clip(p, width, height), self.outside));
         self.mesh.get(gpu, view)
     }
 }

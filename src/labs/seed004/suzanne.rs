@@ -92,17 +92,18 @@ const TEXTURED_KEYS: &[KeyRow] = &[KeyRow::cycle(&[C('t')], "tex")];
 
 /// The model's vertex-normal VBO drawn by the vertex shader of 4.2 and `frag`, sampling the
 /// texture `tex` chooses with its own parameters, in `auto`'s face order by default.
-pub fn sample(cx: &LabContext, name: &str, frag: &'static str, auto: FaceOrder) -> Result<Box<dyn Scene>> {
+pub fn sample(
+    cx: &LabContext,
+    name: &str,
+    frag: &'static str,
+    auto: fn(&Params) -> FaceOrder,
+) -> Result<Box<dyn Scene>> {
     let textures = vec![
         gl_textures::checker(cx.gpu)?,
         gl_textures::bmp(cx.gpu, cx.files.texture.as_ref())?,
     ];
     let mut model = Model::new(cx, name, |_| Normals::Vertex);
-    model.auto = match auto {
-        FaceOrder::FacingFirst => |_| FaceOrder::FacingFirst,
-        FaceOrder::OutsideFirst => |_| FaceOrder::OutsideFirst,
-        FaceOrder::Mesh => |_| FaceOrder::Mesh,
-    };
+    model.auto = auto;
     Sampled::build(
         cx,
         name,

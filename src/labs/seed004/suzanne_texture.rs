@@ -11,5 +11,5 @@ use crate::labs::seed004::suzanne::{sample, textured};
 /// Seed 004 §4.4.
 pub static RECIPE: Recipe = textured("suzanne_texture", "texture", |cx, _| {
     // Facing the eye first: 0.947 of mesh order (wall, 9 alternating pairs; CPU 0.939).
-    sample(cx, RECIPE.info.name, "suzanne_texture.frag", FaceOrder::FacingFirst)
+    sample(cx, RECIPE.info.name, "suzanne_texture.frag", |_| FaceOrder::FacingFirst)
 });
