@@ -2,6 +2,10 @@
 
 use crate::error::{Error, Result};
 
+/// Buffers made of host memory, for the window's shared-memory presenter.
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+pub(crate) mod host_memory;
+
 /// How long [`Gpu::poll_then_wait`] polls before it blocks, unless `SHADERLAB_POLL_US` says
 /// otherwise (0: block at once, as before; for measuring). Measured on lavapipe (2 vCPUs),
 /// against blocking at once, 9 alternating pairs: a 0.25 ms frame 8 % faster, 0.7-1.6 ms
@@ -42,6 +46,10 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     /// Whether timestamp queries work (GPU timings in benchmarks).
     pub timestamps: bool,
+    /// Whether the device imports host memory as buffers (`VK_EXT_external_memory_host`):
+    /// opened so by [`Gpu::for_window`] on a CPU Vulkan adapter, for the window's
+    /// shared-memory presenter.
+    pub host_memory: bool,
 }
 
 impl Gpu {
@@ -96,6 +104,18 @@ impl Gpu {
 
     /// A context whose adapter can present to `surface` (if given).
     pub async fn new(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Self> {
+        Self::create(instance, surface, false).await
+    }
+
+    /// [`Gpu::new`] for a window on X11: on a CPU Vulkan adapter that offers it, the device also
+    /// imports host memory ([`Gpu::host_memory`]), so that the shared-memory presenter's copy
+    /// of a frame lands in the X server's segment itself. Elsewhere the same as [`Gpu::new`].
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    pub async fn for_window(instance: wgpu::Instance, surface: &wgpu::Surface<'_>) -> Result<Self> {
+        Self::create(instance, Some(surface), true).await
+    }
+
+    async fn create(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>, host_memory: bool) -> Result<Self> {
         let adapter = instance
             .request_adapter(&wgpu::RequestAdapterOptions {
                 power_preference: wgpu::PowerPreference::default(),
@@ -114,18 +134,36 @@ impl Gpu {
             wgpu::Limits::downlevel_defaults()
         };
         let features = adapter.features() & wanted;
+        let desc = wgpu::DeviceDescriptor {
+            label: Some("shaderlab.device"),
+            required_features: features,
+            required_limits: wgpu::Limits {
+                // The adapter's own largest buffer: a big offscreen picture (a supersampled
+                // reference) is read back through one buffer.
+                max_buffer_size: adapter.limits().max_buffer_size.max(base.max_buffer_size),
+                ..base.using_resolution(adapter.limits())
+            },
+            ..Default::default()
+        };
+        let timestamps = features.contains(wgpu::Features::TIMESTAMP_QUERY);
+        // Where the device cannot import host memory it opens the usual way: the presenter
+        // then copies each frame (and says why with SHADERLAB_PRESENT=shm).
+        #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+        if host_memory {
+            if let Some(Ok((device, queue))) = host_memory::open_device(&adapter, &desc) {
+                return Ok(Gpu {
+                    instance,
+                    adapter,
+                    device,
+                    queue,
+                    timestamps,
+                    host_memory: true,
+                });
+            }
+        }
+        let _ = host_memory;
         let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("shaderlab.device"),
-                required_features: features,
-                required_limits: wgpu::Limits {
-                    // The adapter's own largest buffer: a big offscreen picture (a supersampled
-                    // reference) is read back through one buffer.
-                    max_buffer_size: adapter.limits().max_buffer_size.max(base.max_buffer_size),
-                    ..base.using_resolution(adapter.limits())
-                },
-                ..Default::default()
-            })
+            .request_device(&desc)
             .await
             .map_err(|e| Error::Device(e.to_string()))?;
         Ok(Gpu {
@@ -133,7 +171,8 @@ impl Gpu {
             adapter,
             device,
             queue,
-            timestamps: features.contains(wgpu::Features::TIMESTAMP_QUERY),
+            timestamps,
+            host_memory: false,
         })
     }
 

@@ -1623,10 +1623,12 @@ fn lecture_keys_work_in_a_window() {
 // Presentation through X shared memory
 // ---------------------------------------------------------------------------------------------
 
-/// On lavapipe under X11 the window presents through MIT-SHM (src/shell/shm.rs); the swapchain
-/// stays as the fallback (`SHADERLAB_PRESENT=swapchain`). Both must show exactly the pixels of
-/// `--screenshot`, and the shared-memory path must say it is in use (`SHADERLAB_PRESENT=shm`
-/// prints why when it is not).
+/// On lavapipe under X11 the window presents through MIT-SHM (src/shell/shm.rs), lavapipe
+/// writing each frame into the shared memory itself; copying it there through a readback buffer
+/// (`SHADERLAB_PRESENT=shm-copy`) and the swapchain (`SHADERLAB_PRESENT=swapchain`) stay as
+/// fallbacks. All three must show exactly the pixels of `--screenshot`, and each must be the
+/// path asked for (`SHADERLAB_PRESENT=shm` prints why when the presenter is not used, or why it
+/// copies).
 #[test]
 fn shared_memory_and_swapchain_windows_show_the_screenshot_pixels() {
     let x = Xvfb::start("shm_present");
@@ -1644,7 +1646,7 @@ fn shared_memory_and_swapchain_windows_show_the_screenshot_pixels() {
             .expect("run --screenshot");
         assert!(status.success(), "{name} --screenshot failed");
         let expected = image::open(&png).expect("screenshot PNG").to_rgb8();
-        for present in ["shm", "swapchain"] {
+        for present in ["shm", "shm-copy", "swapchain"] {
             let mut lab = x.launch(name, &args, &[("SHADERLAB_PRESENT", present)]);
             lab.first_frame();
             let shown = lab.settled();
@@ -1659,6 +1661,13 @@ fn shared_memory_and_swapchain_windows_show_the_screenshot_pixels() {
             assert!(
                 !lab.stderr().contains("presenting with the swapchain"),
                 "{name}: SHADERLAB_PRESENT={present} did not present as asked:\n{}",
+                lab.stderr()
+            );
+            // Asked for shared memory, the frame goes straight into it on lavapipe.
+            assert_eq!(
+                lab.stderr().contains("copies each frame"),
+                present == "shm-copy",
+                "{name}: SHADERLAB_PRESENT={present}:\n{}",
                 lab.stderr()
             );
             lab.assert_clean();

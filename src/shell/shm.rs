@@ -4,15 +4,21 @@
 //! ~0.8 ms for 640x360 on the test machine), while the original's GL driver puts its frames
 //! through shared memory. For a CPU adapter under X11 the window can do the same: the lab draws
 //! into an offscreen `Bgra8Unorm` target, the frame is copied into a System V shared memory
-//! segment the X server has attached, and one `ShmPutImage` shows it. Two segments take turns,
-//! so the server shows one frame while the next is drawn; a segment is written again only after
-//! the server's completion event for it. The pixels are the ones the swapchain would show (same
-//! format, same pipelines).
+//! segment the X server has attached, and one `ShmPutImage` shows it. Three segments take
+//! turns, so the server shows one frame while the next is drawn; a segment is written again
+//! only after the server's completion event for it. The pixels are the ones the swapchain would
+//! show (same format, same pipelines).
+//!
+//! Where the device imports host memory ([`Gpu::host_memory`]) each segment is also a wgpu
+//! buffer, and lavapipe's copy of the frame lands in the segment itself; otherwise (or with
+//! `SHADERLAB_PRESENT=shm-copy`) the frame is copied to a readback buffer and from there into
+//! the segment, one 920 KB copy more per 640x360 frame.
 //!
 //! Anything else (another adapter type, Wayland, no MIT-SHM, a remote server, a visual that is
 //! not 24-bit BGRX) keeps the swapchain, and so does `SHADERLAB_PRESENT=swapchain`. A presenter
 //! that fails while drawing hands back to the swapchain too.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -30,11 +36,16 @@ use crate::offscreen::depth_texture;
 /// server's 32-bit pixel `0x00RRGGBB` for a 24-bit TrueColor visual.
 pub(super) const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Bgra8Unorm;
 
+/// How many segments take turns.
+const SEGMENTS: usize = 3;
+
 /// A System V shared memory segment attached here and by the X server.
 struct Segment {
     seg: shm::Seg,
     addr: *mut u8,
     size: usize,
+    /// The segment's memory as a buffer lavapipe copies frames into (direct presenting).
+    buffer: Option<wgpu::Buffer>,
 }
 
 /// The offscreen target and the shared memory a frame goes through.
@@ -58,10 +69,15 @@ pub(super) struct ShmPresenter {
     pub width: u32,
     /// Target size.
     pub height: u32,
-    /// Two segments in turn, whether the server may still be reading each, and the next one.
-    segments: [Segment; 2],
-    pending: [bool; 2],
+    /// Segments in turn, whether the server may still be reading each, and the next one.
+    segments: [Segment; SEGMENTS],
+    pending: [bool; SEGMENTS],
     next: usize,
+    /// Why frames are copied into the segments rather than written there by the GPU (`None`:
+    /// every segment has its buffer).
+    copying: Option<Why>,
+    /// The device, to wait on dropping for a frame the GPU may still be writing into a segment.
+    device: wgpu::Device,
     /// The server refused a request (say, a put into a window another program destroyed). A
     /// refused put never completes, so its `pending` flag can no longer be trusted.
     refused: bool,
@@ -72,13 +88,21 @@ pub(super) struct ShmPresenter {
 /// How long dropping the presenter waits for the server to finish its last puts.
 const DROP_WAIT: Duration = Duration::from_secs(1);
 
-/// A frame on its way: its readback buffer, its submission and its size.
+/// A frame on its way: where it goes, its submission and its size.
 struct InFlight {
-    buffer: wgpu::Buffer,
+    to: Destination,
     submission: wgpu::SubmissionIndex,
     width: u32,
     height: u32,
     stride: u32,
+}
+
+/// Where a frame's copy goes.
+enum Destination {
+    /// A readback buffer, copied into a segment when shown.
+    Readback(wgpu::Buffer),
+    /// Segment `k` itself; the flag says when the GPU has finished the frame.
+    Segment(usize, Arc<AtomicBool>),
 }
 
 /// Why the presenter is not used (said once on stderr with `SHADERLAB_PRESENT=shm`).
@@ -94,9 +118,10 @@ impl ShmPresenter {
 
     /// A presenter for `window` if this adapter, display and visual allow it; otherwise why not.
     pub(super) fn new(gpu: &Gpu, window: &Arc<Window>, width: u32, height: u32) -> Result<Self, Why> {
-        match std::env::var("SHADERLAB_PRESENT").as_deref() {
+        let asked = std::env::var("SHADERLAB_PRESENT");
+        match asked.as_deref() {
             Ok("swapchain") => return Err("SHADERLAB_PRESENT=swapchain".into()),
-            Ok("shm") => {}
+            Ok("shm" | "shm-copy") => {}
             _ if gpu.adapter.get_info().device_type != wgpu::DeviceType::Cpu => {
                 return Err("the adapter is not a CPU one".into())
             }
@@ -159,19 +184,26 @@ impl ShmPresenter {
             .map_err(x("GC"))?;
         let (texture, color, depth_view, readback, stride) = targets(gpu, width, height);
         let size = stride as usize * height as usize;
-        let segments = match Segment::new(&conn, size).and_then(|a| match Segment::new(&conn, size) {
-            Ok(b) => Ok([a, b]),
-            Err(e) => {
-                a.release(&conn);
-                Err(e)
-            }
-        }) {
-            Ok(s) => s,
-            Err(e) => {
-                let _ = conn.free_gc(gc);
-                let _ = conn.flush();
-                return Err(e);
-            }
+        let direct = if asked.as_deref() == Ok("shm-copy") {
+            Err("SHADERLAB_PRESENT=shm-copy".to_owned())
+        } else if !gpu.host_memory {
+            Err("the device does not import host memory".to_owned())
+        } else {
+            crate::gpu::host_memory::alignment(&gpu.device)
+                .filter(|a| a.is_power_of_two())
+                .ok_or_else(|| "no alignment for host memory".to_owned())
+                .and_then(|align| segments(&conn, size, Some((&gpu.device, align))))
+        };
+        let (segments, copying) = match direct {
+            Ok(s) => (s, None),
+            Err(why) => match segments(&conn, size, None) {
+                Ok(s) => (s, Some(why)),
+                Err(e) => {
+                    let _ = conn.free_gc(gc);
+                    let _ = conn.flush();
+                    return Err(e);
+                }
+            },
         };
         Ok(ShmPresenter {
             conn,
@@ -181,14 +213,17 @@ impl ShmPresenter {
             color,
             depth_view,
             texture,
-            spare: Some(readback),
+            // Presenting directly needs no readback buffer.
+            spare: copying.is_some().then_some(readback),
             in_flight: None,
             stride,
             width,
             height,
             segments,
-            pending: [false; 2],
+            pending: [false; SEGMENTS],
             next: 0,
+            copying,
+            device: gpu.device.clone(),
             refused: false,
             window_gone: false,
         })
@@ -245,6 +280,20 @@ impl ShmPresenter {
         }
     }
 
+    /// Why frames are copied into the shared memory rather than written there by the GPU
+    /// (`None`: written there).
+    pub(super) fn copying(&self) -> Option<&str> {
+        self.copying.as_deref()
+    }
+
+    /// The device and alignment segments import their memory with, when presenting directly.
+    fn import(&self) -> Option<(&wgpu::Device, usize)> {
+        match self.copying {
+            Some(_) => None,
+            None => crate::gpu::host_memory::alignment(&self.device).map(|a| (&self.device, a)),
+        }
+    }
+
     /// Whether the presenter failed because its window no longer exists (another program
     /// destroyed it); the window's `Destroyed` event follows and ends the lab with its message.
     pub(super) fn window_gone(&self) -> bool {
@@ -256,28 +305,40 @@ impl ShmPresenter {
         self.flush(gpu)?;
         let (texture, color, depth_view, readback, stride) = targets(gpu, width, height);
         let needed = stride as usize * height as usize;
-        for k in 0..2 {
+        for k in 0..SEGMENTS {
             if needed > self.segments[k].size {
                 self.wait_for(k)?;
-                let segment = Segment::new(&self.conn, needed)?;
+                let segment = Segment::new(&self.conn, needed, self.import())?;
                 std::mem::replace(&mut self.segments[k], segment).release(&self.conn);
             }
         }
         (self.texture, self.color, self.depth_view) = (texture, color, depth_view);
-        self.spare = Some(readback);
+        self.spare = self.copying.is_some().then_some(readback);
         (self.stride, self.width, self.height) = (stride, width, height);
         Ok(())
     }
 
     /// Finishes a frame the lab recorded into `encoder` (drawing into [`Self::color`]): copies
-    /// it to a readback buffer and submits it. With `pipelined` the frame stays in flight and the
-    /// one before it is shown now, while this one renders (one frame of latency, for drawing as
-    /// fast as possible); otherwise it is shown before this returns.
+    /// it into the next free segment (or a readback buffer) and submits it. With `pipelined` the
+    /// frame stays in flight and the one before it is shown now, while this one renders (one
+    /// frame of latency, for drawing as fast as possible); otherwise it is shown before this
+    /// returns.
     pub(super) fn present(&mut self, gpu: &Gpu, mut encoder: wgpu::CommandEncoder, pipelined: bool) -> Result<(), Why> {
         let (width, height, stride) = (self.width, self.height, self.stride);
-        let buffer = match self.spare.take() {
-            Some(buffer) => buffer,
-            None => targets_buffer(gpu, stride, height),
+        let (buffer, segment) = if self.copying.is_none() {
+            // The server must have finished reading the segment before the GPU writes it.
+            let k = self.next;
+            self.wait_for(k)?;
+            self.next = (k + 1) % SEGMENTS;
+            match &self.segments[k].buffer {
+                Some(buffer) => (buffer.clone(), Some(k)),
+                None => return Err("a segment without its buffer".into()),
+            }
+        } else {
+            match self.spare.take() {
+                Some(buffer) => (buffer, None),
+                None => (targets_buffer(gpu, stride, height), None),
+            }
         };
         encoder.copy_texture_to_buffer(
             self.texture.as_image_copy(),
@@ -296,8 +357,18 @@ impl ShmPresenter {
             },
         );
         let submission = gpu.queue.submit([encoder.finish()]);
+        let to = match segment {
+            Some(k) => {
+                let done = Arc::new(AtomicBool::new(false));
+                let flag = done.clone();
+                gpu.queue
+                    .on_submitted_work_done(move || flag.store(true, Ordering::Release));
+                Destination::Segment(k, done)
+            }
+            None => Destination::Readback(buffer),
+        };
         let frame = InFlight {
-            buffer,
+            to,
             submission,
             width,
             height,
@@ -320,38 +391,52 @@ impl ShmPresenter {
         }
     }
 
-    /// Waits for `frame`, copies it into the free segment and puts it in the window.
+    /// Waits for `frame` and puts it in the window, copying it into the free segment first if
+    /// it went to a readback buffer.
     fn show(&mut self, gpu: &Gpu, frame: InFlight) -> Result<(), Why> {
-        let k = self.next;
-        self.wait_for(k)?;
+        let wait = wgpu::PollType::Wait {
+            submission_index: Some(frame.submission.clone()),
+            timeout: None,
+        };
         let bytes = frame.stride as usize * frame.height as usize;
-        if bytes > self.segments[k].size {
-            return Err("a frame larger than its segment".into());
-        }
-        let slice = frame.buffer.slice(..bytes as u64);
-        let mapped = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-        let flag = mapped.clone();
-        slice.map_async(wgpu::MapMode::Read, move |_| {
-            flag.store(true, std::sync::atomic::Ordering::Release)
-        });
-        // The frame is ready when its buffer is mapped: poll for that briefly, then block
-        // (see Gpu::poll_then_wait).
-        gpu.poll_then_wait(
-            |_| mapped.load(std::sync::atomic::Ordering::Acquire),
-            wgpu::PollType::Wait {
-                submission_index: Some(frame.submission.clone()),
-                timeout: None,
-            },
-        )
-        .map_err(x("waiting for the frame"))?;
-        {
-            let view = slice.get_mapped_range().map_err(x("reading the frame"))?;
-            // SAFETY: the segment is `size >= bytes` bytes mapped here for the presenter's
-            // life, and its completion event says the server has finished reading it.
-            let dst = unsafe { std::slice::from_raw_parts_mut(self.segments[k].addr, bytes) };
-            dst.copy_from_slice(&view);
-        }
-        frame.buffer.unmap();
+        let k = match frame.to {
+            Destination::Segment(k, done) => {
+                // Ready when its submission is done: poll for that briefly, then block (see
+                // Gpu::poll_then_wait).
+                gpu.poll_then_wait(|_| done.load(Ordering::Acquire), wait)
+                    .map_err(x("waiting for the frame"))?;
+                k
+            }
+            Destination::Readback(buffer) => {
+                let k = self.next;
+                self.wait_for(k)?;
+                if bytes > self.segments[k].size {
+                    return Err("a frame larger than its segment".into());
+                }
+                let slice = buffer.slice(..bytes as u64);
+                let mapped = Arc::new(AtomicBool::new(false));
+                let flag = mapped.clone();
+                slice.map_async(wgpu::MapMode::Read, move |_| flag.store(true, Ordering::Release));
+                // The frame is ready when its buffer is mapped: poll for that briefly, then
+                // block (see Gpu::poll_then_wait).
+                gpu.poll_then_wait(|_| mapped.load(Ordering::Acquire), wait)
+                    .map_err(x("waiting for the frame"))?;
+                {
+                    let view = slice.get_mapped_range().map_err(x("reading the frame"))?;
+                    // SAFETY: the segment is `size >= bytes` bytes mapped here for the
+                    // presenter's life, and its completion event says the server has finished
+                    // reading it.
+                    let dst = unsafe { std::slice::from_raw_parts_mut(self.segments[k].addr, bytes) };
+                    dst.copy_from_slice(&view);
+                }
+                buffer.unmap();
+                self.next = (k + 1) % SEGMENTS;
+                if (frame.width, frame.height) == (self.width, self.height) && self.spare.is_none() {
+                    self.spare = Some(buffer);
+                }
+                k
+            }
+        };
         self.conn
             .shm_put_image(
                 self.window,
@@ -373,12 +458,8 @@ impl ShmPresenter {
             .map_err(x("ShmPutImage"))?;
         self.conn.flush().map_err(x("X"))?;
         self.pending[k] = true;
-        self.next = 1 - k;
         while let Some(event) = self.conn.poll_for_event().map_err(x("X events"))? {
             self.handle(event)?;
-        }
-        if (frame.width, frame.height) == (self.width, self.height) && self.spare.is_none() {
-            self.spare = Some(frame.buffer);
         }
         Ok(())
     }
@@ -388,8 +469,21 @@ impl Drop for ShmPresenter {
     fn drop(&mut self) {
         // Never `wait_for` here: after a refused put (the window destroyed under it) the
         // completion it waits for never comes, and closing the window hung for good.
+        // A frame still being written into a segment must finish before the segment goes:
+        // lavapipe would write into memory no longer mapped. A CPU driver's frame always ends.
+        if let Some(InFlight {
+            to: Destination::Segment(..),
+            submission,
+            ..
+        }) = self.in_flight.take()
+        {
+            let _ = self.device.poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: None,
+            });
+        }
         let deadline = Instant::now() + DROP_WAIT;
-        for k in 0..2 {
+        for k in 0..SEGMENTS {
             let _ = self.wait_until(k, deadline);
             let segment = std::mem::replace(
                 &mut self.segments[k],
@@ -397,6 +491,7 @@ impl Drop for ShmPresenter {
                     seg: 0,
                     addr: std::ptr::null_mut(),
                     size: 0,
+                    buffer: None,
                 },
             );
             segment.release(&self.conn);
@@ -443,12 +538,39 @@ fn targets_buffer(gpu: &Gpu, stride: u32, height: u32) -> wgpu::Buffer {
     })
 }
 
+/// [`SEGMENTS`] segments of `size` bytes (see [`Segment::new`]); none if one fails.
+fn segments(
+    conn: &RustConnection,
+    size: usize,
+    import: Option<(&wgpu::Device, usize)>,
+) -> Result<[Segment; SEGMENTS], Why> {
+    let mut made = Vec::with_capacity(SEGMENTS);
+    for _ in 0..SEGMENTS {
+        match Segment::new(conn, size, import) {
+            Ok(segment) => made.push(segment),
+            Err(e) => {
+                for segment in made {
+                    segment.release(conn);
+                }
+                return Err(e);
+            }
+        }
+    }
+    made.try_into().map_err(|_| "segments".to_owned())
+}
+
 impl Segment {
-    /// A private segment of `size` bytes, attached here and by the server, and marked for
-    /// removal at once (it goes away when both have detached, even if the process dies).
-    fn new(conn: &RustConnection, size: usize) -> Result<Self, Why> {
+    /// A private segment of at least `size` bytes, attached here and by the server, and marked
+    /// for removal at once (it goes away when both have detached, even if the process dies).
+    /// With `import` (a device and its host-memory alignment) its memory is also a buffer the
+    /// GPU copies frames into.
+    fn new(conn: &RustConnection, size: usize, import: Option<(&wgpu::Device, usize)>) -> Result<Self, Why> {
+        let size = match import {
+            Some((_, align)) => size.div_ceil(align) * align,
+            None => size,
+        };
         // SAFETY: plain System V calls; every failure is checked and undone.
-        unsafe {
+        let segment = unsafe {
             let id = libc::shmget(libc::IPC_PRIVATE, size, libc::IPC_CREAT | 0o600);
             if id < 0 {
                 return Err(format!("shmget: {}", std::io::Error::last_os_error()));
@@ -468,21 +590,43 @@ impl Segment {
             });
             libc::shmctl(id, libc::IPC_RMID, std::ptr::null_mut());
             match attached {
-                Ok(seg) => Ok(Segment {
+                Ok(seg) => Segment {
                     seg,
                     addr: addr.cast(),
                     size,
-                }),
+                    buffer: None,
+                },
                 Err(e) => {
                     libc::shmdt(addr);
-                    Err(e)
+                    return Err(e);
                 }
+            }
+        };
+        let Some((device, align)) = import else {
+            return Ok(segment);
+        };
+        if !(segment.addr as usize).is_multiple_of(align) {
+            segment.release(conn);
+            return Err(format!("a segment not aligned to {align} bytes"));
+        }
+        // SAFETY: the segment stays attached here until `release`, which drops the buffer
+        // first; the presenter waits for the GPU's frame in a segment before the server reads
+        // it or the segment goes; address and size are multiples of the alignment.
+        match unsafe { crate::gpu::host_memory::import(device, segment.addr, size, "shaderlab.shm.segment") } {
+            Ok(buffer) => Ok(Segment {
+                buffer: Some(buffer),
+                ..segment
+            }),
+            Err(e) => {
+                segment.release(conn);
+                Err(e)
             }
         }
     }
 
-    /// Detaches the server and this process.
-    fn release(self, conn: &RustConnection) {
+    /// Detaches the server and this process (after dropping the buffer, if any).
+    fn release(mut self, conn: &RustConnection) {
+        drop(self.buffer.take());
         if self.addr.is_null() {
             return;
         }

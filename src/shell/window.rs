@@ -65,6 +65,9 @@ impl Presenter {
     fn window_gone(&self) -> bool {
         false
     }
+    fn copying(&self) -> Option<&str> {
+        None
+    }
 }
 
 /// Says once per window that it is larger than the device can draw (the surface is clamped to
@@ -266,6 +269,9 @@ impl App {
                 )
             }
         };
+        #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+        let gpu = pollster::block_on(Gpu::for_window(instance, &surface))?;
+        #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
         let gpu = pollster::block_on(Gpu::new(instance, Some(&surface)))?;
         Ok((gpu, surface))
     }
@@ -355,10 +361,16 @@ impl App {
         } else {
             Err(format!("the window's format is {format:?}"))
         };
+        let asked_shm = matches!(std::env::var("SHADERLAB_PRESENT").as_deref(), Ok("shm" | "shm-copy"));
         let shm = match shm {
-            Ok(p) => Some(p),
+            Ok(p) => {
+                if let (true, Some(why)) = (asked_shm, p.copying()) {
+                    eprintln!("{}: shared-memory presenter copies each frame: {why}", entry.info.name);
+                }
+                Some(p)
+            }
             Err(why) => {
-                if std::env::var("SHADERLAB_PRESENT").as_deref() == Ok("shm") {
+                if asked_shm {
                     eprintln!("{}: presenting with the swapchain: {why}", entry.info.name);
                 }
                 None
