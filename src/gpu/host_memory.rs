@@ -1,11 +1,12 @@
-//! Buffers made of memory the program already has (Vulkan's `VK_EXT_external_memory_host`),
-//! for the window's shared-memory presenter: lavapipe copies a frame straight into the segment
-//! the X server reads, instead of into a readback buffer the presenter then copies again
-//! (920 KB a frame at 640x360, ~12 % of a cheap frame's time in `perf`).
+//! Colour targets made of memory the program already has (Vulkan's
+//! `VK_EXT_external_memory_host`), for the window's shared-memory presenter: lavapipe draws a
+//! frame straight into the segment the X server reads, as the original's llvmpipe draws into
+//! its shared-memory image, instead of into a texture that is then copied to a readback buffer
+//! and copied again into the segment (two 920 KB copies a frame at 640x360).
 //!
 //! wgpu has no API for host memory, so this goes through its hal layer: the device is opened
-//! with the extension added ([`open_device`]), and a buffer is made with raw Vulkan calls and
-//! handed to wgpu ([`import`]), which then owns and destroys it like any other buffer. Written
+//! with the extension added ([`open_device`]), and an image is made with raw Vulkan calls and
+//! handed to wgpu ([`target`]), which then owns and destroys it like any other texture. Written
 //! by hand because no kept crate does it; every Vulkan result is checked and undone on failure.
 
 use ash::vk;
@@ -58,84 +59,162 @@ pub(crate) fn alignment(device: &wgpu::Device) -> Option<usize> {
     }
 }
 
-/// A buffer (`COPY_DST`, `size` bytes) whose memory is the `size` bytes at `ptr`, on a device
-/// from [`open_device`].
+/// A colour target whose memory is host memory the caller provides, and where its pixels lie
+/// in that memory.
+pub(crate) struct HostTarget {
+    /// The texture (`RENDER_ATTACHMENT`), owned by wgpu like any other.
+    pub texture: wgpu::Texture,
+    /// Bytes from the start of the memory to the first row.
+    pub offset: u64,
+    /// Bytes from one row to the next.
+    pub row_pitch: u64,
+}
+
+/// A `width` x `height` colour target in `format` (only `Bgra8Unorm`), laid out in rows
+/// (linear tiling) in host memory, on a device from [`open_device`]: `memory(size)` is asked for
+/// `size` bytes (a multiple of [`alignment`]) and returns their address, aligned likewise.
+/// Only for a CPU adapter, where a linear image is plain memory that another process can read
+/// while the image stays in its attachment layout.
 ///
 /// # Safety
-/// `ptr` must stay mapped, and be used by nothing else while the GPU writes it, until the
-/// returned buffer is dropped and every submission that used it has finished; `ptr` and `size`
-/// must be multiples of [`alignment`].
-pub(crate) unsafe fn import(
+/// The memory must stay mapped, and be read by nothing else while the GPU writes it, until the
+/// texture is dropped and every submission that used it has finished.
+pub(crate) unsafe fn target(
     device: &wgpu::Device,
-    ptr: *mut u8,
-    size: usize,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
     label: &str,
-) -> Result<wgpu::Buffer, String> {
-    let bytes = size as u64;
+    memory: impl FnOnce(usize) -> Result<*mut u8, String>,
+) -> Result<HostTarget, String> {
+    if format != wgpu::TextureFormat::Bgra8Unorm {
+        return Err(format!("no host-memory target in {format:?}"));
+    }
+    let align = alignment(device).ok_or("no alignment for host memory")?;
     let handle = vk::ExternalMemoryHandleTypeFlags::HOST_ALLOCATION_EXT;
-    let hal_buffer = {
-        // SAFETY: raw calls on this device's own handles; what is made is undone on each failure.
-        let hal = unsafe { device.as_hal::<Vulkan>() }.ok_or("not a Vulkan device")?;
-        let raw = hal.raw_device();
-        let instance = hal.shared_instance().raw_instance();
-        let ext = ash::ext::external_memory_host::Device::new(instance, raw);
-        let mut host = vk::MemoryHostPointerPropertiesEXT::default();
-        let r =
-            unsafe { (ext.fp().get_memory_host_pointer_properties_ext)(raw.handle(), handle, ptr.cast(), &mut host) };
-        if r != vk::Result::SUCCESS {
-            return Err(format!("vkGetMemoryHostPointerPropertiesEXT: {r}"));
-        }
-        let mut external = vk::ExternalMemoryBufferCreateInfo::default().handle_types(handle);
-        let info = vk::BufferCreateInfo::default()
-            .size(bytes)
-            .usage(vk::BufferUsageFlags::TRANSFER_DST)
-            .sharing_mode(vk::SharingMode::EXCLUSIVE)
-            .push_next(&mut external);
-        let buffer = unsafe { raw.create_buffer(&info, None) }.map_err(|e| format!("vkCreateBuffer: {e}"))?;
-        let needs = unsafe { raw.get_buffer_memory_requirements(buffer) };
-        let types = needs.memory_type_bits & host.memory_type_bits;
-        if types == 0 || needs.size > bytes {
-            unsafe { raw.destroy_buffer(buffer, None) };
-            return Err(format!(
-                "no memory type fits (buffer wants {} bytes of types {:#x}, the host memory offers types {:#x})",
-                needs.size, needs.memory_type_bits, host.memory_type_bits
-            ));
-        }
-        let mut import = vk::ImportMemoryHostPointerInfoEXT::default()
-            .handle_type(handle)
-            .host_pointer(ptr.cast());
-        let alloc = vk::MemoryAllocateInfo::default()
-            .allocation_size(bytes)
-            .memory_type_index(types.trailing_zeros())
-            .push_next(&mut import);
-        let memory = match unsafe { raw.allocate_memory(&alloc, None) } {
-            Ok(memory) => memory,
-            Err(e) => {
-                unsafe { raw.destroy_buffer(buffer, None) };
-                return Err(format!("vkAllocateMemory (host pointer): {e}"));
-            }
-        };
-        if let Err(e) = unsafe { raw.bind_buffer_memory(buffer, memory, 0) } {
-            unsafe {
-                raw.free_memory(memory, None);
-                raw.destroy_buffer(buffer, None);
-            }
-            return Err(format!("vkBindBufferMemory: {e}"));
-        }
-        // SAFETY: the buffer is bound to the whole of `memory`; wgpu destroys both on drop
-        // (freeing imported memory leaves the host memory as it is).
-        unsafe { wgpu::hal::vulkan::Buffer::from_raw_managed(buffer, memory, 0, bytes) }
+    // SAFETY: raw calls on this device's own handles; what is made is undone on each failure.
+    let hal = unsafe { device.as_hal::<Vulkan>() }.ok_or("not a Vulkan device")?;
+    let raw = hal.raw_device();
+    let mut external = vk::ExternalMemoryImageCreateInfo::default().handle_types(handle);
+    let info = vk::ImageCreateInfo::default()
+        .image_type(vk::ImageType::TYPE_2D)
+        .format(vk::Format::B8G8R8A8_UNORM)
+        .extent(vk::Extent3D {
+            width,
+            height,
+            depth: 1,
+        })
+        .mip_levels(1)
+        .array_layers(1)
+        .samples(vk::SampleCountFlags::TYPE_1)
+        .tiling(vk::ImageTiling::LINEAR)
+        .usage(vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC)
+        .sharing_mode(vk::SharingMode::EXCLUSIVE)
+        .initial_layout(vk::ImageLayout::UNDEFINED)
+        .push_next(&mut external);
+    let image = unsafe { raw.create_image(&info, None) }.map_err(|e| format!("vkCreateImage (linear): {e}"))?;
+    let destroy = |e: String| {
+        unsafe { raw.destroy_image(image, None) };
+        Err(e)
     };
-    // SAFETY: made on this device with the usage and size the descriptor states.
-    Ok(unsafe {
-        device.create_buffer_from_hal::<Vulkan>(
-            hal_buffer,
-            &wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes,
-                usage: wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
+    let needs = unsafe { raw.get_image_memory_requirements(image) };
+    let Some(size) = usize::try_from(needs.size)
+        .ok()
+        .and_then(|s| s.checked_next_multiple_of(align))
+    else {
+        return destroy(format!("an image of {} bytes", needs.size));
+    };
+    let ptr = match memory(size) {
+        Ok(ptr) if (ptr as usize).is_multiple_of(align) => ptr,
+        Ok(_) => return destroy(format!("host memory not aligned to {align} bytes")),
+        Err(e) => return destroy(e),
+    };
+    let ext = ash::ext::external_memory_host::Device::new(hal.shared_instance().raw_instance(), raw);
+    let mut host = vk::MemoryHostPointerPropertiesEXT::default();
+    let r = unsafe { (ext.fp().get_memory_host_pointer_properties_ext)(raw.handle(), handle, ptr.cast(), &mut host) };
+    if r != vk::Result::SUCCESS {
+        return destroy(format!("vkGetMemoryHostPointerPropertiesEXT: {r}"));
+    }
+    let types = needs.memory_type_bits & host.memory_type_bits;
+    if types == 0 {
+        return destroy(format!(
+            "no memory type fits (the image takes types {:#x}, the host memory offers {:#x})",
+            needs.memory_type_bits, host.memory_type_bits
+        ));
+    }
+    let mut import = vk::ImportMemoryHostPointerInfoEXT::default()
+        .handle_type(handle)
+        .host_pointer(ptr.cast());
+    let alloc = vk::MemoryAllocateInfo::default()
+        .allocation_size(size as u64)
+        .memory_type_index(types.trailing_zeros())
+        .push_next(&mut import);
+    let memory = match unsafe { raw.allocate_memory(&alloc, None) } {
+        Ok(memory) => memory,
+        Err(e) => return destroy(format!("vkAllocateMemory (host pointer): {e}")),
+    };
+    if let Err(e) = unsafe { raw.bind_image_memory(image, memory, 0) } {
+        unsafe { raw.free_memory(memory, None) };
+        return destroy(format!("vkBindImageMemory: {e}"));
+    }
+    let layout = unsafe {
+        raw.get_image_subresource_layout(
+            image,
+            vk::ImageSubresource {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                array_layer: 0,
             },
         )
+    };
+    let size3 = wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    };
+    let hal_desc = wgpu::hal::TextureDescriptor {
+        label: Some(label),
+        size: size3,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUses::COLOR_TARGET,
+        memory_flags: wgpu::hal::MemoryFlags::empty(),
+        view_formats: Vec::new(),
+    };
+    // SAFETY: the image was made as `hal_desc` says and is bound to all of `memory`; wgpu-hal
+    // now owns both and destroys them on drop (freeing imported memory leaves the host memory
+    // as it is).
+    let hal_texture = unsafe {
+        hal.texture_from_raw(
+            image,
+            &hal_desc,
+            None,
+            wgpu::hal::vulkan::TextureMemory::Dedicated(memory),
+        )
+    };
+    drop(hal);
+    // SAFETY: made on this device as the descriptor states; it starts uninitialised.
+    let texture = unsafe {
+        device.create_texture_from_hal::<Vulkan>(
+            hal_texture,
+            &wgpu::TextureDescriptor {
+                label: Some(label),
+                size: size3,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            },
+            wgpu::TextureUses::UNINITIALIZED,
+        )
+    };
+    Ok(HostTarget {
+        texture,
+        offset: layout.offset,
+        row_pitch: layout.row_pitch,
     })
 }

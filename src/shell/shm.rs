@@ -9,10 +9,11 @@
 //! only after the server's completion event for it. The pixels are the ones the swapchain would
 //! show (same format, same pipelines).
 //!
-//! Where the device imports host memory ([`Gpu::host_memory`]) each segment is also a wgpu
-//! buffer, and lavapipe's copy of the frame lands in the segment itself; otherwise (or with
-//! `SHADERLAB_PRESENT=shm-copy`) the frame is copied to a readback buffer and from there into
-//! the segment, one 920 KB copy more per 640x360 frame.
+//! Where the device imports host memory ([`Gpu::host_memory`]) each segment holds a colour
+//! target and the lab draws straight into the segment, as the original's llvmpipe draws into
+//! its shared-memory image; otherwise (or with `SHADERLAB_PRESENT=shm-copy`) the frame is drawn
+//! into a texture, copied to a readback buffer and from there into the segment: two 920 KB
+//! copies more per 640x360 frame.
 //!
 //! Anything else (another adapter type, Wayland, no MIT-SHM, a remote server, a visual that is
 //! not 24-bit BGRX) keeps the swapchain, and so does `SHADERLAB_PRESENT=swapchain`. A presenter
@@ -44,8 +45,19 @@ struct Segment {
     seg: shm::Seg,
     addr: *mut u8,
     size: usize,
-    /// The segment's memory as a buffer lavapipe copies frames into (direct presenting).
-    buffer: Option<wgpu::Buffer>,
+    /// The colour target whose memory is this segment (presenting directly).
+    target: Option<Target>,
+}
+
+/// A colour target in a segment, and where its rows lie there.
+struct Target {
+    view: wgpu::TextureView,
+    /// Kept with its view: the memory is the segment's, dropped before the segment goes.
+    _texture: wgpu::Texture,
+    /// Bytes from the segment's start to the first row.
+    offset: u32,
+    /// Bytes from one row to the next.
+    stride: u32,
 }
 
 /// The offscreen target and the shared memory a frame goes through.
@@ -54,11 +66,12 @@ pub(super) struct ShmPresenter {
     window: xproto::Window,
     gc: xproto::Gcontext,
     depth: u8,
-    /// Colour target (drawn by the lab) and depth.
+    /// Colour target the lab draws the next frame in (the next segment's, presenting directly).
     pub color: wgpu::TextureView,
     /// Depth target.
     pub depth_view: wgpu::TextureView,
-    texture: wgpu::Texture,
+    /// The texture `color` views while frames are copied (none presenting directly).
+    texture: Option<wgpu::Texture>,
     /// A readback buffer for the next frame (two take turns while a frame is in flight).
     spare: Option<wgpu::Buffer>,
     /// A frame drawn and copied to a readback buffer but not shown yet (unpaced drawing).
@@ -73,8 +86,8 @@ pub(super) struct ShmPresenter {
     segments: [Segment; SEGMENTS],
     pending: [bool; SEGMENTS],
     next: usize,
-    /// Why frames are copied into the segments rather than written there by the GPU (`None`:
-    /// every segment has its buffer).
+    /// Why frames are copied into the segments rather than drawn there (`None`: every segment
+    /// has its target).
     copying: Option<Why>,
     /// The device, to wait on dropping for a frame the GPU may still be writing into a segment.
     device: wgpu::Device,
@@ -182,28 +195,34 @@ impl ShmPresenter {
             .map_err(x("GC"))?
             .check()
             .map_err(x("GC"))?;
-        let (texture, color, depth_view, readback, stride) = targets(gpu, width, height);
-        let size = stride as usize * height as usize;
         let direct = if asked.as_deref() == Ok("shm-copy") {
             Err("SHADERLAB_PRESENT=shm-copy".to_owned())
         } else if !gpu.host_memory {
             Err("the device does not import host memory".to_owned())
         } else {
-            crate::gpu::host_memory::alignment(&gpu.device)
-                .filter(|a| a.is_power_of_two())
-                .ok_or_else(|| "no alignment for host memory".to_owned())
-                .and_then(|align| segments(&conn, size, Some((&gpu.device, align))))
+            segments(&conn, Layout::Direct(&gpu.device, width, height))
         };
-        let (segments, copying) = match direct {
-            Ok(s) => (s, None),
-            Err(why) => match segments(&conn, size, None) {
-                Ok(s) => (s, Some(why)),
+        let made = match direct {
+            Ok(segments) => match view_of(&segments[0]) {
+                Ok(color) => Ok((segments, None, color, None, None, 0)),
                 Err(e) => {
-                    let _ = conn.free_gc(gc);
-                    let _ = conn.flush();
-                    return Err(e);
+                    release_all(&conn, segments);
+                    Err(e)
                 }
             },
+            Err(why) => {
+                let (texture, color, readback, stride) = targets(gpu, width, height);
+                segments(&conn, Layout::Copied(stride as usize * height as usize))
+                    .map(|segments| (segments, Some(why), color, Some(texture), Some(readback), stride))
+            }
+        };
+        let (segments, copying, color, texture, spare, stride) = match made {
+            Ok(made) => made,
+            Err(e) => {
+                let _ = conn.free_gc(gc);
+                let _ = conn.flush();
+                return Err(e);
+            }
         };
         Ok(ShmPresenter {
             conn,
@@ -211,10 +230,9 @@ impl ShmPresenter {
             gc,
             depth,
             color,
-            depth_view,
+            depth_view: depth_texture(&gpu.device, width, height),
             texture,
-            // Presenting directly needs no readback buffer.
-            spare: copying.is_some().then_some(readback),
+            spare,
             in_flight: None,
             stride,
             width,
@@ -286,86 +304,88 @@ impl ShmPresenter {
         self.copying.as_deref()
     }
 
-    /// The device and alignment segments import their memory with, when presenting directly.
-    fn import(&self) -> Option<(&wgpu::Device, usize)> {
-        match self.copying {
-            Some(_) => None,
-            None => crate::gpu::host_memory::alignment(&self.device).map(|a| (&self.device, a)),
-        }
-    }
-
     /// Whether the presenter failed because its window no longer exists (another program
     /// destroyed it); the window's `Destroyed` event follows and ends the lab with its message.
     pub(super) fn window_gone(&self) -> bool {
         self.window_gone
     }
 
-    /// Follows a resize: new targets and, if the frame no longer fits, a new segment.
+    /// Follows a resize: new targets and, where the frame no longer fits (or each segment
+    /// holds its target), new segments.
     pub(super) fn resize(&mut self, gpu: &Gpu, width: u32, height: u32) -> Result<(), Why> {
         self.flush(gpu)?;
-        let (texture, color, depth_view, readback, stride) = targets(gpu, width, height);
-        let needed = stride as usize * height as usize;
-        for k in 0..SEGMENTS {
-            if needed > self.segments[k].size {
+        if self.copying.is_none() {
+            for k in 0..SEGMENTS {
                 self.wait_for(k)?;
-                let segment = Segment::new(&self.conn, needed, self.import())?;
+                let segment = Segment::new(&self.conn, Layout::Direct(&self.device, width, height))?;
                 std::mem::replace(&mut self.segments[k], segment).release(&self.conn);
             }
+            self.color = view_of(&self.segments[self.next])?;
+        } else {
+            let (texture, color, readback, stride) = targets(gpu, width, height);
+            let needed = stride as usize * height as usize;
+            for k in 0..SEGMENTS {
+                if needed > self.segments[k].size {
+                    self.wait_for(k)?;
+                    let segment = Segment::new(&self.conn, Layout::Copied(needed))?;
+                    std::mem::replace(&mut self.segments[k], segment).release(&self.conn);
+                }
+            }
+            (self.texture, self.color, self.spare, self.stride) = (Some(texture), color, Some(readback), stride);
         }
-        (self.texture, self.color, self.depth_view) = (texture, color, depth_view);
-        self.spare = self.copying.is_some().then_some(readback);
-        (self.stride, self.width, self.height) = (stride, width, height);
+        self.depth_view = depth_texture(&gpu.device, width, height);
+        (self.width, self.height) = (width, height);
         Ok(())
     }
 
-    /// Finishes a frame the lab recorded into `encoder` (drawing into [`Self::color`]): copies
-    /// it into the next free segment (or a readback buffer) and submits it. With `pipelined` the
-    /// frame stays in flight and the one before it is shown now, while this one renders (one
+    /// Finishes a frame the lab recorded into `encoder` (drawing into [`Self::color`]) and
+    /// submits it: drawn in a segment already, or copied to a readback buffer. With `pipelined`
+    /// the frame stays in flight and the one before it is shown now, while this one renders (one
     /// frame of latency, for drawing as fast as possible); otherwise it is shown before this
     /// returns.
     pub(super) fn present(&mut self, gpu: &Gpu, mut encoder: wgpu::CommandEncoder, pipelined: bool) -> Result<(), Why> {
-        let (width, height, stride) = (self.width, self.height, self.stride);
-        let (buffer, segment) = if self.copying.is_none() {
-            // The server must have finished reading the segment before the GPU writes it.
-            let k = self.next;
-            self.wait_for(k)?;
-            self.next = (k + 1) % SEGMENTS;
-            match &self.segments[k].buffer {
-                Some(buffer) => (buffer.clone(), Some(k)),
-                None => return Err("a segment without its buffer".into()),
-            }
-        } else {
-            match self.spare.take() {
-                Some(buffer) => (buffer, None),
-                None => (targets_buffer(gpu, stride, height), None),
-            }
-        };
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(stride),
-                    rows_per_image: Some(height),
-                },
-            },
-            wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-        );
-        let submission = gpu.queue.submit([encoder.finish()]);
-        let to = match segment {
-            Some(k) => {
+        let (width, height) = (self.width, self.height);
+        let (to, submission, stride) = match &self.texture {
+            None => {
+                // Drawn in segment `next`: the server must have finished reading it before the
+                // GPU draws there.
+                let k = self.next;
+                self.wait_for(k)?;
+                let stride = self.segments[k].target.as_ref().map_or(0, |t| t.stride);
+                let submission = gpu.queue.submit([encoder.finish()]);
                 let done = Arc::new(AtomicBool::new(false));
                 let flag = done.clone();
                 gpu.queue
                     .on_submitted_work_done(move || flag.store(true, Ordering::Release));
-                Destination::Segment(k, done)
+                self.next = (k + 1) % SEGMENTS;
+                self.color = view_of(&self.segments[self.next])?;
+                (Destination::Segment(k, done), submission, stride)
             }
-            None => Destination::Readback(buffer),
+            Some(texture) => {
+                let stride = self.stride;
+                let buffer = match self.spare.take() {
+                    Some(buffer) => buffer,
+                    None => targets_buffer(gpu, stride, height),
+                };
+                encoder.copy_texture_to_buffer(
+                    texture.as_image_copy(),
+                    wgpu::TexelCopyBufferInfo {
+                        buffer: &buffer,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset: 0,
+                            bytes_per_row: Some(stride),
+                            rows_per_image: Some(height),
+                        },
+                    },
+                    wgpu::Extent3d {
+                        width,
+                        height,
+                        depth_or_array_layers: 1,
+                    },
+                );
+                let submission = gpu.queue.submit([encoder.finish()]);
+                (Destination::Readback(buffer), submission, stride)
+            }
         };
         let frame = InFlight {
             to,
@@ -399,13 +419,13 @@ impl ShmPresenter {
             timeout: None,
         };
         let bytes = frame.stride as usize * frame.height as usize;
-        let k = match frame.to {
+        let (k, offset) = match frame.to {
             Destination::Segment(k, done) => {
                 // Ready when its submission is done: poll for that briefly, then block (see
                 // Gpu::poll_then_wait).
                 gpu.poll_then_wait(|_| done.load(Ordering::Acquire), wait)
                     .map_err(x("waiting for the frame"))?;
-                k
+                (k, self.segments[k].target.as_ref().map_or(0, |t| t.offset))
             }
             Destination::Readback(buffer) => {
                 let k = self.next;
@@ -434,7 +454,7 @@ impl ShmPresenter {
                 if (frame.width, frame.height) == (self.width, self.height) && self.spare.is_none() {
                     self.spare = Some(buffer);
                 }
-                k
+                (k, 0)
             }
         };
         self.conn
@@ -453,7 +473,7 @@ impl ShmPresenter {
                 xproto::ImageFormat::Z_PIXMAP.into(),
                 true,
                 self.segments[k].seg,
-                0,
+                offset,
             )
             .map_err(x("ShmPutImage"))?;
         self.conn.flush().map_err(x("X"))?;
@@ -491,7 +511,7 @@ impl Drop for ShmPresenter {
                     seg: 0,
                     addr: std::ptr::null_mut(),
                     size: 0,
-                    buffer: None,
+                    target: None,
                 },
             );
             segment.release(&self.conn);
@@ -501,13 +521,9 @@ impl Drop for ShmPresenter {
     }
 }
 
-/// The colour texture (`FORMAT`, copyable), its view, a depth view, and a readback buffer with
-/// its row stride.
-fn targets(
-    gpu: &Gpu,
-    width: u32,
-    height: u32,
-) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView, wgpu::Buffer, u32) {
+/// The colour texture (`FORMAT`, copyable) frames are copied from, its view, and a readback
+/// buffer with its row stride.
+fn targets(gpu: &Gpu, width: u32, height: u32) -> (wgpu::Texture, wgpu::TextureView, wgpu::Buffer, u32) {
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("shaderlab.shm.color"),
         size: wgpu::Extent3d {
@@ -523,9 +539,8 @@ fn targets(
         view_formats: &[],
     });
     let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
-    let depth = depth_texture(&gpu.device, width, height);
     let stride = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    (texture, color, depth, targets_buffer(gpu, stride, height), stride)
+    (texture, color, targets_buffer(gpu, stride, height), stride)
 }
 
 /// A readback buffer for `height` rows of `stride` bytes.
@@ -538,15 +553,20 @@ fn targets_buffer(gpu: &Gpu, stride: u32, height: u32) -> wgpu::Buffer {
     })
 }
 
-/// [`SEGMENTS`] segments of `size` bytes (see [`Segment::new`]); none if one fails.
-fn segments(
-    conn: &RustConnection,
-    size: usize,
-    import: Option<(&wgpu::Device, usize)>,
-) -> Result<[Segment; SEGMENTS], Why> {
+/// What a segment holds.
+#[derive(Clone, Copy)]
+enum Layout<'a> {
+    /// Frames of this many bytes, copied in.
+    Copied(usize),
+    /// A colour target of this size, made on this device (which imports host memory).
+    Direct(&'a wgpu::Device, u32, u32),
+}
+
+/// [`SEGMENTS`] segments (see [`Segment::new`]); none if one fails.
+fn segments(conn: &RustConnection, layout: Layout<'_>) -> Result<[Segment; SEGMENTS], Why> {
     let mut made = Vec::with_capacity(SEGMENTS);
     for _ in 0..SEGMENTS {
-        match Segment::new(conn, size, import) {
+        match Segment::new(conn, layout) {
             Ok(segment) => made.push(segment),
             Err(e) => {
                 for segment in made {
@@ -559,18 +579,85 @@ fn segments(
     made.try_into().map_err(|_| "segments".to_owned())
 }
 
+/// Releases every segment.
+fn release_all(conn: &RustConnection, segments: [Segment; SEGMENTS]) {
+    for segment in segments {
+        segment.release(conn);
+    }
+}
+
+/// A view of the colour target in `segment`.
+fn view_of(segment: &Segment) -> Result<wgpu::TextureView, Why> {
+    segment
+        .target
+        .as_ref()
+        .map(|t| t.view.clone())
+        .ok_or_else(|| "a segment without its target".to_owned())
+}
+
 impl Segment {
-    /// A private segment of at least `size` bytes, attached here and by the server, and marked
-    /// for removal at once (it goes away when both have detached, even if the process dies).
-    /// With `import` (a device and its host-memory alignment) its memory is also a buffer the
-    /// GPU copies frames into.
-    fn new(conn: &RustConnection, size: usize, import: Option<(&wgpu::Device, usize)>) -> Result<Self, Why> {
-        let size = match import {
-            Some((_, align)) => size.div_ceil(align) * align,
-            None => size,
+    /// A private segment attached here and by the server, and marked for removal at once (it
+    /// goes away when both have detached, even if the process dies), holding what `layout` says.
+    fn new(conn: &RustConnection, layout: Layout<'_>) -> Result<Self, Why> {
+        let (device, width, height) = match layout {
+            Layout::Copied(size) => return Self::attached(conn, size),
+            Layout::Direct(device, width, height) => (device, width, height),
         };
+        let mut made = None;
+        // SAFETY: the segment stays attached here until `release`, which drops the target
+        // first; the presenter waits for the server before the GPU draws in a segment, for the
+        // GPU before the server reads it, and for both before the segment goes.
+        let target = unsafe {
+            crate::gpu::host_memory::target(device, width, height, FORMAT, "shaderlab.shm.segment", |size| {
+                let segment = Self::attached(conn, size)?;
+                let addr = segment.addr;
+                made = Some(segment);
+                Ok(addr)
+            })
+        };
+        let (target, segment) = match (target, made) {
+            (Ok(target), Some(segment)) => (target, segment),
+            (Ok(_), None) => return Err("a target without its segment".into()),
+            (Err(e), made) => {
+                if let Some(segment) = made {
+                    segment.release(conn);
+                }
+                return Err(e);
+            }
+        };
+        let rows = target.row_pitch.checked_mul(u64::from(height));
+        let fits = rows
+            .and_then(|r| r.checked_add(target.offset))
+            .is_some_and(|end| end <= segment.size as u64);
+        let (Ok(offset), Ok(stride)) = (u32::try_from(target.offset), u32::try_from(target.row_pitch)) else {
+            segment.release(conn);
+            return Err("a target too large for an X image".into());
+        };
+        // X takes rows of whole 32-bit pixels, at most 65535 of them.
+        if !fits || stride % 4 != 0 || stride / 4 > u32::from(u16::MAX) || stride / 4 < width {
+            segment.release(conn);
+            return Err(format!(
+                "a target whose rows X cannot take (offset {offset}, {stride} bytes a row)"
+            ));
+        }
+        Ok(Segment {
+            target: Some(Target {
+                view: target.texture.create_view(&wgpu::TextureViewDescriptor {
+                    label: Some("shaderlab.shm.segment"),
+                    ..Default::default()
+                }),
+                _texture: target.texture,
+                offset,
+                stride,
+            }),
+            ..segment
+        })
+    }
+
+    /// A segment of `size` bytes, attached here and by the server.
+    fn attached(conn: &RustConnection, size: usize) -> Result<Self, Why> {
         // SAFETY: plain System V calls; every failure is checked and undone.
-        let segment = unsafe {
+        unsafe {
             let id = libc::shmget(libc::IPC_PRIVATE, size, libc::IPC_CREAT | 0o600);
             if id < 0 {
                 return Err(format!("shmget: {}", std::io::Error::last_os_error()));
@@ -590,43 +677,23 @@ impl Segment {
             });
             libc::shmctl(id, libc::IPC_RMID, std::ptr::null_mut());
             match attached {
-                Ok(seg) => Segment {
+                Ok(seg) => Ok(Segment {
                     seg,
                     addr: addr.cast(),
                     size,
-                    buffer: None,
-                },
+                    target: None,
+                }),
                 Err(e) => {
                     libc::shmdt(addr);
-                    return Err(e);
+                    Err(e)
                 }
-            }
-        };
-        let Some((device, align)) = import else {
-            return Ok(segment);
-        };
-        if !(segment.addr as usize).is_multiple_of(align) {
-            segment.release(conn);
-            return Err(format!("a segment not aligned to {align} bytes"));
-        }
-        // SAFETY: the segment stays attached here until `release`, which drops the buffer
-        // first; the presenter waits for the GPU's frame in a segment before the server reads
-        // it or the segment goes; address and size are multiples of the alignment.
-        match unsafe { crate::gpu::host_memory::import(device, segment.addr, size, "shaderlab.shm.segment") } {
-            Ok(buffer) => Ok(Segment {
-                buffer: Some(buffer),
-                ..segment
-            }),
-            Err(e) => {
-                segment.release(conn);
-                Err(e)
             }
         }
     }
 
-    /// Detaches the server and this process (after dropping the buffer, if any).
+    /// Detaches the server and this process (after dropping the target, if any).
     fn release(mut self, conn: &RustConnection) {
-        drop(self.buffer.take());
+        drop(self.target.take());
         if self.addr.is_null() {
             return;
         }
