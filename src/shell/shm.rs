@@ -489,18 +489,10 @@ impl Drop for ShmPresenter {
     fn drop(&mut self) {
         // Never `wait_for` here: after a refused put (the window destroyed under it) the
         // completion it waits for never comes, and closing the window hung for good.
-        // A frame still being written into a segment must finish before the segment goes:
-        // lavapipe would write into memory no longer mapped. A CPU driver's frame always ends.
-        if let Some(InFlight {
-            to: Destination::Segment(..),
-            submission,
-            ..
-        }) = self.in_flight.take()
-        {
-            let _ = self.device.poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: None,
-            });
+        // Every frame drawn in a segment must be finished before the segments go: lavapipe
+        // would draw into memory no longer mapped. (A CPU driver's frame always ends.)
+        if self.copying.is_none() {
+            let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
         }
         let deadline = Instant::now() + DROP_WAIT;
         for k in 0..SEGMENTS {
