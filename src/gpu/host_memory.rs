@@ -167,17 +167,27 @@ pub(crate) unsafe fn target(
             },
         )
     };
-    let size3 = wgpu::Extent3d {
-        width,
-        height,
-        depth_or_array_layers: 1,
-    };
-    let hal_desc = wgpu::hal::TextureDescriptor {
+    let desc = wgpu::TextureDescriptor {
         label: Some(label),
-        size: size3,
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    };
+    // The same texture as wgpu-hal describes it (its usage: a colour target).
+    let hal_desc = wgpu::hal::TextureDescriptor {
+        label: desc.label,
+        size: desc.size,
+        mip_level_count: desc.mip_level_count,
+        sample_count: desc.sample_count,
+        dimension: desc.dimension,
         format,
         usage: wgpu::TextureUses::COLOR_TARGET,
         memory_flags: wgpu::hal::MemoryFlags::empty(),
@@ -195,23 +205,9 @@ pub(crate) unsafe fn target(
         )
     };
     drop(hal);
-    // SAFETY: made on this device as the descriptor states; it starts uninitialised.
-    let texture = unsafe {
-        device.create_texture_from_hal::<Vulkan>(
-            hal_texture,
-            &wgpu::TextureDescriptor {
-                label: Some(label),
-                size: size3,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            },
-            wgpu::TextureUses::UNINITIALIZED,
-        )
-    };
+    // SAFETY: made on this device as `desc` states; it starts uninitialised.
+    let texture =
+        unsafe { device.create_texture_from_hal::<Vulkan>(hal_texture, &desc, wgpu::TextureUses::UNINITIALIZED) };
     Ok(HostTarget {
         texture,
         offset: layout.offset,
