@@ -1655,7 +1655,7 @@ fn shared_memory_and_swapchain_windows_show_the_screenshot_pixels() {
         assert!(status.success(), "{name} --screenshot failed");
         let expected = image::open(&png).expect("screenshot PNG").to_rgb8();
         for present in ["shm", "shm-copy", "swapchain"] {
-            let mut lab = x.launch(name, &args, &[("SHADERLAB_PRESENT", present)]);
+            let mut lab = x.launch(name, args, &[("SHADERLAB_PRESENT", present)]);
             lab.first_frame();
             let shown = lab.settled();
             lab.save(&shown, &format!("{name}{i}_{present}"));
