@@ -2,7 +2,7 @@
 
 use crate::error::{Error, Result};
 
-/// Buffers made of host memory, for the window's shared-memory presenter.
+/// Colour targets made of host memory, for the window's shared-memory presenter.
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 pub(crate) mod host_memory;
 
@@ -46,9 +46,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     /// Whether timestamp queries work (GPU timings in benchmarks).
     pub timestamps: bool,
-    /// Whether the device imports host memory as buffers (`VK_EXT_external_memory_host`):
-    /// opened so by [`Gpu::for_window`] on a CPU Vulkan adapter, for the window's
-    /// shared-memory presenter.
+    /// Whether the device imports host memory (`VK_EXT_external_memory_host`): opened so by
+    /// [`Gpu::for_window`] on a CPU Vulkan adapter under X11, so that the window's
+    /// shared-memory presenter can draw frames in the X server's memory.
     pub host_memory: bool,
 }
 
@@ -107,10 +107,9 @@ impl Gpu {
         Self::create(instance, surface, false).await
     }
 
-    /// [`Gpu::new`] for a window on X11: on a CPU Vulkan adapter that offers it, the device also
-    /// imports host memory ([`Gpu::host_memory`]), so that the shared-memory presenter's copy
-    /// of a frame lands in the X server's segment itself. Elsewhere the same as [`Gpu::new`].
-    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    /// [`Gpu::new`] for a window: under X11, on a CPU Vulkan adapter that offers it, the device
+    /// also imports host memory ([`Gpu::host_memory`]), so that the shared-memory presenter
+    /// draws frames in the X server's segments. Elsewhere the same as [`Gpu::new`].
     pub async fn for_window(instance: wgpu::Instance, surface: &wgpu::Surface<'_>) -> Result<Self> {
         Self::create(instance, Some(surface), true).await
     }
@@ -150,7 +149,7 @@ impl Gpu {
         // then copies each frame (and says why with SHADERLAB_PRESENT=shm).
         #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
         if host_memory {
-            if let Some(Ok((device, queue))) = host_memory::open_device(&adapter, &desc) {
+            if let Some((device, queue)) = host_memory::open_device(&adapter, &desc) {
                 return Ok(Gpu {
                     instance,
                     adapter,

@@ -13,12 +13,12 @@ use ash::vk;
 use wgpu::hal::api::Vulkan;
 
 /// The device of `adapter`, opened as `desc` asks plus `VK_EXT_external_memory_host`; `None`
-/// where that cannot be (not a CPU Vulkan adapter, or no such extension), so that the caller
-/// opens it the usual way.
+/// where that cannot be (not a CPU Vulkan adapter, no such extension, or opening failed), so
+/// that the caller opens it the usual way.
 pub(crate) fn open_device(
     adapter: &wgpu::Adapter,
     desc: &wgpu::DeviceDescriptor<'_>,
-) -> Option<Result<(wgpu::Device, wgpu::Queue), String>> {
+) -> Option<(wgpu::Device, wgpu::Queue)> {
     if adapter.get_info().device_type != wgpu::DeviceType::Cpu {
         return None;
     }
@@ -37,16 +37,12 @@ pub(crate) fn open_device(
             Some(Box::new(move |args| args.extensions.push(name))),
         )
     };
-    let opened = match opened {
-        Ok(opened) => opened,
-        Err(e) => return Some(Err(format!("opening the device with {name:?}: {e}"))),
-    };
     // SAFETY: `opened` was created from this adapter's hal adapter, with `desc`'s features.
-    Some(unsafe { adapter.create_device_from_hal(opened, desc) }.map_err(|e| e.to_string()))
+    unsafe { adapter.create_device_from_hal(opened.ok()?, desc) }.ok()
 }
 
 /// The alignment Vulkan asks of imported host memory (its address and its size).
-pub(crate) fn alignment(device: &wgpu::Device) -> Option<usize> {
+fn alignment(device: &wgpu::Device) -> Option<usize> {
     // SAFETY: only queries the physical device behind this device.
     unsafe {
         let hal = device.as_hal::<Vulkan>()?;

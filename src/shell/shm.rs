@@ -60,6 +60,17 @@ struct Target {
     stride: u32,
 }
 
+/// What copying frames into the segments takes, where the GPU cannot draw in them, and why.
+struct Copying {
+    why: Why,
+    /// The texture the lab draws in ([`ShmPresenter::color`] views it).
+    texture: wgpu::Texture,
+    /// A readback buffer for the next frame (two take turns while a frame is in flight).
+    spare: Option<wgpu::Buffer>,
+    /// Bytes per row of the readback and of the image in the segment (a multiple of 256).
+    stride: u32,
+}
+
 /// The offscreen target and the shared memory a frame goes through.
 pub(super) struct ShmPresenter {
     conn: RustConnection,
@@ -70,14 +81,8 @@ pub(super) struct ShmPresenter {
     pub color: wgpu::TextureView,
     /// Depth target.
     pub depth_view: wgpu::TextureView,
-    /// The texture `color` views while frames are copied (none presenting directly).
-    texture: Option<wgpu::Texture>,
-    /// A readback buffer for the next frame (two take turns while a frame is in flight).
-    spare: Option<wgpu::Buffer>,
-    /// A frame drawn and copied to a readback buffer but not shown yet (unpaced drawing).
+    /// A frame submitted but not shown yet (unpaced drawing).
     in_flight: Option<InFlight>,
-    /// Bytes per row of the readback and of the image in the segment (a multiple of 256).
-    stride: u32,
     /// Target size.
     pub width: u32,
     /// Target size.
@@ -86,9 +91,9 @@ pub(super) struct ShmPresenter {
     segments: [Segment; SEGMENTS],
     pending: [bool; SEGMENTS],
     next: usize,
-    /// Why frames are copied into the segments rather than drawn there (`None`: every segment
+    /// The copying path, where frames are not drawn in the segments (`None`: every segment
     /// has its target).
-    copying: Option<Why>,
+    copying: Option<Copying>,
     /// The device, to wait on dropping for a frame the GPU may still be writing into a segment.
     device: wgpu::Device,
     /// The server refused a request (say, a put into a window another program destroyed). A
@@ -101,19 +106,18 @@ pub(super) struct ShmPresenter {
 /// How long dropping the presenter waits for the server to finish its last puts.
 const DROP_WAIT: Duration = Duration::from_secs(1);
 
-/// A frame on its way: where it goes, its submission and its size.
+/// A frame on its way: where it is, its submission and its size.
 struct InFlight {
     to: Destination,
     submission: wgpu::SubmissionIndex,
     width: u32,
     height: u32,
-    stride: u32,
 }
 
-/// Where a frame's copy goes.
+/// Where a frame is on its way to the window.
 enum Destination {
-    /// A readback buffer, copied into a segment when shown.
-    Readback(wgpu::Buffer),
+    /// A readback buffer (rows of `stride` bytes), copied into a segment when shown.
+    Readback { buffer: wgpu::Buffer, stride: u32 },
     /// Segment `k` itself; the flag says when the GPU has finished the frame.
     Segment(usize, Arc<AtomicBool>),
 }
@@ -204,7 +208,7 @@ impl ShmPresenter {
         };
         let made = match direct {
             Ok(segments) => match view_of(&segments[0]) {
-                Ok(color) => Ok((segments, None, color, None, None, 0)),
+                Ok(color) => Ok((segments, color, None)),
                 Err(e) => {
                     release_all(&conn, segments);
                     Err(e)
@@ -212,11 +216,18 @@ impl ShmPresenter {
             },
             Err(why) => {
                 let (texture, color, readback, stride) = targets(gpu, width, height);
-                segments(&conn, Layout::Copied(stride as usize * height as usize))
-                    .map(|segments| (segments, Some(why), color, Some(texture), Some(readback), stride))
+                segments(&conn, Layout::Copied(stride as usize * height as usize)).map(|segments| {
+                    let copying = Copying {
+                        why,
+                        texture,
+                        spare: Some(readback),
+                        stride,
+                    };
+                    (segments, color, Some(copying))
+                })
             }
         };
-        let (segments, copying, color, texture, spare, stride) = match made {
+        let (segments, color, copying) = match made {
             Ok(made) => made,
             Err(e) => {
                 let _ = conn.free_gc(gc);
@@ -231,10 +242,7 @@ impl ShmPresenter {
             depth,
             color,
             depth_view: depth_texture(&gpu.device, width, height),
-            texture,
-            spare,
             in_flight: None,
-            stride,
             width,
             height,
             segments,
@@ -298,10 +306,10 @@ impl ShmPresenter {
         }
     }
 
-    /// Why frames are copied into the shared memory rather than written there by the GPU
-    /// (`None`: written there).
+    /// Why frames are copied into the shared memory rather than drawn there (`None`: drawn
+    /// there).
     pub(super) fn copying(&self) -> Option<&str> {
-        self.copying.as_deref()
+        self.copying.as_ref().map(|c| c.why.as_str())
     }
 
     /// Whether the presenter failed because its window no longer exists (another program
@@ -331,7 +339,10 @@ impl ShmPresenter {
                     std::mem::replace(&mut self.segments[k], segment).release(&self.conn);
                 }
             }
-            (self.texture, self.color, self.spare, self.stride) = (Some(texture), color, Some(readback), stride);
+            if let Some(c) = self.copying.as_mut() {
+                (c.texture, c.spare, c.stride) = (texture, Some(readback), stride);
+            }
+            self.color = color;
         }
         self.depth_view = depth_texture(&gpu.device, width, height);
         (self.width, self.height) = (width, height);
@@ -345,13 +356,12 @@ impl ShmPresenter {
     /// returns.
     pub(super) fn present(&mut self, gpu: &Gpu, mut encoder: wgpu::CommandEncoder, pipelined: bool) -> Result<(), Why> {
         let (width, height) = (self.width, self.height);
-        let (to, submission, stride) = match &self.texture {
+        let (to, submission) = match self.copying.as_mut() {
             None => {
                 // Drawn in segment `next`: the server must have finished reading it before the
                 // GPU draws there.
                 let k = self.next;
                 self.wait_for(k)?;
-                let stride = self.segments[k].target.as_ref().map_or(0, |t| t.stride);
                 let submission = gpu.queue.submit([encoder.finish()]);
                 let done = Arc::new(AtomicBool::new(false));
                 let flag = done.clone();
@@ -359,16 +369,16 @@ impl ShmPresenter {
                     .on_submitted_work_done(move || flag.store(true, Ordering::Release));
                 self.next = (k + 1) % SEGMENTS;
                 self.color = view_of(&self.segments[self.next])?;
-                (Destination::Segment(k, done), submission, stride)
+                (Destination::Segment(k, done), submission)
             }
-            Some(texture) => {
-                let stride = self.stride;
-                let buffer = match self.spare.take() {
+            Some(copying) => {
+                let stride = copying.stride;
+                let buffer = match copying.spare.take() {
                     Some(buffer) => buffer,
                     None => targets_buffer(gpu, stride, height),
                 };
                 encoder.copy_texture_to_buffer(
-                    texture.as_image_copy(),
+                    copying.texture.as_image_copy(),
                     wgpu::TexelCopyBufferInfo {
                         buffer: &buffer,
                         layout: wgpu::TexelCopyBufferLayout {
@@ -384,7 +394,7 @@ impl ShmPresenter {
                     },
                 );
                 let submission = gpu.queue.submit([encoder.finish()]);
-                (Destination::Readback(buffer), submission, stride)
+                (Destination::Readback { buffer, stride }, submission)
             }
         };
         let frame = InFlight {
@@ -392,7 +402,6 @@ impl ShmPresenter {
             submission,
             width,
             height,
-            stride,
         };
         if let Some(previous) = self.in_flight.replace(frame) {
             self.show(gpu, previous)?;
@@ -418,16 +427,17 @@ impl ShmPresenter {
             submission_index: Some(frame.submission.clone()),
             timeout: None,
         };
-        let bytes = frame.stride as usize * frame.height as usize;
-        let (k, offset) = match frame.to {
+        let (k, offset, stride) = match frame.to {
             Destination::Segment(k, done) => {
                 // Ready when its submission is done: poll for that briefly, then block (see
                 // Gpu::poll_then_wait).
                 gpu.poll_then_wait(|_| done.load(Ordering::Acquire), wait)
                     .map_err(x("waiting for the frame"))?;
-                (k, self.segments[k].target.as_ref().map_or(0, |t| t.offset))
+                let target = self.segments[k].target.as_ref().ok_or("a segment without its target")?;
+                (k, target.offset, target.stride)
             }
-            Destination::Readback(buffer) => {
+            Destination::Readback { buffer, stride } => {
+                let bytes = stride as usize * frame.height as usize;
                 let k = self.next;
                 self.wait_for(k)?;
                 if bytes > self.segments[k].size {
@@ -451,17 +461,18 @@ impl ShmPresenter {
                 }
                 buffer.unmap();
                 self.next = (k + 1) % SEGMENTS;
-                if (frame.width, frame.height) == (self.width, self.height) && self.spare.is_none() {
-                    self.spare = Some(buffer);
+                let same_size = (frame.width, frame.height) == (self.width, self.height);
+                if let Some(copying) = self.copying.as_mut().filter(|c| same_size && c.spare.is_none()) {
+                    copying.spare = Some(buffer);
                 }
-                (k, 0)
+                (k, 0, stride)
             }
         };
         self.conn
             .shm_put_image(
                 self.window,
                 self.gc,
-                (frame.stride / 4) as u16,
+                (stride / 4) as u16,
                 frame.height as u16,
                 0,
                 0,

@@ -269,10 +269,7 @@ impl App {
                 )
             }
         };
-        #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
         let gpu = pollster::block_on(Gpu::for_window(instance, &surface))?;
-        #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
-        let gpu = pollster::block_on(Gpu::new(instance, Some(&surface)))?;
         Ok((gpu, surface))
     }
 
