@@ -16,22 +16,41 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// A depth texture matching a colour target's size.
 pub fn depth_texture(device: &wgpu::Device, width: u32, height: u32) -> wgpu::TextureView {
+    let desc = target_descriptor(
+        "shaderlab.depth",
+        width.max(1),
+        height.max(1),
+        DEPTH_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    );
     device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("shaderlab.depth"),
-            size: wgpu::Extent3d {
-                width: width.max(1),
-                height: height.max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        })
+        .create_texture(&desc)
         .create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// A render target's texture: one `width` x `height` 2D image (one level, one sample) in
+/// `format`, used as `usage` says.
+pub fn target_descriptor(
+    label: &str,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureDescriptor<'_> {
+    wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    }
 }
 
 /// An offscreen colour + depth target that can be read back.
@@ -65,20 +84,13 @@ impl Offscreen {
     /// drawn by the window's pipelines); readback always gives RGBA.
     pub fn with_format(gpu: &Gpu, width: u32, height: u32, format: wgpu::TextureFormat) -> Self {
         let (width, height) = (width.max(1), height.max(1));
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("shaderlab.offscreen.color"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        let texture = gpu.device.create_texture(&target_descriptor(
+            "shaderlab.offscreen.color",
+            width,
+            height,
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        ));
         let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
         let depth = depth_texture(&gpu.device, width, height);
         // Buffer copies need rows padded to 256 bytes.

@@ -163,20 +163,8 @@ pub(crate) unsafe fn target(
             },
         )
     };
-    let desc = wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    };
+    let desc =
+        crate::offscreen::target_descriptor(label, width, height, format, wgpu::TextureUsages::RENDER_ATTACHMENT);
     // The same texture as wgpu-hal describes it (its usage: a colour target).
     let hal_desc = wgpu::hal::TextureDescriptor {
         label: desc.label,

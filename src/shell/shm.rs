@@ -31,7 +31,7 @@ use x11rb::protocol::xproto::{self, ConnectionExt as _};
 use x11rb::rust_connection::RustConnection;
 
 use crate::gpu::Gpu;
-use crate::offscreen::depth_texture;
+use crate::offscreen::{depth_texture, target_descriptor};
 
 /// The colour format the presenter draws in: bytes B, G, R, A, which is a little-endian X
 /// server's 32-bit pixel `0x00RRGGBB` for a 24-bit TrueColor visual.
@@ -527,20 +527,13 @@ impl Drop for ShmPresenter {
 /// The colour texture (`FORMAT`, copyable) frames are copied from, its view, and a readback
 /// buffer with its row stride.
 fn targets(gpu: &Gpu, width: u32, height: u32) -> (wgpu::Texture, wgpu::TextureView, wgpu::Buffer, u32) {
-    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("shaderlab.shm.color"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let texture = gpu.device.create_texture(&target_descriptor(
+        "shaderlab.shm.color",
+        width,
+        height,
+        FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    ));
     let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
     let stride = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     (texture, color, targets_buffer(gpu, stride, height), stride)
