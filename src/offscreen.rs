@@ -53,6 +53,41 @@ pub fn target_descriptor(
     }
 }
 
+/// A colour texture in `format` that can be drawn into and copied out of, and its view.
+pub fn copyable_color(
+    device: &wgpu::Device,
+    label: &str,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+) -> (wgpu::Texture, wgpu::TextureView) {
+    let texture = device.create_texture(&target_descriptor(
+        label,
+        width,
+        height,
+        format,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    ));
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    (texture, view)
+}
+
+/// Bytes in one row of a buffer that a `width`-pixel row is copied into: `bytes_per_pixel *
+/// width` padded to the 256 bytes wgpu's texture-to-buffer copies need.
+pub fn padded_row(bytes_per_pixel: u32, width: u32) -> u32 {
+    (bytes_per_pixel * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
+/// A buffer the GPU copies `height` rows of `stride` bytes into and the CPU maps to read.
+pub fn readback_buffer(device: &wgpu::Device, label: &str, stride: u32, height: u32) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: stride as u64 * height as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    })
+}
+
 /// An offscreen colour + depth target that can be read back.
 pub struct Offscreen {
     /// Width in pixels.
@@ -84,25 +119,10 @@ impl Offscreen {
     /// drawn by the window's pipelines); readback always gives RGBA.
     pub fn with_format(gpu: &Gpu, width: u32, height: u32, format: wgpu::TextureFormat) -> Self {
         let (width, height) = (width.max(1), height.max(1));
-        let texture = gpu.device.create_texture(&target_descriptor(
-            "shaderlab.offscreen.color",
-            width,
-            height,
-            format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        ));
-        let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let (texture, color) = copyable_color(&gpu.device, "shaderlab.offscreen.color", width, height, format);
         let depth = depth_texture(&gpu.device, width, height);
-        // Buffer copies need rows padded to 256 bytes.
-        let bytes_per_pixel = format.block_copy_size(None).unwrap_or(4);
-        let padded_row =
-            (bytes_per_pixel * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("shaderlab.offscreen.readback"),
-            size: padded_row as u64 * height as u64,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
+        let padded_row = padded_row(format.block_copy_size(None).unwrap_or(4), width);
+        let readback = readback_buffer(&gpu.device, "shaderlab.offscreen.readback", padded_row, height);
         Offscreen {
             width,
             height,

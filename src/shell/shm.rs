@@ -31,7 +31,7 @@ use x11rb::protocol::xproto::{self, ConnectionExt as _};
 use x11rb::rust_connection::RustConnection;
 
 use crate::gpu::Gpu;
-use crate::offscreen::{depth_texture, target_descriptor};
+use crate::offscreen::{copyable_color, depth_texture, padded_row, readback_buffer};
 
 /// The colour format the presenter draws in: bytes B, G, R, A, which is a little-endian X
 /// server's 32-bit pixel `0x00RRGGBB` for a 24-bit TrueColor visual.
@@ -527,26 +527,14 @@ impl Drop for ShmPresenter {
 /// The colour texture (`FORMAT`, copyable) frames are copied from, its view, and a readback
 /// buffer with its row stride.
 fn targets(gpu: &Gpu, width: u32, height: u32) -> (wgpu::Texture, wgpu::TextureView, wgpu::Buffer, u32) {
-    let texture = gpu.device.create_texture(&target_descriptor(
-        "shaderlab.shm.color",
-        width,
-        height,
-        FORMAT,
-        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-    ));
-    let color = texture.create_view(&wgpu::TextureViewDescriptor::default());
-    let stride = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let (texture, color) = copyable_color(&gpu.device, "shaderlab.shm.color", width, height, FORMAT);
+    let stride = padded_row(4, width);
     (texture, color, targets_buffer(gpu, stride, height), stride)
 }
 
 /// A readback buffer for `height` rows of `stride` bytes.
 fn targets_buffer(gpu: &Gpu, stride: u32, height: u32) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("shaderlab.shm.readback"),
-        size: stride as u64 * height as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    })
+    readback_buffer(&gpu.device, "shaderlab.shm.readback", stride, height)
 }
 
 /// What a segment holds.
