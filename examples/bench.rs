@@ -5,12 +5,13 @@
 //! a comparison with the original is measured side by side, alternating, with
 //! `../shared/original/bench-vs-original`, never against stored figures.
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches, Parser};
 use shaderlab::lab::LabContext;
 use shaderlab::offscreen::COLOR_FORMAT;
 use shaderlab::params::Kind;
 use shaderlab::shader::ShaderSource;
 use shaderlab::shell::bench;
+use shaderlab::shell::{say, tool_exit};
 use shaderlab::{labs, Gpu};
 
 #[derive(Parser)]
@@ -27,18 +28,19 @@ struct Args {
     gpu_time: bool,
 }
 
-fn main() -> anyhow::Result<()> {
+fn main() -> std::process::ExitCode {
     shaderlab::shell::ensure_runtime_dir();
-    run(std::env::args_os())
+    tool_exit("bench", run(std::env::args_os()))
 }
 
 /// The benchmark for a command line (program name first); `shaderlab bench` calls it too.
 pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result<()> {
-    let args = Args::parse_from(argv);
+    let matches = shaderlab::shell::parse_command_line(Args::command(), argv);
+    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| shaderlab::shell::exit_on_clap_error("bench", e));
     let gpu = Gpu::headless()?;
-    println!("adapter: {}; {} frames per case", gpu.describe(), args.frames);
-    println!("| lab | object | size | ms/frame | gpu ms |");
-    println!("|---|---|---|---|---|");
+    say(&format!("adapter: {}; {} frames per case", gpu.describe(), args.frames))?;
+    say("| lab | object | size | ms/frame | gpu ms |")?;
+    say("|---|---|---|---|---|")?;
     let source = ShaderSource::Embedded;
     let cx = LabContext {
         gpu: &gpu,
@@ -79,13 +81,13 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
             }
             let r = bench(&gpu, lab.as_mut(), args.frames, w, h, args.gpu_time)?;
             bar.suspend(|| {
-                println!(
+                say(&format!(
                     "| {} | {object} | {w}x{h} | {:.3} | {} |",
                     entry.info.name,
                     r.ms_per_frame,
                     r.gpu_ms.map(|g| format!("{g:.3}")).unwrap_or_else(|| "-".into())
-                );
-            });
+                ))
+            })?;
         }
     }
     bar.finish_and_clear();

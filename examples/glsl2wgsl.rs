@@ -11,15 +11,18 @@
 //! ```
 //!
 //! Shader errors print as `path:line:column: message` with the line and a caret, and exit 1.
-//! Output files are written whole (a temporary file renamed into place), and never over the
-//! input: `-o` naming the input file, through any path, is refused with exit status 2.
+//! Output files are written whole (a temporary file renamed into place; `--all` moves all of
+//! them in at the end, so a failure leaves OUTDIR as it was), and never over the input: `-o`
+//! naming the input file, through any path, is refused with exit status 2. `-o` onto a FIFO or a
+//! device (`/dev/stdout`, `/dev/null`) writes into it and never replaces it. A closed or full
+//! stdout is one line and status 1.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{bail, Context};
-use clap::Parser;
-use shaderlab::fsutil::{check_output_path, same_file, write_atomic};
+use clap::{CommandFactory, FromArgMatches, Parser};
+use shaderlab::fsutil::{check_output_path, same_file, write_atomic, Batch};
 use shaderlab::shader::compile_file;
 
 /// Translate GLSL 450 shaders to WGSL with naga.
@@ -102,7 +105,7 @@ fn write(path: &Path, text: &str) -> anyhow::Result<()> {
 
 fn run(args: &Args) -> anyhow::Result<()> {
     if let Some([vert, frag]) = args.legacy.as_deref() {
-        print!("{}", legacy(vert, frag)?);
+        shaderlab::shell::print(&legacy(vert, frag)?).map_err(lib)?;
         return Ok(());
     }
     if let Some([dir, out_dir]) = args.all.as_deref() {
@@ -130,8 +133,14 @@ fn run(args: &Args) -> anyhow::Result<()> {
                 check_output(file, out)?;
             }
         }
+        // All translated, then all moved in: a broken shader leaves OUTDIR as it was.
+        let mut batch = Batch::new(true);
         for (file, out) in files.iter().zip(&outputs) {
-            write(out, &translate(file)?)?;
+            let wgsl = translate(file)?;
+            batch.write(out, |w| w.write_all(wgsl.as_bytes())).map_err(lib)?;
+        }
+        batch.commit().map_err(lib)?;
+        for (file, out) in files.iter().zip(&outputs) {
             eprintln!("{} -> {}", file.display(), out.display());
         }
         return Ok(());
@@ -143,7 +152,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
     let wgsl = translate(file)?;
     match &args.output {
         Some(out) => write(out, &wgsl)?,
-        None => print!("{wgsl}"),
+        None => shaderlab::shell::print(&wgsl).map_err(lib)?,
     }
     Ok(())
 }
@@ -155,11 +164,13 @@ fn main() -> ExitCode {
 
 /// The translator for a command line (program name first); `shaderlab glsl2wgsl` calls it too.
 pub fn main_from(argv: impl IntoIterator<Item = std::ffi::OsString>) -> ExitCode {
-    let args = Args::parse_from(argv);
+    let matches = shaderlab::shell::parse_command_line(Args::command(), argv);
+    let args =
+        Args::from_arg_matches(&matches).unwrap_or_else(|e| shaderlab::shell::exit_on_clap_error("glsl2wgsl", e));
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("glsl2wgsl: error: {e:#}");
+            eprintln!("glsl2wgsl: error: {}", shaderlab::shell::one_line(&e));
             ExitCode::from(if e.is::<Usage>() { 2 } else { 1 })
         }
     }

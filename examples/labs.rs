@@ -2,13 +2,16 @@
 //! lecture, original title, default size, keys and parameters — as Markdown (`--markdown`) or
 //! plain text. Needs no GPU.
 
+use std::fmt::Write as _;
+
 use shaderlab::labs;
 
-fn main() {
+fn main() -> std::process::ExitCode {
     let markdown = std::env::args().any(|a| a == "--markdown");
+    let mut out = String::new();
     if markdown {
-        println!("| example | lecture | effect | size | keys and mouse | parameters (`--set`) |");
-        println!("|---|---|---|---|---|---|");
+        out.push_str("| example | lecture | effect | size | keys and mouse | parameters (`--set`) |\n");
+        out.push_str("|---|---|---|---|---|---|\n");
     }
     for entry in labs::ALL {
         let info = entry.info;
@@ -20,8 +23,10 @@ fn main() {
             .collect();
         let keys = info.keys.help();
         let keys = keys.split_whitespace().collect::<Vec<_>>().join(" ");
-        if markdown {
-            println!(
+        // Writing into a String cannot fail.
+        let _ = if markdown {
+            writeln!(
+                out,
                 "| `{}` | {} | {} {} | {}x{} | {} | {} |",
                 info.name,
                 info.lecture,
@@ -31,14 +36,20 @@ fn main() {
                 info.size.1,
                 keys.replace('|', "\\|"),
                 names.join(" ")
-            );
+            )
         } else {
-            println!(
-                "{} ({}, {} {}, {}x{})",
-                info.name, info.lecture, info.title, info.label, info.size.0, info.size.1
-            );
-            println!("  keys: {keys}");
-            println!("  parameters: {}\n", names.join(" "));
-        }
+            writeln!(
+                out,
+                "{} ({}, {} {}, {}x{})\n  keys: {keys}\n  parameters: {}\n",
+                info.name,
+                info.lecture,
+                info.title,
+                info.label,
+                info.size.0,
+                info.size.1,
+                names.join(" ")
+            )
+        };
     }
+    shaderlab::shell::tool_exit("labs", shaderlab::shell::print(&out).map_err(anyhow::Error::from))
 }

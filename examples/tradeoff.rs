@@ -36,16 +36,16 @@
 //! leaves the previous ones as they were.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::Context;
-use clap::Parser;
+use chart::Outputs;
+use clap::{CommandFactory, FromArgMatches, Parser};
 use plotters::prelude::*;
 use shaderlab::exact::{image_error, silhouette_error, ExactScene, Shape, Specular};
-use shaderlab::fsutil::{check_output_path, write_atomic};
+use shaderlab::fsutil::{check_output_path, check_writable, Dest};
 use shaderlab::metrics::mask;
 use shaderlab::offscreen::to_rgb;
-use shaderlab::shell::{bench, screenshot};
+use shaderlab::shell::{bench, say, screenshot};
 use shaderlab::{labs, Gpu, Object};
 
 /// The phong lab's shading models (its `shading` parameter).
@@ -130,36 +130,51 @@ struct Summary {
     lesson: String,
 }
 
-fn main() -> anyhow::Result<()> {
+fn main() -> std::process::ExitCode {
     shaderlab::shell::ensure_runtime_dir();
-    let args = Args::parse();
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let matches = shaderlab::shell::parse_command_line(Args::command(), std::env::args_os());
+    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| shaderlab::shell::exit_on_clap_error("tradeoff", e));
+    shaderlab::shell::tool_exit("tradeoff", run(&args))
+}
+
+fn run(args: &Args) -> anyhow::Result<()> {
     let chosen: Vec<&str> = STUDIES
         .into_iter()
         .filter(|s| args.study == "all" || args.study == *s)
         .collect();
-    // Before the sweeps, not after them.
-    for name in &chosen {
-        check_output_path(&args.out.join(format!("{name}.csv")))?;
-        check_output_path(&args.out.join(format!("{name}.svg")))?;
-    }
+    // Before the sweeps, not after them: the folder (made if missing) takes files, and no
+    // output name is a directory or a FIFO.
+    std::fs::create_dir_all(&args.out).map_err(|source| shaderlab::Error::Io {
+        path: args.out.clone(),
+        source,
+    })?;
     let index = args.out.join("index.md");
-    check_output_path(&index)?;
+    check_writable(&index)?;
     for name in &chosen {
-        check_output_path(&args.out.join(format!("{name}.md")))?;
+        for ext in ["csv", "svg", "md"] {
+            let path = args.out.join(format!("{name}.{ext}"));
+            check_output_path(&path)?;
+            if !matches!(Dest::of(&path)?, Dest::File(_)) {
+                anyhow::bail!(
+                    "{}: not a regular file (a FIFO or device); the studies write files",
+                    path.display()
+                );
+            }
+        }
     }
     let gpu = Gpu::headless()?;
+    let mut out = Outputs::new(&args.out);
     let mut summaries = Vec::new();
     for name in chosen {
         summaries.push(match name {
-            "phong000" => phong000(&args, &gpu)?,
-            "wave" => wave::study(&args.out, args.frames, args.quick, &gpu)?,
-            "suzanne" => suzanne::study(&args.out, args.frames, &gpu)?,
-            "normmap" => normmap::study(&args.out, args.frames, &gpu)?,
-            "lighting" => lighting::study(&args.out, args.frames, args.quick, &gpu)?,
-            "filtering" => filtering::study(&args.out, args.frames, &gpu)?,
-            "bezier" => bezier::study(&args.out, args.frames, &gpu)?,
-            _ => twist::study(&args.out, args.frames, args.quick, &gpu)?,
+            "phong000" => phong000(args, &mut out, &gpu)?,
+            "wave" => wave::study(&mut out, args.frames, args.quick, &gpu)?,
+            "suzanne" => suzanne::study(&mut out, args.frames, &gpu)?,
+            "normmap" => normmap::study(&mut out, args.frames, &gpu)?,
+            "lighting" => lighting::study(&mut out, args.frames, args.quick, &gpu)?,
+            "filtering" => filtering::study(&mut out, args.frames, &gpu)?,
+            "bezier" => bezier::study(&mut out, args.frames, &gpu)?,
+            _ => twist::study(&mut out, args.frames, args.quick, &gpu)?,
         });
     }
     // Each study's section is kept in NAME.md, so that one study run again leaves the others'
@@ -177,21 +192,26 @@ fn main() -> anyhow::Result<()> {
             gpu.describe(),
             today()
         );
-        write_atomic(&args.out.join(format!("{}.md", s.name)), |w| {
-            w.write_all(section.as_bytes())
-        })?;
+        out.file(&format!("{}.md", s.name), section);
     }
     let mut text = String::from(
         "# Speed against accuracy\n\nWritten by `cargo run --release --example tradeoff -- --study NAME|all --out DIR`. \
          Each chart plots error against frame time; the CSV beside it marks the Pareto front.\n",
     );
     for name in STUDIES {
-        if let Ok(section) = std::fs::read_to_string(args.out.join(format!("{name}.md"))) {
+        let md = format!("{name}.md");
+        let section = match out.get(&md) {
+            Some(section) => Some(section.to_owned()),
+            None => std::fs::read_to_string(args.out.join(&md)).ok(),
+        };
+        if let Some(section) = section {
             write!(text, "\n{section}")?;
         }
     }
-    write_atomic(&index, |w| w.write_all(text.as_bytes()))?;
-    println!("wrote {}", index.display());
+    out.file("index.md", text);
+    let written = out.commit()?;
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    say(&format!("wrote {}", names.join(", ")))?;
     Ok(())
 }
 
@@ -232,9 +252,7 @@ mod twist;
 mod wave;
 
 /// Seed 000's Phong exercise: shading model x tessellation on the sphere and the torus.
-fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
-    let csv = args.out.join("phong000.csv");
-    let svg = args.out.join("phong000.svg");
+fn phong000(args: &Args, out: &mut Outputs, gpu: &Gpu) -> anyhow::Result<Summary> {
     let levels: &[u32] = if args.quick {
         &[4, 8, 16, 32, 64]
     } else {
@@ -325,9 +343,9 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
         }
     }
     mark_pareto(&mut rows);
-    write_csv(&rows, &csv)?;
-    chart(&rows, &svg)?;
-    println!("wrote {} and {}", csv.display(), svg.display());
+    let mut svg = String::new();
+    draw_chart(&rows, &mut svg)?;
+    chart::write(out, "phong000", &csv_text(&rows)?, &svg)?;
     let mut fronts = Vec::new();
     for shape in ["sphere", "torus"] {
         let front: Vec<String> = rows
@@ -344,7 +362,7 @@ fn phong000(args: &Args, gpu: &Gpu) -> anyhow::Result<Summary> {
                 )
             })
             .collect();
-        println!("{shape} Pareto front: {}", front.join("; "));
+        say(&format!("{shape} Pareto front: {}", front.join("; ")))?;
         fronts.push(format!("{shape}: {}", front.join("; ")));
     }
     // Which shading models make the front, per shape.
@@ -387,7 +405,7 @@ fn mark_pareto(rows: &mut [Row]) {
     }
 }
 
-fn write_csv(rows: &[Row], path: &Path) -> anyhow::Result<()> {
+fn csv_text(rows: &[Row]) -> anyhow::Result<String> {
     let mut text = String::from(
         "shape,shading,level,triangles,ms_per_frame,rmse,max_error,silhouette_max_px,pareto,cull,changed_px\n",
     );
@@ -408,8 +426,7 @@ fn write_csv(rows: &[Row], path: &Path) -> anyhow::Result<()> {
             r.changed_px
         )?;
     }
-    write_atomic(path, |w| w.write_all(text.as_bytes()))?;
-    Ok(())
+    Ok(text)
 }
 
 fn color(shading: Shading) -> RGBColor {
@@ -419,14 +436,6 @@ fn color(shading: Shading) -> RGBColor {
         Shading::Phong => RGBColor(31, 119, 180),
         Shading::Blinn => RGBColor(44, 160, 44),
     }
-}
-
-/// Draws the chart into memory, then writes it whole.
-fn chart(rows: &[Row], path: &Path) -> anyhow::Result<()> {
-    let mut svg = String::new();
-    draw_chart(rows, &mut svg)?;
-    write_atomic(path, |w| w.write_all(svg.as_bytes()))?;
-    Ok(())
 }
 
 fn draw_chart(rows: &[Row], svg: &mut String) -> anyhow::Result<()> {

@@ -64,6 +64,16 @@ pub enum Error {
         /// The cause.
         source: image::ImageError,
     },
+    /// A signal (SIGINT, SIGTERM, SIGHUP) stopped the work; what it had written was removed or,
+    /// for a window's recording, finished and kept.
+    #[error("stopped by {}", crate::fsutil::signals::name(*.signal))]
+    Interrupted {
+        /// The signal's number.
+        signal: i32,
+    },
+    /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
+    #[error("{0}")]
+    Hang(String),
     /// A window surface could not be created or configured.
     #[error("surface error: {0}")]
     Surface(String),

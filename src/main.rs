@@ -29,19 +29,25 @@ Usage:
 
 Each lab is also an example: cargo run --release --example NAME -- [FLAGS…]";
 
+/// Writes `text` to stdout: status 0, or 1 with one line when stdout is closed or full
+/// (`shaderlab list | head -c 1`, `> /dev/full`).
+fn print(text: &str) -> ExitCode {
+    match shaderlab::shell::print(text) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let _ = writeln!(std::io::stderr(), "shaderlab: error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
 fn main() -> ExitCode {
     shaderlab::shell::ensure_runtime_dir();
     let mut argv: Vec<OsString> = std::env::args_os().collect();
     let words: Vec<String> = argv.iter().map(|a| a.to_string_lossy().into_owned()).collect();
     match words.get(1).map(String::as_str) {
-        None | Some("help" | "--help" | "-h") => {
-            println!("{USAGE}");
-            ExitCode::SUCCESS
-        }
-        Some("--version" | "-V") => {
-            println!("shaderlab {}", env!("CARGO_PKG_VERSION"));
-            ExitCode::SUCCESS
-        }
+        None | Some("help" | "--help" | "-h") => print(&format!("{USAGE}\n")),
+        Some("--version" | "-V") => print(&format!("shaderlab {}\n", env!("CARGO_PKG_VERSION"))),
         Some("list") => {
             let mut lines = Vec::new();
             let mut lecture = "";
@@ -56,10 +62,8 @@ fn main() -> ExitCode {
                     info.name, info.title, info.label, info.size.0, info.size.1
                 ));
             }
-            // A closed pipe (`shaderlab list | head`) ends the listing quietly.
-            let mut out = std::io::stdout().lock();
-            let _ = lines.iter().try_for_each(|l| writeln!(out, "{l}"));
-            ExitCode::SUCCESS
+            lines.push(String::new());
+            print(&lines.join("\n"))
         }
         Some(verb @ ("run" | "record" | "legacy")) => {
             let (name, rest) = if verb == "legacy" {
@@ -80,11 +84,18 @@ fn main() -> ExitCode {
                 );
                 return ExitCode::from(2);
             };
-            let mut args: Vec<OsString> = vec![format!("shaderlab {verb} {}", entry.info.name).into()];
+            let program = if verb == "legacy" {
+                "shaderlab legacy".to_owned()
+            } else {
+                format!("shaderlab {verb} {}", entry.info.name)
+            };
+            let mut args: Vec<OsString> = vec![program.into()];
             if verb == "record" {
                 match argv.get(3) {
-                    Some(out) => args.extend([OsString::from("--record"), out.clone()]),
-                    None => {
+                    Some(out) if !out.to_string_lossy().starts_with('-') => {
+                        args.extend([OsString::from("--record"), out.clone()])
+                    }
+                    _ => {
                         eprintln!("shaderlab record: where to? Usage: shaderlab record NAME OUT --frames N [FLAGS…]");
                         return ExitCode::from(2);
                     }
@@ -96,13 +107,7 @@ fn main() -> ExitCode {
             shaderlab::shell::main_from(entry, args)
         }
         Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),
-        Some("bench") => match bench::run(argv.drain(1..)) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("shaderlab bench: error: {e:#}");
-                ExitCode::from(1)
-            }
-        },
+        Some("bench") => shaderlab::shell::tool_exit("shaderlab bench", bench::run(argv.drain(1..))),
         Some(other) => {
             eprintln!("shaderlab: unknown command `{other}`\n\n{USAGE}");
             ExitCode::from(2)

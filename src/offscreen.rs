@@ -270,16 +270,19 @@ pub fn to_rgb(image: &image::RgbaImage) -> image::RgbImage {
 /// file as it was.
 pub fn save_png(image: &image::RgbaImage, path: &Path) -> Result<()> {
     crate::fsutil::check_png_path(path)?;
+    crate::fsutil::write_atomic(path, |out| write_png(image, out))
+}
+
+/// Encodes `image` as an RGB PNG (alpha dropped, see [`to_rgb`]) into `out`.
+pub fn write_png(image: &image::RgbaImage, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    use image::ImageEncoder;
     let rgb = to_rgb(image);
-    crate::fsutil::write_atomic(path, |out| {
-        use image::ImageEncoder;
-        image::codecs::png::PngEncoder::new(out)
-            .write_image(rgb.as_raw(), rgb.width(), rgb.height(), image::ExtendedColorType::Rgb8)
-            .map_err(|e| match e {
-                image::ImageError::IoError(e) => e,
-                e => std::io::Error::other(e),
-            })
-    })
+    image::codecs::png::PngEncoder::new(out)
+        .write_image(rgb.as_raw(), rgb.width(), rgb.height(), image::ExtendedColorType::Rgb8)
+        .map_err(|e| match e {
+            image::ImageError::IoError(e) => e,
+            e => std::io::Error::other(e),
+        })
 }
 
 #[cfg(test)]

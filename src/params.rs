@@ -166,6 +166,16 @@ pub fn bound_text(v: f64) -> String {
     }
 }
 
+/// A value in a message: as typed for everyday sizes, in shortest exponent form when huge or
+/// tiny (`1e308`, not a 309-digit number).
+pub fn value_text(v: f64) -> String {
+    if v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// The range of a spec as text, `0..90 or 180` where one more value is taken.
 fn range_text(spec: &ParamSpec) -> String {
     let or = spec.or.map(|v| format!(" or {}", bound_text(v))).unwrap_or_default();
@@ -330,23 +340,23 @@ impl Params {
                 return Err(Error::Param(format!("parameter `{name}`: {v} is not a finite number")));
             }
             if spec.kind == Kind::Bool && v != 0.0 && v != 1.0 {
+                let v = value_text(v);
                 return Err(Error::Param(format!("parameter `{name}` takes 0 or 1, not {v}")));
             }
             let whole = !matches!(spec.kind, Kind::Real);
             if whole && v.fract() != 0.0 {
+                let v = value_text(v);
                 return Err(Error::Param(format!(
                     "parameter `{name}` takes a whole number{}, not {v}",
                     self.choices_hint(&spec)
                 )));
             }
-            // In f64, the type the value is kept in; a real is also taken where its f32 (what
-            // a shader gets) is within the f32 bounds, so that a bound printed as an f32
-            // (`3.4028235e38` for f32::MAX) is itself accepted.
-            let inside = (spec.min..=spec.max).contains(&v)
-                || (spec.kind == Kind::Real
-                    && (v as f32).is_finite()
-                    && (spec.min as f32..=spec.max as f32).contains(&(v as f32)));
+            // In f64, the type the value is kept in; a bound as printed (`3.4028235e38` for
+            // f32::MAX, a little above it in f64) is itself taken, and nothing else beyond.
+            let printed = |b: f64| bound_text(b).parse::<f64>().ok() == Some(v);
+            let inside = (spec.min..=spec.max).contains(&v) || printed(spec.min) || printed(spec.max);
             if !inside && spec.or != Some(v) {
+                let v = value_text(v);
                 return Err(Error::Param(format!(
                     "parameter `{name}`: {v} is outside {}{}",
                     range_text(&spec),

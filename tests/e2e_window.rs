@@ -1779,6 +1779,67 @@ fn f10_records_what_the_window_shows_into_a_gif() {
     lab.escape();
 }
 
+/// A recording is finished and kept however the window ends while it runs: destroyed by
+/// another program (`xdotool windowclose`: exit 1 with the one message) or told to stop by a
+/// signal (SIGTERM, SIGHUP: the process then ends by that signal). Both lost the GIF before.
+#[test]
+fn f10_recordings_are_kept_when_the_window_is_destroyed_or_signalled() {
+    use image::AnimationDecoder;
+    let x = Xvfb::start("f10_kept");
+    for ending in ["windowclose", "TERM", "HUP"] {
+        let mut lab = x.launch("wave", &[], &[]);
+        lab.first_frame();
+        lab.keys(&["F10"]);
+        // The title counts the frames recorded: wait for a few.
+        lab.wait_title("REC with 3 frames", |t| {
+            t.split("REC ")
+                .nth(1)
+                .and_then(|r| r.split(' ').next())
+                .and_then(|n| n.parse::<u32>().ok())
+                .is_some_and(|n| n >= 3)
+        });
+        if ending == "windowclose" {
+            lab.x.xdotool(&["windowclose", &lab.window]);
+        } else {
+            let status = Command::new("kill")
+                .args([&format!("-{ending}"), &lab.pid().to_string()])
+                .status()
+                .unwrap();
+            assert!(status.success());
+        }
+        let status = lab.wait_exit(Duration::from_secs(60));
+        #[cfg(unix)]
+        {
+            use std::os::unix::process::ExitStatusExt;
+            match ending {
+                "windowclose" => assert_eq!(status.code(), Some(1), "{ending}: {status:?}"),
+                "TERM" => assert_eq!(status.signal(), Some(15), "{ending}: {status:?}"),
+                _ => assert_eq!(status.signal(), Some(1), "{ending}: {status:?}"),
+            }
+        }
+        let line = lab
+            .stdout()
+            .lines()
+            .find(|l| l.starts_with("recording: "))
+            .map(str::to_owned)
+            .unwrap_or_else(|| panic!("{ending}: no `recording:` line; stderr:\n{}", lab.stderr()));
+        let path = PathBuf::from(line.trim_start_matches("recording: ").split(" (").next().unwrap());
+        let frames = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(std::fs::read(&path).unwrap()))
+            .unwrap()
+            .into_frames()
+            .collect_frames()
+            .unwrap();
+        assert!(frames.len() >= 3, "{ending}: {} frames kept", frames.len());
+        lab.assert_clean();
+        let leftovers: Vec<_> = std::fs::read_dir(&lab.x.dir)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+            .collect();
+        assert!(leftovers.is_empty(), "{ending}: temporary files left: {leftovers:?}");
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // F1: the parameter panel
 // ---------------------------------------------------------------------------------------------

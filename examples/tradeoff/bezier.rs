@@ -4,7 +4,6 @@
 //! `segments=auto` lands.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::to_rgb;
@@ -31,7 +30,7 @@ struct Row {
     pareto: bool,
 }
 
-pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let counts = [2u32, 4, 6, 8, 12, 16, 24, 32, 48, 64, 100, 200];
     let cx = super::chart::context(gpu);
     let mut rows = Vec::new();

@@ -2,19 +2,64 @@
 //! settings as labelled points, `auto`'s choice marked, the Pareto front drawn) on log-log
 //! axes of frame time against an error that can be zero.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use shaderlab::fsutil::write_atomic;
+use shaderlab::fsutil::{signals, Batch};
 
-/// Writes `DIR/NAME.csv` and `DIR/NAME.svg`, each whole, and says so.
-pub fn write(out: &Path, name: &str, csv: &str, svg: &str) -> anyhow::Result<()> {
-    let (csv_path, svg_path) = (out.join(format!("{name}.csv")), out.join(format!("{name}.svg")));
-    write_atomic(&csv_path, |w| w.write_all(csv.as_bytes()))?;
-    write_atomic(&svg_path, |w| w.write_all(svg.as_bytes()))?;
-    println!("wrote {} and {}", csv_path.display(), svg_path.display());
+/// Every file a run writes, held in memory until all its studies are done, then moved into
+/// place together ([`Outputs::commit`]): a run that fails or is stopped half-way leaves every
+/// CSV, SVG and `.md` of the folder as it was.
+pub struct Outputs {
+    /// The output folder.
+    pub dir: PathBuf,
+    files: Vec<(PathBuf, String)>,
+}
+
+impl Outputs {
+    /// Nothing written yet into `dir`.
+    pub fn new(dir: &Path) -> Outputs {
+        Outputs {
+            dir: dir.to_owned(),
+            files: Vec::new(),
+        }
+    }
+
+    /// `DIR/NAME`'s contents, written at [`Outputs::commit`].
+    pub fn file(&mut self, name: &str, text: String) {
+        self.files.push((self.dir.join(name), text));
+    }
+
+    /// What this run has for `DIR/NAME` so far.
+    pub fn get(&self, name: &str) -> Option<&str> {
+        let path = self.dir.join(name);
+        self.files
+            .iter()
+            .rev()
+            .find(|(p, _)| *p == path)
+            .map(|(_, t)| t.as_str())
+    }
+
+    /// Writes every file beside its name and moves them all in; returns their paths. A signal
+    /// that came before the move leaves the folder untouched.
+    pub fn commit(self) -> anyhow::Result<Vec<PathBuf>> {
+        let _deferred = signals::defer();
+        let mut batch = Batch::new(true);
+        for (path, text) in &self.files {
+            batch.write(path, |w| w.write_all(text.as_bytes()))?;
+        }
+        signals::check()?;
+        batch.commit()?;
+        Ok(self.files.into_iter().map(|(p, _)| p).collect())
+    }
+}
+
+/// Keeps `NAME.csv` and `NAME.svg` for the end of the run.
+pub fn write(out: &mut Outputs, name: &str, csv: &str, svg: &str) -> anyhow::Result<()> {
+    out.file(&format!("{name}.csv"), csv.to_owned());
+    out.file(&format!("{name}.svg"), svg.to_owned());
     Ok(())
 }
 

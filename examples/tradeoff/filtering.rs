@@ -6,7 +6,6 @@
 //! and anisotropic filtering (4 and 16 samples, the port's `aniso`) beside them.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use image::RgbImage;
 use plotters::prelude::*;
@@ -44,7 +43,7 @@ fn top(image: &RgbImage, rows: u32) -> RgbImage {
     image::imageops::crop_imm(image, 0, 0, image.width(), rows).to_image()
 }
 
-pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let cx = super::chart::context(gpu);
     let mut lab = (labs::TEXPARAMS.new)(&cx)?;
     lab.params_mut().set_str("min", "nearest")?;

@@ -5,7 +5,6 @@
 //! charge every level the same silhouette aliasing and hide the lighting's own error).
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use plotters::prelude::*;
 use shaderlab::lab::LabEntry;
@@ -40,7 +39,7 @@ fn labs_compared() -> [(&'static LabEntry, &'static LabEntry); 3] {
     ]
 }
 
-pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
     let levels: &[u32] = if quick {
         &[8, 24, 64]
     } else {

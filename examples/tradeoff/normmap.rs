@@ -5,7 +5,6 @@
 //! texels per side (the course's: 32).
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use plotters::prelude::*;
 use shaderlab::labs::seed001::normmap::{with_cube, CUBE_SIZES};
@@ -35,7 +34,7 @@ struct Row {
     psnr: f64,
 }
 
-pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let cx = super::chart::context(gpu);
     let mut bump = (labs::BUMP.new)(&cx)?;
     let mut cubes = Vec::new();

@@ -3,7 +3,6 @@
 //! box-filtered down), with frame time, at the course's shininess and a sharp one.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use plotters::prelude::*;
 use shaderlab::metrics::{box_downsample, psnr, rmse};
@@ -37,7 +36,7 @@ struct Row {
     pareto: bool,
 }
 
-pub fn study(out: &Path, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     for (s, (name, state)) in STATES.iter().enumerate() {

@@ -5,7 +5,6 @@
 //! `grid=auto` lands.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use shaderlab::geometry::shapes::{indexed_quads, twist_grid_n};
 use shaderlab::offscreen::to_rgb;
@@ -37,7 +36,7 @@ struct Row {
     pareto: bool,
 }
 
-pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
     let grids: &[u32] = if quick {
         &[4, 16, 64, 100, 400]
     } else {

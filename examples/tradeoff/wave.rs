@@ -4,7 +4,6 @@
 //! course's state and a stronger wave, and where `subdiv=auto` lands.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::to_rgb;
@@ -40,7 +39,7 @@ struct Row {
     pareto: bool,
 }
 
-pub fn study(out: &Path, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
+pub fn study(out: &mut super::chart::Outputs, frames: u32, quick: bool, gpu: &Gpu) -> anyhow::Result<Summary> {
     let subdivs: &[u32] = if quick { &[1, 2, 4] } else { &[1, 2, 3, 4, 6, 8, 12, 16] };
     let cx = super::chart::context(gpu);
     let mut rows = Vec::new();

@@ -207,8 +207,8 @@ impl Args {
                 Some(f) => a.value_names(f.names.iter().copied()).num_args(0..=f.names.len()),
                 None => a.hide(true),
             });
-        let matches = command.get_matches_from(argv);
-        Args::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+        let matches = super::parse_command_line(command, argv);
+        Args::from_arg_matches(&matches).unwrap_or_else(|e| super::exit_on_clap_error(info.name, e))
     }
 
     /// The shader source chosen by `--shaders` (built-in copies otherwise).

@@ -32,6 +32,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
                     .from
                     .unwrap_or_else(|| if params.has("time") { params.f64("time") } else { 0.0 }),
             };
+            check_times(entry.info.name, &params, &recording, args.from.is_some())?;
             recording.output.check(recording.frames)?;
             Some(recording)
         }
@@ -79,6 +80,46 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         let image = screenshot(&gpu, lab.as_mut(), width, height)?;
         save_png(&image, path)?;
         say(&format!("wrote {}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// Checks, before anything is rendered, that every frame's time is one the lab's `time`
+/// takes (its range is an interval: the first and last frames suffice), and says so in terms
+/// of `--from` and `--fps`; a lab without `time` draws every frame the same, so `--from` is a
+/// usage error there.
+fn check_times(name: &str, params: &Params, recording: &super::record::Recording, from: bool) -> Result<(), Failure> {
+    use crate::params::value_text;
+    if !params.has("time") {
+        if from {
+            return Err(Error::Param(format!(
+                "`--from`: {name} has no `time` parameter (it does not animate), so every frame would be the same"
+            ))
+            .into());
+        }
+        return Ok(());
+    }
+    let mut probe = params.clone();
+    for (k, t) in [(0, recording.time(0)), (recording.frames - 1, recording.last_time())] {
+        if probe.set("time", &[t]).is_err() {
+            let spec = params.specs().iter().find(|s| s.name == "time");
+            let range = spec
+                .map(|s| {
+                    format!(
+                        "{}..{}",
+                        crate::params::bound_text(s.min),
+                        crate::params::bound_text(s.max)
+                    )
+                })
+                .unwrap_or_default();
+            return Err(Error::Param(format!(
+                "--from {} --fps {}: frame {k} would be at time {}, outside the lab's `time` range {range}",
+                value_text(recording.from),
+                value_text(recording.fps),
+                value_text(t)
+            ))
+            .into());
+        }
     }
     Ok(())
 }

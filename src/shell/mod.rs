@@ -136,6 +136,21 @@ pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> Exi
 #[cfg(not(target_arch = "wasm32"))]
 fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     // Everything the user typed is checked before a GPU is opened or a frame drawn.
+    if args.record.is_none() {
+        for (flag, given) in [
+            ("--frames", args.frames.is_some()),
+            ("--fps", args.fps.is_some()),
+            ("--from", args.from.is_some()),
+        ] {
+            if given {
+                return Err(Error::Param(format!(
+                    "`{flag}` is for recordings: add --record OUT (or run `shaderlab record {} OUT …`)",
+                    entry.info.name
+                ))
+                .into());
+            }
+        }
+    }
     let params = args.params(entry)?;
     if let Some(path) = &args.screenshot {
         headless::check_png_path(path)?;
@@ -166,16 +181,92 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     }
 }
 
-/// Prints a line to stdout; a closed or full stdout is a clean error, not a panic.
+/// Prints a line to stdout; a closed or full stdout is a clean error, not a panic. When an
+/// output of this run is standard output itself (`--screenshot /dev/stdout`), the line goes to
+/// stderr instead, so the bytes stay clean.
 #[cfg(not(target_arch = "wasm32"))]
-pub(crate) fn say(line: &str) -> Result<(), Error> {
+pub fn say(line: &str) -> Result<(), Error> {
+    print(&format!("{line}\n"))
+}
+
+/// Writes `text` to stdout (stderr when an output took stdout, see [`say`]) and flushes it; a
+/// closed or full stdout is [`Error::Io`] on `<stdout>`, never a panic.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn print(text: &str) -> Result<(), Error> {
+    let fail = |source| Error::Io {
+        path: PathBuf::from("<stdout>"),
+        source,
+    };
+    if crate::fsutil::stdout_taken() {
+        let mut err = std::io::stderr().lock();
+        return err.write_all(text.as_bytes()).map_err(fail);
+    }
     let mut out = std::io::stdout().lock();
-    writeln!(out, "{line}")
-        .and_then(|_| out.flush())
-        .map_err(|source| Error::Io {
-            path: PathBuf::from("<stdout>"),
-            source,
-        })
+    out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(fail)
+}
+
+/// Parses a command line with clap, for every command and example: `--help` and `--version`
+/// are written to stdout with [`print`] (a write that fails ends the process with one line and
+/// status 1, instead of clap's panic or silent loss), usage errors go to stderr with status 2.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn parse_command_line(
+    command: clap::Command,
+    argv: impl IntoIterator<Item = impl Into<std::ffi::OsString> + Clone>,
+) -> clap::ArgMatches {
+    let name = command.get_name().to_owned();
+    match command.try_get_matches_from(argv) {
+        Ok(matches) => matches,
+        Err(e) => exit_on_clap_error(&name, e),
+    }
+}
+
+/// The end of a tool's `main` (`bench`, `tradeoff`, `labs`): status 0, or one line
+/// `NAME: error: what: why` (anyhow's causes joined, no backtrace) and status 1; a run stopped by
+/// a signal ends as the signal asked.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn tool_exit(name: &str, result: anyhow::Result<()>) -> ExitCode {
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            if let Some(Error::Interrupted { signal }) = e.downcast_ref::<Error>() {
+                crate::fsutil::signals::end_by(*signal);
+            }
+            let _ = writeln!(std::io::stderr(), "{name}: error: {}", one_line(&e));
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// An error and its causes on one line, each cause once (shaderlab's errors already name
+/// their cause, which anyhow's chain would repeat).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn one_line(e: &anyhow::Error) -> String {
+    let mut text = e.to_string();
+    for cause in e.chain().skip(1) {
+        let cause = cause.to_string();
+        if !text.contains(&cause) {
+            text.push_str(": ");
+            text.push_str(&cause);
+        }
+    }
+    text
+}
+
+/// Ends the process for a clap error or request as [`parse_command_line`] describes.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn exit_on_clap_error(name: &str, e: clap::Error) -> ! {
+    if e.use_stderr() {
+        let _ = e.print();
+        std::process::exit(e.exit_code());
+    }
+    let text = e.render().to_string();
+    match print(&text) {
+        Ok(()) => std::process::exit(0),
+        Err(failure) => {
+            let _ = writeln!(std::io::stderr(), "{name}: error: {failure}");
+            std::process::exit(1)
+        }
+    }
 }
 
 /// The parameters of a lab at their defaults (for tests and `--help`).

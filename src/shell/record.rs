@@ -3,8 +3,12 @@
 //! the form: `*.gif` an animated GIF (image's encoder, looping), a name holding `%0Nd` or an
 //! existing directory a PNG sequence, `*.mp4`/`*.webm` a video through `ffmpeg`.
 //!
-//! Every file is written whole or not at all ([`crate::fsutil::write_atomic`]); a PNG sequence
-//! never overwrites: it stops before rendering when one of its names exists.
+//! Every output appears whole or not at all: a GIF or video is written to a temporary file
+//! renamed into place ([`crate::fsutil::write_atomic`]); a PNG sequence is written beside its
+//! names and moved into them together at the end ([`crate::fsutil::Batch`]), never over an
+//! existing file (it stops before rendering when one of its names exists, and fails whole if
+//! another program takes one meanwhile). A failure, SIGINT, SIGTERM or SIGHUP half-way leaves
+//! the folder as it was.
 
 use std::io::{self, Read, Write};
 use std::path::{Path, PathBuf};
@@ -57,6 +61,18 @@ pub struct Recording {
     pub from: f64,
 }
 
+impl Recording {
+    /// The lab time of frame `k`: FROM + k/FPS.
+    pub fn time(&self, k: u32) -> f64 {
+        self.from + f64::from(k) / self.fps
+    }
+
+    /// The lab time of the last frame.
+    pub fn last_time(&self) -> f64 {
+        self.time(self.frames.saturating_sub(1))
+    }
+}
+
 impl Output {
     /// What `path` asks for, for lab `lab` (directories get `LAB-0000.png` …); a usage error
     /// for any other name.
@@ -75,7 +91,9 @@ impl Output {
             let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
             let width = digits.trim_start_matches('0').parse::<usize>().unwrap_or(1).min(9);
             let suffix = rest[digits.len()..].strip_prefix('d').ok_or_else(|| bad_name(path))?;
-            if suffix.contains('%') || !suffix.to_ascii_lowercase().ends_with(".png") {
+            // One folder for the whole sequence (the number names files, not folders).
+            if suffix.contains(['%', '/', std::path::MAIN_SEPARATOR]) || !suffix.to_ascii_lowercase().ends_with(".png")
+            {
                 return Err(bad_name(path));
             }
             return Ok(Output::Pngs(Sequence {
@@ -168,12 +186,15 @@ pub fn record(
     height: u32,
     progress: &mut dyn FnMut(u32),
 ) -> Result<()> {
+    // A signal stops the recording between frames; what it wrote is removed as it unwinds, and
+    // the process then ends as the signal asked.
+    let _deferred = crate::fsutil::signals::defer();
     let target = Offscreen::with_format(gpu, width, height, COLOR_FORMAT);
     let has_time = lab.params().has("time");
     let mut frame = |k: u32| -> Result<image::RgbaImage> {
+        crate::fsutil::signals::check()?;
         if has_time {
-            let t = recording.from + f64::from(k) / recording.fps;
-            lab.params_mut().set("time", &[t])?;
+            lab.params_mut().set("time", &[recording.time(k)])?;
         }
         super::headless::render_into(gpu, lab, &target)?;
         let image = target.read(gpu)?;
@@ -182,11 +203,14 @@ pub fn record(
     };
     match &recording.output {
         Output::Pngs(sequence) => {
+            let mut batch = crate::fsutil::Batch::new(false);
             for k in 0..recording.frames {
                 let image = frame(k)?;
-                crate::offscreen::save_png(&image, &sequence.name(k))?;
+                let name = sequence.name(k);
+                batch.write(&name, |w| crate::offscreen::write_png(&image, w))?;
             }
-            Ok(())
+            crate::fsutil::signals::check()?;
+            batch.commit()
         }
         Output::Gif(path) => {
             let (centis, _) = gif_delay(recording.fps);

@@ -126,7 +126,7 @@ pub fn surface_size(size: PhysicalSize<u32>) -> Option<(u32, u32)> {
 
 /// Opens the lab in a window and runs until Esc or close.
 pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFiles) -> Result<()> {
-    let event_loop = EventLoop::new().map_err(|e| {
+    let event_loop = EventLoop::<Wake>::with_user_event().build().map_err(|e| {
         // winit's message names its own source file ("os error at /…/registry/…/x11/mod.rs:N:
         // reason"): keep the reason only.
         let message = e.to_string();
@@ -141,6 +141,11 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
         ))
     })?;
     event_loop.set_control_flow(ControlFlow::Poll);
+    // SIGINT, SIGTERM and SIGHUP end the window through its own loop, so that a recording
+    // running is finished and kept; the process then ends as the signal asked (when `_deferred`
+    // is dropped, on the way out of this function).
+    let _deferred = crate::fsutil::signals::defer();
+    wake_on_signal(event_loop.create_proxy());
     // Live reload needs files: --shaders DIR, else shaders_glsl/ of the source tree, else the built-in copies.
     let source = match args.shader_source()? {
         ShaderSource::Embedded => ShaderSource::source_tree().unwrap_or(ShaderSource::Embedded),
@@ -161,6 +166,12 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
     std::panic::set_hook(Box::new(|_| {}));
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| event_loop.run_app(&mut app)));
     std::panic::set_hook(previous_hook);
+    // A recording still running is kept, not lost, however the window ended: Esc, closed by
+    // the window manager or destroyed by another program, a signal, an error. Its frames are
+    // drawn offscreen, so the window is not needed to finish it.
+    if let Some(state) = app.state.as_mut() {
+        state.finish_capture();
+    }
     match outcome {
         Ok(result) => result.map_err(|e| Error::Surface(format!("event loop failed: {e}")))?,
         Err(_) => {
@@ -169,16 +180,56 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
             ))
         }
     }
-    // A recording still running when the window closes is kept, not lost.
-    if let Some(state) = app.state.as_mut() {
-        if state.capture.is_some() {
-            state.toggle_capture();
-        }
-    }
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
     }
+}
+
+/// What wakes the window's event loop from outside it.
+#[derive(Debug, Clone, Copy)]
+enum Wake {
+    /// A deferred signal (its number).
+    Signal(i32),
+}
+
+/// Starts a thread that turns a deferred signal into a [`Wake::Signal`] for the event loop: the
+/// handler writes the signal's number into a pipe, and the thread, blocked reading it, sends the
+/// event. Without a pipe the window still ends at the signal, at its next frame or event.
+fn wake_on_signal(proxy: winit::event_loop::EventLoopProxy<Wake>) {
+    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+    {
+        let mut fds = [0; 2];
+        // SAFETY: pipe2 fills two descriptors that this function then owns.
+        if unsafe { libc::pipe2(fds.as_mut_ptr(), libc::O_CLOEXEC) } != 0 {
+            return;
+        }
+        let read = fds[0];
+        crate::fsutil::signals::set_wake_fd(fds[1]);
+        let spawned = std::thread::Builder::new()
+            .name("shaderlab-signals".into())
+            .spawn(move || loop {
+                let mut byte = 0u8;
+                // SAFETY: a one-byte read into a valid buffer from our own pipe.
+                let n = unsafe { libc::read(read, (&mut byte as *mut u8).cast(), 1) };
+                if n == 1 {
+                    let _ = proxy.send_event(Wake::Signal(i32::from(byte)));
+                } else if n == 0 || io_error_is_fatal() {
+                    return;
+                }
+            });
+        if spawned.is_err() {
+            crate::fsutil::signals::set_wake_fd(-1);
+        }
+    }
+    #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
+    let _ = proxy;
+}
+
+/// Whether the last failed read should end the signal thread (anything but an interrupted call).
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+fn io_error_is_fatal() -> bool {
+    std::io::Error::last_os_error().kind() != std::io::ErrorKind::Interrupted
 }
 
 struct App {
@@ -617,16 +668,7 @@ impl WindowState {
     /// F10: starts or stops recording what the window shows.
     fn toggle_capture(&mut self) {
         match self.capture.take() {
-            Some(capture) => {
-                let frames = capture.frames();
-                match capture.finish() {
-                    Ok(path) => println!(
-                        "recording: {} ({frames} frames)",
-                        std::fs::canonicalize(&path).unwrap_or(path).display()
-                    ),
-                    Err(e) => eprintln!("{}: recording failed: {e}", self.name()),
-                }
-            }
+            Some(capture) => report_capture(self.name(), capture),
             None => {
                 let path = self.fresh_name("gif");
                 match super::capture::Capture::start(&path) {
@@ -640,6 +682,13 @@ impl WindowState {
             }
         }
         self.update_title();
+    }
+
+    /// Finishes F10's recording if one runs, without touching the window (which may be gone).
+    fn finish_capture(&mut self) {
+        if let Some(capture) = self.capture.take() {
+            report_capture(self.name(), capture);
+        }
     }
 
     /// Adds the frame just shown to F10's recording.
@@ -991,6 +1040,18 @@ impl WindowState {
     }
 }
 
+/// Finishes a recording and says where it is (or why it failed).
+fn report_capture(name: &str, capture: super::capture::Capture) {
+    let frames = capture.frames();
+    match capture.finish() {
+        Ok(path) => {
+            let path = std::fs::canonicalize(&path).unwrap_or(path);
+            let _ = super::say(&format!("recording: {} ({frames} frames)", path.display()));
+        }
+        Err(e) => eprintln!("{name}: recording failed: {e}"),
+    }
+}
+
 fn single_char(s: &str) -> Option<char> {
     let mut chars = s.chars();
     match (chars.next(), chars.next()) {
@@ -999,7 +1060,17 @@ fn single_char(s: &str) -> Option<char> {
     }
 }
 
-impl ApplicationHandler for App {
+impl ApplicationHandler<Wake> for App {
+    fn user_event(&mut self, event_loop: &ActiveEventLoop, event: Wake) {
+        match event {
+            // The recording is finished on the way out (`run`), then the signal ends the process.
+            Wake::Signal(signal) => {
+                self.error = Some(Error::Interrupted { signal });
+                event_loop.exit();
+            }
+        }
+    }
+
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.state.is_some() {
             return;

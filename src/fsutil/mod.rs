@@ -1,6 +1,9 @@
-//! Writing output files without ever losing one: paths are checked before anything is
-//! touched, and the bytes go to a temporary file in the same directory that is renamed over
-//! the target only once it is complete and on disk.
+//! Files in and out, without ever losing or replacing one by mistake: outputs are checked
+//! before anything is touched and written as [`output`'s rules](Dest) say (a file through a
+//! temporary file renamed into place once complete and on disk; a FIFO, a device or the
+//! process's own descriptor as a stream; anything else refused); several files that belong
+//! together appear together ([`Batch`]); a signal removes what was half-written ([`signals`]);
+//! user files are read only when regular and within a size cap ([`read_user_file`]).
 //!
 //! ```no_run
 //! use std::io::Write;
@@ -11,10 +14,14 @@
 //! # Ok::<(), shaderlab::Error>(())
 //! ```
 
-use std::fs::{self, File, OpenOptions};
-use std::io::{self, BufWriter, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+mod output;
+pub mod signals;
+
+use std::fs::{self, File};
+use std::io::{self};
+use std::path::Path;
+
+pub use output::{claim_stdout, stdout_taken, sweep_stale, write_atomic, AtomicFile, Batch, Dest, Stream};
 
 use crate::error::{Error, Result};
 
@@ -33,51 +40,52 @@ fn io_error(path: &Path, kind: io::ErrorKind, message: String) -> Error {
     }
 }
 
-/// Checks that `path` can name an output file: not an existing directory, and in a directory
-/// that exists. Touches nothing.
+/// Checks that `path` can name an output (touching nothing): not a directory, socket or block
+/// device ([`Dest::of`]); a file in a directory that exists; a FIFO or device this user may
+/// write; a descriptor open for writing.
 pub fn check_output_path(path: &Path) -> Result<()> {
-    if path.as_os_str().is_empty() {
-        return Err(Error::Param("an empty output file name".into()));
-    }
-    if path.is_dir() {
-        return Err(Error::Param(format!(
-            "{}: is a directory; give a file name",
-            path.display()
-        )));
-    }
-    if path.file_name().is_none() {
-        // `dir/..`, `/`: no file name to write.
-        return Err(Error::Param(format!("{}: not a file name", path.display())));
-    }
-    let parent = parent_dir(path);
-    match fs::metadata(parent) {
-        Ok(meta) if meta.is_dir() => Ok(()),
-        Ok(_) => Err(io_error(
-            path,
-            io::ErrorKind::NotADirectory,
-            format!("{} is not a directory", parent.display()),
-        )),
-        Err(e) if e.kind() == io::ErrorKind::NotFound => Err(io_error(
-            path,
-            io::ErrorKind::NotFound,
-            format!("the directory {} does not exist", parent.display()),
-        )),
-        Err(source) => Err(Error::Io {
-            path: parent.to_owned(),
-            source,
-        }),
+    match Dest::of(path)? {
+        Dest::Stream(stream) => stream.check(path),
+        Dest::File(target) => {
+            for name in [path, target.as_path()] {
+                if name.file_name().is_none() {
+                    // `dir/..`, `/`: no file name to write.
+                    return Err(Error::Param(format!("{}: not a file name", path.display())));
+                }
+            }
+            let parent = parent_dir(&target);
+            match fs::metadata(parent) {
+                Ok(meta) if meta.is_dir() => Ok(()),
+                Ok(_) => Err(io_error(
+                    path,
+                    io::ErrorKind::NotADirectory,
+                    format!("{} is not a directory", parent.display()),
+                )),
+                Err(e) if e.kind() == io::ErrorKind::NotFound => Err(io_error(
+                    path,
+                    io::ErrorKind::NotFound,
+                    format!("the directory {} does not exist", parent.display()),
+                )),
+                Err(source) => Err(Error::Io {
+                    path: parent.to_owned(),
+                    source,
+                }),
+            }
+        }
     }
 }
 
-/// Checks that `path` can take a PNG: ends in `.png` (any case) and passes
-/// [`check_output_path`]. Run it before rendering, so a bad name fails fast.
+/// Checks that `path` can take a PNG: passes [`check_output_path`] and, for a file, ends in
+/// `.png` (any case), so that a photo named by mistake is never replaced; a stream (a FIFO,
+/// `/dev/stdout`) takes the PNG whatever its name. Run it before rendering, so a bad name fails
+/// fast.
 pub fn check_png_path(path: &Path) -> Result<()> {
     check_output_path(path)?;
     let is_png = path
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if !is_png {
+    if !is_png && matches!(Dest::of(path)?, Dest::File(_)) {
         return Err(Error::Param(format!(
             "{}: only PNG is written; use a .png name",
             path.display()
@@ -86,268 +94,18 @@ pub fn check_png_path(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Symbolic links followed before giving up (Linux's own limit).
-const MAX_LINK_HOPS: usize = 40;
-
-/// Where the bytes really go: through symbolic links (also one whose target does not exist
-/// yet) to the file they name, so that the links stay links.
-fn resolve_target(path: &Path) -> Result<PathBuf> {
-    let mut target = path.to_owned();
-    for _ in 0..MAX_LINK_HOPS {
-        match fs::symlink_metadata(&target) {
-            Ok(meta) if meta.file_type().is_symlink() => {
-                let link = fs::read_link(&target).map_err(|source| Error::Io {
-                    path: target.clone(),
-                    source,
-                })?;
-                // A relative link is relative to the directory holding it; an absolute one
-                // replaces the path (`join` does both).
-                target = parent_dir(&target).join(link);
-            }
-            _ => return Ok(target),
-        }
-    }
-    Err(io_error(
-        path,
-        io::ErrorKind::InvalidInput,
-        format!("more than {MAX_LINK_HOPS} symbolic links to follow; is there a loop?"),
-    ))
-}
-
-/// Creates a fresh `.sl-PID-N.tmp` next to `target` (never an existing file). The name is short
-/// and does not contain the target's, so that any name the file system takes as a target
-/// (up to 255 bytes) also works while it is being written.
-fn create_temp(target: &Path) -> Result<(PathBuf, File)> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let dir = parent_dir(target);
-    loop {
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let temp = dir.join(format!(".sl-{}-{n}.tmp", std::process::id()));
-        match OpenOptions::new().write(true).create_new(true).open(&temp) {
-            Ok(file) => return Ok((temp, file)),
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-            Err(source) => {
-                return Err(io_error(
-                    target,
-                    source.kind(),
-                    format!("cannot create a file in {}: {source}", dir.display()),
-                ))
-            }
-        }
-    }
-}
-
 /// Checks, before any work is done, that [`write_atomic`] will be able to write `path`:
-/// [`check_output_path`], then a temporary file is created next to the file the bytes will go
-/// to (through links) and removed again. A read-only or full directory is found here, not
-/// after a long render.
+/// [`check_output_path`], then, for a file, a temporary file is created next to the file the
+/// bytes will go to (through links) and removed again. A read-only or full directory is found
+/// here, not after a long render.
 pub fn check_writable(path: &Path) -> Result<()> {
     check_output_path(path)?;
-    let target = resolve_target(path)?;
-    let (temp, file) = create_temp(&target)?;
-    drop(file);
-    let _ = fs::remove_file(&temp);
-    Ok(())
-}
-
-/// Writes `path` all at once: checks it with [`check_output_path`], lets `write` fill a
-/// temporary file (`.sl-PID-N.tmp`) in the same directory, flushes it to disk and renames it
-/// over `path`. If anything fails, the temporary file is removed and an existing `path` is
-/// left as it was; if the process is stopped by SIGINT, SIGTERM or SIGHUP meanwhile, a signal
-/// handler removes the temporary file before the process ends as the signal says.
-///
-/// What happens to links and file attributes:
-/// - A symbolic link is written through: the file it points to (through any chain of links,
-///   and also when it does not exist yet) is replaced, in that file's directory, and the link
-///   stays a link.
-/// - An existing file keeps its permission bits and, where the process may set them, its owner
-///   and group (as a non-root user a file owned by someone else becomes the writer's).
-/// - Hard links are broken, by the design of atomic replacement: the new contents are a new
-///   file renamed over this name; the other names of the old file keep the old contents.
-pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<()> {
-    let mut file = AtomicFile::create(path)?;
-    write(&mut file).map_err(|source| Error::Io {
-        path: path.to_owned(),
-        source,
-    })?;
-    file.commit()
-}
-
-/// A file written whole or not at all, for writers that live longer than one call (a
-/// recording that grows frame by frame): bytes go to a temporary file next to the target
-/// (known to the signal handler), [`AtomicFile::commit`] renames it into place as
-/// [`write_atomic`] does, and dropping it uncommitted removes it.
-pub struct AtomicFile {
-    path: PathBuf,
-    target: PathBuf,
-    temp: PathBuf,
-    out: Option<BufWriter<File>>,
-    _registered: cleanup::Registered,
-}
-
-impl AtomicFile {
-    /// Starts writing `path` (checked with [`check_output_path`], written through links).
-    pub fn create(path: &Path) -> Result<AtomicFile> {
-        check_output_path(path)?;
-        let target = resolve_target(path)?;
-        if target != path {
-            check_output_path(&target)?;
-        }
-        let (temp, file) = create_temp(&target)?;
-        let registered = cleanup::register(&temp);
-        Ok(AtomicFile {
-            path: path.to_owned(),
-            target,
-            temp,
-            out: Some(BufWriter::new(file)),
-            _registered: registered,
-        })
-    }
-
-    /// Flushes to disk and renames over the target (keeping an existing file's permission
-    /// bits and, where allowed, its owner); on failure the target is left as it was.
-    pub fn commit(mut self) -> Result<()> {
-        let fail = |source: io::Error| Error::Io {
-            path: self.path.clone(),
-            source,
-        };
-        let out = self.out.take().expect("an open file until committed");
-        let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
-        if let Ok(meta) = fs::metadata(&self.target) {
-            file.set_permissions(meta.permissions()).map_err(fail)?;
-            #[cfg(unix)]
-            {
-                use std::os::unix::fs::MetadataExt;
-                // Best effort: only root may give a file away; anyone may keep their own.
-                let _ = std::os::unix::fs::fchown(&file, Some(meta.uid()), Some(meta.gid()));
-            }
-        }
-        file.sync_all().map_err(fail)?;
+    if let Dest::File(target) = Dest::of(path)? {
+        let (temp, file) = output::create_temp(&target)?;
         drop(file);
-        fs::rename(&self.temp, &self.target).map_err(fail)?;
-        // Renamed: nothing left to remove on drop.
-        self.temp = PathBuf::new();
-        // Make the rename itself durable (best effort: not every platform can open a directory).
-        if let Ok(dir) = File::open(parent_dir(&self.target)) {
-            let _ = dir.sync_all();
-        }
-        Ok(())
+        let _ = fs::remove_file(&temp);
     }
-}
-
-impl Write for AtomicFile {
-    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        self.out.as_mut().map_or(Ok(0), |o| o.write(buf))
-    }
-    fn flush(&mut self) -> io::Result<()> {
-        self.out.as_mut().map_or(Ok(()), BufWriter::flush)
-    }
-}
-
-impl Drop for AtomicFile {
-    fn drop(&mut self) {
-        if !self.temp.as_os_str().is_empty() {
-            self.out = None;
-            let _ = fs::remove_file(&self.temp);
-        }
-    }
-}
-
-/// Removing temporary files when the process is told to stop (SIGINT, SIGTERM, SIGHUP) while
-/// one is being written.
-#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
-mod cleanup {
-    use std::ffi::{c_char, CString};
-    use std::os::unix::ffi::OsStrExt;
-    use std::path::Path;
-    use std::sync::atomic::{AtomicPtr, Ordering};
-    use std::sync::Once;
-
-    /// Temporary files being written at once (more are written, just not cleaned up on a
-    /// signal).
-    const SLOTS: usize = 32;
-
-    /// The paths, as C strings, that the handler unlinks. A path is never freed once it has
-    /// been published here: the handler may run on another thread at any moment and read it, so
-    /// freeing it would race; a few dozen bytes per file written is the price.
-    static TEMPS: [AtomicPtr<c_char>; SLOTS] = [const { AtomicPtr::new(std::ptr::null_mut()) }; SLOTS];
-    static INSTALL: Once = Once::new();
-    const SIGNALS: [libc::c_int; 3] = [libc::SIGINT, libc::SIGTERM, libc::SIGHUP];
-
-    /// A temporary file known to the handler until this is dropped.
-    pub(super) struct Registered(Option<usize>);
-
-    pub(super) fn register(path: &Path) -> Registered {
-        INSTALL.call_once(install);
-        let Ok(c) = CString::new(path.as_os_str().as_bytes()) else {
-            return Registered(None);
-        };
-        let ptr = c.into_raw();
-        for (i, slot) in TEMPS.iter().enumerate() {
-            if slot
-                .compare_exchange(std::ptr::null_mut(), ptr, Ordering::SeqCst, Ordering::SeqCst)
-                .is_ok()
-            {
-                return Registered(Some(i));
-            }
-        }
-        // SAFETY: `ptr` came from `into_raw` above and was never published.
-        drop(unsafe { CString::from_raw(ptr) });
-        Registered(None)
-    }
-
-    impl Drop for Registered {
-        fn drop(&mut self) {
-            if let Some(i) = self.0 {
-                // Leaked on purpose, see TEMPS.
-                TEMPS[i].store(std::ptr::null_mut(), Ordering::SeqCst);
-            }
-        }
-    }
-
-    extern "C" fn on_signal(signal: libc::c_int) {
-        // Only async-signal-safe calls here: atomic loads, unlink, signal, raise.
-        for slot in &TEMPS {
-            let path = slot.load(Ordering::SeqCst);
-            if !path.is_null() {
-                // SAFETY: a published path is a valid C string that is never freed.
-                unsafe { libc::unlink(path) };
-            }
-        }
-        // End the way the signal asks (status, core), as if no handler had been there.
-        // SAFETY: plain libc calls with valid arguments.
-        unsafe {
-            libc::signal(signal, libc::SIG_DFL);
-            libc::raise(signal);
-        }
-    }
-
-    /// Installs the handler for each signal that has its default action (one ignored, as under
-    /// `nohup`, or handled by someone else is left alone).
-    fn install() {
-        for signal in SIGNALS {
-            // SAFETY: sigaction with a zeroed struct to read, then a filled one to set.
-            unsafe {
-                let mut old: libc::sigaction = std::mem::zeroed();
-                if libc::sigaction(signal, std::ptr::null(), &mut old) != 0 || old.sa_sigaction != libc::SIG_DFL {
-                    continue;
-                }
-                let mut new: libc::sigaction = std::mem::zeroed();
-                new.sa_sigaction = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
-                libc::sigemptyset(&mut new.sa_mask);
-                libc::sigaction(signal, &new, std::ptr::null_mut());
-            }
-        }
-    }
-}
-
-/// Elsewhere: no signal handler (a stopped process may leave its temporary file).
-#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
-mod cleanup {
-    pub(super) struct Registered;
-    pub(super) fn register(_: &std::path::Path) -> Registered {
-        Registered
-    }
+    Ok(())
 }
 
 /// A human size: `1 MiB`, `64 MiB`, `1.5 GiB`, `300 bytes`.
@@ -443,8 +201,8 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
 /// test passes (kept for a look when it fails).
 #[cfg(test)]
 pub(crate) struct ScratchDir {
-    root: PathBuf,
-    dir: PathBuf,
+    root: std::path::PathBuf,
+    dir: std::path::PathBuf,
 }
 
 #[cfg(test)]
@@ -485,6 +243,7 @@ impl Drop for ScratchDir {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::io::Write;
 
     fn test_dir(name: &str) -> ScratchDir {
         ScratchDir::new(&format!("fsutil-{name}"))
