@@ -201,6 +201,8 @@ pub struct FileArgs {
 pub struct Params {
     specs: Vec<ParamSpec>,
     values: Vec<Vec<f64>>,
+    /// Where each name is in `specs` (a user's shader may declare thousands of uniforms).
+    by_name: std::collections::HashMap<&'static str, usize>,
     files: Option<FileArgs>,
     /// Rules between parameters (`near` < `far`), run by [`Params::check`] once all values are
     /// set: one `--set` at a time cannot be judged (`--set near=200 --set far=1000`).
@@ -219,7 +221,8 @@ impl Params {
     /// first declaration: parts compose, they do not override each other.
     pub fn extend(&mut self, specs: &[ParamSpec]) {
         for spec in specs {
-            if self.index(spec.name).is_none() {
+            if let std::collections::hash_map::Entry::Vacant(slot) = self.by_name.entry(spec.name) {
+                slot.insert(self.specs.len());
                 self.specs.push(*spec);
                 self.values.push(spec.default.to_vec());
             }
@@ -273,7 +276,7 @@ impl Params {
     }
 
     fn index(&self, name: &str) -> Option<usize> {
-        self.specs.iter().position(|s| s.name == name)
+        self.by_name.get(name).copied()
     }
 
     /// Every declared parameter, in declaration order.

@@ -243,7 +243,6 @@ impl Drop for ScratchDir {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::io::Write;
 
     fn test_dir(name: &str) -> ScratchDir {
         ScratchDir::new(&format!("fsutil-{name}"))

@@ -159,9 +159,17 @@ fn parse_number(path: &Path, line: usize, keyword: &str, field: &str) -> Result<
 /// Resolves one index of a face corner (`what` = "v", "vt" or "vn") against `count` elements.
 fn resolve_index(path: &Path, line: usize, corner: &str, what: &str, text: &str, count: usize) -> Result<usize> {
     let bad = |message: String| obj_error(path, Some(line), format!("face corner `{corner}`: {message}"));
-    let k: i64 = text
-        .parse()
-        .map_err(|_| bad(format!("{what} index `{text}` is not an integer")))?;
+    let digits = text.strip_prefix('-').unwrap_or(text);
+    let k: i64 = text.parse().map_err(|_| {
+        if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+            // A whole number too long for any index.
+            bad(format!(
+                "{what} index {text} is out of range ({count} {what} defined so far)"
+            ))
+        } else {
+            bad(format!("{what} index `{text}` is not an integer"))
+        }
+    })?;
     let resolved = if k > 0 {
         usize::try_from(k - 1).ok().filter(|&i| i < count)
     } else if k < 0 {
@@ -683,6 +691,11 @@ mod tests {
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n", 4, "out of range"),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", 4, "not an integer"),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3.5\n", 4, "not an integer"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n",
+                4,
+                "v index 99999999999999999999 is out of range (3 v defined so far)",
+            ),
             (
                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n",
                 4,

@@ -197,13 +197,18 @@ impl Translation {
     /// by [`Translation::param_names`]).
     pub fn params(&self, taken: &dyn Fn(&str) -> bool) -> Vec<ParamSpec> {
         let mut out = state::params(&self.state, self.lights);
+        // Line numbers for every uniform from one index per file (not a scan of the text each).
+        let lines = [
+            map::LineIndex::new(&self.fragment.source.text),
+            map::LineIndex::new(&self.vertex.source.text),
+        ];
         for (u, name) in self.uniforms.iter().zip(self.param_names(taken)) {
             let file = if u.declared.0 {
                 &self.vertex.source
             } else {
                 &self.fragment.source
             };
-            let (line, _, _) = file.line_col(u.declared.1.start);
+            let line = lines[usize::from(u.declared.0)].line(u.declared.1.start);
             let kind = if u.attribute { "attribute" } else { "uniform" };
             // A uniform named like one of the lab's parameters keeps both settable: the
             // lab's keeps its name (documented, used by keys and shorthands such as
@@ -246,10 +251,12 @@ impl Translation {
             let total: u64 = sizes.iter().map(|(_, size)| size).sum();
             if total > max_block {
                 // Name the uniforms, largest first, with their sizes in the block.
+                let size_of: std::collections::HashMap<&str, u64> =
+                    sizes.iter().map(|(m, s)| (m.as_str(), *s)).collect();
                 let mut by_size: Vec<(&Uniform, u64)> = self
                     .uniforms
                     .iter()
-                    .filter_map(|u| sizes.iter().find(|(m, _)| *m == u.member()).map(|(_, s)| (u, *s)))
+                    .filter_map(|u| size_of.get(u.member().as_str()).map(|s| (u, *s)))
                     .collect();
                 by_size.sort_by_key(|u| std::cmp::Reverse(u.1));
                 let list: Vec<String> = by_size

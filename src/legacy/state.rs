@@ -2,7 +2,7 @@
 //! `--set gl_LightSource[0].position=2,2,2,1`), the values derived from them as GL derives
 //! them (Mesa's formulas), and the scene's matrices.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
 
 use glam::{Mat3, Mat4, Vec3};
@@ -12,29 +12,27 @@ use crate::params::{ParamSpec, Params};
 /// A name or default kept for the life of the program (parameter names come from the user's
 /// shaders; each distinct one is stored once).
 pub fn intern(s: &str) -> &'static str {
-    static NAMES: Mutex<Vec<&'static str>> = Mutex::new(Vec::new());
+    static NAMES: Mutex<Option<HashSet<&'static str>>> = Mutex::new(None);
     let mut names = NAMES.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(n) = names.iter().find(|n| **n == s) {
+    let names = names.get_or_insert_with(HashSet::new);
+    if let Some(n) = names.get(s) {
         return n;
     }
     let leaked: &'static str = Box::leak(s.to_owned().into_boxed_str());
-    names.push(leaked);
+    names.insert(leaked);
     leaked
 }
 
-/// A default value kept for the life of the program (stored once per distinct value).
+/// A default value kept for the life of the program (stored once per distinct value, told
+/// apart by their bits).
 pub fn intern_values(v: &[f64]) -> &'static [f64] {
-    static VALUES: Mutex<Vec<&'static [f64]>> = Mutex::new(Vec::new());
+    static VALUES: Mutex<Option<HashMap<Vec<u64>, &'static [f64]>>> = Mutex::new(None);
     let mut values = VALUES.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(found) = values
-        .iter()
-        .find(|x| x.len() == v.len() && x.iter().zip(v).all(|(a, b)| a.to_bits() == b.to_bits()))
-    {
-        return found;
-    }
-    let leaked: &'static [f64] = Box::leak(v.to_vec().into_boxed_slice());
-    values.push(leaked);
-    leaked
+    let values = values.get_or_insert_with(HashMap::new);
+    let key: Vec<u64> = v.iter().map(|x| x.to_bits()).collect();
+    *values
+        .entry(key)
+        .or_insert_with(|| Box::leak(v.to_vec().into_boxed_slice()))
 }
 
 const BIG: f64 = 1e9;

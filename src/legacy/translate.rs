@@ -4,7 +4,7 @@
 //! as one block, the mesh inputs, the varyings with matched locations) and a generated `main`
 //! that feeds and collects GL's built-in variables around the user's own `main`.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::ops::Range;
 
 use glsl_lang::ast;
@@ -1044,6 +1044,9 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
     // Loose uniforms and attributes, merged by name.
     let mut uniforms: Vec<Uniform> = Vec::new();
     let mut samplers: Vec<Sampler> = Vec::new();
+    // Where each name is in `uniforms` and `samplers`: a shader may declare thousands.
+    let mut uniform_at: HashMap<String, usize> = HashMap::new();
+    let mut sampler_at: HashMap<String, usize> = HashMap::new();
     for (a, is_vertex) in [(&vs, true), (&fs, false)] {
         for g in a.globals.iter().filter(|g| g.storage != Storage::Varying) {
             for d in &g.declarators {
@@ -1083,7 +1086,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                             }
                             None => vec![0.0; n],
                         };
-                        if let Some(u) = uniforms.iter().find(|u| u.name == d.name) {
+                        if let Some(u) = uniform_at.get(&d.name).map(|&i| &uniforms[i]) {
                             if u.ty != *ty || u.array != d.array {
                                 let other = if u.declared.0 { vertex } else { fragment };
                                 let (line, col, _) = other.line_col(u.declared.1.start);
@@ -1102,6 +1105,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                             }
                             continue;
                         }
+                        uniform_at.insert(d.name.clone(), uniforms.len());
                         uniforms.push(Uniform {
                             name: d.name.clone(),
                             glsl: glsl_name(&d.name),
@@ -1114,7 +1118,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                         });
                     }
                     DeclTy::Sampler(dim) => {
-                        if let Some(s) = samplers.iter().find(|s| s.name == d.name) {
+                        if let Some(s) = sampler_at.get(&d.name).map(|&i| &samplers[i]) {
                             if s.dim != *dim {
                                 return Err(a.source.error(
                                     d.range.clone(),
@@ -1129,6 +1133,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                             continue;
                         }
                         let glsl = glsl_name(&d.name);
+                        sampler_at.insert(d.name.clone(), samplers.len());
                         samplers.push(Sampler {
                             name: d.name.clone(),
                             sampler: format!("{glsl}_sampler"),
@@ -1141,7 +1146,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
                 }
             }
         }
-        if let Some(u) = uniforms.iter().find(|u| samplers.iter().any(|s| s.name == u.name)) {
+        if let Some(u) = uniforms.iter().find(|u| sampler_at.contains_key(&u.name)) {
             let file = if u.declared.0 { vertex } else { fragment };
             return Err(file.error(
                 u.declared.1.clone(),
@@ -1152,7 +1157,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
     // Texture lookups name a sampler uniform of the right dimension.
     for a in [&vs, &fs] {
         for (name, range, dim) in &a.lookups {
-            match samplers.iter().find(|s| &s.name == name) {
+            match sampler_at.get(name).map(|&i| &samplers[i]) {
                 Some(s) if s.dim == *dim => {}
                 Some(s) => {
                     return Err(a.source.error(
@@ -1176,10 +1181,12 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
 
     // Varyings: locations by the vertex shader's order; the fragment shader's must exist there.
     let mut varyings: Vec<(String, Ty, Range<usize>)> = Vec::new();
+    let mut varying_at: HashMap<String, usize> = HashMap::new();
     for g in vs.globals.iter().filter(|g| g.storage == Storage::Varying) {
         for d in &g.declarators {
             if let DeclTy::Value(t) = d.ty {
-                if !varyings.iter().any(|v| v.0 == d.name) {
+                if !varying_at.contains_key(&d.name) {
+                    varying_at.insert(d.name.clone(), varyings.len());
                     varyings.push((d.name.clone(), t, d.range.clone()));
                 }
             }
@@ -1188,7 +1195,7 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
     for g in fs.globals.iter().filter(|g| g.storage == Storage::Varying) {
         for d in &g.declarators {
             if let DeclTy::Value(t) = d.ty {
-                match varyings.iter().find(|v| v.0 == d.name) {
+                match varying_at.get(&d.name).map(|&i| &varyings[i]) {
                     None => {
                         return Err(fs.source.error(
                             d.range.clone(),
@@ -1257,6 +1264,9 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
     let ctx = Context {
         uniforms: &uniforms,
         samplers: &samplers,
+        uniform_at: &uniform_at,
+        sampler_at: &sampler_at,
+        varying_at: &varying_at,
         state: &state,
         varyings: &varyings,
         color_location,
@@ -1306,6 +1316,9 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
 struct Context<'a> {
     uniforms: &'a [Uniform],
     samplers: &'a [Sampler],
+    uniform_at: &'a HashMap<String, usize>,
+    sampler_at: &'a HashMap<String, usize>,
+    varying_at: &'a HashMap<String, usize>,
     state: &'a [&'static str],
     varyings: &'a [(String, Ty, Range<usize>)],
     color_location: Option<u32>,
@@ -1483,7 +1496,7 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         for d in &g.declarators {
             match g.storage {
                 Storage::Varying => {
-                    let Some(loc) = ctx.varyings.iter().position(|v| v.0 == d.name) else {
+                    let Some(&loc) = ctx.varying_at.get(&d.name) else {
                         continue;
                     };
                     let DeclTy::Value(t) = d.ty else { continue };
@@ -1496,7 +1509,7 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
                     ));
                 }
                 Storage::Uniform | Storage::Attribute => {
-                    if let Some(s) = ctx.samplers.iter().find(|s| s.name == d.name) {
+                    if let Some(s) = ctx.sampler_at.get(&d.name).map(|&i| &ctx.samplers[i]) {
                         text.push_str(&format!(
                             "layout(set = 0, binding = {}) uniform {} {}; layout(set = 0, binding = {}) uniform sampler {};",
                             s.binding,
@@ -1505,7 +1518,7 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
                             s.binding + 1,
                             s.sampler
                         ));
-                    } else if let Some(u) = ctx.uniforms.iter().find(|u| u.name == d.name) {
+                    } else if let Some(u) = ctx.uniform_at.get(&d.name).map(|&i| &ctx.uniforms[i]) {
                         if u.encoding == Encoding::Padded && !a.not_in_place.contains(&u.name) {
                             in_place.push(u);
                             continue;
@@ -1552,7 +1565,7 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
     }
     // Lookups take the texture and its sampler.
     for (name, range, dim) in &a.lookups {
-        if let Some(s) = ctx.samplers.iter().find(|s| &s.name == name) {
+        if let Some(s) = ctx.sampler_at.get(name).map(|&i| &ctx.samplers[i]) {
             edits.push(Edit {
                 range: range.clone(),
                 text: format!("{}({}, {})", dim.legacy_name(), s.glsl, s.sampler),

@@ -343,7 +343,25 @@ impl Args {
             if !p.has("tess") {
                 return Err(missing("--tess", "tessellated objects (no `tess` parameter)"));
             }
-            p.set("tess", &[tess])?;
+            if tess < 0.0 {
+                // `--tess auto`: the lab's own automatic level, where it has one.
+                // Seed 000's labs say it with -1.
+                let spec = p.specs().iter().find(|s| s.name == "tess").copied();
+                match spec {
+                    Some(spec) if spec.auto.is_some() => p.set_str("tess", "auto")?,
+                    Some(spec) if spec.min <= tess => p.set("tess", &[tess])?,
+                    Some(spec) => {
+                        return Err(Error::Param(format!(
+                            "`--tess auto`: {name} has no automatic level; give one from {} to {}",
+                            crate::params::bound_text(spec.min),
+                            crate::params::bound_text(spec.max)
+                        )))
+                    }
+                    None => {}
+                }
+            } else {
+                p.set("tess", &[tess])?;
+            }
         }
         for (key, value) in &self.set {
             if !p.has(key) {

@@ -119,12 +119,24 @@ impl Output {
             Output::Video(path, _) => {
                 crate::fsutil::check_writable(path)?;
                 if find_on_path("ffmpeg").is_none() {
+                    // A file called ffmpeg that cannot run is named, not called missing.
+                    let unusable = std::env::var_os("PATH").and_then(|p| {
+                        std::env::split_paths(&p)
+                            .map(|d| d.join("ffmpeg"))
+                            .find(|f| f.is_file())
+                    });
+                    let why = match unusable {
+                        Some(f) => format!(
+                            "writing a video needs ffmpeg; {} is on PATH but is not executable (chmod +x it, or install ffmpeg: apt-get install ffmpeg)",
+                            f.display()
+                        ),
+                        None => "writing a video needs ffmpeg, which is not on PATH (Debian/Ubuntu: apt-get install ffmpeg)".into(),
+                    };
                     return Err(Error::Io {
                         path: path.clone(),
                         source: io::Error::new(
                             io::ErrorKind::NotFound,
-                            "writing a video needs ffmpeg, which is not on PATH (Debian/Ubuntu: apt-get install ffmpeg); \
-                             a .gif or a PNG sequence (OUT-%04d.png) needs nothing more",
+                            format!("{why}; a .gif or a PNG sequence (OUT-%04d.png) needs nothing more"),
                         ),
                     });
                 }
@@ -157,10 +169,22 @@ fn bad_name(path: &Path) -> Error {
     ))
 }
 
+/// The first executable file called `program` in `PATH` (a file there without the execute
+/// permission is passed over, as the shell does).
 fn find_on_path(program: &str) -> Option<PathBuf> {
+    let executable = |p: &Path| {
+        let Ok(meta) = std::fs::metadata(p) else { return false };
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            meta.is_file() && meta.permissions().mode() & 0o111 != 0
+        }
+        #[cfg(not(unix))]
+        meta.is_file()
+    };
     std::env::split_paths(&std::env::var_os("PATH")?)
         .map(|dir| dir.join(program))
-        .find(|p| p.is_file())
+        .find(|p| executable(p))
 }
 
 /// The GIF frame delay for `fps` in GIF's unit (1/100 s, at least 1), and a note when it is
@@ -236,7 +260,7 @@ pub fn record(
                 source: io::Error::new(io::ErrorKind::NotFound, "ffmpeg is not on PATH"),
             })?;
             with_errors(path, |w, failed| {
-                let mut child = Command::new(ffmpeg)
+                let mut child = Command::new(&ffmpeg)
                     .args([
                         "-hide_banner",
                         "-loglevel",
@@ -265,7 +289,13 @@ pub fn record(
                     .stdin(Stdio::piped())
                     .stdout(Stdio::piped())
                     .stderr(Stdio::piped())
-                    .spawn()?;
+                    .spawn()
+                    .map_err(|e| {
+                        failed(Error::Io {
+                            path: ffmpeg.clone(),
+                            source: io::Error::new(e.kind(), format!("cannot run ffmpeg: {e}")),
+                        })
+                    })?;
                 let mut stdout = child.stdout.take().expect("piped");
                 let mut stderr = child.stderr.take().expect("piped");
                 let reader = std::thread::spawn(move || {

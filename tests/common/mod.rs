@@ -281,3 +281,53 @@ pub fn seed_reference(name: &str) -> RgbImage {
         })
         .to_rgb8()
 }
+
+/// Runs `command` to its end, collecting its output, and also returns the CPU seconds (user +
+/// system) the process and its threads used: a measure of work that a busy machine does not
+/// inflate, unlike the wall clock, for tests that guard against slow (quadratic) paths.
+pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start the command");
+    let read = |mut pipe: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let _ = pipe.read_to_end(&mut bytes);
+            bytes
+        })
+    };
+    let stdout = read(Box::new(child.stdout.take().expect("piped")));
+    let stderr = read(Box::new(child.stderr.take().expect("piped")));
+    #[cfg(target_os = "linux")]
+    let (status, cpu) = {
+        use std::os::unix::process::ExitStatusExt;
+        let mut raw = 0;
+        // SAFETY: a zeroed rusage for wait4 to fill; the pid is our own unwaited child.
+        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+        let pid = child.id() as libc::pid_t;
+        // SAFETY: as above.
+        let waited = unsafe { libc::wait4(pid, &mut raw, 0, &mut usage) };
+        assert_eq!(waited, pid, "wait4: {}", std::io::Error::last_os_error());
+        let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 / 1e6;
+        (
+            std::process::ExitStatus::from_raw(raw),
+            seconds(usage.ru_utime) + seconds(usage.ru_stime),
+        )
+    };
+    #[cfg(not(target_os = "linux"))]
+    let (status, cpu) = {
+        let started = std::time::Instant::now();
+        let status = child.wait().expect("wait");
+        (status, started.elapsed().as_secs_f64())
+    };
+    let output = std::process::Output {
+        status,
+        stdout: stdout.join().expect("stdout reader"),
+        stderr: stderr.join().expect("stderr reader"),
+    };
+    (output, cpu)
+}
