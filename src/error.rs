@@ -71,6 +71,10 @@ pub enum Error {
         /// The signal's number.
         signal: i32,
     },
+    /// Something is larger than the GPU or the machine can hold (a model, a mesh); said before
+    /// anything is made.
+    #[error("{0}")]
+    Limit(String),
     /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
     #[error("{0}")]
     Hang(String),

@@ -1268,7 +1268,6 @@ pub fn translate(vertex: &LegacySource, fragment: &LegacySource) -> Result<Trans
         sampler_at: &sampler_at,
         varying_at: &varying_at,
         state: &state,
-        varyings: &varyings,
         color_location,
         texcoords: &texcoord_locations,
     };
@@ -1320,7 +1319,6 @@ struct Context<'a> {
     sampler_at: &'a HashMap<String, usize>,
     varying_at: &'a HashMap<String, usize>,
     state: &'a [&'static str],
-    varyings: &'a [(String, Ty, Range<usize>)],
     color_location: Option<u32>,
     texcoords: &'a [(u32, u32)],
 }

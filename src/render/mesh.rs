@@ -45,6 +45,67 @@ vertex_type!(crate::mesh::Vertex, {
     normal: "vertex_normal" => Float32x3,
 });
 
+/// Checks, before anything is made, that `what` fits where it goes: its largest buffer
+/// (`buffer_bytes`) within the device's largest, and on a CPU adapter (lavapipe, whose GPU
+/// memory is the machine's own) everything it takes (`total_bytes`, CPU copies included) within
+/// the memory the machine has available now. A model too large is then one clear message
+/// instead of a driver's out-of-memory error after a minute of work.
+pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) -> crate::Result<()> {
+    use crate::fsutil::human_bytes;
+    let max = gpu.device.limits().max_buffer_size;
+    if buffer_bytes > max {
+        return Err(crate::Error::Limit(format!(
+            "{what} needs a vertex buffer of {} ({buffer_bytes} bytes); this GPU takes at most {} in one buffer",
+            human_bytes(buffer_bytes),
+            human_bytes(max)
+        )));
+    }
+    if gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+        if let Some(available) = available_memory() {
+            if total_bytes > available {
+                return Err(crate::Error::Limit(format!(
+                    "{what} needs about {} of memory to draw (on this CPU adapter the GPU's memory is the machine's); {} is available",
+                    human_bytes(total_bytes),
+                    human_bytes(available)
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The memory the machine can give now (Linux's `MemAvailable`), if known.
+/// `SHADERLAB_TEST_AVAILABLE_MEMORY=BYTES` stands in for it, so that tests can show the check
+/// without filling the machine.
+fn available_memory() -> Option<u64> {
+    if let Some(bytes) = std::env::var("SHADERLAB_TEST_AVAILABLE_MEMORY")
+        .ok()
+        .and_then(|b| b.parse().ok())
+    {
+        return Some(bytes);
+    }
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// Triangles above which a mesh is large: an automatic choice (`auto`) never draws more, and a
+/// mesh a user asks for beyond it is announced with its cost before it is drawn (on a software
+/// rasteriser each frame of such a mesh takes seconds, and memory climbs by the gigabyte:
+/// `phong_fragment --tess 512`'s teapot, 8.4 M triangles, took 11 s and 1.4 GB).
+pub const LARGE_MESH_TRIANGLES: u64 = 1_000_000;
+
+/// Prints `message` on stderr once per process (a window draws the same state many times).
+pub fn note_once(message: String) {
+    static SAID: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+    let Ok(mut said) = SAID.lock() else { return };
+    if !said.contains(&message) {
+        eprintln!("{message}");
+        said.push(message);
+    }
+}
+
 /// Vertices (and optionally indices) of one type on the GPU.
 pub struct GpuMesh<V: VertexType> {
     vertices: wgpu::Buffer,
@@ -57,6 +118,15 @@ impl<V: VertexType> GpuMesh<V> {
     /// Uploads `vertices`, drawn in order, or through `indices` when given.
     pub fn new(gpu: &Gpu, label: &str, vertices: &[V], indices: Option<&[u32]>) -> Self {
         let vertex_bytes: &[u8] = bytemuck::cast_slice(vertices);
+        let triangles = indices.map_or(vertices.len(), <[u32]>::len) as u64 / 3;
+        if triangles > LARGE_MESH_TRIANGLES {
+            let bytes = vertex_bytes.len() as u64 + indices.map_or(0, |i| 4 * i.len() as u64);
+            note_once(format!(
+                "{label}: {triangles} triangles ({} of vertex data), more than the {LARGE_MESH_TRIANGLES} an automatic \
+                 choice draws: expect seconds a frame and memory by the gigabyte on a CPU adapter",
+                crate::fsutil::human_bytes(bytes)
+            ));
+        }
         // wgpu refuses zero-sized vertex buffers: an empty mesh keeps one unused vertex.
         let padding = [0u8; 16];
         let contents = if vertex_bytes.is_empty() {
@@ -86,6 +156,21 @@ impl<V: VertexType> GpuMesh<V> {
             vertices: buffer,
             indices,
             count,
+            _vertex: PhantomData,
+        }
+    }
+
+    /// The same vertices drawn through `indices`: the vertex buffer is shared, not copied.
+    pub fn reindexed(&self, gpu: &Gpu, label: &str, indices: &[u32]) -> Self {
+        let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&format!("{label}.indices")),
+            contents: bytemuck::cast_slice(indices),
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+        });
+        GpuMesh {
+            vertices: self.vertices.clone(),
+            indices: Some(buffer),
+            count: indices.len() as u32,
             _vertex: PhantomData,
         }
     }
@@ -469,7 +554,6 @@ pub struct ViewOrdered<V: VertexType> {
     label: String,
     plain: GpuMesh<V>,
     ordered: Option<GpuMesh<V>>,
-    vertices: Vec<V>,
     positions: Vec<[f32; 3]>,
     /// Mesh order's triangles (for an unindexed mesh, every vertex in turn).
     indices: Vec<u32>,
@@ -493,7 +577,6 @@ impl<V: VertexType> ViewOrdered<V> {
             label: format!("{label}.facing_first"),
             plain,
             ordered: None,
-            vertices: vertices.to_vec(),
             indices: indices.unwrap_or_else(|| (0..vertices.len() as u32).collect()),
             positions,
             ordered_for: None,
@@ -539,7 +622,7 @@ impl<V: VertexType> ViewOrdered<V> {
                 }) => {
                     gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(&order));
                 }
-                _ => self.ordered = Some(GpuMesh::new(gpu, &self.label, &self.vertices, Some(&order))),
+                _ => self.ordered = Some(self.plain.reindexed(gpu, &self.label, &order)),
             }
             self.ordered_for = want;
         }

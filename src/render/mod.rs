@@ -27,7 +27,10 @@ mod texture;
 mod uniforms;
 
 pub use frame::{Frame, Load};
-pub use mesh::{facing_first, GpuMesh, TieGuard, VertexAttr, VertexType, ViewOrdered, SORT_EVERY_FRAME};
+pub use mesh::{
+    check_fits, facing_first, note_once, GpuMesh, TieGuard, VertexAttr, VertexType, ViewOrdered, LARGE_MESH_TRIANGLES,
+    SORT_EVERY_FRAME,
+};
 pub use param_block::{Computed, ParamBlock};
 pub use program::{
     reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Faces, Program, RenderState,

@@ -158,7 +158,15 @@ impl GlutStage {
             1.. => (tess as u32).clamp(tess::MIN_LEVEL, tess::MAX_LEVEL),
             _ => {
                 let distance = self.eye.length() as f64;
-                tess::choose_level(object, distance, height, tess::DEFAULT_BUDGET_PX)
+                let level = tess::choose_level(object, distance, height, tess::DEFAULT_BUDGET_PX);
+                if tess::silhouette_error_px(object, level, distance, height) > tess::DEFAULT_BUDGET_PX {
+                    crate::render::note_once(format!(
+                        "tess=auto: the {} needs a level above {level} (the most auto draws of it) to keep its \
+                         silhouette within half a pixel at {height} rows; drawing {level}",
+                        object.name()
+                    ));
+                }
+                level
             }
         }
     }

@@ -19,7 +19,7 @@ use crate::geometry::shapes::{indexed_quads, wave_grid_sub, ColorVertex};
 use crate::gpu::Gpu;
 use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Bind, Computed, GpuMesh};
+use crate::render::{note_once, Bind, Computed, GpuMesh, LARGE_MESH_TRIANGLES};
 
 use crate::labs::seed001::stage::{UstcStage, ROTATION};
 
@@ -47,14 +47,32 @@ fn pixels_per_unit(eye: Vec3, h: f64, height: u32) -> f64 {
     f64::from(height) / (2.0 * (22.5f64).to_radians().tan() * nearest)
 }
 
-/// The smallest `subdiv` whose error ([`subdiv_error`]) is within [`SUBDIV_BUDGET_PX`] in a
-/// picture `height` pixels tall (at most [`MAX_SUBDIV`]).
-pub fn auto_subdiv(p: &Params, eye: Vec3, height: u32) -> u32 {
-    let (h, xs, zs) = (p.f64("h"), p.f64("xs"), p.f64("zs"));
-    let scale = pixels_per_unit(eye, h, height);
+/// The checker cells of the grid (40 × 40), each split `subdiv` × `subdiv` into two triangles
+/// per quad.
+const CELLS: u64 = 40 * 40;
+
+/// The most `subdiv` an automatic choice takes: at most [`LARGE_MESH_TRIANGLES`] triangles
+/// (17: 0.92 M; 32 would be 3.3 M and 0.8 GB).
+pub fn max_auto_subdiv() -> u32 {
     (1..=MAX_SUBDIV)
-        .find(|&k| subdiv_error(k, h, xs, zs) * scale <= SUBDIV_BUDGET_PX)
-        .unwrap_or(MAX_SUBDIV)
+        .take_while(|&k| CELLS * 2 * u64::from(k * k) <= LARGE_MESH_TRIANGLES)
+        .last()
+        .unwrap_or(1)
+}
+
+/// Whether cells split `k` × `k` stay within [`SUBDIV_BUDGET_PX`] of the surface in a picture
+/// `height` pixels tall.
+pub fn subdiv_fits(k: u32, p: &Params, eye: Vec3, height: u32) -> bool {
+    let (h, xs, zs) = (p.f64("h"), p.f64("xs"), p.f64("zs"));
+    subdiv_error(k, h, xs, zs) * pixels_per_unit(eye, h, height) <= SUBDIV_BUDGET_PX
+}
+
+/// The smallest `subdiv` whose error ([`subdiv_error`]) is within [`SUBDIV_BUDGET_PX`] in a
+/// picture `height` pixels tall, at most [`max_auto_subdiv`] (a wave too steep for that is
+/// drawn at it, and said: [`subdiv_fits`] is then false).
+pub fn auto_subdiv(p: &Params, eye: Vec3, height: u32) -> u32 {
+    let max = max_auto_subdiv();
+    (1..=max).find(|&k| subdiv_fits(k, p, eye, height)).unwrap_or(max)
 }
 
 /// Seed 001, §1.3: the `Wave` block's `xs`, `zs`, `h` are parameters, its `time` the wrapped
@@ -97,6 +115,7 @@ pub static RECIPE: Recipe = Recipe {
             stage: UstcStage::new(cx.gpu, "wave", Vec3::new(0.0, 3.5, 6.5)),
             meshes: HashMap::new(),
             drawn: 1,
+            capped: false,
         };
         stage.mesh(cx.gpu, 1);
         Shaded::build(cx, "wave", p, stage, &LOOK, Vec::new())
@@ -108,6 +127,8 @@ struct WaveGrid {
     stage: UstcStage,
     meshes: HashMap<u32, GpuMesh<ColorVertex>>,
     drawn: u32,
+    /// Whether `auto` stopped at its most without meeting its budget.
+    capped: bool,
 }
 
 impl WaveGrid {
@@ -132,7 +153,20 @@ impl Stage for WaveGrid {
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<ColorVertex> {
         self.stage.upload(gpu, p, width, height);
         let k = match p.f64("subdiv") as u32 {
-            0 => auto_subdiv(p, self.stage.eye, height),
+            0 => {
+                let k = auto_subdiv(p, self.stage.eye, height);
+                self.capped = !subdiv_fits(k, p, self.stage.eye, height);
+                if self.capped {
+                    note_once(format!(
+                        "wave: subdiv=auto: this wave (h={}, xs={}, zs={}) needs more than {k} quads a cell side to stay \
+                         within half a pixel of the surface; auto draws at most {LARGE_MESH_TRIANGLES} triangles, so {k}",
+                        p.f64("h"),
+                        p.f64("xs"),
+                        p.f64("zs")
+                    ));
+                }
+                k
+            }
             k => k,
         };
         if !self.meshes.contains_key(&k) {
@@ -144,7 +178,12 @@ impl Stage for WaveGrid {
     }
     fn status(&self, p: &Params) -> String {
         if p.f64("subdiv") == 0.0 {
-            format!(" | subdiv auto: {}", self.drawn)
+            let capped = if self.capped {
+                " (its most; over half a pixel)"
+            } else {
+                ""
+            };
+            format!(" | subdiv auto: {}{capped}", self.drawn)
         } else {
             String::new()
         }

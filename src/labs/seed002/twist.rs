@@ -19,8 +19,8 @@ use crate::geometry::shapes::{indexed_quads, twist_grid_n};
 use crate::gpu::Gpu;
 use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
-use crate::render::{GpuMesh, RenderState};
-use crate::study::twist::{auto_grid, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
+use crate::render::{note_once, GpuMesh, RenderState};
+use crate::study::twist::{auto_grid, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
 
 /// One vertex of the grid: `glVertex2f(x, y)`.
 #[repr(C)]
@@ -109,6 +109,13 @@ impl Grid {
                     _ => {
                         let n = auto_grid(key.0, width, height, DEFAULT_BUDGET_PX);
                         self.auto = Some((key, n));
+                        if grid_error_px(n, key.0, width, height) > DEFAULT_BUDGET_PX {
+                            note_once(format!(
+                                "twist: grid=auto: twisting {} needs more than {MAX_GRID} quads a side (the most auto draws) \
+                                 to keep the spiral's outline within half a pixel; drawing {n}",
+                                key.0
+                            ));
+                        }
                         n
                     }
                 }

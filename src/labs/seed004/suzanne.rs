@@ -62,7 +62,7 @@ pub fn draw(
     look: &'static Look,
     normals: fn(&Params) -> Normals,
 ) -> Result<Box<dyn Scene>> {
-    Shaded::build(cx, name, p, Model::new(cx, name, normals), look, Vec::new())
+    Shaded::build(cx, name, p, Model::new(cx, name, normals)?, look, Vec::new())
 }
 
 /// A textured exercise's parameters: `tex`, then the rotation.
@@ -102,7 +102,7 @@ pub fn sample(
         gl_textures::checker(cx.gpu)?,
         gl_textures::bmp(cx.gpu, cx.files.texture.as_ref())?,
     ];
-    let mut model = Model::new(cx, name, |_| Normals::Vertex);
+    let mut model = Model::new(cx, name, |_| Normals::Vertex)?;
     model.auto = auto;
     Sampled::build(
         cx,
@@ -217,7 +217,7 @@ pub fn shade(cx: &LabContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> 
     // Gouraud and per-pixel Phong draw facing the eye first (flat keeps mesh order on the
     // face-normal VBO, see `Model::auto`): 1000 random views of each byte-identical to mesh
     // order.
-    let mut model = Model::new(cx, name, normals);
+    let mut model = Model::new(cx, name, normals)?;
     model.auto = |_| FaceOrder::FacingFirst;
     Shaded::build(cx, name, p, model, &LIT, Vec::new())
 }
