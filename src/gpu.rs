@@ -50,6 +50,34 @@ pub struct Gpu {
     /// [`Gpu::for_window`] on a CPU Vulkan adapter under X11, so that the window's
     /// shared-memory presenter can draw frames in the X server's memory.
     pub host_memory: bool,
+    /// The watchdog: how long a wait for submitted work may take before it is given up as a
+    /// frame that never ends (a shader looping for ever), [`Error::Hang`]; `None` waits for
+    /// ever (the library's default; the command line sets [`WATCHDOG`]).
+    pub watchdog: Option<std::time::Duration>,
+}
+
+/// The command line's default watchdog ([`Gpu::watchdog`], `--timeout`): a frame of the labs
+/// takes milliseconds, the largest models a few seconds on lavapipe.
+pub const WATCHDOG: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Set once a wait for the GPU has been given up: its queue holds work that may never end.
+static HUNG: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Whether a wait for the GPU was given up ([`Error::Hang`]). The device then must not be
+/// waited for again, not even to drop it: a process in this state ends with
+/// [`crate::fsutil::signals::exit_now`], and a [`Gpu`] dropped meanwhile keeps its device.
+pub fn hung() -> bool {
+    HUNG.load(std::sync::atomic::Ordering::SeqCst)
+}
+
+impl Drop for Gpu {
+    fn drop(&mut self) {
+        if hung() {
+            // Destroying the device waits for its queue, which never empties.
+            std::mem::forget(self.device.clone());
+            std::mem::forget(self.queue.clone());
+        }
+    }
 }
 
 impl Gpu {
@@ -157,6 +185,7 @@ impl Gpu {
                     queue,
                     timestamps,
                     host_memory: true,
+                    watchdog: None,
                 });
             }
         }
@@ -172,6 +201,7 @@ impl Gpu {
             queue,
             timestamps,
             host_memory: false,
+            watchdog: None,
         })
     }
 
@@ -206,13 +236,35 @@ impl Gpu {
         }
     }
 
-    /// Blocks until the GPU has finished all submitted work ([`Gpu::poll_then_wait`]).
+    /// Blocks until the GPU has finished all submitted work ([`Gpu::poll_then_wait`]), at most
+    /// [`Gpu::watchdog`].
     pub fn wait(&self) -> Result<()> {
-        self.poll_then_wait(|status| status.is_queue_empty(), wgpu::PollType::wait_indefinitely())
-            .map_err(|e| Error::Wgpu {
+        let wait = wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: self.watchdog,
+        };
+        self.poll_then_wait(|status| status.is_queue_empty(), wait)
+            .map_err(|e| self.wait_error(e))
+    }
+
+    /// The error of a wait for the GPU: a timeout is [`Error::Hang`] (and marks the device as
+    /// [`hung`]), anything else [`Error::Wgpu`].
+    pub fn wait_error(&self, e: wgpu::PollError) -> Error {
+        match (e, self.watchdog) {
+            (wgpu::PollError::Timeout, Some(limit)) => {
+                HUNG.store(true, std::sync::atomic::Ordering::SeqCst);
+                Error::Hang(format!(
+                    "the GPU did not finish a frame within {} s: most likely a shader never ends (a `while` or \
+                     `for` whose condition stays true); fix the shader, or give `--timeout SECONDS` (0: no limit) if the \
+                     frame is only slow",
+                    limit.as_secs_f64()
+                ))
+            }
+            (e, _) => Error::Wgpu {
                 context: "waiting for the GPU".into(),
                 message: e.to_string(),
-            })
+            },
+        }
     }
 
     /// Polls without blocking, yielding the CPU between polls, until `done` says the work

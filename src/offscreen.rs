@@ -175,6 +175,11 @@ impl Offscreen {
 
     /// [`Offscreen::request_read`], blocking until the buffer is mapped.
     fn map_and_wait(&self, gpu: &Gpu) -> Result<()> {
+        // The frame first, under the watchdog: on lavapipe a submit behind a frame that never
+        // ends blocks in the driver, where no timeout reaches.
+        if gpu.watchdog.is_some() {
+            gpu.wait()?;
+        }
         let (tx, rx) = std::sync::mpsc::channel();
         self.request_read(gpu, move |r| {
             let _ = tx.send(r);

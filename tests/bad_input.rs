@@ -1209,3 +1209,50 @@ fn a_model_too_large_for_the_machine_is_one_line() {
     let run = run_in(&dir, "suzanne_phong", &args, &[]);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
 }
+
+/// A fragment shader that loops until its float stops growing: on lavapipe about a minute and
+/// a half for a 2048² picture (65,535 iterations a pixel), which the watchdog gives up on.
+const ENDLESS_FRAG: &str =
+    "void main() {\n    float x = gl_FragCoord.x;\n    while (x >= 0.0) x += 1.0;\n    gl_FragColor = vec4(x);\n}\n";
+
+/// Issue 33: a frame that does not finish within the watchdog (`--timeout`, 10 s by default)
+/// ends the run with a message naming the likely cause, instead of running for minutes.
+#[test]
+fn a_shader_that_never_ends_meets_the_watchdog() {
+    let dir = test_dir("watchdog");
+    std::fs::write(dir.join("v.vert"), "void main() { gl_Position = ftransform(); }\n").unwrap();
+    std::fs::write(dir.join("endless.frag"), ENDLESS_FRAG).unwrap();
+    let started = std::time::Instant::now();
+    let run = run_in(
+        &dir,
+        "legacy",
+        &[
+            "v.vert",
+            "endless.frag",
+            "--size",
+            "2048x2048",
+            "--timeout",
+            "1",
+            "--screenshot",
+            "out.png",
+        ],
+        &[],
+    );
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("the GPU did not finish a frame within 1 s: most likely a shader never ends"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.join("out.png").exists());
+    // Ended by the watchdog, not by the frame: the frame alone takes over a minute.
+    assert!(started.elapsed().as_secs() < 45, "{:?}", started.elapsed());
+    let run = run_in(&dir, "legacy", &["--timeout", "-1"], &[]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("expected seconds from 0 (no limit) to 86400"),
+        "{}",
+        run.stderr
+    );
+}

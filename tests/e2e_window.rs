@@ -1840,6 +1840,37 @@ fn f10_recordings_are_kept_when_the_window_is_destroyed_or_signalled() {
     }
 }
 
+/// A shader that never ends (here: loops until its float stops growing, over a minute a frame)
+/// meets the watchdog: the title says so and the window still answers; Esc ends it at once
+/// with status 1 and the message, without waiting for the frame.
+#[test]
+fn a_frame_that_never_ends_is_said_in_the_title_and_esc_still_quits() {
+    let x = Xvfb::start("watchdog");
+    std::fs::write(x.dir.join("v.vert"), "void main() { gl_Position = ftransform(); }\n").unwrap();
+    std::fs::write(
+        x.dir.join("endless.frag"),
+        "void main() {\n    float x = gl_FragCoord.x;\n    while (x >= 0.0) x += 1.0;\n    gl_FragColor = vec4(x);\n}\n",
+    )
+    .unwrap();
+    for present in ["shm", "swapchain"] {
+        let mut lab = x.launch(
+            "legacy",
+            &["v.vert", "endless.frag", "--size", "1024x1024", "--timeout", "1"],
+            &[("SHADERLAB_PRESENT", present)],
+        );
+        lab.wait_title("GPU STUCK", |t| t.contains("GPU STUCK"));
+        lab.assert_alive();
+        lab.keys(&["Escape"]);
+        let status = lab.wait_exit(Duration::from_secs(60));
+        assert_eq!(status.code(), Some(1), "{present}: {status:?}\n{}", lab.stderr());
+        assert!(
+            lab.stderr().contains("the GPU did not finish a frame within 1 s"),
+            "{present}: {}",
+            lab.stderr()
+        );
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // F1: the parameter panel
 // ---------------------------------------------------------------------------------------------

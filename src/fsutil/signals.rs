@@ -57,6 +57,13 @@ pub fn end_by(signal: i32) -> ! {
     imp::end_by(signal)
 }
 
+/// Ends the process at once with `code`, removing registered temporary files first, without
+/// running anything else: no destructor and no exit handler, so that a driver thread stuck in
+/// work that never ends ([`crate::gpu::hung`]) cannot keep the process from ending.
+pub fn exit_now(code: i32) -> ! {
+    imp::exit_now(code)
+}
+
 /// The name of a signal, for messages: `SIGINT`, `SIGTERM`, `SIGHUP` or `signal N`.
 pub fn name(signal: i32) -> String {
     imp::name(signal)
@@ -168,6 +175,12 @@ mod imp {
         }
     }
 
+    pub(super) fn exit_now(code: i32) -> ! {
+        unlink_temps();
+        // SAFETY: _exit ends the process; nothing after it runs.
+        unsafe { libc::_exit(code) }
+    }
+
     pub(super) fn name(signal: i32) -> String {
         match signal {
             libc::SIGINT => "SIGINT".into(),
@@ -238,6 +251,9 @@ mod imp {
     pub(super) fn set_wake_fd(_: i32) {}
     pub(super) fn end_by(signal: i32) -> ! {
         std::process::exit(128 + signal)
+    }
+    pub(super) fn exit_now(code: i32) -> ! {
+        std::process::exit(code)
     }
     pub(super) fn name(signal: i32) -> String {
         format!("signal {signal}")

@@ -80,6 +80,10 @@ pub struct Args {
     /// With --record: the lab time of the first frame, in seconds (default: the `time` parameter).
     #[arg(long, value_name = "T", requires = "record", value_parser = parse_time, allow_hyphen_values = true)]
     pub from: Option<f64>,
+    /// The watchdog: a frame the GPU has not finished after this many seconds ends the run (a
+    /// shader that never ends) with a message; in a window the title says so. 0: no limit.
+    #[arg(long, value_name = "SECONDS", default_value_t = crate::gpu::WATCHDOG.as_secs_f64(), value_parser = parse_timeout, allow_hyphen_values = true)]
+    pub timeout: f64,
     /// In a window: draw as fast as possible (present mode Immediate, no pacing), to measure frame time.
     #[arg(long)]
     pub unpaced: bool,
@@ -113,6 +117,13 @@ fn parse_texture(s: &str) -> Result<TextureArg, String> {
             name: None,
             path: PathBuf::from(s),
         }),
+    }
+}
+
+fn parse_timeout(s: &str) -> Result<f64, String> {
+    match parse_finite(s) {
+        Ok(t) if (0.0..=86_400.0).contains(&t) => Ok(t),
+        _ => Err(format!("`{s}`: expected seconds from 0 (no limit) to 86400")),
     }
 }
 
@@ -209,6 +220,11 @@ impl Args {
             });
         let matches = super::parse_command_line(command, argv);
         Args::from_arg_matches(&matches).unwrap_or_else(|e| super::exit_on_clap_error(info.name, e))
+    }
+
+    /// The watchdog `--timeout` asks for ([`crate::gpu::Gpu::watchdog`]).
+    pub fn watchdog(&self) -> Option<std::time::Duration> {
+        (self.timeout > 0.0).then(|| std::time::Duration::from_secs_f64(self.timeout))
     }
 
     /// The shader source chosen by `--shaders` (built-in copies otherwise).

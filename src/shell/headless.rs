@@ -38,7 +38,8 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         }
         None => None,
     };
-    let gpu = Gpu::headless()?;
+    let mut gpu = Gpu::headless()?;
+    gpu.watchdog = args.watchdog();
     let source = args.shader_source()?;
     let cx = LabContext {
         gpu: &gpu,

@@ -128,6 +128,10 @@ pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> Exi
                 ""
             };
             let _ = writeln!(std::io::stderr(), "{name}: error: {}{hint}", failure.error);
+            if crate::gpu::hung() {
+                // The driver still runs the frame that never ends: end without waiting for it.
+                crate::fsutil::signals::exit_now(i32::from(failure.code));
+            }
             ExitCode::from(failure.code)
         }
     }

@@ -425,14 +425,16 @@ impl ShmPresenter {
     fn show(&mut self, gpu: &Gpu, frame: InFlight) -> Result<(), Why> {
         let wait = wgpu::PollType::Wait {
             submission_index: Some(frame.submission.clone()),
-            timeout: None,
+            timeout: gpu.watchdog,
         };
+        // A frame that never ends (a shader looping for ever) marks the device hung.
+        let waited = |e: wgpu::PollError| gpu.wait_error(e).to_string();
         let (k, offset, stride) = match frame.to {
             Destination::Segment(k, done) => {
                 // Ready when its submission is done: poll for that briefly, then block (see
                 // Gpu::poll_then_wait).
                 gpu.poll_then_wait(|_| done.load(Ordering::Acquire), wait)
-                    .map_err(x("waiting for the frame"))?;
+                    .map_err(waited)?;
                 let target = self.segments[k].target.as_ref().ok_or("a segment without its target")?;
                 (k, target.offset, target.stride)
             }
@@ -450,7 +452,7 @@ impl ShmPresenter {
                 // The frame is ready when its buffer is mapped: poll for that briefly, then
                 // block (see Gpu::poll_then_wait).
                 gpu.poll_then_wait(|_| mapped.load(Ordering::Acquire), wait)
-                    .map_err(x("waiting for the frame"))?;
+                    .map_err(waited)?;
                 {
                     let view = slice.get_mapped_range().map_err(x("reading the frame"))?;
                     // SAFETY: the segment is `size >= bytes` bytes mapped here for the
@@ -502,6 +504,11 @@ impl Drop for ShmPresenter {
         // completion it waits for never comes, and closing the window hung for good.
         // Every frame drawn in a segment must be finished before the segments go: lavapipe
         // would draw into memory no longer mapped. (A CPU driver's frame always ends.)
+        if crate::gpu::hung() {
+            // The frame never ends and still draws into the segments: leave them mapped (the
+            // process ends without waiting for it, see crate::gpu::hung).
+            return;
+        }
         if self.copying.is_none() {
             let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
         }

@@ -172,6 +172,14 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
     if let Some(state) = app.state.as_mut() {
         state.finish_capture();
     }
+    if crate::gpu::hung() {
+        // A frame never ended: dropping the window's GPU objects would wait for it for ever.
+        eprintln!(
+            "{}: error: the GPU did not finish a frame (said above); ended without waiting for it",
+            app.entry.info.name
+        );
+        crate::fsutil::signals::exit_now(1);
+    }
     match outcome {
         Ok(result) => result.map_err(|e| Error::Surface(format!("event loop failed: {e}")))?,
         Err(_) => {
@@ -302,6 +310,9 @@ struct WindowState {
     last_frame: Instant,
     /// When the frame being drawn started.
     frame_started: Instant,
+    /// Why drawing stopped for good: a frame did not finish within the watchdog (a shader that
+    /// never ends). The window then only answers Esc and close.
+    stuck: Option<String>,
 }
 
 impl App {
@@ -346,6 +357,8 @@ impl App {
             },
             result => result?,
         };
+        let mut gpu = gpu;
+        gpu.watchdog = self.args.watchdog();
         // Before anything can fail on the device: wgpu panics on errors nobody handles.
         let fatal: Fatal = Arc::new(Mutex::new(None));
         let lost = fatal.clone();
@@ -499,6 +512,7 @@ impl App {
             frame_ms: 0.0,
             last_frame: Instant::now(),
             frame_started: Instant::now(),
+            stuck: None,
         })
     }
 }
@@ -552,6 +566,9 @@ impl WindowState {
         if self.shader_error {
             title.push_str(" | SHADER ERROR (see terminal)");
         }
+        if self.stuck.is_some() {
+            title.push_str(" | GPU STUCK: a frame never finished (see terminal); Esc quits");
+        }
         if let Some(c) = &self.capture {
             title.push_str(&format!(" | REC {} frames (F10 stops)", c.frames()));
         }
@@ -560,7 +577,17 @@ impl WindowState {
 
     /// Whether drawing is paused (nothing visible to draw into).
     fn paused(&self) -> bool {
-        self.minimised || self.occluded
+        self.minimised || self.occluded || self.stuck.is_some()
+    }
+
+    /// Stops drawing for good after a frame that never ended ([`crate::gpu::hung`]): says
+    /// why once, in the terminal and the title.
+    fn give_up(&mut self, why: String) {
+        if self.stuck.is_none() {
+            eprintln!("{}: {why}", self.name());
+            self.stuck = Some(why);
+            self.update_title();
+        }
     }
 
     /// The error that ends the window, if the device became unusable.
@@ -693,6 +720,9 @@ impl WindowState {
 
     /// Adds the frame just shown to F10's recording.
     fn capture_frame(&mut self) {
+        if self.stuck.is_some() {
+            return;
+        }
         let Some(capture) = self.capture.as_mut() else { return };
         let (w, h) = (self.config.width, self.config.height);
         if let Err(e) = capture.add(&self.gpu, self.lab.as_mut(), w, h, self.config.format) {
@@ -790,6 +820,13 @@ impl WindowState {
     }
 
     fn screenshot(&mut self) {
+        if self.stuck.is_some() {
+            eprintln!(
+                "{}: no screenshot: the GPU is stuck in a frame that never ends",
+                self.name()
+            );
+            return;
+        }
         let path = self.fresh_name("png");
         let (w, h) = (self.config.width, self.config.height);
         // Drawn by the window's own pipelines (its format), read back as RGB.
@@ -884,7 +921,27 @@ impl WindowState {
         }
         let format = self.config.format;
         self.draw_panel(&mut encoder, &view, format, (w, h));
-        self.gpu.queue.submit([encoder.finish()]);
+        let submission = self.gpu.queue.submit([encoder.finish()]);
+        // On a CPU adapter the frame is waited for under the watchdog before it is presented:
+        // lavapipe's present (and its next submit) would block for ever behind a frame that never
+        // ends. It copies the finished frame to the window anyway, so the wait costs nothing. A
+        // GPU's driver has a watchdog of its own and reports a lost device.
+        if self.gpu.watchdog.is_some() && self.gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+            let wait = wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: self.gpu.watchdog,
+            };
+            if let Err(e) = self.gpu.device.poll(wait) {
+                let error = self.gpu.wait_error(e);
+                if crate::gpu::hung() {
+                    // The frame is never presented (nor dropped: that waits too).
+                    std::mem::forget(frame);
+                    self.give_up(error.to_string());
+                    return Ok(());
+                }
+                return Err(error);
+            }
+        }
         // A lab may rebuild a program while drawing (a shading model chosen by key); a broken
         // shader file leaves the previous one in place, and the error is shown once.
         if let Some(e) = self.lab.take_error() {
@@ -936,6 +993,11 @@ impl WindowState {
             self.update_title();
         }
         if let Err((why, gone)) = presented {
+            if crate::gpu::hung() {
+                // Keep the presenter: dropping it would wait for the frame that never ends.
+                self.give_up(why);
+                return Ok(());
+            }
             // A destroyed window is said once, by the `Destroyed` event that follows.
             if !gone {
                 eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
