@@ -346,7 +346,18 @@ impl Panel {
         if !self.shown {
             return false;
         }
+        // Esc while a popup (a colour picker, a drop-down list) is open closes the popup, as
+        // egui does, instead of reaching the lab (where it quits).
+        let escape = matches!(
+            event,
+            winit::event::WindowEvent::KeyboardInput { event: k, .. }
+                if k.logical_key == winit::keyboard::Key::Named(winit::keyboard::NamedKey::Escape)
+        );
+        let popup = escape && egui::Popup::is_any_open(&self.ctx);
         let response = self.input.on_window_event(window, event);
+        if popup {
+            return true;
+        }
         let keyboard = matches!(event, winit::event::WindowEvent::KeyboardInput { .. });
         let pointer = matches!(
             event,
@@ -383,6 +394,11 @@ impl Panel {
             let panel = egui::Panel::right("shaderlab.panel")
                 .exact_size(PANEL_WIDTH)
                 .resizable(false)
+                // egui draws the line with the parent's painter at the position the panel had
+                // while it slid in, and the window draws only a frame or two after a change:
+                // it stayed behind as a stray line across the widgets. The panel's own
+                // background marks its edge.
+                .show_separator_line(false)
                 .show(ui, |ui| contents(ui, lab, status));
             result = panel.inner;
         });

@@ -14,8 +14,13 @@
 //! the next window event instead of spinning, and frames are paced near the monitor's refresh
 //! rate ([`frame_interval`]) for drivers whose FIFO presentation does not wait for vertical sync.
 //!
-//! Test hook: `SHADERLAB_TEST_LOSE_DEVICE=SECONDS` destroys the GPU device that many seconds
+//! Test hooks: `SHADERLAB_TEST_LOSE_DEVICE=SECONDS` destroys the GPU device that many seconds
 //! after the window opens, so the tests can check what a lost device looks like.
+//! `SHADERLAB_TEST_LOG=1` writes the window's own signals to stderr, so that a test waits for
+//! the program instead of for a time a busy machine can exceed: `shaderlab-test: frame N` after
+//! each frame is shown, `shaderlab-test: sync` when the key F11 arrives (every event sent before
+//! it has then been handled), and `shaderlab-test: idle` when the window has nothing more to
+//! draw after one of those.
 
 use std::path::PathBuf;
 use std::sync::{mpsc, Arc, Mutex};
@@ -313,6 +318,25 @@ struct WindowState {
     /// Why drawing stopped for good: a frame did not finish within the watchdog (a shader that
     /// never ends). The window then only answers Esc and close.
     stuck: Option<String>,
+    /// `SHADERLAB_TEST_LOG`: frames shown so far, and whether one was shown (or F11 arrived)
+    /// since the last `idle` was written.
+    test_log: Option<TestLog>,
+}
+
+/// The window's signals for tests (see the module docs).
+#[derive(Default)]
+struct TestLog {
+    frames: u64,
+    busy: bool,
+}
+
+impl TestLog {
+    fn say(&mut self, what: &str) {
+        if what != "idle" {
+            self.busy = true;
+        }
+        eprintln!("shaderlab-test: {what}");
+    }
 }
 
 impl App {
@@ -513,6 +537,7 @@ impl App {
             last_frame: Instant::now(),
             frame_started: Instant::now(),
             stuck: None,
+            test_log: std::env::var_os("SHADERLAB_TEST_LOG").map(|_| TestLog::default()),
         })
     }
 }
@@ -951,6 +976,7 @@ impl WindowState {
         }
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
+        self.frame_shown();
         if self.unpaced {
             self.report_frame_time();
         }
@@ -1008,10 +1034,20 @@ impl WindowState {
         if let Some(e) = self.fatal_error() {
             return Err(e);
         }
+        self.frame_shown();
         if self.unpaced {
             self.report_frame_time();
         }
         Ok(())
+    }
+
+    /// `SHADERLAB_TEST_LOG`: a frame was shown.
+    fn frame_shown(&mut self) {
+        if let Some(log) = self.test_log.as_mut() {
+            log.frames += 1;
+            let n = log.frames;
+            log.say(&format!("frame {n}"));
+        }
     }
 
     /// With `--unpaced`: every 2 s, one line on stderr with the mean time per frame drawn and
@@ -1148,6 +1184,12 @@ impl ApplicationHandler<Wake> for App {
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         let Some(state) = self.state.as_mut() else { return };
+        if let (Some(log), WindowEvent::KeyboardInput { event: key, .. }) = (state.test_log.as_mut(), &event) {
+            if key.state == ElementState::Pressed && key.logical_key == Key::Named(NamedKey::F11) {
+                log.say("sync");
+                return;
+            }
+        }
         if let Some(e) = state.fatal_error() {
             self.error = Some(e);
             event_loop.exit();
@@ -1234,6 +1276,13 @@ impl ApplicationHandler<Wake> for App {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(state) = self.state.as_mut() {
+            let drawing = !state.paused() && (state.unpaced || state.animated() || state.dirty > 0);
+            if let Some(log) = state.test_log.as_mut().filter(|l| l.busy && !drawing) {
+                log.busy = false;
+                log.say("idle");
+            }
+        }
         let Some(state) = &self.state else { return };
         let now = Instant::now();
         if state.paused() {
