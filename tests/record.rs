@@ -239,3 +239,170 @@ fn sigint_ignored() -> bool {
         libc::sigaction(libc::SIGINT, std::ptr::null(), &mut old) == 0 && old.sa_sigaction == libc::SIG_IGN
     }
 }
+
+/// Issue 33: two recordings into the same frame pattern both said "wrote 40 frames" and 40
+/// files remained, all of the second. Now each sequence is written beside its names and moved
+/// in whole at the end, claiming every name exclusively: one recording wins whole, the other
+/// fails, naming the frame, and leaves nothing.
+#[test]
+fn two_recordings_into_one_pattern_never_mix() {
+    let dir = scratch("race");
+    fs::create_dir(dir.join("seq")).unwrap();
+    let start = |lab: &str| {
+        Command::new(example(lab))
+            .current_dir(&dir)
+            .args(["--record", "seq/f-%04d.png", "--frames", "40", "--size", "64x64"])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let (wave, phong) = (start("wave"), start("phong"));
+    let (wave, phong) = (wave.wait_with_output().unwrap(), phong.wait_with_output().unwrap());
+    let ok: Vec<bool> = [&wave, &phong].iter().map(|o| o.status.success()).collect();
+    assert_eq!(
+        ok.iter().filter(|o| **o).count(),
+        1,
+        "exactly one recording must win:\nwave: {}\nphong: {}",
+        stderr(&wave),
+        stderr(&phong)
+    );
+    let loser = if ok[0] { &phong } else { &wave };
+    assert_eq!(loser.status.code(), Some(1));
+    assert!(
+        stderr(loser).contains(".png: exists; this output never overwrites"),
+        "{}",
+        stderr(loser)
+    );
+    let names = listing(&dir.join("seq"));
+    assert_eq!(names.len(), 40, "{names:?}");
+    assert!(names.iter().all(|n| n.starts_with("f-")), "{names:?}");
+    // All 40 from the winner: its own run, again into a fresh folder, gives the same bytes.
+    let winner = if ok[0] { "wave" } else { "phong" };
+    fs::create_dir(dir.join("again")).unwrap();
+    let out = run(
+        winner,
+        &dir,
+        &["--record", "again/f-%04d.png", "--frames", "40", "--size", "64x64"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    for name in &names {
+        assert_eq!(
+            fs::read(dir.join("seq").join(name)).unwrap(),
+            fs::read(dir.join("again").join(name)).unwrap(),
+            "{name} is not {winner}'s"
+        );
+    }
+}
+
+/// Issue 33: a PNG sequence stopped half-way (a signal here) left frames 0…k with nothing to
+/// say it was incomplete, and the same command then refused to run because they existed. Now
+/// nothing is left, the process ends as the signal asked, and the command runs again.
+#[test]
+fn a_sequence_stopped_half_way_leaves_nothing() {
+    let dir = scratch("sequence_stopped");
+    let args = ["--record", "f-%05d.png", "--frames", "100000", "--size", "64x64"];
+    let mut child = Command::new(example("wave"))
+        .current_dir(&dir)
+        .args(args)
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while listing(&dir).iter().filter(|n| n.ends_with(".tmp")).count() < 5 {
+        assert!(started.elapsed().as_secs() < 120, "the recording never started");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let signal = if sigint_ignored() { "-TERM" } else { "-INT" };
+    Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    let status = child.wait().unwrap();
+    use std::os::unix::process::ExitStatusExt;
+    assert!(status.signal().is_some(), "ended by the signal: {status:?}");
+    assert!(listing(&dir).is_empty(), "left behind: {:?}", listing(&dir));
+    let out = run(
+        "wave",
+        &dir,
+        &["--record", "f-%05d.png", "--frames", "3", "--size", "64x64"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(listing(&dir), ["f-00000.png", "f-00001.png", "f-00002.png"]);
+}
+
+/// Issue 33: a recording killed with SIGKILL (no handler can run) left its 3 MB temporary file
+/// for ever; the next run that writes into the folder removes it.
+#[test]
+fn a_killed_recordings_temporary_file_is_swept_by_the_next_run() {
+    let dir = scratch("killed");
+    let mut child = Command::new(example("wave"))
+        .current_dir(&dir)
+        .args(["--record", "long.gif", "--frames", "100000"])
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while !listing(&dir).iter().any(|n| n.ends_with(".tmp")) {
+        assert!(started.elapsed().as_secs() < 120, "the recording never started");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let left = listing(&dir);
+    assert!(
+        left.iter().any(|n| n.starts_with(".sl-") && n.ends_with(".tmp")),
+        "{left:?}"
+    );
+    let out = run("phong", &dir, &["--screenshot", "shot.png", "--size", "32x32"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(listing(&dir), ["shot.png"]);
+}
+
+/// Issue 33: every frame's time is checked before the first is drawn: `--from` outside the
+/// lab's `time` range (a 309-digit number, naming `time`) failed only at its frame, and
+/// `--from` on a lab with no clock, or `--frames` without `--record`, were taken and ignored.
+#[test]
+fn recording_flags_are_checked_before_anything_is_drawn() {
+    let dir = scratch("flags");
+    let out = run("wave", &dir, &["--record", "w.gif", "--frames", "5", "--from", "1e308"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("--from 1e308 --fps 25: frame 0 would be at time 1e308, outside the lab's `time` range -1000000000..1000000000"),
+        "{}",
+        stderr(&out)
+    );
+    let out = run(
+        "wave",
+        &dir,
+        &[
+            "--record",
+            "w.gif",
+            "--frames",
+            "5",
+            "--from",
+            "999999999.9",
+            "--fps",
+            "1",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("frame 4 would be at time 1000000003.9"),
+        "{}",
+        stderr(&out)
+    );
+    let out = run("phong", &dir, &["--record", "p.gif", "--frames", "2", "--from", "3"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("phong has no `time` parameter"),
+        "{}",
+        stderr(&out)
+    );
+    let out = run("phong", &dir, &["--screenshot", "p.png", "--frames", "3"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("`--frames` is for recordings"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(listing(&dir).is_empty(), "{:?}", listing(&dir));
+}

@@ -98,3 +98,64 @@ fn readme_lessons_match_the_index() {
         "README's run date is not the index's {date}"
     );
 }
+
+/// Issue 33: `tradeoff` interrupted half-way left a study's CSV new and its SVG, notes and the
+/// index old; now every file of a run is kept until all its studies are done and moved in
+/// together, so an interrupted run leaves the folder exactly as it was. An output folder that
+/// cannot be written is said at once, in one line, before any sweep.
+#[test]
+fn an_interrupted_or_impossible_tradeoff_run_changes_nothing() {
+    use std::process::{Command, Stdio};
+    let dir = common::output_dir().join("studies_interrupted");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let old: Vec<(String, &[u8])> = ["twist.csv", "twist.svg", "twist.md", "index.md"]
+        .iter()
+        .map(|n| (n.to_string(), &b"an older run"[..]))
+        .collect();
+    for (name, bytes) in &old {
+        std::fs::write(dir.join(name), bytes).unwrap();
+    }
+    let mut child = Command::new(common::example("tradeoff"))
+        .args(["--study", "twist", "--quick", "--frames", "2", "--out"])
+        .arg(&dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Its first measured configuration printed, it is half-way through: stop it.
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    std::io::BufRead::read_line(&mut err, &mut line).unwrap();
+    assert!(line.starts_with("twist "), "{line}");
+    Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let status = child.wait().unwrap();
+    use std::os::unix::process::ExitStatusExt;
+    assert_eq!(status.signal(), Some(libc::SIGTERM), "{status:?}");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["index.md", "twist.csv", "twist.md", "twist.svg"]);
+    for (name, bytes) in &old {
+        assert_eq!(std::fs::read(dir.join(name)).unwrap(), *bytes, "{name} changed");
+    }
+    // An --out under a file: one line, before the GPU is opened or a sweep run.
+    let out = Command::new(common::example("tradeoff"))
+        .args(["--study", "twist", "--out"])
+        .arg(dir.join("index.md").join("sub"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("tradeoff: error: ") && err.contains("Not a directory"),
+        "{err}"
+    );
+    assert!(!err.contains("Caused by") && !err.contains("backtrace"), "{err}");
+}

@@ -30,7 +30,7 @@ pub fn intern_values(v: &[f64]) -> &'static [f64] {
     let mut values = VALUES.lock().unwrap_or_else(|e| e.into_inner());
     let values = values.get_or_insert_with(HashMap::new);
     let key: Vec<u64> = v.iter().map(|x| x.to_bits()).collect();
-    *values
+    values
         .entry(key)
         .or_insert_with(|| Box::leak(v.to_vec().into_boxed_slice()))
 }

@@ -285,6 +285,8 @@ pub fn seed_reference(name: &str) -> RgbImage {
 /// Runs `command` to its end, collecting its output, and also returns the CPU seconds (user +
 /// system) the process and its threads used: a measure of work that a busy machine does not
 /// inflate, unlike the wall clock, for tests that guard against slow (quadratic) paths.
+// Waited for with wait4 (for its resource usage), which clippy does not see.
+#[allow(clippy::zombie_processes)]
 pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
     use std::io::Read;
     use std::process::Stdio;
