@@ -1,0 +1,262 @@
+//! What every front end does with the lab it shows, written once: the window
+//! ([`super::window`]) and the page ([`super::web`]) each hold a [`Session`] and keep only what
+//! their platform forces (where events come from, how a frame reaches the screen).
+//!
+//! A session holds the lab (its parameters with it), the clock of an animated lab, the frames
+//! still to draw after a change, the mouse (GLUT's drag rule: the motion callback runs while any
+//! button is held, the press and release callbacks are the left button's), the standing shader
+//! error, and turns key names into the original's callbacks. The panel's model (which control
+//! each parameter gets, in which group) is [`super::panel::widgets`], also shared.
+
+use super::clock::Clock;
+use crate::error::{Error, Result};
+use crate::lab::{Input, Lab, LabEntry, Special};
+use crate::render::{BuildContext, Frame};
+
+/// A mouse button.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Button {
+    /// The left (primary) button: GLUT's press and release callbacks.
+    Left,
+    /// The middle button.
+    Middle,
+    /// The right button.
+    Right,
+    /// Any other.
+    Other,
+}
+
+impl Button {
+    fn bit(self) -> u32 {
+        match self {
+            Button::Left => 1,
+            Button::Middle => 2,
+            Button::Right => 4,
+            Button::Other => 8,
+        }
+    }
+
+    /// The DOM's `MouseEvent.button` number (0 left, 1 middle, 2 right).
+    pub fn from_dom(button: i32) -> Button {
+        match button {
+            0 => Button::Left,
+            1 => Button::Middle,
+            2 => Button::Right,
+            _ => Button::Other,
+        }
+    }
+}
+
+/// The lab a front end shows, and its state between frames (see the module docs).
+pub struct Session {
+    entry: &'static LabEntry,
+    lab: Box<dyn Lab>,
+    clock: Clock,
+    /// Frames still to draw for a lab that is not animated (input, resize, reload).
+    dirty: u32,
+    buttons: u32,
+    cursor: (i32, i32),
+    shader_error: Option<String>,
+}
+
+/// Frames drawn after a change: two, as a double-buffered window needs both its buffers new.
+const FRAMES_AFTER_A_CHANGE: u32 = 2;
+
+impl Session {
+    /// A session of `lab`, `entry`'s, its clock starting at `now` (seconds on the front end's
+    /// clock) and running `scale` times real time.
+    pub fn new(entry: &'static LabEntry, lab: Box<dyn Lab>, now: f64, scale: f64) -> Session {
+        let clock = Clock::new(lab.as_ref(), now, scale);
+        Session {
+            entry,
+            lab,
+            clock,
+            dirty: FRAMES_AFTER_A_CHANGE,
+            buttons: 0,
+            cursor: (0, 0),
+            shader_error: None,
+        }
+    }
+
+    /// With the clock paused (a link that keeps its `time`).
+    pub fn paused(mut self) -> Session {
+        self.clock = self.clock.paused();
+        self
+    }
+
+    /// The lab's list entry.
+    pub fn entry(&self) -> &'static LabEntry {
+        self.entry
+    }
+
+    /// The lab's name.
+    pub fn name(&self) -> &'static str {
+        self.entry.info.name
+    }
+
+    /// The lab.
+    pub fn lab(&self) -> &dyn Lab {
+        self.lab.as_ref()
+    }
+
+    /// The lab, to change.
+    pub fn lab_mut(&mut self) -> &mut dyn Lab {
+        self.lab.as_mut()
+    }
+
+    /// Whether the clock is paused.
+    pub fn is_paused(&self) -> bool {
+        self.clock.is_paused()
+    }
+
+    /// Whether the lab's clock runs (an animated lab, not paused): such a lab is drawn every
+    /// frame, others only after a change.
+    pub fn animated(&self) -> bool {
+        self.clock.runs(self.lab.as_ref())
+    }
+
+    /// Advances an animated lab's `time` to the clock at `now`.
+    pub fn tick(&mut self, now: f64) {
+        self.clock.tick(self.lab.as_mut(), now);
+    }
+
+    /// Whether a frame should be drawn now.
+    pub fn wants_frame(&self) -> bool {
+        self.animated() || self.dirty > 0
+    }
+
+    /// Frames still to draw after the last change.
+    pub fn dirty(&self) -> u32 {
+        self.dirty
+    }
+
+    /// Something changed (input, a resize, a reload, the panel): draw again.
+    pub fn changed(&mut self) {
+        self.dirty = self.dirty.max(FRAMES_AFTER_A_CHANGE);
+    }
+
+    /// A frame was drawn.
+    pub fn drawn(&mut self) {
+        self.dirty = self.dirty.saturating_sub(1);
+    }
+
+    /// A key, by the DOM's name for it (`KeyboardEvent.key`, which winit's named keys share):
+    /// the arrows and Page Up/Down are GLUT's special keys, Space pauses an animated lab's clock
+    /// (at `now`), any other single character is the original's keyboard callback. Returns
+    /// whether the session took it (the page then keeps the browser from scrolling).
+    pub fn key(&mut self, key: &str, now: f64) -> bool {
+        if key == " " && self.clock.toggle(self.lab.as_ref(), now) {
+            self.changed();
+            return true;
+        }
+        let special = match key {
+            "ArrowLeft" => Some(Special::Left),
+            "ArrowRight" => Some(Special::Right),
+            "ArrowUp" => Some(Special::Up),
+            "ArrowDown" => Some(Special::Down),
+            "PageUp" => Some(Special::PageUp),
+            "PageDown" => Some(Special::PageDown),
+            _ => None,
+        };
+        if let Some(special) = special {
+            self.input(Input::Special(special));
+            return true;
+        }
+        let mut chars = key.chars();
+        match (chars.next(), chars.next()) {
+            (Some(c), None) => {
+                self.input(Input::Key(c));
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// A mouse button went down or up at the cursor.
+    pub fn button(&mut self, button: Button, down: bool) {
+        let (x, y) = self.cursor;
+        if down {
+            self.buttons |= button.bit();
+        } else {
+            self.buttons &= !button.bit();
+        }
+        if button == Button::Left {
+            self.input(if down { Input::Press(x, y) } else { Input::Release(x, y) });
+        }
+    }
+
+    /// Every button went up without the lab seeing it (a click the panel took).
+    pub fn release_all(&mut self) {
+        self.buttons = 0;
+    }
+
+    /// The mouse moved to (x, y), window pixels from the top left: a drag while any button is
+    /// held (`glutMotionFunc`).
+    pub fn moved(&mut self, x: i32, y: i32) {
+        self.cursor = (x, y);
+        if self.buttons != 0 {
+            self.input(Input::Drag(x, y));
+        }
+    }
+
+    /// Hands `input` to the lab; returns whether its state (and so its title) changed.
+    pub fn input(&mut self, input: Input) -> bool {
+        self.changed();
+        self.lab.input(input)
+    }
+
+    /// Sets a parameter from text, as `--set name=value`, checking the lab's rules between
+    /// parameters; a refused value is undone.
+    pub fn set(&mut self, name: &str, value: &str) -> Result<()> {
+        let p = self.lab.params_mut();
+        let before = p.clone();
+        let result = p.set_str(name, value).and_then(|_| p.check());
+        if result.is_err() {
+            *p = before;
+        } else {
+            self.changed();
+        }
+        result
+    }
+
+    /// The lab's title: the original's, then its state.
+    pub fn title(&self) -> String {
+        self.lab.title()
+    }
+
+    /// The shader error that stands (its message), if the last reload or a shading model chosen
+    /// by key failed; the last good pipeline draws meanwhile.
+    pub fn shader_error(&self) -> Option<&str> {
+        self.shader_error.as_deref()
+    }
+
+    /// Compiles the lab's shaders again (live reload, an edit on the page); a failure keeps the
+    /// last good pipelines and stands as [`Session::shader_error`] until a reload succeeds.
+    pub fn reload(&mut self, cx: &BuildContext) -> Result<()> {
+        self.changed();
+        match self.lab.reload(cx) {
+            Ok(()) => {
+                self.shader_error = None;
+                Ok(())
+            }
+            Err(e) => {
+                self.shader_error = Some(e.to_string());
+                Err(e)
+            }
+        }
+    }
+
+    /// Records the lab's frame; returns an error to show once (the frame's own, or one the lab
+    /// found, such as a shading model whose shader is broken, which then also stands as the
+    /// shader error).
+    pub fn render(&mut self, frame: &mut Frame<'_>) -> Option<Error> {
+        if let Err(e) = self.lab.render(frame) {
+            return Some(e);
+        }
+        let found = self.lab.take_error();
+        if let Some(e) = &found {
+            self.shader_error = Some(e.to_string());
+        }
+        found
+    }
+}
