@@ -2,6 +2,8 @@
 
 use crate::error::{Error, Result};
 
+pub mod targets;
+
 /// Colour targets made of host memory, for the window's shared-memory presenter.
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 pub(crate) mod host_memory;

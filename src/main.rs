@@ -1,6 +1,6 @@
 //! `shaderlab`: every lab and tool of the course in one command (`cargo install --path .`).
 //! The labs run through the same code as the examples (`shaderlab run phong …` is
-//! `cargo run --example phong -- …`), and the tools are the examples' own files.
+//! `cargo run --example phong -- …`), and so do the tools (`shaderlab::shell::tools`).
 
 use std::ffi::OsString;
 use std::io::Write;
@@ -8,12 +8,7 @@ use std::process::ExitCode;
 
 use shaderlab::labs;
 
-#[allow(dead_code)]
-#[path = "../examples/bench.rs"]
-mod bench;
-#[allow(dead_code)]
-#[path = "../examples/glsl2wgsl.rs"]
-mod glsl2wgsl;
+use shaderlab::shell::tools::{bench, glsl2wgsl};
 
 const USAGE: &str = "shaderlab: the GLSL course labs on wgpu
 

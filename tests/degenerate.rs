@@ -10,7 +10,7 @@ mod common;
 use common::lab_with;
 use shaderlab::geometry::images::Image;
 use shaderlab::geometry::obj::parse_obj;
-use shaderlab::lab::{LabContext, LabEntry, UserFile, UserFiles};
+use shaderlab::lab::{BuildContext, LabEntry, UserFile, UserFiles};
 use shaderlab::labs;
 use shaderlab::shader::ShaderSource;
 
@@ -205,7 +205,7 @@ fn zero_vectors_never_reach_the_picture() {
 /// `entry` built with user files, rendered into the float target at half its size.
 fn render_with_files(entry: &LabEntry, files: &UserFiles) -> Vec<[f32; 4]> {
     let gpu = common::gpu();
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu,
         source: &ShaderSource::Embedded,
         format: FLOAT,

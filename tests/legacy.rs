@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use common::gpu;
 use image::RgbImage;
-use shaderlab::lab::{Lab, LabContext, UserFiles};
+use shaderlab::lab::{Lab, BuildContext, UserFiles};
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
@@ -17,7 +17,7 @@ use shaderlab::shader::ShaderSource;
 const OBJECTS: [&str; 4] = ["cube", "sphere", "torus", "teapot"];
 
 fn fixture(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(path)
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course").join(path)
 }
 
 /// Seed 000's files: the course's, with lab 4 and 5 mended where the course prints an extra `)`.
@@ -45,7 +45,7 @@ fn legacy(files: Vec<PathBuf>, set: &[(&str, &str)]) -> Box<dyn Lab> {
 
 fn legacy_with(files: UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
     let source = ShaderSource::Embedded;
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
@@ -342,7 +342,7 @@ fn live_reload_keeps_the_last_good_pipeline_and_values() {
         inputs: vec![vert.clone(), frag.clone()],
         ..UserFiles::default()
     };
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,

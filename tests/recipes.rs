@@ -84,7 +84,7 @@ fn a_block_member_without_a_parameter_is_named() {
     let edited = text.replace("float twisting;", "float twisting;\n    float spin;");
     assert_ne!(text, edited, "twist_params.glsl has `float twisting;`");
     std::fs::write(&file, edited).unwrap();
-    let cx = shaderlab::lab::LabContext {
+    let cx = shaderlab::lab::BuildContext {
         gpu: gpu(),
         source: &ShaderSource::Dir(dir.clone()),
         format: shaderlab::offscreen::COLOR_FORMAT,
@@ -106,7 +106,7 @@ fn a_reload_that_changes_a_block_keeps_the_last_good_pipeline() {
     let _ = std::fs::remove_dir_all(&dir);
     copy_shaders(&dir);
     let source = ShaderSource::Dir(dir.clone());
-    let cx = shaderlab::lab::LabContext {
+    let cx = shaderlab::lab::BuildContext {
         gpu: gpu(),
         source: &source,
         format: shaderlab::offscreen::COLOR_FORMAT,
@@ -165,7 +165,7 @@ fn a_texture_the_lab_does_not_provide_is_named() {
     );
     assert_ne!(text, edited, "twist.frag has a main");
     std::fs::write(&file, edited).unwrap();
-    let cx = shaderlab::lab::LabContext {
+    let cx = shaderlab::lab::BuildContext {
         gpu: gpu(),
         source: &ShaderSource::Dir(dir.clone()),
         format: shaderlab::offscreen::COLOR_FORMAT,

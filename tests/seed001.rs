@@ -9,7 +9,7 @@ use common::{build as lab, gpu, render_state as render, set_state as set, shot};
 use std::path::PathBuf;
 
 use image::RgbImage;
-use shaderlab::lab::{Input, LabContext, LabEntry, Special};
+use shaderlab::lab::{Input, BuildContext, LabEntry, Special};
 use shaderlab::labs;
 use shaderlab::metrics::{diff_image, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -1094,7 +1094,7 @@ fn every_spec_state_renders_by_its_parameters() {
 #[test]
 fn vertex_types_are_checked_against_the_shaders_inputs() {
     use shaderlab::render::{Program, RenderState};
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source: &ShaderSource::Embedded,
         format: COLOR_FORMAT,

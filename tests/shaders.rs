@@ -16,7 +16,7 @@ use std::process::{Command, Output};
 
 use common::{gpu, output_dir};
 
-use shaderlab::lab::{LabContext, LabEntry};
+use shaderlab::lab::{BuildContext, LabEntry};
 use shaderlab::labs;
 use shaderlab::labs::common::TransformUniforms;
 use shaderlab::metrics::{coverage, psnr};
@@ -554,7 +554,7 @@ fn mismatched_uniform_struct_is_rejected() {
     assert_layout_message(check_layout::<BadPhongUniforms>("BadPhongUniforms", &block).unwrap_err());
     // Binding the struct to a program runs the same check, and names both sides.
     let source = ShaderSource::Embedded;
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
@@ -579,7 +579,7 @@ fn mismatched_uniform_struct_is_rejected() {
     let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
     std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
     let source = copy.source();
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,
@@ -662,7 +662,7 @@ fn lab_set_unknown_name_is_param_error() {
 fn bindings_and_vertex_inputs_are_checked_by_name() {
     use shaderlab::render::{Bind, SamplerDesc, Texture};
     let source = ShaderSource::Embedded;
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source: &source,
         format: COLOR_FORMAT,

@@ -18,7 +18,7 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use image::RgbImage;
-use shaderlab::lab::{LabContext, UserFiles};
+use shaderlab::lab::{BuildContext, UserFiles};
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
@@ -295,7 +295,7 @@ fn open(server: &(u16, mpsc::Receiver<String>), backend: &str, query: &str) -> P
 fn native(name: &str, sets: &[&str]) -> RgbImage {
     let entry = shaderlab::labs::find(name).unwrap();
     let mut files = UserFiles::default();
-    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/seed000");
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
     let mut state = Vec::new();
     for set in sets {
         let (key, value) = set.split_once('=').unwrap();
@@ -306,7 +306,7 @@ fn native(name: &str, sets: &[&str]) -> RgbImage {
         }
     }
     let gpu = common::gpu();
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu,
         source: &ShaderSource::Embedded,
         format: COLOR_FORMAT,

@@ -286,8 +286,8 @@ static EMBEDDED: shaderlab::shader::ShaderSource = shaderlab::shader::ShaderSour
 
 /// What every study builds its labs with: the GPU, the built-in shaders, the offscreen format,
 /// no user files.
-pub fn context(gpu: &shaderlab::Gpu) -> shaderlab::lab::LabContext<'_> {
-    shaderlab::lab::LabContext {
+pub fn context(gpu: &shaderlab::Gpu) -> shaderlab::lab::BuildContext<'_> {
+    shaderlab::lab::BuildContext {
         gpu,
         source: &EMBEDDED,
         format: shaderlab::offscreen::COLOR_FORMAT,

@@ -110,9 +110,7 @@ pub enum Input {
     Drag(i32, i32),
 }
 
-/// What a lab is built with: the device, where shaders come from, the target format
-/// (defined by the render layer, which builds programs from it).
-pub use crate::render::Context as LabContext;
+pub use crate::render::BuildContext;
 pub use crate::user_files::{UserFile, UserFiles, NO_FILES};
 
 /// One exercise, ready to draw.
@@ -126,7 +124,7 @@ pub trait Lab {
     /// An input event; returns whether anything changed (the title is rewritten then).
     fn input(&mut self, input: Input) -> bool;
     /// Compiles its shaders again (live reload). On failure the last good pipelines stay.
-    fn reload(&mut self, cx: &LabContext) -> Result<()>;
+    fn reload(&mut self, cx: &BuildContext) -> Result<()>;
     /// Records one frame.
     fn render(&mut self, frame: &mut Frame<'_>) -> Result<()>;
     /// Its programs, for checks that swap a pipeline (the GLSL-versus-WGSL round trip).
@@ -171,7 +169,7 @@ pub struct LabEntry {
     /// Its parameters at their defaults (checked before a GPU is opened).
     pub params: fn() -> crate::params::Params,
     /// Builds it.
-    pub new: fn(&LabContext) -> Result<Box<dyn Lab>>,
+    pub new: fn(&BuildContext) -> Result<Box<dyn Lab>>,
 }
 
 impl std::fmt::Debug for LabEntry {

@@ -4,7 +4,7 @@
 //! parameters by GLSL name). [`Runner`] implements [`Lab`] for every recipe: parameters, keys,
 //! reload, programs (so the GLSL-versus-WGSL round trip reaches every lab) and the title.
 
-use super::{params_title, Input, Lab, LabContext, LabInfo};
+use super::{params_title, Input, Lab, BuildContext, LabInfo};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::params::{ParamSpec, Params};
@@ -23,7 +23,7 @@ pub struct Recipe {
     /// The window title, when not [`params_title`].
     pub title: Option<fn(&LabInfo, &Params) -> String>,
     /// Builds the scene for the parameters at their defaults.
-    pub build: fn(&LabContext, &Params) -> Result<Box<dyn Scene>>,
+    pub build: fn(&BuildContext, &Params) -> Result<Box<dyn Scene>>,
 }
 
 impl Recipe {
@@ -76,7 +76,7 @@ pub struct Runner {
 
 impl Runner {
     /// Builds the recipe's lab.
-    pub fn boxed(cx: &LabContext, recipe: &'static Recipe) -> Result<Box<dyn Lab>> {
+    pub fn boxed(cx: &BuildContext, recipe: &'static Recipe) -> Result<Box<dyn Lab>> {
         let params = recipe.params();
         let scene = (recipe.build)(cx, &params)?;
         Ok(Box::new(Runner { recipe, params, scene }))
@@ -96,7 +96,7 @@ impl Lab for Runner {
     fn input(&mut self, input: Input) -> bool {
         self.recipe.info.keys.apply(&mut self.params, input) || self.scene.input(&mut self.params, input)
     }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+    fn reload(&mut self, cx: &BuildContext) -> Result<()> {
         for program in self.scene.programs() {
             program.reload(cx)?;
         }
@@ -257,7 +257,7 @@ impl<S: Stage> Shaded<S> {
     /// Compiles the passes and binds them: the stage's blocks, `own` resources, and a
     /// [`ParamBlock`] for every other uniform block the shaders declare.
     pub fn build(
-        cx: &LabContext,
+        cx: &BuildContext,
         name: &str,
         p: &Params,
         stage: S,

@@ -1,5 +1,5 @@
 //! The exercises, one folder per lecture (`seed000` … `seed004`, as `../seeds`, `tests/` and
-//! `tests/fixtures/` name them), what they share ([`common`]), and the one list of labs,
+//! `assets/course/` name them), what they share ([`common`]), and the one list of labs,
 //! [`ALL`], that examples, the bench, the tests and `find` read. A lab's module, shaders
 //! (`shaders_glsl/NAME.*`) and example (`examples/NAME.rs`) share its name.
 

@@ -7,7 +7,7 @@ fn src(path: &str, text: &str) -> LegacySource {
 }
 
 fn fixture(dir: &str, name: &str) -> LegacySource {
-    let path = format!("{}/tests/fixtures/{dir}/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/assets/course/{dir}/{name}", env!("CARGO_MANIFEST_DIR"));
     LegacySource::read(std::path::Path::new(&path)).expect("fixture")
 }
 

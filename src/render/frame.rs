@@ -31,6 +31,26 @@ pub struct Frame<'a> {
 }
 
 impl<'a> Frame<'a> {
+    /// A frame drawn into `color` and `depth` (`width` × `height`), recorded into `encoder`.
+    pub fn new(
+        gpu: &'a Gpu,
+        encoder: &'a mut wgpu::CommandEncoder,
+        color: &'a wgpu::TextureView,
+        depth: &'a wgpu::TextureView,
+        width: u32,
+        height: u32,
+    ) -> Frame<'a> {
+        Frame {
+            gpu,
+            encoder,
+            color,
+            depth,
+            width,
+            height,
+            timestamps: None,
+        }
+    }
+
     /// Begins a render pass over the whole target.
     pub fn pass(&mut self, label: &str, load: Load) -> wgpu::RenderPass<'_> {
         let (color_load, depth_load) = match load {

@@ -7,8 +7,9 @@
 use crate::gpu::Gpu;
 use crate::shader::ShaderSource;
 
-/// What programs, textures and labs are built with.
-pub struct Context<'a> {
+/// What programs, textures and labs are built with: the device, where shader files come from,
+/// the colour format drawn into and the user's files.
+pub struct BuildContext<'a> {
     /// The device.
     pub gpu: &'a Gpu,
     /// Where shader files come from.

@@ -8,7 +8,7 @@
 
 use std::marker::PhantomData;
 
-use super::Context as LabContext;
+use super::BuildContext;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 use crate::offscreen::DEPTH_FORMAT;
@@ -467,7 +467,7 @@ pub trait AnyProgram {
     /// Replaces the pipeline with one built from WGSL text for both stages.
     fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()>;
     /// Compiles the shaders again (see [`Program::reload`]).
-    fn reload(&mut self, cx: &LabContext) -> Result<()>;
+    fn reload(&mut self, cx: &BuildContext) -> Result<()>;
     /// The compiled vertex and fragment shaders (for the WGSL round trip).
     fn shaders(&self) -> (&CompiledShader, &CompiledShader);
 }
@@ -479,7 +479,7 @@ impl<V: VertexType> AnyProgram for Program<V> {
     fn use_wgsl(&mut self, gpu: &Gpu, vertex_wgsl: &str, fragment_wgsl: &str) -> Result<()> {
         Program::use_wgsl(self, gpu, vertex_wgsl, fragment_wgsl)
     }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+    fn reload(&mut self, cx: &BuildContext) -> Result<()> {
         Program::reload(self, cx)
     }
     fn shaders(&self) -> (&CompiledShader, &CompiledShader) {
@@ -524,7 +524,7 @@ fn layout_entry(b: &BindingInfo) -> wgpu::BindGroupLayoutEntry {
 
 impl<V: VertexType> Program<V> {
     /// Compiles `vert` and `frag` from the lab's shader source into a pipeline.
-    pub fn new(cx: &LabContext, label: &str, vert: &str, frag: &str, state: RenderState) -> Result<Self> {
+    pub fn new(cx: &BuildContext, label: &str, vert: &str, frag: &str, state: RenderState) -> Result<Self> {
         let built = Self::build(cx.gpu, cx.source, label, vert, frag, state, cx.format)?;
         Ok(Program {
             label: label.to_owned(),
@@ -767,7 +767,7 @@ impl<V: VertexType> Program<V> {
     }
 
     /// Compiles the shaders again; on failure the last good pipeline and bindings stay.
-    pub fn reload(&mut self, cx: &LabContext) -> Result<()> {
+    pub fn reload(&mut self, cx: &BuildContext) -> Result<()> {
         let built = Self::build(
             cx.gpu,
             cx.source,

@@ -102,7 +102,7 @@ mod tests {
         fn input(&mut self, _: Input) -> bool {
             false
         }
-        fn reload(&mut self, _: &crate::lab::LabContext) -> crate::Result<()> {
+        fn reload(&mut self, _: &crate::lab::BuildContext) -> crate::Result<()> {
             Ok(())
         }
         fn render(&mut self, _: &mut Frame<'_>) -> crate::Result<()> {

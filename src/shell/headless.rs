@@ -5,11 +5,12 @@ use std::time::Instant;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Lab, LabContext, LabEntry, UserFiles};
+use crate::lab::{Lab, BuildContext, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
 
+use super::draw::{render_into, screenshot};
 use super::{say, Args, Failure};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
@@ -41,7 +42,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     let mut gpu = Gpu::headless()?;
     gpu.watchdog = args.watchdog();
     let source = args.shader_source()?;
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: &gpu,
         source: &source,
         format: COLOR_FORMAT,
@@ -136,37 +137,6 @@ pub fn progress_bar(len: u64, unit: &str) -> indicatif::ProgressBar {
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
     bar.set_style(style);
     bar
-}
-
-/// Records one frame of `lab` into `target` and submits it.
-pub fn render_into(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen) -> Result<()> {
-    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("shaderlab.frame"),
-    });
-    gpu.checked(&format!("{}.render", lab.info().name), || {
-        let mut frame = Frame {
-            gpu,
-            encoder: &mut encoder,
-            color: &target.color,
-            depth: &target.depth,
-            width: target.width,
-            height: target.height,
-            timestamps: None,
-        };
-        lab.render(&mut frame)
-    })??;
-    gpu.queue.submit([encoder.finish()]);
-    if let Some(e) = lab.take_error() {
-        return Err(e);
-    }
-    Ok(())
-}
-
-/// Renders one frame offscreen at `width` x `height` (RGBA8) and reads it back, top row first.
-pub fn screenshot(gpu: &Gpu, lab: &mut dyn Lab, width: u32, height: u32) -> Result<image::RgbaImage> {
-    let target = Offscreen::with_format(gpu, width, height, COLOR_FORMAT);
-    render_into(gpu, lab, &target)?;
-    target.read(gpu)
 }
 
 /// What `--bench` measured.

@@ -15,14 +15,20 @@
 mod args;
 #[cfg(not(target_arch = "wasm32"))]
 mod capture;
+#[cfg(not(target_arch = "wasm32"))]
+mod draw;
 pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod panel;
+pub mod session;
+pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod record;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod tools;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 #[cfg(not(target_arch = "wasm32"))]
@@ -38,7 +44,9 @@ use std::process::ExitCode;
 #[cfg(not(target_arch = "wasm32"))]
 pub use args::Args;
 #[cfg(not(target_arch = "wasm32"))]
-pub use headless::{bench, progress_bar, render_into, screenshot, BenchResult};
+pub use draw::{render_into, screenshot};
+#[cfg(not(target_arch = "wasm32"))]
+pub use headless::{bench, progress_bar, BenchResult};
 
 use crate::error::Error;
 use crate::lab::LabEntry;

@@ -172,17 +172,16 @@ impl Session {
         }
     }
 
-    /// A mouse button went down or up at the cursor.
-    pub fn button(&mut self, button: Button, down: bool) {
+    /// A mouse button went down or up at the cursor; returns whether the lab's state (and so
+    /// its title) changed.
+    pub fn button(&mut self, button: Button, down: bool) -> bool {
         let (x, y) = self.cursor;
         if down {
             self.buttons |= button.bit();
         } else {
             self.buttons &= !button.bit();
         }
-        if button == Button::Left {
-            self.input(if down { Input::Press(x, y) } else { Input::Release(x, y) });
-        }
+        button == Button::Left && self.input(if down { Input::Press(x, y) } else { Input::Release(x, y) })
     }
 
     /// Every button went up without the lab seeing it (a click the panel took).
@@ -191,12 +190,10 @@ impl Session {
     }
 
     /// The mouse moved to (x, y), window pixels from the top left: a drag while any button is
-    /// held (`glutMotionFunc`).
-    pub fn moved(&mut self, x: i32, y: i32) {
+    /// held (`glutMotionFunc`). Returns whether the lab's state (and so its title) changed.
+    pub fn moved(&mut self, x: i32, y: i32) -> bool {
         self.cursor = (x, y);
-        if self.buttons != 0 {
-            self.input(Input::Drag(x, y));
-        }
+        self.buttons != 0 && self.input(Input::Drag(x, y))
     }
 
     /// Hands `input` to the lab; returns whether its state (and so its title) changed.

@@ -1,9 +1,11 @@
 //! The browser's shell: what the window is natively, for a page. The page (`web/index.html`,
 //! built by `scripts/web`) owns the DOM: it lists the labs, builds the controls from
-//! [`WebApp::params`] (the same [`ParamSpec`](crate::params::ParamSpec)s as `--set`, `--help`,
-//! the keys and the F1 panel), forwards keys and mouse on the canvas, and drives
-//! [`WebApp::frame`] from `requestAnimationFrame`. This module drives any lab through its plain
-//! [`Lab`] methods, as the window does, so no lab has a second copy for the web.
+//! [`WebApp::params`] (the F1 panel's model, [`super::panel::widgets`]: each parameter's
+//! control and group, from the same [`ParamSpec`](crate::params::ParamSpec)s as `--set`,
+//! `--help` and the keys), forwards keys and mouse on the canvas, and drives [`WebApp::frame`]
+//! from `requestAnimationFrame` while [`WebApp::wants_frame`]. What the lab, its clock, its keys
+//! and its mouse do is the [`Session`]'s, shared with the window, so no lab and no rule has a
+//! second copy for the web.
 //!
 //! Differences from the native shell, all forced by the browser: start-up is async (no
 //! blocking on the GPU), there are no files (shaders are built in, edits live in memory as
@@ -22,34 +24,35 @@ use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
 use crate::gpu::Gpu;
-use crate::lab::{Input, Lab, LabContext, LabEntry, Special, UserFile, UserFiles};
+use crate::lab::{BuildContext, UserFile, UserFiles};
 use crate::offscreen::{depth_texture, Offscreen};
-use crate::params::{Kind, Params};
+use crate::params::Kind;
 use crate::render::Frame;
 use crate::shader::{embedded_source, ShaderSource};
 
-use super::clock::Clock;
+use super::panel::{widgets, Control};
+use super::session::{Button, Session};
 
 /// The course's seed-000 GLSL 1.10 files (the five exercises of Lab05, as the tests run them:
-/// the two syntax errors of the printed course mended, `tests/fixtures/seed000-mended`), for
+/// the two syntax errors of the printed course mended, `assets/course/seed000-mended`), for
 /// `legacy` on the page: loaded and editable without any upload.
 const COURSE: &[(&str, &str)] = &[
-    ("lab1.vert", include_str!("../../tests/fixtures/seed000/lab1.vert")),
-    ("lab1.frag", include_str!("../../tests/fixtures/seed000/lab1.frag")),
-    ("lab2.vert", include_str!("../../tests/fixtures/seed000/lab2.vert")),
-    ("lab2.frag", include_str!("../../tests/fixtures/seed000/lab2.frag")),
-    ("lab3.vert", include_str!("../../tests/fixtures/seed000/lab3.vert")),
-    ("lab3.frag", include_str!("../../tests/fixtures/seed000/lab3.frag")),
-    ("lab4.vert", include_str!("../../tests/fixtures/seed000/lab4.vert")),
+    ("lab1.vert", include_str!("../../assets/course/seed000/lab1.vert")),
+    ("lab1.frag", include_str!("../../assets/course/seed000/lab1.frag")),
+    ("lab2.vert", include_str!("../../assets/course/seed000/lab2.vert")),
+    ("lab2.frag", include_str!("../../assets/course/seed000/lab2.frag")),
+    ("lab3.vert", include_str!("../../assets/course/seed000/lab3.vert")),
+    ("lab3.frag", include_str!("../../assets/course/seed000/lab3.frag")),
+    ("lab4.vert", include_str!("../../assets/course/seed000/lab4.vert")),
     (
         "lab4.frag",
-        include_str!("../../tests/fixtures/seed000-mended/lab4.frag"),
+        include_str!("../../assets/course/seed000-mended/lab4.frag"),
     ),
     (
         "lab5.vert",
-        include_str!("../../tests/fixtures/seed000-mended/lab5.vert"),
+        include_str!("../../assets/course/seed000-mended/lab5.vert"),
     ),
-    ("lab5.frag", include_str!("../../tests/fixtures/seed000/lab5.frag")),
+    ("lab5.frag", include_str!("../../assets/course/seed000/lab5.frag")),
 ];
 
 /// `legacy`'s built-in pair, by the names its messages use.
@@ -168,44 +171,14 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
         .create_surface(wgpu::SurfaceTarget::Canvas(canvas.clone()))
         .map_err(|e| js_error(format!("cannot draw on the canvas with {backend}: {e}")))?;
     let gpu = Gpu::new(instance, Some(&surface)).await.map_err(js_error)?;
-    gpu.device.on_uncaptured_error(Arc::new(|e| {
-        web_sys::console::error_1(&JsValue::from_str(&format!("wgpu error: {e}")))
-    }));
-    gpu.device.set_device_lost_callback(|reason, message| {
-        web_sys::console::error_1(&JsValue::from_str(&format!(
-            "the GPU device was lost ({reason:?}): {message}"
-        )))
+    super::surface::on_trouble(&gpu, |trouble| {
+        web_sys::console::error_1(&JsValue::from_str(&trouble.to_string()))
     });
     let caps = surface.get_capabilities(&gpu.adapter);
-    // GL's default framebuffer does no sRGB encoding: a plain UNORM format, as the window; the
-    // browser's preferred one of the two first (it lists that first; another costs a copy).
-    let format = caps
-        .formats
-        .iter()
-        .copied()
-        .find(|f| matches!(f, wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm))
-        .or_else(|| caps.formats.iter().copied().find(|f| !f.is_srgb()))
-        .or_else(|| caps.formats.first().copied())
-        .ok_or_else(|| js_error("the canvas supports no formats"))?;
-    let alpha_mode = if caps.alpha_modes.contains(&wgpu::CompositeAlphaMode::Opaque) {
-        wgpu::CompositeAlphaMode::Opaque
-    } else {
-        caps.alpha_modes
-            .first()
-            .copied()
-            .unwrap_or(wgpu::CompositeAlphaMode::Auto)
-    };
-    let config = wgpu::SurfaceConfiguration {
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        format,
-        color_space: Default::default(),
-        width: canvas.width().max(1),
-        height: canvas.height().max(1),
-        desired_maximum_frame_latency: 2,
-        present_mode: wgpu::PresentMode::Fifo,
-        alpha_mode,
-        view_formats: Vec::new(),
-    };
+    let format = super::surface::format(&caps).ok_or_else(|| js_error("the canvas supports no formats"))?;
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let size = (canvas.width(), canvas.height());
+    let config = super::surface::config(&caps, format, size, max, wgpu::PresentMode::Fifo);
     surface.configure(&gpu.device, &config);
     let depth = depth_texture(&gpu.device, config.width, config.height);
     let texts = COURSE.iter().map(|(n, t)| (n.to_string(), t.to_string())).collect();
@@ -218,18 +191,10 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
         open: None,
         texts,
         files: UserFiles::default(),
-        pressed: false,
         now: 0.0,
         error: None,
         reading: None,
     })
-}
-
-/// The lab on the page, and what it was opened with.
-struct Open {
-    entry: &'static LabEntry,
-    lab: Box<dyn Lab>,
-    clock: Clock,
 }
 
 /// The page's GPU, canvas and lab.
@@ -240,13 +205,13 @@ pub struct WebApp {
     config: wgpu::SurfaceConfiguration,
     depth: wgpu::TextureView,
     canvas: web_sys::HtmlCanvasElement,
-    open: Option<Open>,
+    /// The lab on the page.
+    open: Option<Session>,
     /// Shader texts edited on the page and the course's files, by file name, over the
     /// built-in shaders (kept across labs: an edited `#include` serves every lab using it).
     texts: BTreeMap<String, String>,
     /// Pictures and models the page handed over, and `legacy`'s pair.
     files: UserFiles,
-    pressed: bool,
     /// The page's clock, seconds (the last [`WebApp::frame`]).
     now: f64,
     /// The last error found while drawing, until the page takes it.
@@ -313,23 +278,23 @@ impl WebApp {
             self.files.inputs.clear();
         }
         let source = self.shader_source();
-        let cx = LabContext {
+        let cx = BuildContext {
             gpu: &self.gpu,
             source: &source,
             format: self.config.format,
             files: &self.files,
         };
-        let mut lab = (entry.new)(&cx).map_err(js_error)?;
+        let lab = (entry.new)(&cx).map_err(js_error)?;
         let (width, height) = entry.info.size;
         self.resize(width, height);
+        let session = Session::new(entry, lab, self.now, 1.0);
+        let mut session = if paused { session.paused() } else { session };
         for (key, value) in assignments {
-            if let Err(e) = set_checked(lab.params_mut(), &key, &value) {
+            if let Err(e) = session.set(&key, &value) {
                 refused.push(e.to_string());
             }
         }
-        let clock = Clock::new(lab.as_ref(), self.now, 1.0);
-        let clock = if paused { clock.paused() } else { clock };
-        self.open = Some(Open { entry, lab, clock });
+        self.open = Some(session);
         self.error = None;
         Ok(refused.join("\n"))
     }
@@ -338,13 +303,13 @@ impl WebApp {
     pub fn lab(&self) -> String {
         self.open
             .as_ref()
-            .map(|o| o.entry.info.name.to_owned())
+            .map(|o| o.name().to_owned())
             .unwrap_or_default()
     }
 
     /// The window title of the native shell: the original's, then the state.
     pub fn title(&self) -> String {
-        self.open.as_ref().map(|o| o.lab.title()).unwrap_or_default()
+        self.open.as_ref().map(Session::title).unwrap_or_default()
     }
 
     /// Draws one frame at the page's time `now_ms` (`performance.now()`): the clock of an
@@ -354,7 +319,8 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return;
         };
-        open.clock.tick(open.lab.as_mut(), self.now);
+        open.tick(self.now);
+        open.drawn();
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
@@ -370,99 +336,93 @@ impl WebApp {
         let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("web.frame"),
         });
-        let rendered = open.lab.render(&mut Frame {
-            gpu: &self.gpu,
-            encoder: &mut encoder,
-            color: &view,
-            depth: &self.depth,
-            width: self.config.width,
-            height: self.config.height,
-            timestamps: None,
-        });
+        let error = open.render(&mut Frame::new(
+            &self.gpu,
+            &mut encoder,
+            &view,
+            &self.depth,
+            self.config.width,
+            self.config.height,
+        ));
         self.gpu.queue.submit([encoder.finish()]);
         self.gpu.queue.present(frame);
-        if let Some(e) = rendered.err().or_else(|| open.lab.take_error()) {
+        if let Some(e) = error {
             self.error = Some(e.to_string());
         }
     }
 
-    /// Whether the lab's clock runs (an animated lab, not paused): the page draws every
-    /// animation frame then, and only after a change otherwise.
+    /// Whether the lab's clock runs (an animated lab, not paused): its title changes every
+    /// frame.
     pub fn animated(&self) -> bool {
-        self.open.as_ref().is_some_and(|o| o.clock.runs(o.lab.as_ref()))
+        self.open.as_ref().is_some_and(Session::animated)
     }
 
-    /// A key pressed on the canvas, by the DOM's `KeyboardEvent.key`: the arrows and Page
-    /// Up/Down are GLUT's special keys, Space pauses an animated lab's clock, any other single
-    /// character is the original's keyboard callback. Returns whether the lab took it (the
-    /// page then keeps the browser from scrolling).
+    /// Whether a frame should be drawn now: the lab animates, or something changed (the page
+    /// draws from `requestAnimationFrame` only then).
+    pub fn wants_frame(&self) -> bool {
+        self.open.as_ref().is_some_and(Session::wants_frame)
+    }
+
+    /// Something on the page changed what is shown (a control, a resize): draw again.
+    pub fn changed(&mut self) {
+        if let Some(open) = self.open.as_mut() {
+            open.changed();
+        }
+    }
+
+    /// A key pressed on the canvas, by the DOM's `KeyboardEvent.key` ([`Session::key`]: the
+    /// arrows and Page Up/Down are GLUT's special keys, Space pauses an animated lab's clock,
+    /// any other single character is the original's keyboard callback). Returns whether the lab
+    /// took it (the page then keeps the browser from scrolling).
     pub fn key(&mut self, key: &str) -> bool {
-        let Some(open) = self.open.as_mut() else {
-            return false;
-        };
-        let special = match key {
-            "ArrowLeft" => Some(Special::Left),
-            "ArrowRight" => Some(Special::Right),
-            "ArrowUp" => Some(Special::Up),
-            "ArrowDown" => Some(Special::Down),
-            "PageUp" => Some(Special::PageUp),
-            "PageDown" => Some(Special::PageDown),
-            _ => None,
-        };
-        if key == " " && open.clock.toggle(open.lab.as_ref(), self.now) {
-            return true;
-        }
-        match special {
-            Some(s) => {
-                open.lab.input(Input::Special(s));
-                true
-            }
-            None => {
-                let mut chars = key.chars();
-                match (chars.next(), chars.next()) {
-                    (Some(c), None) => {
-                        open.lab.input(Input::Key(c));
-                        true
-                    }
-                    _ => false,
-                }
-            }
-        }
+        let now = self.now;
+        self.open.as_mut().is_some_and(|o| o.key(key, now))
     }
 
-    /// The mouse on the canvas, in canvas pixels from the top left: `down`, `move`, `up` (the
-    /// left button); a move counts as the original's drag while the button is down.
-    pub fn pointer(&mut self, kind: &str, x: i32, y: i32) -> bool {
+    /// The mouse on the canvas, in canvas pixels from the top left: `down` and `up` of
+    /// `button` (the DOM's `MouseEvent.button`), `move`; the rule is the window's
+    /// ([`Session::button`]: a move drags while any button is held). Returns whether the lab's
+    /// state changed.
+    pub fn pointer(&mut self, kind: &str, button: i32, x: i32, y: i32) -> bool {
         let Some(open) = self.open.as_mut() else {
             return false;
         };
-        let input = match kind {
+        match kind {
             "down" => {
-                self.pressed = true;
-                Input::Press(x, y)
+                open.moved(x, y);
+                open.button(Button::from_dom(button), true)
             }
-            "up" if self.pressed => {
-                self.pressed = false;
-                Input::Release(x, y)
+            "up" => {
+                open.moved(x, y);
+                open.button(Button::from_dom(button), false)
             }
-            "move" if self.pressed => Input::Drag(x, y),
-            _ => return false,
-        };
-        open.lab.input(input)
+            "move" => open.moved(x, y),
+            _ => false,
+        }
     }
 
-    /// The lab's parameters as JSON: per parameter `name`, `kind` (`real`, `int`, `bool`,
-    /// `choice`), `options` (a choice's names), `min`, `max`, `help`, `value` (as `--set`
-    /// writes it), `values` (the numbers) and `default`.
+    /// The lab's parameters as JSON, in the panel's order ([`super::panel::widgets`]: by group,
+    /// declaration order within one): per parameter `name`, `group` (its heading), `control`
+    /// (`slider`, `drag`, `whole`, `check`, `choice`, `colour`: the window panel's control for
+    /// it), `kind` (`real`, `int`, `bool`, `choice`), `options` (a choice's names), `min`, `max`,
+    /// `help`, `value` (as `--set` writes it), `values` (the numbers) and `default`.
     pub fn params(&self) -> String {
         let Some(open) = self.open.as_ref() else {
             return "[]".into();
         };
-        let p = open.lab.params();
-        let items: Vec<String> = p
-            .specs()
+        let p = open.lab().params();
+        let items: Vec<String> = widgets(p.specs())
             .iter()
-            .map(|s| {
+            .map(|w| {
+                let s = &w.spec;
+                let control = match w.control {
+                    Control::Slider => "slider",
+                    Control::Drag => "drag",
+                    Control::Whole => "whole",
+                    Control::Check => "check",
+                    Control::Choice(_) => "choice",
+                    Control::Colour => "colour",
+                };
                 let (kind, options) = match s.kind {
                     Kind::Real => ("real", "[]".to_owned()),
                     Kind::Int => ("int", "[]".to_owned()),
@@ -471,8 +431,10 @@ impl WebApp {
                 };
                 let values: Vec<String> = p.get(s.name).unwrap_or(&[]).iter().map(|v| json_number(*v)).collect();
                 format!(
-                    "{{\"name\":{},\"kind\":{},\"options\":{options},\"min\":{},\"max\":{},\"help\":{},\"value\":{},\"values\":[{}],\"default\":{}}}",
+                    "{{\"name\":{},\"group\":{},\"control\":{},\"kind\":{},\"options\":{options},\"min\":{},\"max\":{},\"help\":{},\"value\":{},\"values\":[{}],\"default\":{}}}",
                     json(s.name),
+                    json(w.group.title()),
+                    json(control),
                     json(kind),
                     json_number(s.min),
                     json_number(s.max),
@@ -489,7 +451,8 @@ impl WebApp {
     /// Sets a parameter from text, as `--set name=value`; returns the refusal ("" when set).
     pub fn set(&mut self, name: &str, value: &str) -> String {
         match self.open.as_mut() {
-            Some(open) => set_checked(open.lab.params_mut(), name, value)
+            Some(open) => open
+                .set(name, value)
                 .err()
                 .map(|e| e.to_string())
                 .unwrap_or_default(),
@@ -503,15 +466,15 @@ impl WebApp {
         let Some(open) = self.open.as_ref() else {
             return String::new();
         };
-        let p = open.lab.params();
-        let running = open.clock.runs(open.lab.as_ref());
+        let p = open.lab().params();
+        let running = open.animated();
         let mut lines: Vec<String> = p
             .specs()
             .iter()
             .filter(|s| p.get(s.name) != Some(s.default) && !(running && s.name == "time"))
             .map(|s| format!("{}={}", s.name, p.text(s.name)))
             .collect();
-        if open.entry.info.files.named_textures && !self.files.inputs.is_empty() {
+        if open.entry().info.files.named_textures && !self.files.inputs.is_empty() {
             let names: Vec<String> = self
                 .files
                 .inputs
@@ -525,7 +488,7 @@ impl WebApp {
 
     /// Whether the clock is paused (a link then keeps its `time`).
     pub fn paused(&self) -> bool {
-        self.open.as_ref().is_some_and(|o| o.clock.is_paused())
+        self.open.as_ref().is_some_and(Session::is_paused)
     }
 
     /// The shader files the open lab draws with (each program's two files and what they
@@ -619,16 +582,15 @@ impl WebApp {
         let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("web.read"),
         });
-        open.lab
-            .render(&mut Frame {
-                gpu: &self.gpu,
-                encoder: &mut encoder,
-                color: &target.color,
-                depth: &target.depth,
-                width: target.width,
-                height: target.height,
-                timestamps: None,
-            })
+        open.lab_mut()
+            .render(&mut Frame::new(
+                &self.gpu,
+                &mut encoder,
+                &target.color,
+                &target.depth,
+                target.width,
+                target.height,
+            ))
             .map_err(js_error)?;
         self.gpu.queue.submit([encoder.finish()]);
         let done = Rc::new(RefCell::new(None));
@@ -669,17 +631,6 @@ impl WebApp {
     }
 }
 
-/// Sets `name` from text and checks the lab's cross-parameter rules; a refused value is
-/// undone.
-fn set_checked(p: &mut Params, name: &str, value: &str) -> crate::Result<()> {
-    let before = p.clone();
-    let result = p.set_str(name, value).and_then(|_| p.check());
-    if result.is_err() {
-        *p = before;
-    }
-    result
-}
-
 impl WebApp {
     /// The shaders as the page has them.
     fn shader_source(&self) -> ShaderSource {
@@ -701,14 +652,14 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return Vec::new();
         };
-        if open.entry.info.files.named_textures {
+        if open.entry().info.files.named_textures {
             return match self.files.inputs.as_slice() {
                 [] => LEGACY_DEFAULT.iter().map(|s| (*s).to_owned()).collect(),
                 pair => pair.iter().map(|p| p.to_string_lossy().into_owned()).collect(),
             };
         }
         let mut names: Vec<String> = Vec::new();
-        for program in open.lab.programs() {
+        for program in open.lab_mut().programs() {
             let (v, f) = program.shaders();
             for shader in [v, f] {
                 for (file, _) in &shader.source.line_map {
@@ -727,13 +678,13 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return String::new();
         };
-        let cx = LabContext {
+        let cx = BuildContext {
             gpu: &self.gpu,
             source: &source,
             format: self.config.format,
             files: &self.files,
         };
-        open.lab.reload(&cx).err().map(|e| e.to_string()).unwrap_or_default()
+        open.reload(&cx).err().map(|e| e.to_string()).unwrap_or_default()
     }
 
     /// Sizes the canvas, the surface and the depth buffer to the lab's picture.

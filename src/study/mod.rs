@@ -1,10 +1,10 @@
 //! The speed/accuracy yardsticks, apart from what the labs need at run time: an exact f64 ray
 //! caster and its silhouette metric ([`exact`]), image metrics ([`metrics`]) and the CPU simplex
 //! noise ([`noise`]). Tests, the trade-off sweep and the "where methods fail" studies use them;
-//! [`twist`] (the exact twisted square and the error of a grid) also gives `twist` its
-//! `grid=auto`.
+//! the exact twisted square ([`twist`]) lives with the geometry, as the `twist` lab's
+//! `grid=auto` needs it at run time.
 
 pub mod exact;
 pub mod metrics;
 pub mod noise;
-pub mod twist;
+pub use crate::geometry::twist;

@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 
 use glam::Vec3;
 use image::RgbImage;
-use shaderlab::lab::{Input, Lab, LabContext, LabEntry};
+use shaderlab::lab::{Input, Lab, BuildContext, LabEntry};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
 use shaderlab::{Gpu, Object};
@@ -95,7 +95,7 @@ impl TestLab {
     }
     /// Compiles the shaders again from the lab's source (live reload).
     pub fn reload(&mut self) -> shaderlab::Result<()> {
-        let cx = LabContext {
+        let cx = BuildContext {
             gpu: gpu(),
             source: &self.source,
             format: self.format,
@@ -132,7 +132,7 @@ pub fn lab_from(entry: &LabEntry, source: &ShaderSource) -> TestLab {
 
 /// A lab with shaders from `source`, built for targets of `format`.
 pub fn lab_with(entry: &LabEntry, source: &ShaderSource, format: wgpu::TextureFormat) -> TestLab {
-    let cx = LabContext {
+    let cx = BuildContext {
         gpu: gpu(),
         source,
         format,

@@ -16,7 +16,7 @@ use crate::camera;
 use crate::error::{Error, Result};
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Input, Lab, LabContext, LabEntry, LabInfo, UserFiles};
+use crate::lab::{FilesTaken, Input, Lab, BuildContext, LabEntry, LabInfo, UserFiles};
 use crate::legacy::{self, state, LegacySource, SamplerDim, Translation, STATE_BLOCK, UNIFORM_BLOCK};
 use crate::params::{FileArgs, ParamSpec, Params};
 use crate::render::{
@@ -325,7 +325,7 @@ fn bind_all(
     ))
 }
 
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
+fn new(cx: &BuildContext) -> Result<Box<dyn Lab>> {
     let files = cx.files.inputs.clone();
     if files.is_empty() {
         // Running without files stays (every lab runs with no arguments: `labs`, the README
@@ -528,7 +528,7 @@ impl Lab for LegacyLab {
         }
         title
     }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+    fn reload(&mut self, cx: &BuildContext) -> Result<()> {
         let (translation, vs, fs) = load(&self.files, cx.source)?;
         let mut params = declared(&translation).with_files(FileArgs {
             names: &["VERT", "FRAG"],

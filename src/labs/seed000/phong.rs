@@ -16,7 +16,7 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
-use crate::lab::{Input, Key::C, KeyRow, Keys, Lab, LabContext, LabEntry, LabInfo};
+use crate::lab::{Input, Key::C, KeyRow, Keys, Lab, BuildContext, LabEntry, LabInfo};
 use crate::labs::common::FaceOrder;
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
@@ -154,18 +154,18 @@ struct Phong {
     marker_mesh: GpuMesh<Vertex>,
 }
 
-fn program_of(cx: &LabContext, model: usize) -> Result<Program<Vertex>> {
+fn program_of(cx: &BuildContext, model: usize) -> Result<Program<Vertex>> {
     let (name, vert, frag) = MODELS[model];
     Program::new(cx, &format!("phong.{name}"), vert, frag, RenderState::default())
 }
 
-fn build_model(cx: &LabContext, stage: &GlutStage, uniforms: &ParamBlock, model: usize) -> Result<Program<Vertex>> {
+fn build_model(cx: &BuildContext, stage: &GlutStage, uniforms: &ParamBlock, model: usize) -> Result<Program<Vertex>> {
     let mut program = program_of(cx, model)?;
     program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
     Ok(program)
 }
 
-fn new(cx: &LabContext) -> Result<Box<dyn Lab>> {
+fn new(cx: &BuildContext) -> Result<Box<dyn Lab>> {
     let stage = GlutStage::new(
         cx.gpu,
         "phong",
@@ -226,7 +226,7 @@ impl Phong {
     /// Builds the chosen model if needed. A model that does not build is skipped when key `m`
     /// chose it, and otherwise falls back to the model drawn last; the error is kept for the
     /// window to show.
-    fn ensure_model(&mut self, cx: &LabContext) {
+    fn ensure_model(&mut self, cx: &BuildContext) {
         for _ in 0..MODELS.len() {
             let want = self.params.index_of("shading");
             if self.models.contains_key(&want) {
@@ -295,7 +295,7 @@ impl Lab for Phong {
         );
         title_000(&INFO, p, &summary, &format!(" | shading {} (m)", p.text("shading")))
     }
-    fn reload(&mut self, cx: &LabContext) -> Result<()> {
+    fn reload(&mut self, cx: &BuildContext) -> Result<()> {
         self.source = cx.source.clone();
         for program in self.models.values_mut() {
             program.reload(cx)?;
@@ -320,7 +320,7 @@ impl Lab for Phong {
         } else {
             // Only when a model is still to be built (the context borrows the source).
             let source = self.source.clone();
-            self.ensure_model(&LabContext {
+            self.ensure_model(&BuildContext {
                 gpu,
                 source: &source,
                 format: self.format,

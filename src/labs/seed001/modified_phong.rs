@@ -14,7 +14,7 @@
 use glam::Vec3;
 
 use crate::error::Result;
-use crate::lab::{Input, Key::C, KeyRow, Keys, LabContext, Scene, Stage};
+use crate::lab::{Input, Key::C, KeyRow, Keys, BuildContext, Scene, Stage};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
@@ -62,7 +62,7 @@ struct ModifiedPhong {
 }
 
 /// Builds the scene drawn by default with `shading`.
-pub fn build(cx: &LabContext, label: &'static str, shading: Shading) -> Result<Box<dyn Scene>> {
+pub fn build(cx: &BuildContext, label: &'static str, shading: Shading) -> Result<Box<dyn Scene>> {
     let stage = Lit::new(
         cx.gpu,
         label,

@@ -8,7 +8,7 @@
 
 use crate::error::Result;
 use crate::geometry::images;
-use crate::lab::{Lab, LabContext, Look, Pass, Recipe, Runner, Scene};
+use crate::lab::{Lab, BuildContext, Look, Pass, Recipe, Runner, Scene};
 use crate::params::Params;
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
@@ -40,12 +40,12 @@ cube_sizes!(4, 8, 16, 32, 64, 128);
 
 /// `normmap` with a cube map of `size` texels per side, one of [`CUBE_SIZES`] (`None` for
 /// another): the lecture's trade between the table's size and its accuracy, for the study.
-pub fn with_cube(cx: &LabContext, size: u32) -> Option<Result<Box<dyn Lab>>> {
+pub fn with_cube(cx: &BuildContext, size: u32) -> Option<Result<Box<dyn Lab>>> {
     let i = CUBE_SIZES.iter().position(|&s| s == size)?;
     Some(Runner::boxed(cx, &SIZED[i]))
 }
 
-fn build<const SIZE: u32>(cx: &LabContext, p: &Params) -> Result<Box<dyn Scene>> {
+fn build<const SIZE: u32>(cx: &BuildContext, p: &Params) -> Result<Box<dyn Scene>> {
     let faces = images::normalization_cube(SIZE);
     let cube = Texture::new(cx.gpu, "normmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
     let clamp = wgpu::AddressMode::ClampToEdge;

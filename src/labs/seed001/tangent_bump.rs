@@ -11,7 +11,7 @@ use crate::error::Result;
 use crate::geometry::images;
 use crate::geometry::shapes::{bump_quad, needs_clipping, BumpVertex, QUAD_SPLIT_CLIPPED, QUAD_SPLIT_UNCLIPPED};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Keys, LabContext, Look, Scene, Shaded, Stage};
+use crate::lab::{Input, Keys, BuildContext, Look, Scene, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{sampler, Bind, GpuMesh, SamplerDesc, Texture};
 
@@ -63,7 +63,7 @@ impl Stage for Quad {
 
 /// Builds the bump scene `name` drawn by `look`, with `extra` bindings (texture unit 1 of
 /// `normmap`).
-pub fn build(cx: &LabContext, name: &str, p: &Params, look: &'static Look, extra: Vec<Bind>) -> Result<Box<dyn Scene>> {
+pub fn build(cx: &BuildContext, name: &str, p: &Params, look: &'static Look, extra: Vec<Bind>) -> Result<Box<dyn Scene>> {
     let map = images::bump_normal_map();
     let normal_map = Texture::new(
         cx.gpu,

@@ -9,7 +9,7 @@
 //! Port addition (opt-in, SPEC keeps 100): `grid` sets the quads per side, and `grid=auto`
 //! picks the coarsest grid whose every edge stays within half a pixel of the spiral arc it
 //! stands for, for the current `twisting` and picture size
-//! ([`crate::study::twist::auto_grid`]).
+//! ([`crate::geometry::twist::auto_grid`]).
 //!
 //! Keys: `+`/`-` twisting ±0.25.
 
@@ -20,7 +20,7 @@ use crate::gpu::Gpu;
 use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{note_once, GpuMesh, RenderState};
-use crate::study::twist::{auto_grid, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
+use crate::geometry::twist::{auto_grid, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
 
 /// One vertex of the grid: `glVertex2f(x, y)`.
 #[repr(C)]

@@ -13,7 +13,7 @@ use std::path::Path;
 use crate::error::Result;
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
-use crate::lab::{Input, LabContext, Pass, Scene, Stage, UserFile};
+use crate::lab::{Input, BuildContext, Pass, Scene, Stage, UserFile};
 use crate::params::Params;
 use crate::render::{sampler, AnyProgram, Bind, Frame, Load, Program, SamplerDesc, Texture};
 
@@ -202,7 +202,7 @@ pub struct Sampled<S: Stage> {
 impl<S: Stage> Sampled<S> {
     /// Compiles `pass`; the first frame binds the stage's blocks and the texture picked.
     pub fn build(
-        cx: &LabContext,
+        cx: &BuildContext,
         name: &str,
         stage: S,
         pass: Pass,

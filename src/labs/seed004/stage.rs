@@ -12,7 +12,7 @@ use crate::camera::{self, glm};
 use crate::error::Result;
 use crate::geometry::obj::{self, ObjCorner};
 use crate::gpu::Gpu;
-use crate::lab::{Input, LabContext, Stage};
+use crate::lab::{Input, BuildContext, Stage};
 use crate::labs::common::{self, std140_mat3, FaceOrder};
 use crate::params::{ParamSpec, Params};
 use crate::render::{check_fits, Bind, Faces, GpuMesh, Uniforms, ViewOrdered};
@@ -124,7 +124,7 @@ pub struct Model {
 
 impl Model {
     /// Uploads the model (`--model`, else the shipped Suzanne) with both kinds of normals.
-    pub fn new(cx: &LabContext, label: &str, normals: fn(&Params) -> Normals) -> Result<Self> {
+    pub fn new(cx: &BuildContext, label: &str, normals: fn(&Params) -> Normals) -> Result<Self> {
         let suzanne;
         let model = match &cx.files.model {
             Some(file) => {

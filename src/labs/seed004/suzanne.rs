@@ -17,7 +17,7 @@
 
 use crate::error::Result;
 use crate::lab::{
-    FilesTaken, Key::C, KeyRow, Keys, LabContext, Look, Pass, Recipe, Scene, Shaded, DOWN, LEFT, PAGE_DOWN, PAGE_UP,
+    FilesTaken, Key::C, KeyRow, Keys, BuildContext, Look, Pass, Recipe, Scene, Shaded, DOWN, LEFT, PAGE_DOWN, PAGE_UP,
     RIGHT, UP,
 };
 use crate::params::{ParamSpec, Params};
@@ -29,7 +29,7 @@ use super::stage::{Model, Normals, ANGLES};
 use crate::labs::common::FaceOrder;
 
 /// How a recipe builds its scene.
-type Build = fn(&LabContext, &Params) -> Result<Box<dyn Scene>>;
+type Build = fn(&BuildContext, &Params) -> Result<Box<dyn Scene>>;
 
 /// The mouse of every exercise on the model.
 const DRAG: &str = "left drag rotates (0.5° per pixel)";
@@ -56,7 +56,7 @@ pub const fn colour(name: &'static str, label: &'static str, build: Build) -> Re
 
 /// The model drawn by `look` with the normals `normals` picks.
 pub fn draw(
-    cx: &LabContext,
+    cx: &BuildContext,
     p: &Params,
     name: &str,
     look: &'static Look,
@@ -93,7 +93,7 @@ const TEXTURED_KEYS: &[KeyRow] = &[KeyRow::cycle(&[C('t')], "tex")];
 /// The model's vertex-normal VBO drawn by the vertex shader of 4.2 and `frag`, sampling the
 /// texture `tex` chooses with its own parameters, in `auto`'s face order by default.
 pub fn sample(
-    cx: &LabContext,
+    cx: &BuildContext,
     name: &str,
     frag: &'static str,
     auto: fn(&Params) -> FaceOrder,
@@ -206,7 +206,7 @@ pub fn light(p: &Params, c: &mut Computed) {
 }
 
 /// The model lit by the model `shading` picks, on its VBO (flat: the face normals).
-pub fn shade(cx: &LabContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> {
+pub fn shade(cx: &BuildContext, p: &Params, name: &str) -> Result<Box<dyn Scene>> {
     let normals = |p: &Params| {
         if p.index_of("shading") == Shading::Flat as usize {
             Normals::Face

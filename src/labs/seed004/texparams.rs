@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::geometry::obj::ObjCorner;
 use crate::geometry::shapes;
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, LabContext, Pass, Recipe, Scene, Stage};
+use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, BuildContext, Pass, Recipe, Scene, Stage};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms};
 
@@ -118,7 +118,7 @@ impl Stage for Floor {
 
 /// The floor drawn by the shaders of 4.4, sampling the checker (or `--texture`) with the
 /// parameters' texture parameters.
-fn build(cx: &LabContext, _p: &Params) -> Result<Box<dyn Scene>> {
+fn build(cx: &BuildContext, _p: &Params) -> Result<Box<dyn Scene>> {
     let texture = match &cx.files.texture {
         Some(file) => GlTexture::new(
             cx.gpu,

@@ -1,18 +1,19 @@
-//! The window: winit events mapped to the original's GLUT callbacks ([`Input`]), a surface that
-//! follows resizes (height 0 is treated as 1, minimising pauses drawing), F12 screenshots, live
-//! shader reload and the clock of animated labs (Space pauses it). Labs never see winit; this
-//! module drives any [`Lab`] through its plain methods.
+//! The window: winit's events turned into the [`Session`]'s (the lab, its clock, keys and
+//! mouse, written once for the window and the page), a [`Screen`] the frames reach (the
+//! swapchain or X shared memory), and what only a desktop window has: F12 screenshots, F10
+//! recordings, the F1 panel drawn with egui, live shader reload from files, pacing near the
+//! monitor's refresh rate, and signals. Labs never see winit.
 //!
 //! Nothing is drawn when nothing changes: a lab that is not animated is redrawn after input,
 //! a resize, an expose or a reload only, so an idle window costs no CPU (the originals redraw
-//! continuously from `glutIdleFunc`).
+//! continuously from `glutIdleFunc`). While the window has no area (zero-sized or minimised)
+//! or is fully covered, nothing is drawn and the loop sleeps until the next window event, and
+//! frames are paced near the monitor's refresh rate ([`frame_interval`]) for drivers whose FIFO
+//! presentation does not wait for vertical sync.
 //!
-//! Failure handling: a surface that is `Outdated` is reconfigured and a `Lost` one is created
-//! again, then drawing goes on; a lost GPU device (or a GPU out of memory) ends the event loop
-//! with one clear message and exit status 1, never a panic. While the window has no area
-//! (zero-sized or minimised) or is fully covered, nothing is drawn and the loop sleeps until
-//! the next window event instead of spinning, and frames are paced near the monitor's refresh
-//! rate ([`frame_interval`]) for drivers whose FIFO presentation does not wait for vertical sync.
+//! A lost GPU device (or a GPU out of memory) ends the event loop with one clear message and
+//! exit status 1, never a panic; a frame that never ends (the watchdog, `--timeout`) stops
+//! drawing with the title saying so, and Esc or close then end the process at once.
 //!
 //! Test hooks: `SHADERLAB_TEST_LOSE_DEVICE=SECONDS` destroys the GPU device that many seconds
 //! after the window opens, so the tests can check what a lost device looks like.
@@ -21,6 +22,8 @@
 //! each frame is shown, `shaderlab-test: sync` when the key F11 arrives (every event sent before
 //! it has then been handled), and `shaderlab-test: idle` when the window has nothing more to
 //! draw after one of those.
+
+mod screen;
 
 use std::path::PathBuf;
 use std::sync::{mpsc, Arc, Mutex};
@@ -35,66 +38,20 @@ use winit::window::{Window, WindowId};
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Lab, LabContext, LabEntry, Special, UserFiles};
-use crate::offscreen::{depth_texture, save_png, Offscreen};
+use crate::lab::{BuildContext, LabEntry, UserFiles};
+use crate::offscreen::{save_png, Offscreen};
 use crate::params::Params;
 use crate::render::Frame;
 use crate::shader::ShaderSource;
 
+use super::session::{Button, Session};
 use super::Args;
+use screen::{Screen, Shown};
 
-#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
-use super::shm::ShmPresenter as Presenter;
-
-/// No shared-memory presenter on this platform: always the swapchain.
-#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
-struct Presenter {
-    color: wgpu::TextureView,
-    depth_view: wgpu::TextureView,
-    width: u32,
-    height: u32,
-}
-
-#[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
-impl Presenter {
-    const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Bgra8Unorm;
-    fn new(_: &Gpu, _: &Arc<Window>, _: u32, _: u32) -> std::result::Result<Self, String> {
-        Err("no shared-memory presenter on this platform".into())
-    }
-    fn resize(&mut self, _: &Gpu, _: u32, _: u32) -> std::result::Result<(), String> {
-        Ok(())
-    }
-    fn present(&mut self, _: &Gpu, _: wgpu::CommandEncoder, _: bool) -> std::result::Result<(), String> {
-        Ok(())
-    }
-    fn window_gone(&self) -> bool {
-        false
-    }
-    fn copying(&self) -> Option<&str> {
-        None
-    }
-}
-
-/// Says once per window that it is larger than the device can draw (the surface is clamped to
-/// the device's limit); returns whether it has been said.
-fn too_large(name: &str, size: PhysicalSize<u32>, max: u32, said: bool) -> bool {
-    let large = size.width > max || size.height > max;
-    if large && !said {
-        eprintln!(
-            "{name}: the window ({}x{}) is larger than the GPU can draw ({max}x{max}); drawing the part that fits",
-            size.width, size.height
-        );
-    }
-    said || large
-}
+pub use screen::surface_size;
 
 /// Frames per second when the monitor does not say its refresh rate.
 const DEFAULT_REFRESH_HZ: f64 = 60.0;
-
-/// How many frames in a row may fail with `Lost`/`Outdated` (each one followed by a fresh
-/// surface) or a validation error before the window gives up with an error instead of
-/// retrying for ever.
-const MAX_SURFACE_RETRIES: u32 = 120;
 
 /// The time between frames for a monitor refresh rate (mHz, if known): 10% shorter than the
 /// refresh period, so a driver that really waits for vertical sync (FIFO) still sets the pace,
@@ -121,12 +78,6 @@ pub fn no_display_reason() -> &'static str {
     } else {
         "DISPLAY is unset"
     }
-}
-
-/// The surface size for a window size, or `None` when the window has no area (zero width or
-/// height, as when minimised on some platforms): then nothing is drawn until it grows again.
-pub fn surface_size(size: PhysicalSize<u32>) -> Option<(u32, u32)> {
-    (size.width > 0 && size.height > 0).then_some((size.width, size.height))
 }
 
 /// Opens the lab in a window and runs until Esc or close.
@@ -227,7 +178,7 @@ fn wake_on_signal(proxy: winit::event_loop::EventLoopProxy<Wake>) {
                 let n = unsafe { libc::read(read, (&mut byte as *mut u8).cast(), 1) };
                 if n == 1 {
                     let _ = proxy.send_event(Wake::Signal(i32::from(byte)));
-                } else if n == 0 || io_error_is_fatal() {
+                } else if n == 0 || std::io::Error::last_os_error().kind() != std::io::ErrorKind::Interrupted {
                     return;
                 }
             });
@@ -237,12 +188,6 @@ fn wake_on_signal(proxy: winit::event_loop::EventLoopProxy<Wake>) {
     }
     #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
     let _ = proxy;
-}
-
-/// Whether the last failed read should end the signal thread (anything but an interrupted call).
-#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
-fn io_error_is_fatal() -> bool {
-    std::io::Error::last_os_error().kind() != std::io::ErrorKind::Interrupted
 }
 
 struct App {
@@ -258,68 +203,55 @@ struct App {
 /// Why the device can no longer be used, set from wgpu's callbacks (other threads).
 type Fatal = Arc<Mutex<Option<String>>>;
 
-fn set_fatal(fatal: &Fatal, message: String) {
-    if let Ok(mut slot) = fatal.lock() {
-        slot.get_or_insert(message);
-    }
+/// Where the shaders and the lab's files come from, and the watcher that reloads them.
+struct Sources {
+    source: ShaderSource,
+    files: Arc<UserFiles>,
+    reload: Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)>,
+}
+
+/// When frames are drawn, and how long they take.
+struct Pacing {
+    /// `--unpaced`: as fast as possible, with a frame-time report every 2 s.
+    unpaced: bool,
+    /// Shortest time between two frames, and when the next one is due.
+    interval: Duration,
+    next: Instant,
+    /// With `--unpaced`: frames drawn since `counted_since`.
+    counted: u32,
+    counted_since: Instant,
+    /// Milliseconds between frames, smoothed, and when the last frame was drawn.
+    frame_ms: f64,
+    last: Instant,
+    /// When the frame being drawn started.
+    started: Instant,
 }
 
 struct WindowState {
-    entry: &'static LabEntry,
-    source: ShaderSource,
-    files: Arc<UserFiles>,
     window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
-    config: wgpu::SurfaceConfiguration,
-    depth: wgpu::TextureView,
     gpu: Gpu,
-    lab: Box<dyn Lab>,
+    screen: Screen,
+    session: Session,
+    sources: Sources,
     /// The window's start: the clock's second 0.
     start: Instant,
-    /// Drives an animated lab's `time` (Space pauses it).
-    clock: super::clock::Clock,
-    /// Frames still to draw for a lab that is not animated (input, resize, reload).
-    dirty: u32,
-    unpaced: bool,
-    /// Whether the window was said to be larger than the device can draw.
-    said_too_large: bool,
-    /// Presenting through X shared memory (CPU adapters under X11), else the swapchain.
-    shm: Option<Presenter>,
-    /// With `--unpaced`: frames drawn since `counted_since` (the frame-time report).
-    counted: u32,
-    counted_since: Instant,
-    cursor: (i32, i32),
-    buttons: u32,
+    pacing: Pacing,
     /// The window has no area: nothing to draw.
     minimised: bool,
     /// The window is fully covered (X11 visibility): nothing to draw.
     occluded: bool,
-    /// Frames in a row that found the surface `Lost` or `Outdated`.
-    surface_retries: u32,
-    /// Shortest time between two frames, and when the next one is due.
-    frame_interval: Duration,
-    next_frame: Instant,
-    shader_error: bool,
     fatal: Fatal,
     lose_device_at: Option<Instant>,
-    reload: Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)>,
-    screenshots: u32,
+    /// Screenshots and recordings named so far (`NAME-SECONDS-PID-N.EXT`).
+    named: u32,
     /// F10's recording, while one runs.
     capture: Option<super::capture::Capture>,
     /// F1's parameter panel.
     panel: super::panel::Panel,
-    /// The last shader error, while one stands (shown in the panel).
-    shader_message: Option<String>,
-    /// Milliseconds between frames, smoothed, and when the last frame was drawn.
-    frame_ms: f64,
-    last_frame: Instant,
-    /// When the frame being drawn started.
-    frame_started: Instant,
     /// Why drawing stopped for good: a frame did not finish within the watchdog (a shader that
     /// never ends). The window then only answers Esc and close.
     stuck: Option<String>,
-    /// `SHADERLAB_TEST_LOG`: frames shown so far, and whether one was shown (or F11 arrived)
-    /// since the last `idle` was written.
+    /// `SHADERLAB_TEST_LOG`'s signals.
     test_log: Option<TestLog>,
 }
 
@@ -327,6 +259,7 @@ struct WindowState {
 #[derive(Default)]
 struct TestLog {
     frames: u64,
+    /// Whether a frame was shown (or F11 arrived) since the last `idle` was written.
     busy: bool,
 }
 
@@ -371,7 +304,7 @@ impl App {
                 .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
         );
         // The primary backends first, GL only where they cannot draw into this window.
-        let (gpu, surface) = match Self::connect(Gpu::new_instance(), &window) {
+        let (mut gpu, surface) = match Self::connect(Gpu::new_instance(), &window) {
             Err(e @ (Error::NoAdapter(_) | Error::Surface(_))) => match Gpu::fallback_instance() {
                 Some(gl) => Self::connect(gl, &window).map_err(|fallback| match fallback {
                     Error::NoAdapter(_) | Error::Surface(_) => e,
@@ -381,105 +314,37 @@ impl App {
             },
             result => result?,
         };
-        let mut gpu = gpu;
         gpu.watchdog = self.args.watchdog();
-        // Before anything can fail on the device: wgpu panics on errors nobody handles.
         let fatal: Fatal = Arc::new(Mutex::new(None));
-        let lost = fatal.clone();
-        gpu.device.set_device_lost_callback(move |reason, message| {
-            let why = match reason {
-                wgpu::DeviceLostReason::Destroyed => "destroyed".to_string(),
-                _ if message.is_empty() => "driver error".to_string(),
-                _ => message,
-            };
-            set_fatal(&lost, format!("the GPU device was lost ({why})"));
+        let slot = fatal.clone();
+        super::surface::on_trouble(&gpu, move |trouble| match trouble {
+            super::surface::Trouble::Error(_) => eprintln!("{trouble}"),
+            fatal => {
+                if let Ok(mut slot) = slot.lock() {
+                    slot.get_or_insert(fatal.to_string());
+                }
+            }
         });
-        let oom = fatal.clone();
-        gpu.device.on_uncaptured_error(Arc::new(move |e| {
-            if let wgpu::Error::OutOfMemory { .. } = e {
-                set_fatal(&oom, "the GPU ran out of memory".into());
-            } else {
-                eprintln!("wgpu error: {e}");
-            }
-        }));
-        let caps = surface.get_capabilities(&gpu.adapter);
-        // GL's default framebuffer does no sRGB encoding: prefer a plain UNORM format.
-        let format = [wgpu::TextureFormat::Bgra8Unorm, wgpu::TextureFormat::Rgba8Unorm]
-            .into_iter()
-            .find(|f| caps.formats.contains(f))
-            .or_else(|| caps.formats.first().copied())
-            .ok_or_else(|| Error::Surface("the surface supports no formats".into()))?;
+        let screen = Screen::new(entry.info.name, &gpu, window.clone(), surface, self.args.unpaced)?;
         let size = window.inner_size();
-        let present_mode = if self.args.unpaced {
-            [wgpu::PresentMode::Immediate, wgpu::PresentMode::Mailbox]
-                .into_iter()
-                .find(|m| caps.present_modes.contains(m))
-                .unwrap_or(wgpu::PresentMode::Fifo)
-        } else {
-            wgpu::PresentMode::Fifo
-        };
-        let max = gpu.device.limits().max_texture_dimension_2d;
-        let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            format,
-            color_space: Default::default(),
-            width: size.width.clamp(1, max),
-            height: size.height.clamp(1, max),
-            desired_maximum_frame_latency: 2,
-            present_mode,
-            alpha_mode: caps
-                .alpha_modes
-                .first()
-                .copied()
-                .unwrap_or(wgpu::CompositeAlphaMode::Auto),
-            view_formats: vec![],
-        };
-        // A surface that was never configured makes wgpu panic on the first frame: check it.
-        gpu.checked("configuring the window surface", || {
-            surface.configure(&gpu.device, &config)
-        })?;
-        let depth = depth_texture(&gpu.device, config.width, config.height);
-        // A CPU adapter under X11 presents through shared memory; anything else, or a
-        // presenter that cannot start, keeps the swapchain (said with SHADERLAB_PRESENT=shm).
-        let shm = if format == wgpu::TextureFormat::Bgra8Unorm {
-            Presenter::new(&gpu, &window, config.width, config.height)
-        } else {
-            Err(format!("the window's format is {format:?}"))
-        };
-        let asked_shm = matches!(std::env::var("SHADERLAB_PRESENT").as_deref(), Ok("shm" | "shm-copy"));
-        let shm = match shm {
-            Ok(p) => {
-                if let (true, Some(why)) = (asked_shm, p.copying()) {
-                    eprintln!("{}: shared-memory presenter copies each frame: {why}", entry.info.name);
-                }
-                Some(p)
-            }
-            Err(why) => {
-                if asked_shm {
-                    eprintln!("{}: presenting with the swapchain: {why}", entry.info.name);
-                }
-                None
-            }
-        };
-        let said_too_large = too_large(entry.info.name, size, max, false);
-        let mut lab = (entry.new)(&LabContext {
+        let mut lab = (entry.new)(&BuildContext {
             gpu: &gpu,
             source: &self.source,
-            format,
+            format: screen.format(),
             files: &self.files,
         })?;
         if let Some(params) = self.params.take() {
             *lab.params_mut() = params;
         }
         // Live reload watches the shader folder and the folders of the lab's input files.
-        let mut dirs: Vec<std::path::PathBuf> = match &self.source {
+        let mut dirs: Vec<PathBuf> = match &self.source {
             ShaderSource::Dir(dir) => vec![dir.clone()],
             ShaderSource::Embedded | ShaderSource::Edited(_) => Vec::new(),
         };
         for input in &self.files.inputs {
             let dir = match input.parent() {
                 Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-                _ => std::path::PathBuf::from("."),
+                _ => PathBuf::from("."),
             };
             if !dirs.contains(&dir) {
                 dirs.push(dir);
@@ -497,55 +362,45 @@ impl App {
             .and_then(|s| Duration::try_from_secs_f64(s).ok())
             .map(|d| Instant::now() + d);
         let refresh_millihertz = window.current_monitor().and_then(|m| m.refresh_rate_millihertz());
-        window.set_title(&lab.title());
-        let clock = super::clock::Clock::new(lab.as_ref(), 0.0, clock_scale);
+        let session = Session::new(entry, lab, 0.0, clock_scale);
+        window.set_title(&session.title());
         let panel = super::panel::Panel::new(&window);
+        let now = Instant::now();
         Ok(WindowState {
-            entry,
-            source: self.source.clone(),
-            files: self.files.clone(),
-            clock,
-            dirty: 2,
-            unpaced: self.args.unpaced,
-            said_too_large,
-            shm,
-            counted: 0,
-            counted_since: Instant::now(),
-            minimised: surface_size(size).is_none(),
-            window,
-            surface,
-            config,
-            depth,
             gpu,
-            lab,
-            start: Instant::now(),
-            cursor: (0, 0),
-            buttons: 0,
+            screen,
+            session,
+            sources: Sources {
+                source: self.source.clone(),
+                files: self.files.clone(),
+                reload,
+            },
+            start: now,
+            pacing: Pacing {
+                unpaced: self.args.unpaced,
+                interval: frame_interval(refresh_millihertz),
+                next: now,
+                counted: 0,
+                counted_since: now,
+                frame_ms: 0.0,
+                last: now,
+                started: now,
+            },
+            minimised: surface_size(size).is_none(),
             occluded: false,
-            surface_retries: 0,
-            frame_interval: frame_interval(refresh_millihertz),
-            next_frame: Instant::now(),
-            shader_error: false,
+            window,
             fatal,
             lose_device_at,
-            reload,
-            screenshots: 0,
+            named: 0,
             capture: None,
             panel,
-            shader_message: None,
-            frame_ms: 0.0,
-            last_frame: Instant::now(),
-            frame_started: Instant::now(),
             stuck: None,
             test_log: std::env::var_os("SHADERLAB_TEST_LOG").map(|_| TestLog::default()),
         })
     }
 }
 
-fn watch(
-    dirs: &[std::path::PathBuf],
-    inputs: &[std::path::PathBuf],
-) -> Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)> {
+fn watch(dirs: &[PathBuf], inputs: &[PathBuf]) -> Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)> {
     use notify::Watcher;
     if dirs.is_empty() {
         return None;
@@ -583,12 +438,17 @@ fn watch(
 
 impl WindowState {
     fn name(&self) -> &'static str {
-        self.entry.info.name
+        self.session.name()
+    }
+
+    /// Seconds since the window opened, the clock's time base.
+    fn now(&self) -> f64 {
+        self.start.elapsed().as_secs_f64()
     }
 
     fn update_title(&self) {
-        let mut title = self.lab.title();
-        if self.shader_error {
+        let mut title = self.session.title();
+        if self.session.shader_error().is_some() {
             title.push_str(" | SHADER ERROR (see terminal)");
         }
         if self.stuck.is_some() {
@@ -600,7 +460,7 @@ impl WindowState {
         self.window.set_title(&title);
     }
 
-    /// Whether drawing is paused (nothing visible to draw into).
+    /// Whether drawing is paused (nothing visible to draw into, or a frame that never ended).
     fn paused(&self) -> bool {
         self.minimised || self.occluded || self.stuck.is_some()
     }
@@ -625,79 +485,38 @@ impl WindowState {
     }
 
     fn resize(&mut self, size: PhysicalSize<u32>) {
-        // The original treats height 0 as 1; a surface cannot be 0 pixels, so a zero-sized
-        // (minimised) window is simply not drawn until it has a size again.
-        let Some((width, height)) = surface_size(size) else {
-            self.minimised = true;
-            return;
-        };
-        self.minimised = false;
-        self.dirty = 2;
-        let max = self.gpu.device.limits().max_texture_dimension_2d;
-        self.said_too_large = too_large(self.entry.info.name, size, max, self.said_too_large);
-        self.config.width = width.min(max);
-        self.config.height = height.min(max);
-        self.surface.configure(&self.gpu.device, &self.config);
-        self.depth = depth_texture(&self.gpu.device, self.config.width, self.config.height);
-        if let Some(shm) = &mut self.shm {
-            if let Err(why) = shm.resize(&self.gpu, self.config.width, self.config.height) {
-                if !shm.window_gone() {
-                    eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
-                }
-                self.shm = None;
-            }
+        self.minimised = !self.screen.resize(&self.gpu, size);
+        if !self.minimised {
+            self.session.changed();
         }
     }
 
-    /// A `Lost` surface must be created again from the window, then configured.
-    fn recreate_surface(&mut self) -> Result<()> {
-        self.surface = self
-            .gpu
-            .instance
-            .create_surface(self.window.clone())
-            .map_err(|e| Error::Surface(format!("cannot create the window surface again: {e}")))?;
-        let size = self.window.inner_size();
-        self.resize(size);
-        Ok(())
-    }
-
     fn check_reload(&mut self) {
-        let Some((_, rx)) = &self.reload else { return };
+        let Some((_, rx)) = &self.sources.reload else { return };
         if rx.try_recv().is_err() {
             return;
         }
         // Editors write in several steps: let them finish, then drain the queue.
         std::thread::sleep(Duration::from_millis(50));
         while rx.try_recv().is_ok() {}
-        self.dirty = 2;
-        let cx = LabContext {
+        let had_error = self.session.shader_error().is_some();
+        let cx = BuildContext {
             gpu: &self.gpu,
-            source: &self.source,
-            format: self.config.format,
-            files: &self.files,
+            source: &self.sources.source,
+            format: self.screen.format(),
+            files: &self.sources.files,
         };
-        match self.lab.reload(&cx) {
-            Ok(()) => {
-                if self.shader_error {
-                    eprintln!("{}: shaders reloaded, error fixed", self.name());
-                } else {
-                    eprintln!("{}: shaders reloaded", self.name());
-                }
-                self.shader_error = false;
-                self.shader_message = None;
-            }
-            Err(e) => {
-                eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name());
-                self.shader_error = true;
-                self.shader_message = Some(e.to_string());
-            }
+        match self.session.reload(&cx) {
+            Ok(()) if had_error => eprintln!("{}: shaders reloaded, error fixed", self.name()),
+            Ok(()) => eprintln!("{}: shaders reloaded", self.name()),
+            Err(e) => eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name()),
         }
         self.update_title();
     }
 
     /// A fresh name in the current directory: `NAME-SECONDS-PID-N.EXT` (F12 and F10).
     fn fresh_name(&mut self, extension: &str) -> PathBuf {
-        self.screenshots += 1;
+        self.named += 1;
         let stamp = std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs())
@@ -708,12 +527,12 @@ impl WindowState {
                 "{}-{stamp}-{}-{}.{extension}",
                 self.name(),
                 std::process::id(),
-                self.screenshots
+                self.named
             ));
             if !path.exists() {
                 return path;
             }
-            self.screenshots += 1;
+            self.named += 1;
         }
     }
 
@@ -727,7 +546,7 @@ impl WindowState {
                     Ok(capture) => {
                         eprintln!("{}: recording to {} (F10 stops)", self.name(), path.display());
                         self.capture = Some(capture);
-                        self.dirty = self.dirty.max(2);
+                        self.session.changed();
                     }
                     Err(e) => eprintln!("{}: cannot record: {e}", self.name()),
                 }
@@ -749,9 +568,9 @@ impl WindowState {
             return;
         }
         let Some(capture) = self.capture.as_mut() else { return };
-        let (w, h) = (self.config.width, self.config.height);
-        if let Err(e) = capture.add(&self.gpu, self.lab.as_mut(), w, h, self.config.format) {
-            eprintln!("{}: recording stopped: {e}", self.name());
+        let (w, h) = self.screen.size();
+        if let Err(e) = capture.add(&self.gpu, self.session.lab_mut(), w, h, self.screen.format()) {
+            eprintln!("{}: recording stopped: {e}", self.session.name());
             self.capture = None;
         }
         self.update_title();
@@ -767,34 +586,35 @@ impl WindowState {
         size: (u32, u32),
     ) {
         let now = Instant::now();
-        let ms = now.duration_since(self.last_frame).as_secs_f64() * 1000.0;
-        self.last_frame = now;
-        self.frame_ms = if self.frame_ms == 0.0 {
+        let ms = now.duration_since(self.pacing.last).as_secs_f64() * 1000.0;
+        self.pacing.last = now;
+        self.pacing.frame_ms = if self.pacing.frame_ms == 0.0 {
             ms
         } else {
-            0.9 * self.frame_ms + 0.1 * ms
+            0.9 * self.pacing.frame_ms + 0.1 * ms
         };
         if !self.panel.shown {
             return;
         }
-        let draw_ms = self.frame_started.elapsed().as_secs_f64() * 1000.0;
+        let draw_ms = self.pacing.started.elapsed().as_secs_f64() * 1000.0;
         let mut files: Vec<(String, String)> = Vec::new();
-        for program in self.lab.programs() {
+        for program in self.session.lab_mut().programs() {
             let (v, f) = program.files();
             files.push((v.to_owned(), f.to_owned()));
         }
-        let source = match (&self.source, self.reload.is_some()) {
+        let source = match (&self.sources.source, self.sources.reload.is_some()) {
             (ShaderSource::Dir(dir), true) => format!("from {} (reloads live)", dir.display()),
             (ShaderSource::Dir(dir), false) => format!("from {}", dir.display()),
             (ShaderSource::Embedded, _) => "built in".to_owned(),
             (ShaderSource::Edited(_), _) => "edited in memory".to_owned(),
         };
+        let error = self.session.shader_error().map(str::to_owned);
         let status = super::panel::Status {
-            frame_ms: (self.animated() || self.unpaced).then_some(self.frame_ms),
+            frame_ms: (self.session.animated() || self.pacing.unpaced).then_some(self.pacing.frame_ms),
             draw_ms,
             files,
             source,
-            error: self.shader_message.as_deref(),
+            error: error.as_deref(),
             recording: self.capture.as_ref().map(super::capture::Capture::frames),
         };
         let (changed, request) = self.panel.draw(
@@ -804,15 +624,15 @@ impl WindowState {
             view,
             format,
             size,
-            self.lab.as_mut(),
+            self.session.lab_mut(),
             &status,
         );
         if changed {
-            self.dirty = self.dirty.max(2);
+            self.session.changed();
             self.update_title();
         }
         if self.panel.repaint {
-            self.dirty = self.dirty.max(2);
+            self.session.changed();
         }
         if request == Some(super::panel::Request::WriteShaders) {
             self.write_shaders();
@@ -820,28 +640,38 @@ impl WindowState {
     }
 
     /// The panel's button: the built-in shaders into `./NAME-shaders/` (a fresh name), then
-    /// live reload from there, as `--shaders DIR` would.
+    /// live reload from there, as `--shaders DIR` would. The folder is made empty (never an
+    /// existing one) and its files appear together or not at all.
     fn write_shaders(&mut self) {
         let mut dir = PathBuf::from(format!("{}-shaders", self.name()));
         let mut n = 1;
-        while dir.exists() {
-            n += 1;
-            dir = PathBuf::from(format!("{}-shaders-{n}", self.name()));
+        loop {
+            match std::fs::create_dir(&dir) {
+                Ok(()) => break,
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && n < 10_000 => {
+                    n += 1;
+                    dir = PathBuf::from(format!("{}-shaders-{n}", self.name()));
+                }
+                Err(e) => {
+                    eprintln!("{}: cannot write the shaders to {}: {e}", self.name(), dir.display());
+                    return;
+                }
+            }
         }
-        let written = std::fs::create_dir(&dir).and_then(|()| {
-            crate::shader::embedded_names().try_for_each(|name| {
-                let text = crate::shader::embedded_source(name).unwrap_or_default();
-                std::fs::write(dir.join(name), text)
-            })
+        let mut batch = crate::fsutil::Batch::new(false);
+        let written = crate::shader::embedded_names().try_for_each(|name| {
+            let text = crate::shader::embedded_source(name).unwrap_or_default();
+            batch.write(&dir.join(name), |w| w.write_all(text.as_bytes()))
         });
-        if let Err(e) = written {
+        if let Err(e) = written.and_then(|()| batch.commit()) {
             eprintln!("{}: cannot write the shaders to {}: {e}", self.name(), dir.display());
+            let _ = std::fs::remove_dir(&dir);
             return;
         }
         let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
-        self.source = ShaderSource::Dir(dir.clone());
-        self.reload = watch(std::slice::from_ref(&dir), &self.files.inputs);
-        println!("shaders: {} (edit them; the lab reloads live)", dir.display());
+        self.sources.source = ShaderSource::Dir(dir.clone());
+        self.sources.reload = watch(std::slice::from_ref(&dir), &self.sources.files.inputs);
+        let _ = super::say(&format!("shaders: {} (edit them; the lab reloads live)", dir.display()));
     }
 
     fn screenshot(&mut self) {
@@ -853,18 +683,22 @@ impl WindowState {
             return;
         }
         let path = self.fresh_name("png");
-        let (w, h) = (self.config.width, self.config.height);
+        let (w, h) = self.screen.size();
         // Drawn by the window's own pipelines (its format), read back as RGB.
-        let target = Offscreen::with_format(&self.gpu, w, h, self.config.format);
-        match super::render_into(&self.gpu, self.lab.as_mut(), &target)
+        let target = Offscreen::with_format(&self.gpu, w, h, self.screen.format());
+        match super::draw::render_into(&self.gpu, self.session.lab_mut(), &target)
             .and_then(|()| target.read(&self.gpu))
             .and_then(|image| save_png(&image, &path))
         {
-            Ok(()) => println!("screenshot: {}", std::fs::canonicalize(&path).unwrap_or(path).display()),
+            Ok(()) => {
+                let path = std::fs::canonicalize(&path).unwrap_or(path);
+                let _ = super::say(&format!("screenshot: {}", path.display()));
+            }
             Err(e) => eprintln!("{}: screenshot failed: {e}", self.name()),
         }
     }
 
+    /// Draws one frame: the lab, then the panel, into the screen's target, and shows it.
     fn redraw(&mut self) -> Result<()> {
         if let Some(at) = self.lose_device_at {
             if Instant::now() >= at {
@@ -881,161 +715,58 @@ impl WindowState {
         if self.paused() {
             return Ok(());
         }
-        self.frame_started = Instant::now();
+        self.pacing.started = Instant::now();
         // Pace from the previous deadline (no drift), but never plan a burst to catch up.
         let now = Instant::now();
-        self.next_frame = (self.next_frame + self.frame_interval).max(now);
-        self.tick();
-        self.dirty = self.dirty.saturating_sub(1);
-        if self.shm.is_some() {
-            return self.redraw_shm();
-        }
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
-            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
-            status @ (wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost) => {
-                self.surface_retries += 1;
-                if self.surface_retries > MAX_SURFACE_RETRIES {
-                    return Err(Error::Surface(format!(
-                        "the window surface stays unusable ({status:?} {MAX_SURFACE_RETRIES} frames in a row)"
-                    )));
-                }
-                if matches!(status, wgpu::CurrentSurfaceTexture::Lost) {
-                    self.recreate_surface()?;
-                } else {
-                    let size = self.window.inner_size();
-                    self.resize(size);
-                }
-                return Ok(());
-            }
-            wgpu::CurrentSurfaceTexture::Validation => {
-                // The uncaptured-error handler printed why; a lost device ends here, and an error
-                // that repeats every frame ends the window instead of flooding the terminal.
-                self.surface_retries += 1;
-                if self.surface_retries > MAX_SURFACE_RETRIES {
-                    return Err(Error::Surface(format!(
-                        "cannot get a frame from the window surface ({MAX_SURFACE_RETRIES} frames in a row)"
-                    )));
-                }
-                return self.fatal_error().map_or(Ok(()), Err);
-            }
+        self.pacing.next = (self.pacing.next + self.pacing.interval).max(now);
+        let clock = self.now();
+        self.session.tick(clock);
+        self.session.drawn();
+        let fatal = self.fatal.clone();
+        let name = self.name();
+        let Some(target) = self.screen.target(&self.gpu, || {
+            let message = fatal.lock().ok()?.clone()?;
+            Some(Error::Wgpu {
+                context: format!("the {name} window"),
+                message,
+            })
+        })?
+        else {
+            return Ok(());
         };
-        self.surface_retries = 0;
-        let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("window.frame"),
-            ..Default::default()
-        });
-        let (w, h) = (self.config.width, self.config.height);
         let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("window.frame"),
         });
-        let rendered = {
-            let mut frame = Frame {
-                gpu: &self.gpu,
-                encoder: &mut encoder,
-                color: &view,
-                depth: &self.depth,
-                width: w,
-                height: h,
-                timestamps: None,
-            };
-            self.lab.render(&mut frame)
-        };
-        if let Err(e) = rendered {
+        let (w, h) = target.size;
+        let error = self.session.render(&mut Frame::new(
+            &self.gpu,
+            &mut encoder,
+            &target.view,
+            &target.depth,
+            w,
+            h,
+        ));
+        if let Some(e) = error {
+            // A lab may rebuild a program while drawing (a shading model chosen by key); a
+            // broken shader file leaves the previous one in place, and the error is shown once.
             eprintln!("{}: {e}", self.name());
-        }
-        let format = self.config.format;
-        self.draw_panel(&mut encoder, &view, format, (w, h));
-        let submission = self.gpu.queue.submit([encoder.finish()]);
-        // On a CPU adapter the frame is waited for under the watchdog before it is presented:
-        // lavapipe's present (and its next submit) would block for ever behind a frame that never
-        // ends. It copies the finished frame to the window anyway, so the wait costs nothing. A
-        // GPU's driver has a watchdog of its own and reports a lost device.
-        if self.gpu.watchdog.is_some() && self.gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
-            let wait = wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: self.gpu.watchdog,
-            };
-            if let Err(e) = self.gpu.device.poll(wait) {
-                let error = self.gpu.wait_error(e);
-                if crate::gpu::hung() {
-                    // The frame is never presented (nor dropped: that waits too).
-                    std::mem::forget(frame);
-                    self.give_up(error.to_string());
-                    return Ok(());
-                }
-                return Err(error);
-            }
-        }
-        // A lab may rebuild a program while drawing (a shading model chosen by key); a broken
-        // shader file leaves the previous one in place, and the error is shown once.
-        if let Some(e) = self.lab.take_error() {
-            eprintln!("{}: {e}", self.name());
-            self.shader_error = true;
             self.update_title();
         }
-        self.window.pre_present_notify();
-        self.gpu.queue.present(frame);
-        self.frame_shown();
-        if self.unpaced {
-            self.report_frame_time();
-        }
-        Ok(())
-    }
-
-    /// A frame drawn offscreen and shown through X shared memory; on failure the swapchain
-    /// takes over from the next frame.
-    fn redraw_shm(&mut self) -> Result<()> {
-        let Some(shm) = self.shm.as_mut() else { return Ok(()) };
-        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("window.frame"),
-        });
-        let rendered = {
-            let mut frame = Frame {
-                gpu: &self.gpu,
-                encoder: &mut encoder,
-                color: &shm.color,
-                depth: &shm.depth_view,
-                width: shm.width,
-                height: shm.height,
-                timestamps: None,
-            };
-            self.lab.render(&mut frame)
-        };
-        if let Err(e) = rendered {
-            eprintln!("{}: {e}", self.entry.info.name);
-        }
-        let (view, size) = (shm.color.clone(), (shm.width, shm.height));
-        self.draw_panel(&mut encoder, &view, Presenter::FORMAT, size);
-        let Some(shm) = self.shm.as_mut() else { return Ok(()) };
-        self.window.pre_present_notify();
-        // Drawing as fast as possible keeps one frame in flight (shown while the next renders).
-        let presented = shm
-            .present(&self.gpu, encoder, self.unpaced)
-            .map_err(|why| (why, shm.window_gone()));
-        if let Some(e) = self.lab.take_error() {
-            eprintln!("{}: {e}", self.name());
-            self.shader_error = true;
-            self.update_title();
-        }
-        if let Err((why, gone)) = presented {
-            if crate::gpu::hung() {
-                // Keep the presenter: dropping it would wait for the frame that never ends.
+        let view = target.view.clone();
+        self.draw_panel(&mut encoder, &view, target.format, target.size);
+        match self.screen.present(&self.gpu, target, encoder)? {
+            Shown::Yes => {}
+            Shown::Again => self.session.changed(),
+            Shown::Stuck(why) => {
                 self.give_up(why);
                 return Ok(());
             }
-            // A destroyed window is said once, by the `Destroyed` event that follows.
-            if !gone {
-                eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name());
-            }
-            self.shm = None;
-            self.dirty = 2;
         }
         if let Some(e) = self.fatal_error() {
             return Err(e);
         }
         self.frame_shown();
-        if self.unpaced {
+        if self.pacing.unpaced {
             self.report_frame_time();
         }
         Ok(())
@@ -1053,43 +784,19 @@ impl WindowState {
     /// With `--unpaced`: every 2 s, one line on stderr with the mean time per frame drawn and
     /// presented (`NAME: window N frames in S s: ms_per_frame=X`), to compare with the original.
     fn report_frame_time(&mut self) {
-        self.counted += 1;
-        let elapsed = self.counted_since.elapsed();
+        let pacing = &mut self.pacing;
+        pacing.counted += 1;
+        let elapsed = pacing.counted_since.elapsed();
         if elapsed >= Duration::from_secs(2) {
             let secs = elapsed.as_secs_f64();
             eprintln!(
                 "{}: window {} frames in {secs:.2} s: ms_per_frame={:.3}",
-                self.name(),
-                self.counted,
-                secs * 1000.0 / f64::from(self.counted)
+                self.session.name(),
+                pacing.counted,
+                secs * 1000.0 / f64::from(pacing.counted)
             );
-            self.counted = 0;
-            self.counted_since = Instant::now();
-        }
-    }
-
-    /// Whether the lab's clock runs (an animated lab, not paused with Space).
-    fn animated(&self) -> bool {
-        self.clock.runs(self.lab.as_ref())
-    }
-
-    /// Advances an animated lab's `time` to the clock's.
-    fn tick(&mut self) {
-        let now = self.start.elapsed().as_secs_f64();
-        self.clock.tick(self.lab.as_mut(), now);
-    }
-
-    /// Space: pauses or resumes the clock of an animated lab, keeping its time.
-    fn toggle_clock(&mut self) {
-        if self.clock.toggle(self.lab.as_ref(), self.start.elapsed().as_secs_f64()) {
-            self.dirty = 2;
-        }
-    }
-
-    fn input(&mut self, input: Input) {
-        self.dirty = 2;
-        if self.lab.input(input) {
-            self.update_title();
+            pacing.counted = 0;
+            pacing.counted_since = Instant::now();
         }
     }
 
@@ -1103,38 +810,41 @@ impl WindowState {
             Key::Named(NamedKey::F10) => self.toggle_capture(),
             Key::Named(NamedKey::F1) => {
                 self.panel.shown = !self.panel.shown;
-                self.dirty = self.dirty.max(2);
+                self.session.changed();
                 self.window.request_redraw();
             }
-            Key::Named(NamedKey::Space) if self.lab.animated() => self.toggle_clock(),
-            Key::Named(named) => {
-                let special = match named {
-                    NamedKey::ArrowLeft => Special::Left,
-                    NamedKey::ArrowRight => Special::Right,
-                    NamedKey::ArrowUp => Special::Up,
-                    NamedKey::ArrowDown => Special::Down,
-                    NamedKey::PageUp => Special::PageUp,
-                    NamedKey::PageDown => Special::PageDown,
-                    _ => {
-                        // Space and other named keys that type a character.
-                        if let Some(c) = event.text.as_deref().and_then(single_char) {
-                            self.input(Input::Key(c));
-                        }
-                        return;
-                    }
-                };
-                self.input(Input::Special(special));
-            }
             _ => {
-                let text = event.text.as_deref().or(match &event.logical_key {
-                    Key::Character(s) => Some(s.as_str()),
-                    _ => None,
-                });
-                if let Some(c) = text.and_then(single_char) {
-                    self.input(Input::Key(c));
+                if let Some(name) = dom_key(event) {
+                    let now = self.now();
+                    if self.session.key(&name, now) {
+                        self.update_title();
+                    }
                 }
             }
         }
+    }
+}
+
+/// A key's name as the DOM's `KeyboardEvent.key` gives it, which [`Session::key`] reads: the
+/// named keys GLUT knows by their names (`ArrowLeft`, `PageUp`), any other key by the one
+/// character it types (Space is `" "`); `None` for a key that types nothing.
+fn dom_key(event: &KeyEvent) -> Option<String> {
+    let single = |s: &str| {
+        let mut chars = s.chars();
+        matches!((chars.next(), chars.next()), (Some(_), None)).then(|| s.to_owned())
+    };
+    match &event.logical_key {
+        Key::Named(
+            named @ (NamedKey::ArrowLeft
+            | NamedKey::ArrowRight
+            | NamedKey::ArrowUp
+            | NamedKey::ArrowDown
+            | NamedKey::PageUp
+            | NamedKey::PageDown),
+        ) => Some(format!("{named:?}")),
+        Key::Named(_) => event.text.as_deref().and_then(single),
+        Key::Character(s) => event.text.as_deref().or(Some(s.as_str())).and_then(single),
+        _ => None,
     }
 }
 
@@ -1147,14 +857,6 @@ fn report_capture(name: &str, capture: super::capture::Capture) {
             let _ = super::say(&format!("recording: {} ({frames} frames)", path.display()));
         }
         Err(e) => eprintln!("{name}: recording failed: {e}"),
-    }
-}
-
-fn single_char(s: &str) -> Option<char> {
-    let mut chars = s.chars();
-    match (chars.next(), chars.next()) {
-        (Some(c), None) => Some(c),
-        _ => None,
     }
 }
 
@@ -1199,20 +901,20 @@ impl ApplicationHandler<Wake> for App {
             matches!(&event, WindowEvent::KeyboardInput { event: k, .. } if k.logical_key == Key::Named(NamedKey::F1));
         if !is_f1 && state.panel.event(&state.window, &event) {
             // The panel took it (a click on it, a key typed into one of its fields).
-            state.dirty = state.dirty.max(2);
+            state.session.changed();
             state.window.request_redraw();
             if let WindowEvent::MouseInput {
                 state: ElementState::Released,
                 ..
             } = event
             {
-                state.buttons = 0;
+                state.session.release_all();
             }
             return;
         }
         if state.panel.shown && !matches!(event, WindowEvent::RedrawRequested) {
             // egui answers hover and focus on the next frame.
-            state.dirty = state.dirty.max(2);
+            state.session.changed();
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
@@ -1234,10 +936,8 @@ impl ApplicationHandler<Wake> for App {
                 ..
             } => state.key(&event, event_loop),
             WindowEvent::CursorMoved { position, .. } => {
-                state.cursor = (position.x as i32, position.y as i32);
-                if state.buttons != 0 {
-                    // glutMotionFunc: called while any button is held.
-                    state.input(Input::Drag(state.cursor.0, state.cursor.1));
+                if state.session.moved(position.x as i32, position.y as i32) {
+                    state.update_title();
                 }
             }
             WindowEvent::MouseInput {
@@ -1245,22 +945,14 @@ impl ApplicationHandler<Wake> for App {
                 button,
                 ..
             } => {
-                let bit = match button {
-                    MouseButton::Left => 1,
-                    MouseButton::Right => 2,
-                    MouseButton::Middle => 4,
-                    _ => 8,
+                let button = match button {
+                    MouseButton::Left => Button::Left,
+                    MouseButton::Right => Button::Right,
+                    MouseButton::Middle => Button::Middle,
+                    _ => Button::Other,
                 };
-                if button_state == ElementState::Pressed {
-                    state.buttons |= bit;
-                    if button == MouseButton::Left {
-                        state.input(Input::Press(state.cursor.0, state.cursor.1));
-                    }
-                } else {
-                    state.buttons &= !bit;
-                    if button == MouseButton::Left {
-                        state.input(Input::Release(state.cursor.0, state.cursor.1));
-                    }
+                if state.session.button(button, button_state == ElementState::Pressed) {
+                    state.update_title();
                 }
             }
             WindowEvent::RedrawRequested => {
@@ -1276,14 +968,12 @@ impl ApplicationHandler<Wake> for App {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        if let Some(state) = self.state.as_mut() {
-            let drawing = !state.paused() && (state.unpaced || state.animated() || state.dirty > 0);
-            if let Some(log) = state.test_log.as_mut().filter(|l| l.busy && !drawing) {
-                log.busy = false;
-                log.say("idle");
-            }
+        let Some(state) = self.state.as_mut() else { return };
+        let drawing = !state.paused() && (state.pacing.unpaced || state.session.wants_frame());
+        if let Some(log) = state.test_log.as_mut().filter(|l| l.busy && !drawing) {
+            log.busy = false;
+            log.say("idle");
         }
-        let Some(state) = &self.state else { return };
         let now = Instant::now();
         if state.paused() {
             // Nothing to draw: sleep until a window event (resize, map, uncover, key) wakes the
@@ -1293,26 +983,25 @@ impl ApplicationHandler<Wake> for App {
                 Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
                 None => event_loop.set_control_flow(ControlFlow::Wait),
             }
-        } else if !state.unpaced && !state.animated() && state.dirty == 0 {
+        } else if !state.pacing.unpaced && !state.session.wants_frame() {
             // Nothing changes: sleep until an event (input, resize, expose) wakes the loop,
             // looking at the shader folder a few times a second for live reload.
-            if state.reload.is_some() {
-                let Some(state) = self.state.as_mut() else { return };
+            if state.sources.reload.is_some() {
                 state.check_reload();
                 let wake = now + Duration::from_millis(100);
                 event_loop.set_control_flow(ControlFlow::WaitUntil(wake));
-                if state.dirty > 0 {
+                if state.session.dirty() > 0 {
                     state.window.request_redraw();
                 }
             } else {
                 event_loop.set_control_flow(ControlFlow::Wait);
             }
-        } else if state.unpaced || now >= state.next_frame {
+        } else if state.pacing.unpaced || now >= state.pacing.next {
             event_loop.set_control_flow(ControlFlow::Poll);
             state.window.request_redraw();
         } else {
             // Input still wakes the loop at once; only drawing waits for its turn.
-            event_loop.set_control_flow(ControlFlow::WaitUntil(state.next_frame));
+            event_loop.set_control_flow(ControlFlow::WaitUntil(state.pacing.next));
         }
     }
 }

@@ -1,0 +1,83 @@
+//! The render targets' formats and textures, described once: a leaf that the offscreen
+//! target, the window's presenters and the host-memory targets all build on (it uses only
+//! wgpu).
+
+/// Colour format of every render target (offscreen and, as Bgra8Unorm, windows).
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// Depth format of every render target.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// A depth texture matching a colour target's size.
+pub fn depth_texture(device: &wgpu::Device, width: u32, height: u32) -> wgpu::TextureView {
+    let desc = target_descriptor(
+        "shaderlab.depth",
+        width.max(1),
+        height.max(1),
+        DEPTH_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    );
+    device
+        .create_texture(&desc)
+        .create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// A render target's texture: one `width` x `height` 2D image (one level, one sample) in
+/// `format`, used as `usage` says.
+pub fn target_descriptor(
+    label: &str,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureDescriptor<'_> {
+    wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    }
+}
+
+/// A colour texture in `format` that can be drawn into and copied out of, and its view.
+pub fn copyable_color(
+    device: &wgpu::Device,
+    label: &str,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+) -> (wgpu::Texture, wgpu::TextureView) {
+    let texture = device.create_texture(&target_descriptor(
+        label,
+        width,
+        height,
+        format,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    ));
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    (texture, view)
+}
+
+/// Bytes in one row of a buffer that a `width`-pixel row is copied into: `bytes_per_pixel *
+/// width` padded to the 256 bytes wgpu's texture-to-buffer copies need.
+pub fn padded_row(bytes_per_pixel: u32, width: u32) -> u32 {
+    (bytes_per_pixel * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
+/// A buffer the GPU copies `height` rows of `stride` bytes into and the CPU maps to read.
+pub fn readback_buffer(device: &wgpu::Device, label: &str, stride: u32, height: u32) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: stride as u64 * height as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    })
+}
+
