@@ -54,7 +54,7 @@ fn main() -> ExitCode {
                 }
                 lines.push(format!(
                     "  {:<22} {} {} ({}x{})",
-                    info.name, info.title, info.label, info.size.0, info.size.1
+                    info.name, info.original_title, info.label, info.size.0, info.size.1
                 ));
             }
             lines.push(String::new());

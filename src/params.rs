@@ -442,7 +442,7 @@ impl Params {
     }
 
     /// Sets `name` to `value` without range checks beyond clamping (keys, clocks).
-    pub fn put(&mut self, name: &str, values: &[f64]) {
+    pub fn set_unchecked(&mut self, name: &str, values: &[f64]) {
         debug_assert!(self.has(name), "unknown parameter {name}");
         if let Some(i) = self.index(name) {
             let (lo, hi, or) = (self.specs[i].min, self.specs[i].max, self.specs[i].or);
@@ -456,7 +456,7 @@ impl Params {
     /// Flips a switch.
     pub fn toggle(&mut self, name: &str) {
         let v = if self.on(name) { 0.0 } else { 1.0 };
-        self.put(name, &[v]);
+        self.set_unchecked(name, &[v]);
     }
 
     /// Moves a choice or whole number to its next value, wrapping to the minimum.
@@ -644,7 +644,7 @@ mod tests {
         let e = p.set_str("spotCutoff", "90.5").unwrap_err().to_string();
         assert!(e.contains("90.5 is outside 0..90 or 180"), "{e}");
         p.set_str("spotCutoff", "180").unwrap();
-        p.put("spotCutoff", &[180.0]);
+        p.set_unchecked("spotCutoff", &[180.0]);
         assert_eq!(p.f("spotCutoff"), 180.0, "put keeps the extra value");
         p.set_str("spotCutoff", "45").unwrap();
         assert!(p.check().is_ok());

@@ -210,6 +210,7 @@ fn render_with_files(entry: &LabEntry, files: &UserFiles) -> Vec<[f32; 4]> {
         source: &ShaderSource::Embedded,
         format: FLOAT,
         files,
+        lab: "",
     };
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{}: {e}", entry.info.name));
     let (w, h) = entry.info.size;

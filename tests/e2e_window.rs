@@ -1670,7 +1670,7 @@ fn every_lecture_lab_opens_draws_and_quits() {
         .unwrap_or_else(|| panic!("{name}: nothing drawn within 10 s; stderr:\n{}", lab.stderr()));
         assert_eq!(frame.dimensions(), entry.info.size, "{name}: the original's size");
         assert!(
-            lab.title().starts_with(entry.info.title),
+            lab.title().starts_with(entry.info.original_title),
             "{name}: title `{}`",
             lab.title()
         );

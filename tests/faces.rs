@@ -1,4 +1,4 @@
-//! Drawing outside faces first (`render::Faces::OutsideFirst`) or the triangles facing the eye
+//! Drawing outside faces first (`render::Culling::OutsideFirst`) or the triangles facing the eye
 //! first (`render::ViewOrdered`; the labs' `faces` parameter) is a speed-up, not a change of
 //! picture: with `GL_LESS` the nearest fragment wins whatever the draw order, except at exact
 //! depth ties. This renders the labs that reorder at many pseudo-random rotations (and times)

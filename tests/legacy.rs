@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use common::gpu;
 use image::RgbImage;
-use shaderlab::lab::{Lab, BuildContext, UserFiles};
+use shaderlab::lab::{BuildContext, Lab, UserFiles};
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
@@ -50,6 +50,7 @@ fn legacy_with(files: UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
         source: &source,
         format: COLOR_FORMAT,
         files: &files,
+        lab: "",
     };
     let mut lab = (shaderlab::labs::LEGACY.new)(&cx).unwrap_or_else(|e| panic!("legacy builds: {e}"));
     for (k, v) in set {
@@ -347,6 +348,7 @@ fn live_reload_keeps_the_last_good_pipeline_and_values() {
         source: &source,
         format: COLOR_FORMAT,
         files: &files,
+        lab: "",
     };
     // An edit that adds a uniform: `tint` keeps its value, `gain` appears with GL's 0.
     std::fs::write(

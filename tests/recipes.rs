@@ -89,6 +89,7 @@ fn a_block_member_without_a_parameter_is_named() {
         source: &ShaderSource::Dir(dir.clone()),
         format: shaderlab::offscreen::COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     let err = match (labs::TWIST.new)(&cx) {
         Ok(_) => panic!("twist built with a block member no parameter feeds"),
@@ -111,6 +112,7 @@ fn a_reload_that_changes_a_block_keeps_the_last_good_pipeline() {
         source: &source,
         format: shaderlab::offscreen::COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     let mut lab = (labs::TWIST.new)(&cx).expect("twist builds");
     let before = shot(lab.as_mut());
@@ -170,6 +172,7 @@ fn a_texture_the_lab_does_not_provide_is_named() {
         source: &ShaderSource::Dir(dir.clone()),
         format: shaderlab::offscreen::COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     let err = match (labs::TWIST.new)(&cx) {
         Ok(_) => panic!("twist built without the texture its shader declares"),

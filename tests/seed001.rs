@@ -9,7 +9,7 @@ use common::{build as lab, gpu, render_state as render, set_state as set, shot};
 use std::path::PathBuf;
 
 use image::RgbImage;
-use shaderlab::lab::{Input, BuildContext, LabEntry, Special};
+use shaderlab::lab::{BuildContext, Input, LabEntry, Special};
 use shaderlab::labs;
 use shaderlab::metrics::{diff_image, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -1099,6 +1099,7 @@ fn vertex_types_are_checked_against_the_shaders_inputs() {
         source: &ShaderSource::Embedded,
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     // GLUT's vertex (position, normal) cannot feed `attribute float height`.
     let err =

@@ -559,6 +559,7 @@ fn mismatched_uniform_struct_is_rejected() {
         source: &source,
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default())
@@ -584,6 +585,7 @@ fn mismatched_uniform_struct_is_rejected() {
         source: &source,
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     let block =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "int_ka", "phong.vert", "phong.frag", RenderState::default())
@@ -667,6 +669,7 @@ fn bindings_and_vertex_inputs_are_checked_by_name() {
         source: &source,
         format: COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "check", "phong.vert", "phong.frag", RenderState::default())

@@ -9,7 +9,7 @@ use common::*;
 use glam::Vec3;
 use shaderlab::exact::{silhouette_error, ExactScene, Shape};
 use shaderlab::labs;
-use shaderlab::labs::seed000::stage::{GlutStage, StageConfig, PARAMS_000};
+use shaderlab::labs::seed000::stage::{GlutGeometry, StageConfig, PARAMS_000};
 use shaderlab::metrics::mask;
 use shaderlab::params::Params;
 use shaderlab::Object;
@@ -102,7 +102,7 @@ fn auto_level(object: Object, camera: [f32; 3], height: u32, tess: f64) -> u32 {
     let mut p = Params::new(PARAMS_000);
     p.set_str("object", object.name()).expect("object");
     p.set("tess", &[tess]).expect("tess");
-    let stage = GlutStage::new(
+    let stage = GlutGeometry::new(
         gpu(),
         "test",
         StageConfig {

@@ -311,6 +311,7 @@ fn native(name: &str, sets: &[&str]) -> RgbImage {
         source: &ShaderSource::Embedded,
         format: COLOR_FORMAT,
         files: &files,
+        lab: "",
     };
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
     common::set_state(lab.as_mut(), &state);

@@ -292,6 +292,7 @@ pub fn context(gpu: &shaderlab::Gpu) -> shaderlab::lab::BuildContext<'_> {
         source: &EMBEDDED,
         format: shaderlab::offscreen::COLOR_FORMAT,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     }
 }
 

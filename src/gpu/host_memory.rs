@@ -163,8 +163,7 @@ pub(crate) unsafe fn target(
             },
         )
     };
-    let desc =
-        super::targets::target_descriptor(label, width, height, format, wgpu::TextureUsages::RENDER_ATTACHMENT);
+    let desc = super::targets::target_descriptor(label, width, height, format, wgpu::TextureUsages::RENDER_ATTACHMENT);
     // The same texture as wgpu-hal describes it (its usage: a colour target).
     let hal_desc = wgpu::hal::TextureDescriptor {
         label: desc.label,

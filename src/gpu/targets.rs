@@ -80,4 +80,3 @@ pub fn readback_buffer(device: &wgpu::Device, label: &str, stride: u32, height: 
         mapped_at_creation: false,
     })
 }
-

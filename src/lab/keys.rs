@@ -156,7 +156,7 @@ impl KeyRow {
                     None => p.step_component(self.param, c, delta),
                 }
             }
-            Act::Pick => p.put(self.param, &[i as f64]),
+            Act::Pick => p.set_unchecked(self.param, &[i as f64]),
             Act::Toggle => p.toggle(self.param),
             Act::Cycle => p.cycle(self.param),
         }

@@ -9,7 +9,7 @@ mod keys;
 mod runner;
 
 pub use keys::{Act, Key, KeyRow, Keys, DOWN, LEFT, PAGE_DOWN, PAGE_UP, RIGHT, UP};
-pub use runner::{Draw, Flat, Hook, Look, Pass, Recipe, Runner, Scene, Shaded, Stage};
+pub use runner::{Derive, Draw, Geometry, Material, MaterialScene, Recipe, Runner, Scene, ShaderPair};
 
 use crate::error::Result;
 use crate::params::Params;
@@ -20,8 +20,9 @@ use crate::render::Frame;
 pub struct LabInfo {
     /// The name shared by its module, shaders, example and tests (`phong`, `suzanne_flat`).
     pub name: &'static str,
-    /// The original's window title (`Lab05-3`).
-    pub title: &'static str,
+    /// The original's window title (`Lab05-3`); the live title, with the lab's state, is
+    /// [`Lab::title`].
+    pub original_title: &'static str,
     /// Human name of the effect.
     pub label: &'static str,
     /// The lecture it comes from.
@@ -47,7 +48,7 @@ impl LabInfo {
     ) -> LabInfo {
         LabInfo {
             name,
-            title,
+            original_title: title,
             label,
             lecture,
             size,
@@ -156,9 +157,9 @@ pub fn params_title(info: &LabInfo, p: &Params) -> String {
         .map(|s| format!("{}={}", s.name, p.text(s.name)))
         .collect();
     if state.is_empty() {
-        format!("{} {}", info.title, info.label)
+        format!("{} {}", info.original_title, info.label)
     } else {
-        format!("{} {} | {}", info.title, info.label, state.join(" "))
+        format!("{} {} | {}", info.original_title, info.label, state.join(" "))
     }
 }
 

@@ -1,15 +1,17 @@
 //! The one runner of described labs. A lab is a [`Recipe`]: its [`LabInfo`] (keys as data
-//! included), its parameters, and a `build` function that returns its [`Scene`] (usually a
-//! [`Shaded`] scene: a [`Stage`] plus [`Pass`]es, whose uniform blocks are filled from the
-//! parameters by GLSL name). [`Runner`] implements [`Lab`] for every recipe: parameters, keys,
-//! reload, programs (so the GLSL-versus-WGSL round trip reaches every lab) and the title.
+//! included), its parameters, and a `build` function that returns its [`Scene`]. Most scenes
+//! are a [`MaterialScene`], as in three-d: a [`Geometry`] (the camera, the matrices and the mesh:
+//! the vertex stage's inputs) drawn with a [`Material`] (one or more [`ShaderPair`]s and the
+//! values it [`Derive`]s each frame), whose uniform blocks are filled from the parameters by
+//! GLSL name. [`Runner`] implements [`Lab`] for every recipe: parameters, keys, reload, programs
+//! (so the GLSL-versus-WGSL round trip reaches every lab) and the title.
 
-use super::{params_title, Input, Lab, BuildContext, LabInfo};
+use super::{params_title, BuildContext, Input, Lab, LabInfo};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::params::{ParamSpec, Params};
 use crate::render::{
-    AnyProgram, Bind, BindingKind, Computed, Faces, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, VertexType,
+    AnyProgram, Bind, BindingKind, Culling, Derived, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, VertexType,
 };
 
 /// A lab as data.
@@ -20,13 +22,31 @@ pub struct Recipe {
     pub params: &'static [&'static [ParamSpec]],
     /// Whether a clock drives `time` in a window.
     pub animated: bool,
-    /// The window title, when not [`params_title`].
-    pub title: Option<fn(&LabInfo, &Params) -> String>,
     /// Builds the scene for the parameters at their defaults.
     pub build: fn(&BuildContext, &Params) -> Result<Box<dyn Scene>>,
 }
 
 impl Recipe {
+    /// A lab that does not animate: its info, its parameters (in groups) and how its scene is
+    /// built.
+    pub const fn new(
+        info: LabInfo,
+        params: &'static [&'static [ParamSpec]],
+        build: fn(&BuildContext, &Params) -> Result<Box<dyn Scene>>,
+    ) -> Recipe {
+        Recipe {
+            info,
+            params,
+            animated: false,
+            build,
+        }
+    }
+
+    /// With a clock driving its `time` in a window (Space pauses it).
+    pub const fn animated(self) -> Recipe {
+        Recipe { animated: true, ..self }
+    }
+
     /// The parameters at their defaults.
     pub fn params(&self) -> Params {
         let mut p = Params::new(&[]);
@@ -60,10 +80,10 @@ pub trait Scene {
     fn programs(&mut self) -> Vec<&mut dyn AnyProgram>;
     /// Records one frame.
     fn render(&mut self, p: &Params, frame: &mut Frame<'_>) -> Result<()>;
-    /// What the window title adds after the recipe's: state that is no parameter (a fly
-    /// camera that left its start); empty for most scenes.
-    fn status(&self, _p: &Params) -> String {
-        String::new()
+    /// The window title: the original's and the parameters away from their defaults
+    /// ([`params_title`]) unless the scene says more (a fly camera that left its start).
+    fn title(&self, info: &LabInfo, p: &Params) -> String {
+        params_title(info, p)
     }
 }
 
@@ -78,7 +98,11 @@ impl Runner {
     /// Builds the recipe's lab.
     pub fn boxed(cx: &BuildContext, recipe: &'static Recipe) -> Result<Box<dyn Lab>> {
         let params = recipe.params();
-        let scene = (recipe.build)(cx, &params)?;
+        let cx = BuildContext {
+            lab: recipe.info.name,
+            ..*cx
+        };
+        let scene = (recipe.build)(&cx, &params)?;
         Ok(Box::new(Runner { recipe, params, scene }))
     }
 }
@@ -112,16 +136,13 @@ impl Lab for Runner {
         self.recipe.animated
     }
     fn title(&self) -> String {
-        let title = match self.recipe.title {
-            Some(title) => title(&self.recipe.info, &self.params),
-            None => params_title(&self.recipe.info, &self.params),
-        };
-        title + &self.scene.status(&self.params)
+        self.scene.title(&self.recipe.info, &self.params)
     }
 }
 
-/// Where a [`Shaded`] scene's camera and geometry come from.
-pub trait Stage: 'static {
+/// What a [`MaterialScene`] draws: the camera, the matrices and the mesh (the vertex stage's
+/// inputs), with their keys and mouse.
+pub trait Geometry: 'static {
     /// The vertices it draws.
     type Vertex: VertexType;
     /// Its keys and mouse; returns whether anything changed.
@@ -132,31 +153,21 @@ pub trait Stage: 'static {
     fn binds(&self) -> Vec<Bind> {
         Vec::new()
     }
-    /// The faces to draw this frame ([`Faces`]); `None` leaves the passes' own.
-    fn faces(&self, _p: &Params) -> Option<Faces> {
+    /// How the faces are culled this frame ([`Culling`]); `None` leaves the pairs' own.
+    fn culling(&self, _p: &Params) -> Option<Culling> {
         None
     }
     /// Writes its blocks for a `width` × `height` frame and returns the mesh to draw.
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Self::Vertex>;
-    /// Its part of the window title ([`Scene::status`]).
-    fn status(&self, _p: &Params) -> String {
-        String::new()
-    }
-}
-
-/// A fixed mesh and no matrices (2D labs drawn in clip space).
-pub struct Flat<V: VertexType>(pub GpuMesh<V>);
-
-impl<V: VertexType + 'static> Stage for Flat<V> {
-    type Vertex = V;
-    fn prepare(&mut self, _gpu: &Gpu, _p: &Params, _width: u32, _height: u32) -> &GpuMesh<V> {
-        &self.0
+    /// The window title ([`Scene::title`]).
+    fn title(&self, info: &LabInfo, p: &Params) -> String {
+        params_title(info, p)
     }
 }
 
 /// A shader pair and its fixed-function state.
 #[derive(Clone, Copy, Debug)]
-pub struct Pass {
+pub struct ShaderPair {
     /// Vertex shader file.
     pub vert: &'static str,
     /// Fragment shader file.
@@ -167,10 +178,10 @@ pub struct Pass {
     pub name: &'static str,
 }
 
-impl Pass {
+impl ShaderPair {
     /// `vert` + `frag` with GL's state and the depth test.
-    pub const fn new(vert: &'static str, frag: &'static str) -> Pass {
-        Pass {
+    pub const fn new(vert: &'static str, frag: &'static str) -> ShaderPair {
+        ShaderPair {
             vert,
             frag,
             state: RenderState::GL,
@@ -179,106 +190,114 @@ impl Pass {
     }
 
     /// With a name for labels and messages.
-    pub const fn named(self, name: &'static str) -> Pass {
-        Pass { name, ..self }
+    pub const fn named(self, name: &'static str) -> ShaderPair {
+        ShaderPair { name, ..self }
     }
 
     /// With another state.
-    pub const fn state(self, state: RenderState) -> Pass {
-        Pass { state, ..self }
+    pub const fn state(self, state: RenderState) -> ShaderPair {
+        ShaderPair { state, ..self }
     }
 }
 
-/// Which passes a frame draws.
+/// Which of a material's shader pairs a frame draws.
 #[derive(Clone, Copy, Debug)]
 pub enum Draw {
-    /// Every pass, in order.
+    /// Every pair, in order.
     All,
-    /// The pass the choice parameter names (`shading`: flat, Gouraud, Phong).
-    Pick(&'static str),
+    /// The pair the choice parameter names (`shading`: flat, Gouraud, Phong).
+    ChosenBy(&'static str),
 }
 
-/// Values a lab computes per frame for its uniform blocks.
-pub type Hook = fn(&Params, &mut Computed);
+/// Values a material derives from the parameters each frame for its uniform blocks (a time
+/// wrapped to its period, a light in eye space).
+pub type Derive = fn(&Params, &mut Derived);
 
-/// What a [`Shaded`] scene draws: passes, which of them, the per-frame hook and the clear
-/// colour.
-pub struct Look {
-    /// The passes.
-    pub passes: &'static [Pass],
+/// How a [`MaterialScene`] shades its geometry (three-d's and Bevy's material): its shader
+/// pairs, which of them a frame draws, the values it derives each frame, and the clear colour.
+pub struct Material {
+    /// The shader pairs.
+    pub passes: &'static [ShaderPair],
     /// Which to draw.
     pub draw: Draw,
-    /// Values computed per frame (`None`: every member is a parameter).
-    pub hook: Option<Hook>,
+    /// Values derived per frame (`None`: every member is a parameter).
+    pub derive: Option<Derive>,
     /// `glClearColor`.
     pub clear: [f64; 3],
 }
 
-impl Look {
-    /// Every pass drawn in order on black, every block member a parameter.
-    pub const fn new(passes: &'static [Pass]) -> Look {
-        Look {
+impl Material {
+    /// Every pair drawn in order on black, every block member a parameter.
+    pub const fn new(passes: &'static [ShaderPair]) -> Material {
+        Material {
             passes,
             draw: Draw::All,
-            hook: None,
+            derive: None,
             clear: [0.0; 3],
         }
     }
 
-    /// With values computed per frame.
-    pub const fn hook(self, hook: Hook) -> Look {
-        Look {
-            hook: Some(hook),
+    /// With values derived per frame.
+    pub const fn derive(self, derive: Derive) -> Material {
+        Material {
+            derive: Some(derive),
             ..self
         }
     }
 
-    /// Drawing only the pass the choice `param` names.
-    pub const fn pick(self, param: &'static str) -> Look {
-        Look {
-            draw: Draw::Pick(param),
+    /// Drawing only the pair the choice `param` names.
+    pub const fn chosen_by(self, param: &'static str) -> Material {
+        Material {
+            draw: Draw::ChosenBy(param),
             ..self
         }
     }
 }
 
-/// A stage drawn by passes whose uniform blocks are the stage's, the lab's own resources
-/// (textures) or, for every other block, a [`ParamBlock`] filled by name.
-pub struct Shaded<S: Stage> {
-    label: String,
-    stage: S,
-    look: &'static Look,
-    programs: Vec<Program<S::Vertex>>,
+/// A [`Geometry`] drawn with a [`Material`] (three-d's `Gm`): the material's uniform blocks are
+/// the geometry's, the lab's own resources (textures) or, for every other block, a
+/// [`ParamBlock`] filled from the parameters by name.
+pub struct MaterialScene<G: Geometry> {
+    label: &'static str,
+    geometry: G,
+    material: &'static Material,
+    programs: Vec<Program<G::Vertex>>,
     blocks: Vec<ParamBlock>,
-    computed: Computed,
+    derived: Derived,
 }
 
-impl<S: Stage> Shaded<S> {
-    /// Compiles the passes and binds them: the stage's blocks, `own` resources, and a
+impl<G: Geometry> MaterialScene<G> {
+    /// Compiles the material's pairs and binds them: the geometry's blocks, and a
     /// [`ParamBlock`] for every other uniform block the shaders declare.
-    pub fn build(
+    pub fn build(cx: &BuildContext, p: &Params, geometry: G, material: &'static Material) -> Result<Box<dyn Scene>> {
+        Self::build_with(cx, p, geometry, material, Vec::new())
+    }
+
+    /// [`MaterialScene::build`] with the lab's own resources (`own`: textures, samplers,
+    /// blocks it fills itself) bound by name too.
+    pub fn build_with(
         cx: &BuildContext,
-        name: &str,
         p: &Params,
-        stage: S,
-        look: &'static Look,
+        geometry: G,
+        material: &'static Material,
         own: Vec<Bind>,
     ) -> Result<Box<dyn Scene>> {
-        let mut computed = Computed::default();
-        if let Some(hook) = look.hook {
-            hook(p, &mut computed);
+        let name = cx.lab;
+        let mut derived = Derived::default();
+        if let Some(derive) = material.derive {
+            derive(p, &mut derived);
         }
         let mut programs = Vec::new();
         let mut blocks: Vec<ParamBlock> = Vec::new();
-        let mut given = stage.binds();
+        let mut given = geometry.binds();
         given.extend(own);
-        for (i, pass) in look.passes.iter().enumerate() {
-            let label = match (look.passes.len(), pass.name) {
+        for (i, pair) in material.passes.iter().enumerate() {
+            let label = match (material.passes.len(), pair.name) {
                 (1, _) => name.to_owned(),
                 (_, "") => format!("{name}.{i}"),
-                (_, pass) => format!("{name}.{pass}"),
+                (_, pair) => format!("{name}.{pair}"),
             };
-            let mut program = Program::new(cx, &label, pass.vert, pass.frag, pass.state)?;
+            let mut program = Program::new(cx, &label, pair.vert, pair.frag, pair.state)?;
             let mut binds = Vec::new();
             for b in program.bindings() {
                 if let Some(g) = given.iter().find(|g| g.name == b.name) {
@@ -296,7 +315,7 @@ impl<S: Stage> Shaded<S> {
                         &format!("{name}.{}", b.name),
                         layout,
                         p,
-                        &computed,
+                        &derived,
                     )?);
                 }
                 binds.extend(blocks.iter().filter(|k| k.name() == b.name).map(ParamBlock::bind));
@@ -304,50 +323,50 @@ impl<S: Stage> Shaded<S> {
             program.bind(cx.gpu, binds)?;
             programs.push(program);
         }
-        Ok(Box::new(Shaded {
-            label: name.to_owned(),
-            stage,
-            look,
+        Ok(Box::new(MaterialScene {
+            label: name,
+            geometry,
+            material,
             programs,
             blocks,
-            computed,
+            derived,
         }))
     }
 }
 
-impl<S: Stage> Scene for Shaded<S> {
+impl<G: Geometry> Scene for MaterialScene<G> {
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.stage.input(p, input)
+        self.geometry.input(p, input)
     }
     fn programs(&mut self) -> Vec<&mut dyn AnyProgram> {
         self.programs.iter_mut().map(|p| p as &mut dyn AnyProgram).collect()
     }
-    fn status(&self, p: &Params) -> String {
-        self.stage.status(p)
+    fn title(&self, info: &LabInfo, p: &Params) -> String {
+        self.geometry.title(info, p)
     }
     fn render(&mut self, p: &Params, frame: &mut Frame<'_>) -> Result<()> {
-        if let Some(hook) = self.look.hook {
-            hook(p, &mut self.computed);
+        if let Some(derive) = self.material.derive {
+            derive(p, &mut self.derived);
         }
         for block in &mut self.blocks {
-            block.fill(p, &self.computed)?;
+            block.fill(p, &self.derived)?;
             block.upload(frame.gpu);
         }
-        let which = match self.look.draw {
+        let which = match self.material.draw {
             Draw::All => 0..self.programs.len(),
-            Draw::Pick(choice) => {
+            Draw::ChosenBy(choice) => {
                 let i = p.index_of(choice).min(self.programs.len() - 1);
                 i..i + 1
             }
         };
-        if let Some(faces) = self.stage.faces(p) {
+        if let Some(culling) = self.geometry.culling(p) {
             for program in &mut self.programs[which.clone()] {
-                program.set_faces(frame.gpu, faces)?;
+                program.set_culling(frame.gpu, culling)?;
             }
         }
-        let mesh = self.stage.prepare(frame.gpu, p, frame.width, frame.height);
-        let [r, g, b] = self.look.clear;
-        let mut pass = frame.pass(&self.label, Load::Clear([r, g, b]));
+        let mesh = self.geometry.prepare(frame.gpu, p, frame.width, frame.height);
+        let [r, g, b] = self.material.clear;
+        let mut pass = frame.pass(self.label, Load::Clear([r, g, b]));
         for program in &self.programs[which] {
             program.draw(&mut pass, mesh);
         }

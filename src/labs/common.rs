@@ -6,7 +6,7 @@ use glam::{Mat3, Mat4};
 use crate::camera;
 use crate::lab::Input;
 use crate::params::{ParamSpec, Params};
-use crate::render::Faces;
+use crate::render::Culling;
 use crate::tess::Object;
 
 /// The shared transform block of `transform.glsl`: the GL 2.0 built-in matrices.
@@ -90,11 +90,11 @@ impl GlutMouse {
                     *ym = y;
                 }
                 // Keep angles bounded (a long drag session must not lose float precision).
-                params.put("xangle", &[f64::from(angles[0].rem_euclid(360.0))]);
-                params.put("yangle", &[f64::from(angles[1].rem_euclid(360.0))]);
+                params.set_unchecked("xangle", &[f64::from(angles[0].rem_euclid(360.0))]);
+                params.set_unchecked("yangle", &[f64::from(angles[1].rem_euclid(360.0))]);
                 if params.has("zangle") {
                     let z = params.f("zangle").rem_euclid(360.0);
-                    params.put("zangle", &[f64::from(z)]);
+                    params.set_unchecked("zangle", &[f64::from(z)]);
                 }
                 true
             }
@@ -123,7 +123,7 @@ pub const YANGLE: ParamSpec = ParamSpec::real(
 
 /// The port's face order (`--set faces=...`), for the labs that draw a solid with the depth
 /// test: `auto` is the lab's measured choice, `mesh` GL's mesh order, `outside_first` the
-/// outside faces first and then the others in two draws ([`Faces::OutsideFirst`]),
+/// outside faces first and then the others in two draws ([`Culling::OutsideFirst`]),
 /// `facing_first` one draw of the triangles reordered for the view, those facing the eye first
 /// ([`crate::render::facing_first`]). All give the same pixels except at exact depth ties
 /// (tests/faces.rs); the last two shade fewer fragments.
@@ -140,7 +140,7 @@ pub const FACES: ParamSpec = ParamSpec::choice(
 pub enum FaceOrder {
     /// GL's: the mesh's order.
     Mesh,
-    /// Two draws: the faces wound as the outside, then the others ([`Faces::OutsideFirst`]).
+    /// Two draws: the faces wound as the outside, then the others ([`Culling::OutsideFirst`]).
     OutsideFirst,
     /// One draw, the triangles facing the eye first for the view ([`crate::render::ViewOrdered`]).
     FacingFirst,
@@ -161,10 +161,10 @@ impl FaceOrder {
     /// What the programs draw for this order, `winding` being how the solid's outside faces
     /// are wound: two culled draws for [`FaceOrder::OutsideFirst`], every face once otherwise
     /// (facing-first is an order of the mesh's indices, not of the programs).
-    pub fn faces(self, winding: wgpu::FrontFace) -> Faces {
+    pub fn culling(self, winding: wgpu::FrontFace) -> Culling {
         match self {
-            FaceOrder::OutsideFirst => Faces::OutsideFirst(winding),
-            FaceOrder::Mesh | FaceOrder::FacingFirst => Faces::AsStated,
+            FaceOrder::OutsideFirst => Culling::OutsideFirst(winding),
+            FaceOrder::Mesh | FaceOrder::FacingFirst => Culling::AsStated,
         }
     }
 }

@@ -200,7 +200,7 @@ impl<V: VertexType> GpuMesh<V> {
 /// With `GL_LESS` the nearest fragment wins whatever the order, except at exact depth ties, so
 /// this draws the same pixels as mesh order but at ties, while the faces turned away arrive
 /// after the ones in front of them and fail the early depth test instead of being shaded. It
-/// is one draw, where [`Faces::OutsideFirst`](super::Faces) draws the mesh twice (its vertices
+/// is one draw, where [`Culling::OutsideFirst`](super::Culling) draws the mesh twice (its vertices
 /// shaded twice). A triangle with a corner at or behind the eye (w ≤ 0) counts as turned away.
 /// Ties are what [`TieGuard`] is for: without one (`None`) a tie at the silhouette or where the
 /// surface passes through itself can settle differently from mesh order (1 px in a few views of

@@ -8,7 +8,9 @@ use crate::gpu::Gpu;
 use crate::shader::ShaderSource;
 
 /// What programs, textures and labs are built with: the device, where shader files come from,
-/// the colour format drawn into and the user's files.
+/// the colour format drawn into, the user's files, and the name of the lab being built (the
+/// prefix of its GPU objects' labels; set by [`crate::lab::Runner`] from the lab's registration).
+#[derive(Clone, Copy)]
 pub struct BuildContext<'a> {
     /// The device.
     pub gpu: &'a Gpu,
@@ -18,6 +20,8 @@ pub struct BuildContext<'a> {
     pub format: wgpu::TextureFormat,
     /// Files the user named for the lab to draw instead of its built-in data.
     pub files: &'a crate::user_files::UserFiles,
+    /// The lab's name, for labels (empty outside a lab).
+    pub lab: &'static str,
 }
 
 mod frame;
@@ -32,9 +36,9 @@ pub use mesh::{
     check_fits, facing_first, note_once, GpuMesh, TieGuard, VertexAttr, VertexType, ViewOrdered, LARGE_MESH_TRIANGLES,
     SORT_EVERY_FRAME,
 };
-pub use param_block::{Computed, ParamBlock};
+pub use param_block::{Derived, ParamBlock};
 pub use program::{
-    reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Faces, Program, RenderState,
+    reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Culling, Program, RenderState,
     Resource, VertexInput,
 };
 pub use texture::{check_texture_size, sampler, SamplerDesc, Texture};

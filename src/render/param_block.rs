@@ -1,6 +1,6 @@
 //! A uniform block with no Rust struct: its bytes are laid out by the block naga reflected and
 //! filled by GLSL member name, from the lab's [`Params`] or from values the lab computes each
-//! frame ([`Computed`]). A parameter that feeds a uniform is then declared once, as its
+//! frame ([`Derived`]). A parameter that feeds a uniform is then declared once, as its
 //! [`ParamSpec`](crate::params::ParamSpec); a typed struct ([`Uniforms`](super::Uniforms))
 //! stays only where Rust computes the whole block (matrices).
 
@@ -14,11 +14,11 @@ use super::program::{Bind, Resource};
 /// Values a lab computes per frame for members no parameter feeds as is (a wrapped clock,
 /// `Ka` = (ka, ka, ka, 1)), by GLSL member name; they win over a parameter of the same name.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Computed {
+pub struct Derived {
     values: Vec<(&'static str, Vec<f32>)>,
 }
 
-impl Computed {
+impl Derived {
     /// Sets member `name` to `values`.
     pub fn set(&mut self, name: &'static str, values: &[f32]) {
         match self.values.iter_mut().find(|(n, _)| *n == name) {
@@ -49,7 +49,7 @@ impl ParamBlock {
     /// A buffer for `layout`, checking that every member is fed: by a parameter of the same
     /// name with as many values, or by a computed value (`computed` holds the names the lab
     /// computes, with example values).
-    pub fn new(gpu: &Gpu, label: &str, layout: &BlockLayout, params: &Params, computed: &Computed) -> Result<Self> {
+    pub fn new(gpu: &Gpu, label: &str, layout: &BlockLayout, params: &Params, computed: &Derived) -> Result<Self> {
         let mut block = ParamBlock {
             layout: layout.clone(),
             bytes: vec![0; layout.size.max(16)],
@@ -73,7 +73,7 @@ impl ParamBlock {
 
     /// Writes every member from `computed` or `params`, by name; fails naming the member no
     /// value feeds, or one whose value has the wrong number of components.
-    pub fn fill(&mut self, params: &Params, computed: &Computed) -> Result<()> {
+    pub fn fill(&mut self, params: &Params, computed: &Derived) -> Result<()> {
         let mut scratch: Vec<f32> = Vec::new();
         for member in &self.layout.members {
             let values: &[f32] = match (computed.get(&member.name), params.get(&member.name)) {

@@ -21,7 +21,7 @@ use super::mesh::{GpuMesh, VertexType};
 pub struct RenderState {
     /// Primitive type (`GL_TRIANGLES`, `GL_TRIANGLE_STRIP`, `GL_POINTS`).
     pub topology: wgpu::PrimitiveTopology,
-    /// Faces culled (GL: off unless `GL_CULL_FACE`).
+    /// Culling culled (GL: off unless `GL_CULL_FACE`).
     pub cull_mode: Option<wgpu::Face>,
     /// Which winding is the front (GL's default: counter-clockwise).
     pub front_face: wgpu::FrontFace,
@@ -29,13 +29,13 @@ pub struct RenderState {
     pub depth_test: bool,
     /// Blending (none in the labs).
     pub blend: Option<wgpu::BlendState>,
-    /// Which faces a draw covers and in which order (triangles only; see [`Faces`]).
-    pub faces: Faces,
+    /// Which faces a draw covers and in which order (triangles only; see [`Culling`]).
+    pub faces: Culling,
 }
 
 /// Which faces of a triangle mesh a program draws, and in which order.
 ///
-/// [`Faces::OutsideFirst`] is a speed-up that keeps every pixel: with the depth test
+/// [`Culling::OutsideFirst`] is a speed-up that keeps every pixel: with the depth test
 /// (`GL_LESS`) the colour a pixel ends with is that of the nearest fragment whatever order the
 /// triangles are drawn in, except at exact depth ties, where the first one drawn wins. Drawn
 /// outside (viewer-facing) faces first, the inside faces they hide fail the early depth test
@@ -48,7 +48,7 @@ pub struct RenderState {
 /// GLUT's cube, sphere and torus are counter-clockwise ([`wgpu::FrontFace::Ccw`]), its teapot
 /// clockwise ([`wgpu::FrontFace::Cw`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Faces {
+pub enum Culling {
     /// Every face in mesh order, culled as [`RenderState::cull_mode`] says (GL's way).
     #[default]
     AsStated,
@@ -77,7 +77,7 @@ impl RenderState {
         front_face: wgpu::FrontFace::Ccw,
         depth_test: true,
         blend: None,
-        faces: Faces::AsStated,
+        faces: Culling::AsStated,
     };
 
     /// With another topology.
@@ -93,9 +93,9 @@ impl RenderState {
         }
     }
 
-    /// With another choice of faces (see [`Faces`]).
-    pub const fn faces(self, faces: Faces) -> Self {
-        RenderState { faces, ..self }
+    /// With another choice of faces (see [`Culling`]).
+    pub const fn culling(self, culling: Culling) -> Self {
+        RenderState { faces: culling, ..self }
     }
 
     /// The culling of each draw, in order, that `faces` asks for with this state.
@@ -115,10 +115,10 @@ impl RenderState {
             wgpu::Face::Front => wgpu::Face::Back,
         };
         match self.faces {
-            Faces::OutsideFirst(w) if triangles && self.cull_mode.is_none() && self.depth_test => {
+            Culling::OutsideFirst(w) if triangles && self.cull_mode.is_none() && self.depth_test => {
                 vec![Some(keep(w)), Some(other(keep(w)))]
             }
-            Faces::OutsideOnly(w) if triangles => vec![Some(keep(w))],
+            Culling::OutsideOnly(w) if triangles => vec![Some(keep(w))],
             _ => vec![self.cull_mode],
         }
     }
@@ -445,7 +445,7 @@ struct Built {
     fragment: CompiledShader,
     bindings: Vec<BindingInfo>,
     bind_group_layout: wgpu::BindGroupLayout,
-    stages: Stages,
+    stages: CompiledShaders,
     /// Every pipeline built so far, by culling (a program switches between them).
     cache: PipelineCache,
     /// Drawn in order, one per culling of [`RenderState::culls`].
@@ -453,7 +453,7 @@ struct Built {
 }
 
 /// What pipelines are made of, kept to make them again with other culling.
-struct Stages {
+struct CompiledShaders {
     layout: wgpu::PipelineLayout,
     attributes: Vec<wgpu::VertexAttribute>,
     vs: wgpu::ShaderModule,
@@ -641,7 +641,7 @@ impl<V: VertexType> Program<V> {
         fs: wgpu::ShaderModule,
         state: RenderState,
         format: wgpu::TextureFormat,
-    ) -> Result<(wgpu::BindGroupLayout, Stages, PipelineCache)> {
+    ) -> Result<(wgpu::BindGroupLayout, CompiledShaders, PipelineCache)> {
         let device = &gpu.device;
         let entries: Vec<_> = bindings.iter().map(layout_entry).collect();
         gpu.checked(label, || {
@@ -654,7 +654,7 @@ impl<V: VertexType> Program<V> {
                 bind_group_layouts: &[Some(&bind_group_layout)],
                 immediate_size: 0,
             });
-            let stages = Stages {
+            let stages = CompiledShaders {
                 layout,
                 attributes,
                 vs,
@@ -670,7 +670,7 @@ impl<V: VertexType> Program<V> {
     fn make_pipelines(
         gpu: &Gpu,
         label: &str,
-        stages: &Stages,
+        stages: &CompiledShaders,
         state: RenderState,
         format: wgpu::TextureFormat,
         cache: &[(Option<wgpu::Face>, wgpu::RenderPipeline)],
@@ -745,12 +745,12 @@ impl<V: VertexType> Program<V> {
             .collect()
     }
 
-    /// Switches which faces are drawn (see [`Faces`]); builds the pipelines it needs, if any.
-    pub fn set_faces(&mut self, gpu: &Gpu, faces: Faces) -> Result<()> {
+    /// Switches which faces are drawn (see [`Culling`]); builds the pipelines it needs, if any.
+    pub fn set_culling(&mut self, gpu: &Gpu, faces: Culling) -> Result<()> {
         if self.state.faces == faces {
             return Ok(());
         }
-        let state = self.state.faces(faces);
+        let state = self.state.culling(faces);
         let built = &mut self.built;
         let new = gpu.checked(&self.label, || {
             Self::make_pipelines(gpu, &self.label, &built.stages, state, self.format, &built.cache)
@@ -761,8 +761,8 @@ impl<V: VertexType> Program<V> {
         Ok(())
     }
 
-    /// The faces drawn (see [`Faces`]).
-    pub fn faces(&self) -> Faces {
+    /// The faces drawn (see [`Culling`]).
+    pub fn culling(&self) -> Culling {
         self.state.faces
     }
 
@@ -939,7 +939,7 @@ impl<V: VertexType> Program<V> {
     }
 
     /// Draws `range` of `mesh`'s vertices (or indices): once, or front faces then back faces
-    /// (see [`Faces`]).
+    /// (see [`Culling`]).
     pub fn draw_range(&self, pass: &mut wgpu::RenderPass<'_>, mesh: &GpuMesh<V>, range: std::ops::Range<u32>) {
         for pipeline in &self.built.pipelines {
             pass.set_pipeline(pipeline);

@@ -212,7 +212,10 @@ impl Args {
         );
         let command = Args::command()
             .name(info.name)
-            .about(format!("{} {} ({}), on wgpu", info.title, info.label, info.lecture))
+            .about(format!(
+                "{} {} ({}), on wgpu",
+                info.original_title, info.label, info.lecture
+            ))
             .after_help(after)
             .mut_arg("files", |a| match file_args {
                 Some(f) => a.value_names(f.names.iter().copied()).num_args(0..=f.names.len()),

@@ -60,7 +60,8 @@ impl Clock {
         if self.last.is_some_and(|t| t != current) {
             self.offset = current - now * self.scale;
         }
-        lab.params_mut().put("time", &[self.offset + now * self.scale]);
+        lab.params_mut()
+            .set_unchecked("time", &[self.offset + now * self.scale]);
         self.last = Some(lab.params().f64("time"));
     }
 
@@ -115,7 +116,7 @@ mod tests {
 
     fn lab(time: f64) -> Clocked {
         let mut p = Params::new(&[ParamSpec::real("time", &[0.0], 0.0, 1e9, "seconds")]);
-        p.put("time", &[time]);
+        p.set_unchecked("time", &[time]);
         Clocked(p)
     }
 
@@ -148,7 +149,7 @@ mod tests {
         let mut lab = lab(0.0);
         let mut clock = Clock::new(&lab, 0.0, 1.0);
         clock.tick(&mut lab, 1.0);
-        lab.params_mut().put("time", &[10.0]);
+        lab.params_mut().set_unchecked("time", &[10.0]);
         clock.tick(&mut lab, 1.0);
         assert_eq!(lab.params().f64("time"), 10.0);
         clock.tick(&mut lab, 2.0);

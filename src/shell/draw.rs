@@ -13,7 +13,14 @@ pub fn render_into(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen) -> Result<(
         label: Some("shaderlab.frame"),
     });
     gpu.checked(&format!("{}.render", lab.info().name), || {
-        lab.render(&mut Frame::new(gpu, &mut encoder, &target.color, &target.depth, target.width, target.height))
+        lab.render(&mut Frame::new(
+            gpu,
+            &mut encoder,
+            &target.color,
+            &target.depth,
+            target.width,
+            target.height,
+        ))
     })??;
     gpu.queue.submit([encoder.finish()]);
     if let Some(e) = lab.take_error() {
@@ -28,4 +35,3 @@ pub fn screenshot(gpu: &Gpu, lab: &mut dyn Lab, width: u32, height: u32) -> Resu
     render_into(gpu, lab, &target)?;
     target.read(gpu)
 }
-

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Lab, BuildContext, LabEntry, UserFiles};
+use crate::lab::{BuildContext, Lab, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
@@ -47,6 +47,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         source: &source,
         format: COLOR_FORMAT,
         files,
+        lab: "",
     };
     let mut lab = (entry.new)(&cx)?;
     *lab.params_mut() = params;
@@ -205,7 +206,7 @@ pub fn bench(
     for frame in 0..frames {
         if animated {
             let t = lab.params().f64("time") + 1.0 / 60.0;
-            lab.params_mut().put("time", &[t]);
+            lab.params_mut().set_unchecked("time", &[t]);
         }
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("bench.encoder"),

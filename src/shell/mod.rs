@@ -15,18 +15,18 @@
 mod args;
 #[cfg(not(target_arch = "wasm32"))]
 mod capture;
+pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
 mod draw;
-pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod panel;
-pub mod session;
-pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod record;
+pub mod session;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
+pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod tools;
 #[cfg(target_arch = "wasm32")]

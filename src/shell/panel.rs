@@ -172,7 +172,7 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
     let info = lab.info();
     let mut changed = false;
     let mut request = None;
-    ui.heading(format!("{} {}", info.title, info.label));
+    ui.heading(format!("{} {}", info.original_title, info.label));
     ui.label(format!("{} · {}", info.lecture, info.name));
     ui.label(match status.frame_ms {
         Some(ms) => format!("{ms:.1} ms/frame · {:.0} FPS", 1000.0 / ms.max(1e-3)),

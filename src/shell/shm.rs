@@ -30,8 +30,8 @@ use x11rb::protocol::shm::{self, ConnectionExt as _};
 use x11rb::protocol::xproto::{self, ConnectionExt as _};
 use x11rb::rust_connection::RustConnection;
 
-use crate::gpu::Gpu;
 use crate::gpu::targets::{copyable_color, depth_texture, padded_row, readback_buffer};
+use crate::gpu::Gpu;
 
 /// The colour format the presenter draws in: bytes B, G, R, A, which is a little-endian X
 /// server's 32-bit pixel `0x00RRGGBB` for a 24-bit TrueColor visual.

@@ -111,7 +111,7 @@ pub fn labs() -> String {
             format!(
                 "{{\"name\":{},\"title\":{},\"label\":{},\"lecture\":{},\"width\":{},\"height\":{},\"keys\":{}}}",
                 json(i.name),
-                json(i.title),
+                json(i.original_title),
                 json(i.label),
                 json(i.lecture),
                 i.size.0,
@@ -283,6 +283,7 @@ impl WebApp {
             source: &source,
             format: self.config.format,
             files: &self.files,
+            lab: "",
         };
         let lab = (entry.new)(&cx).map_err(js_error)?;
         let (width, height) = entry.info.size;
@@ -301,10 +302,7 @@ impl WebApp {
 
     /// The open lab's name.
     pub fn lab(&self) -> String {
-        self.open
-            .as_ref()
-            .map(|o| o.name().to_owned())
-            .unwrap_or_default()
+        self.open.as_ref().map(|o| o.name().to_owned()).unwrap_or_default()
     }
 
     /// The window title of the native shell: the original's, then the state.
@@ -451,11 +449,7 @@ impl WebApp {
     /// Sets a parameter from text, as `--set name=value`; returns the refusal ("" when set).
     pub fn set(&mut self, name: &str, value: &str) -> String {
         match self.open.as_mut() {
-            Some(open) => open
-                .set(name, value)
-                .err()
-                .map(|e| e.to_string())
-                .unwrap_or_default(),
+            Some(open) => open.set(name, value).err().map(|e| e.to_string()).unwrap_or_default(),
             None => "no lab is open".into(),
         }
     }
@@ -683,6 +677,7 @@ impl WebApp {
             source: &source,
             format: self.config.format,
             files: &self.files,
+            lab: "",
         };
         open.reload(&cx).err().map(|e| e.to_string()).unwrap_or_default()
     }

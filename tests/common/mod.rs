@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 
 use glam::Vec3;
 use image::RgbImage;
-use shaderlab::lab::{Input, Lab, BuildContext, LabEntry};
+use shaderlab::lab::{BuildContext, Input, Lab, LabEntry};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
 use shaderlab::{Gpu, Object};
@@ -100,6 +100,7 @@ impl TestLab {
             source: &self.source,
             format: self.format,
             files: &shaderlab::lab::NO_FILES,
+            lab: "",
         };
         self.lab.reload(&cx)
     }
@@ -137,6 +138,7 @@ pub fn lab_with(entry: &LabEntry, source: &ShaderSource, format: wgpu::TextureFo
         source,
         format,
         files: &shaderlab::lab::NO_FILES,
+        lab: "",
     };
     TestLab {
         lab: (entry.new)(&cx).expect("lab builds"),

@@ -16,7 +16,7 @@ use crate::camera;
 use crate::error::{Error, Result};
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Input, Lab, BuildContext, LabEntry, LabInfo, UserFiles};
+use crate::lab::{BuildContext, FilesTaken, Input, Lab, LabEntry, LabInfo, UserFiles};
 use crate::legacy::{self, state, LegacySource, SamplerDim, Translation, STATE_BLOCK, UNIFORM_BLOCK};
 use crate::params::{FileArgs, ParamSpec, Params};
 use crate::render::{
@@ -25,12 +25,12 @@ use crate::render::{
 use crate::shader::{CompiledShader, ShaderSource};
 use crate::tess::{self, Object};
 
-use crate::labs::seed000::stage::{GlutStage, StageConfig, PARAMS_000};
+use crate::labs::seed000::stage::{GlutGeometry, StageConfig, PARAMS_000};
 
 /// The lab.
 pub static INFO: LabInfo = LabInfo {
     name: "legacy",
-    title: "legacy",
+    original_title: "legacy",
     label: "GLSL 1.10 shaders",
     lecture: "any course's GLSL 1.10/1.20 shaders",
     size: (640, 360),
@@ -203,7 +203,7 @@ struct Bound {
 
 struct LegacyLab {
     params: Params,
-    stage: GlutStage,
+    stage: GlutGeometry,
     files: Vec<PathBuf>,
     user_files: UserFiles,
     program: Program<LegacyVertex>,
@@ -353,7 +353,7 @@ fn new(cx: &BuildContext) -> Result<Box<dyn Lab>> {
     }
     let mut program = Program::from_shaders(cx.gpu, "legacy", vs, fs, RenderState::default(), cx.format)?;
     program.bind(cx.gpu, binds)?;
-    let stage = GlutStage::new(
+    let stage = GlutGeometry::new(
         cx.gpu,
         "legacy",
         StageConfig {
@@ -518,7 +518,7 @@ impl Lab for LegacyLab {
             .collect();
         let mut title = format!(
             "{} {} | {} | {}",
-            INFO.title,
+            INFO.original_title,
             self.title,
             p.text("object"),
             changed.join(" ")
@@ -538,7 +538,7 @@ impl Lab for LegacyLab {
         for spec in self.params.specs() {
             if let (true, Some(v)) = (params.has(spec.name), self.params.get(spec.name)) {
                 if params.get(spec.name).is_some_and(|d| d.len() == v.len()) {
-                    params.put(spec.name, v);
+                    params.set_unchecked(spec.name, v);
                 }
             }
         }

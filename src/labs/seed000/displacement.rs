@@ -6,16 +6,16 @@
 //! closes the cracks. Keys: `[`/`]` displacement ∓0.01 (clamped to [0, 1]), `R/r G/g B/b` ±0.05
 //! on the shade, `1`-`4` objects, mouse drag rotates, Space pauses the clock.
 
-use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, LabInfo, Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
 use crate::params::{ParamSpec, Params};
-use crate::render::Computed;
+use crate::render::Derived;
 use crate::tess::Object;
 
 use crate::labs::seed000::stage::{title_000, Solid, PARAMS_000};
 use crate::labs::seed000::{noise_time, NOISE_PARAMS, SHADE_KEYS};
 
-/// The face order by object ([`GlutStage::face_order`](super::stage::GlutStage::face_order):
+/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order):
 /// same pixels, fewer fragments shaded). Measured (7 alternating pairs, wall time of the new
 /// order over the old): issue 14's `outside_first` against mesh order, torus 0.93, cube 1.02,
 /// sphere 1.02, teapot 1.00 (the vertex shader, noise per vertex, is dear, so a second pass over
@@ -34,14 +34,14 @@ const KEYS: &[KeyRow] = &[
 
 /// Exercise 5: the `DisplacementParams` block's `shade` and `displacement` are parameters, its
 /// `time` the wrapped clock; `smooth` is the stage's ([`Solid`]).
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "displacement",
         "Lab05-5",
         "displacement",
         Keys::rows(KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
     ),
-    params: &[
+    &[
         &[
             ParamSpec::real(
                 "shade",
@@ -66,22 +66,24 @@ pub static RECIPE: Recipe = Recipe {
         NOISE_PARAMS,
         PARAMS_000,
     ],
-    animated: true,
-    title: Some(|info, p| {
-        let [r, g, b] = p.v3("shade");
-        let summary = format!(
-            "displacement {:.2} shade ({r:.2},{g:.2},{b:.2}) time {:.1}",
-            p.f("displacement"),
-            noise_time(p)
-        );
-        let smooth = if p.on("smooth") { " | smooth" } else { "" };
-        title_000(info, p, &summary, "") + smooth
-    }),
-    build: |cx, p| {
-        let stage = Solid::new(cx.gpu, "displacement", AUTO);
-        Shaded::build(cx, "displacement", p, stage, &LOOK, Vec::new())
+    |cx, p| {
+        let stage = Solid::new(cx.gpu, "displacement", AUTO).titled(title);
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+)
+.animated();
 
-static LOOK: Look = Look::new(&[Pass::new("displacement.vert", "displacement.frag")])
-    .hook(|p: &Params, c: &mut Computed| c.set("time", &[noise_time(p)]));
+static MATERIAL: Material = Material::new(&[ShaderPair::new("displacement.vert", "displacement.frag")])
+    .derive(|p: &Params, c: &mut Derived| c.set("time", &[noise_time(p)]));
+
+/// The original's title: its state summary.
+fn title(info: &LabInfo, p: &Params) -> String {
+    let [r, g, b] = p.v3("shade");
+    let summary = format!(
+        "displacement {:.2} shade ({r:.2},{g:.2},{b:.2}) time {:.1}",
+        p.f("displacement"),
+        noise_time(p)
+    );
+    let smooth = if p.on("smooth") { " | smooth" } else { "" };
+    title_000(info, p, &summary, "") + smooth
+}

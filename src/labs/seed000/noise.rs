@@ -3,16 +3,16 @@
 //! with a clock in seconds. Keys: `R/r G/g B/b` ±0.05 on the shade colour (clamped to [0, 1]),
 //! `1`-`4` objects, mouse drag rotates, Space pauses the clock.
 
-use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, LabInfo, Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
 use crate::params::{ParamSpec, Params};
-use crate::render::Computed;
+use crate::render::Derived;
 use crate::tess::Object;
 
 use crate::labs::seed000::stage::{title_000, Solid, PARAMS_000};
 use crate::labs::seed000::{noise_time, NOISE_PARAMS, SHADE_KEYS};
 
-/// The face order by object ([`GlutStage::face_order`](super::stage::GlutStage::face_order):
+/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order):
 /// same pixels, fewer fragments shaded). Measured (7 alternating pairs, wall time of the new
 /// order over the old): issue 14's `outside_first` against mesh order, torus 0.73, teapot 0.92,
 /// sphere 1.00 and cube 0.95 within the noise; issue 22's `facing_first` against outside_first
@@ -24,14 +24,14 @@ const AUTO: &[(Object, FaceOrder)] = &[
 ];
 
 /// Exercise 4: the `NoiseParams` block's `shade` is a parameter, its `time` the wrapped clock.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "noise",
         "Lab05-4",
         "simplex noise",
         Keys::rows(SHADE_KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
     ),
-    params: &[
+    &[
         &[ParamSpec::real(
             "shade",
             &[1.0, 1.0, 1.0],
@@ -42,18 +42,20 @@ pub static RECIPE: Recipe = Recipe {
         NOISE_PARAMS,
         PARAMS_000,
     ],
-    animated: true,
-    title: Some(|info, p| {
-        let [r, g, b] = p.v3("shade");
-        title_000(
-            info,
-            p,
-            &format!("shade ({r:.2},{g:.2},{b:.2}) time {:.1}", noise_time(p)),
-            "",
-        )
-    }),
-    build: |cx, p| Shaded::build(cx, "noise", p, Solid::new(cx.gpu, "noise", AUTO), &LOOK, Vec::new()),
-};
+    |cx, p| MaterialScene::build(cx, p, Solid::new(cx.gpu, "noise", AUTO).titled(title), &MATERIAL),
+)
+.animated();
 
-static LOOK: Look = Look::new(&[Pass::new("noise.vert", "noise.frag")])
-    .hook(|p: &Params, c: &mut Computed| c.set("time", &[noise_time(p)]));
+static MATERIAL: Material = Material::new(&[ShaderPair::new("noise.vert", "noise.frag")])
+    .derive(|p: &Params, c: &mut Derived| c.set("time", &[noise_time(p)]));
+
+/// The original's title: its state summary.
+fn title(info: &LabInfo, p: &Params) -> String {
+    let [r, g, b] = p.v3("shade");
+    title_000(
+        info,
+        p,
+        &format!("shade ({r:.2},{g:.2},{b:.2}) time {:.1}", noise_time(p)),
+        "",
+    )
+}

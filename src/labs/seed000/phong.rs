@@ -16,16 +16,16 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
-use crate::lab::{Input, Key::C, KeyRow, Keys, Lab, BuildContext, LabEntry, LabInfo};
+use crate::lab::{BuildContext, Input, Key::C, KeyRow, Keys, Lab, LabEntry, LabInfo};
 use crate::labs::common::FaceOrder;
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
-use crate::render::{AnyProgram, Computed, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, Uniforms};
+use crate::render::{AnyProgram, Derived, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, Uniforms};
 use crate::shader::ShaderSource;
 use crate::tess::Object;
 
 use crate::labs::common::TransformUniforms;
-use crate::labs::seed000::stage::{title_000, GlutStage, StageConfig, PARAMS_000};
+use crate::labs::seed000::stage::{title_000, GlutGeometry, StageConfig, PARAMS_000};
 
 /// Exercise 3.
 pub static INFO: LabInfo = super::info(
@@ -38,7 +38,7 @@ pub static INFO: LabInfo = super::info(
     ),
 );
 
-/// The face order by object ([`GlutStage::face_order`]: same pixels, fewer fragments shaded).
+/// The face order by object ([`GlutGeometry::face_order`]: same pixels, fewer fragments shaded).
 /// Measured (7 alternating pairs, wall time of the new order over the old): issue 14's
 /// `outside_first` against mesh order, torus 0.81, teapot 0.93, sphere 1.05, cube 0.96 (within
 /// the noise); issue 22's `facing_first` against outside_first at the bench view (rotate
@@ -137,7 +137,7 @@ fn params() -> Params {
 
 struct Phong {
     params: Params,
-    stage: GlutStage,
+    stage: GlutGeometry,
     /// The `PhongParams` block, filled by name from the parameters.
     uniforms: ParamBlock,
     models: HashMap<usize, Program<Vertex>>,
@@ -159,14 +159,19 @@ fn program_of(cx: &BuildContext, model: usize) -> Result<Program<Vertex>> {
     Program::new(cx, &format!("phong.{name}"), vert, frag, RenderState::default())
 }
 
-fn build_model(cx: &BuildContext, stage: &GlutStage, uniforms: &ParamBlock, model: usize) -> Result<Program<Vertex>> {
+fn build_model(
+    cx: &BuildContext,
+    stage: &GlutGeometry,
+    uniforms: &ParamBlock,
+    model: usize,
+) -> Result<Program<Vertex>> {
     let mut program = program_of(cx, model)?;
     program.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
     Ok(program)
 }
 
 fn new(cx: &BuildContext) -> Result<Box<dyn Lab>> {
-    let stage = GlutStage::new(
+    let stage = GlutGeometry::new(
         cx.gpu,
         "phong",
         StageConfig {
@@ -180,7 +185,7 @@ fn new(cx: &BuildContext) -> Result<Box<dyn Lab>> {
     let layout = model
         .block("PhongParams")
         .ok_or_else(|| Error::Binding(format!("{} declares no PhongParams block", MODELS[PHONG].2)))?;
-    let uniforms = ParamBlock::new(cx.gpu, "phong.params", layout, &p, &Computed::default())?;
+    let uniforms = ParamBlock::new(cx.gpu, "phong.params", layout, &p, &Derived::default())?;
     model.bind(cx.gpu, vec![stage.transform.bind(), uniforms.bind()])?;
     let marker_transform = Uniforms::new(
         cx.gpu,
@@ -242,14 +247,14 @@ impl Phong {
                     if self.cycling {
                         self.params.cycle("shading");
                     } else {
-                        self.params.put("shading", &[self.drawn as f64]);
+                        self.params.set_unchecked("shading", &[self.drawn as f64]);
                         break;
                     }
                 }
             }
         }
         if !self.models.contains_key(&self.params.index_of("shading")) {
-            self.params.put("shading", &[self.drawn as f64]);
+            self.params.set_unchecked("shading", &[self.drawn as f64]);
         }
         self.cycling = false;
     }
@@ -325,19 +330,20 @@ impl Lab for Phong {
                 source: &source,
                 format: self.format,
                 files: &crate::lab::NO_FILES,
+                lab: "",
             });
         }
         self.drawn = self.params.index_of("shading");
-        self.uniforms.fill(&self.params, &Computed::default())?;
+        self.uniforms.fill(&self.params, &Derived::default())?;
         self.uniforms.upload(gpu);
         // The original's gluLookAt uses camera.x and camera.z only.
         let [x, _, z] = self.params.v3("camera");
         self.stage.eye = Vec3::new(x, 0.0, z);
         let faithful = self.drawn == PHONG;
-        let faces = GlutStage::faces(&self.params, AUTO);
-        let order = GlutStage::face_order(&self.params, AUTO);
+        let faces = GlutGeometry::culling(&self.params, AUTO);
+        let order = GlutGeometry::face_order(&self.params, AUTO);
         if let Some(program) = self.models.get_mut(&self.drawn) {
-            program.set_faces(gpu, faces)?;
+            program.set_culling(gpu, faces)?;
         }
         // Drawn with the modelview reset: glLoadIdentity(); glTranslatef(light).
         let light = Vec3::from_array(self.params.v3("lightPosition"));

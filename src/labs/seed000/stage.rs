@@ -13,7 +13,7 @@ use crate::gpu::Gpu;
 use crate::lab::{Input, LabInfo};
 use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Faces, GpuMesh, Uniforms, ViewOrdered};
+use crate::render::{Culling, GpuMesh, Uniforms, ViewOrdered};
 
 use crate::labs::common::{self, object_key, std140_mat3, FaceOrder, GlutMouse, TransformUniforms, XANGLE, YANGLE};
 use crate::tess::{self, Object};
@@ -70,7 +70,7 @@ pub const PARAMS_000: &[ParamSpec] = &[
 pub fn title_000(info: &LabInfo, params: &Params, summary: &str, extra: &str) -> String {
     let mut title = format!(
         "{} {} | {} | {summary}{extra}",
-        info.title,
+        info.original_title,
         info.label,
         params.text("object")
     );
@@ -83,7 +83,7 @@ pub fn title_000(info: &LabInfo, params: &Params, summary: &str, extra: &str) ->
 }
 
 /// Object, rotation, mouse, meshes and the Transform block.
-pub struct GlutStage {
+pub struct GlutGeometry {
     config: StageConfig,
     /// Where the eye is (a lab may move it, e.g. Phong's W/A/S/D).
     pub eye: Vec3,
@@ -93,13 +93,13 @@ pub struct GlutStage {
     pub transform: Uniforms<TransformUniforms>,
 }
 
-impl GlutStage {
-    /// A stage with no mesh built yet: [`GlutStage::prepare`] builds the drawn one on first use
+impl GlutGeometry {
+    /// A stage with no mesh built yet: [`GlutGeometry::prepare`] builds the drawn one on first use
     /// (building all four up front cost every start ~0.5 ms for objects never drawn).
     pub fn new(gpu: &Gpu, label: &str, config: StageConfig) -> Self {
         let meshes = HashMap::new();
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
-        GlutStage {
+        GlutGeometry {
             config,
             eye: config.eye,
             mouse: GlutMouse::default(),
@@ -130,14 +130,14 @@ impl GlutStage {
     }
 
     /// The faces a lab's program draws for the current object. With `cull` on, the outside
-    /// faces only ([`Faces::OutsideOnly`], back-face culling: not exact, an opt-in); otherwise
-    /// as [`GlutStage::face_order`] says ([`FaceOrder::faces`]).
-    pub fn faces(params: &Params, auto: &[(Object, FaceOrder)]) -> Faces {
+    /// faces only ([`Culling::OutsideOnly`], back-face culling: not exact, an opt-in); otherwise
+    /// as [`GlutGeometry::face_order`] says ([`FaceOrder::faces`]).
+    pub fn culling(params: &Params, auto: &[(Object, FaceOrder)]) -> Culling {
         let winding = Self::object(params).outside_winding();
         if params.on("cull") {
-            return Faces::OutsideOnly(winding);
+            return Culling::OutsideOnly(winding);
         }
-        Self::face_order(params, auto).faces(winding)
+        Self::face_order(params, auto).culling(winding)
     }
 
     /// The GLUT programs' input: keys `1`-`4` choose the object, the left button drags
@@ -242,27 +242,35 @@ pub const CAMERA_000: StageConfig = StageConfig {
     eye: Vec3::new(0.0, 0.0, 4.0),
 };
 
-/// The stage as the runner draws it ([`crate::lab::Stage`]): the chosen solid at GLUT's level
+/// The stage as the runner draws it ([`crate::lab::Geometry`]): the chosen solid at GLUT's level
 /// (smoothed, at the level of a port-only mode, when the lab has `smooth` on), each object in
-/// the face order `auto` lists for it ([`GlutStage::face_order`]).
+/// the face order `auto` lists for it ([`GlutGeometry::face_order`]).
 pub struct Solid {
     /// The stage.
-    pub stage: GlutStage,
+    pub stage: GlutGeometry,
     /// The face order the lab measured faster, by object (mesh order for the others).
     pub auto: &'static [(Object, FaceOrder)],
+    /// The window title (the original's state summary).
+    pub title: fn(&LabInfo, &Params) -> String,
 }
 
 impl Solid {
-    /// Seed 000's stage for lab `label`.
+    /// Seed 000's stage for lab `label`, titled as exercises 1 and 2 are.
     pub fn new(gpu: &Gpu, label: &str, auto: &'static [(Object, FaceOrder)]) -> Self {
         Solid {
-            stage: GlutStage::new(gpu, label, CAMERA_000),
+            stage: GlutGeometry::new(gpu, label, CAMERA_000),
             auto,
+            title: super::stage_title,
         }
+    }
+
+    /// With its own window title.
+    pub fn titled(self, title: fn(&LabInfo, &Params) -> String) -> Self {
+        Solid { title, ..self }
     }
 }
 
-impl crate::lab::Stage for Solid {
+impl crate::lab::Geometry for Solid {
     type Vertex = Vertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -270,12 +278,15 @@ impl crate::lab::Stage for Solid {
     fn binds(&self) -> Vec<crate::render::Bind> {
         vec![self.stage.transform.bind()]
     }
-    fn faces(&self, p: &Params) -> Option<Faces> {
-        Some(GlutStage::faces(p, self.auto))
+    fn culling(&self, p: &Params) -> Option<Culling> {
+        Some(GlutGeometry::culling(p, self.auto))
+    }
+    fn title(&self, info: &LabInfo, p: &Params) -> String {
+        (self.title)(info, p)
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
         let smooth = p.has("smooth") && p.on("smooth");
-        let order = GlutStage::face_order(p, self.auto);
+        let order = GlutGeometry::face_order(p, self.auto);
         self.stage.prepare(gpu, p, width, height, !smooth, smooth, order)
     }
 }

@@ -10,17 +10,15 @@
 //!
 //! Keys: `←`/`→` blx ∓0.25, `↑`/`↓` bly ±0.25, PageUp/PageDown blz ±0.25; left drag rotates.
 
-use crate::lab::{Look, Pass, Recipe};
+use crate::lab::{Material, Recipe, ShaderPair};
 
 use crate::labs::seed001::tangent_bump;
 
 /// Seed 001, §1.11.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info("bump", "ref001", "bump mapping", tangent_bump::KEYS),
-    params: tangent_bump::PARAMS,
-    animated: false,
-    title: None,
-    build: |cx, p| tangent_bump::build(cx, "bump", p, &LOOK, Vec::new()),
-};
+pub static RECIPE: Recipe = Recipe::new(
+    super::info("bump", "ref001", "bump mapping", tangent_bump::KEYS),
+    tangent_bump::PARAMS,
+    |cx, p| tangent_bump::build(cx, "bump", p, &MATERIAL, Vec::new()),
+);
 
-static LOOK: Look = Look::new(&[Pass::new("bump.vert", "bump.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("bump.vert", "bump.frag")]);

@@ -10,26 +10,24 @@
 use glam::Vec3;
 
 use crate::geometry::images;
-use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::Params;
-use crate::render::{sampler, Bind, Computed, SamplerDesc, Texture};
+use crate::render::{sampler, Bind, Derived, SamplerDesc, Texture};
 
 use crate::labs::common::FaceOrder;
-use crate::labs::seed001::stage::{OnSolid, UstcStage, OBJECT, ROTATION};
+use crate::labs::seed001::stage::{SolidGeometry, UstcView, OBJECT, ROTATION};
 
 /// Seed 001, §1.10: the `EnvMap` block is computed (`env_map`); the cube map and its
 /// sampler are the lab's own bindings.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "envmap",
         "ref001",
         "environment map",
         Keys::text("1-4: objects; left drag rotates"),
     ),
-    params: &[OBJECT, ROTATION],
-    animated: false,
-    title: None,
-    build: |cx, p| {
+    &[OBJECT, ROTATION],
+    |cx, p| {
         let faces = images::cube_faces();
         let cube = Texture::new(cx.gpu, "envmap.cube", faces.width, faces.height, 6, &[faces.rgba]);
         let clamp = wgpu::AddressMode::ClampToEdge;
@@ -42,22 +40,20 @@ pub static RECIPE: Recipe = Recipe {
             },
         );
         let own = vec![Bind::texture("texMap", &cube), Bind::sampler("texMapSampler", &sampler)];
-        // Mesh order for every solid: the reflection colours the two sides of a silhouette
-        // edge differently, and reordered the teapot showed 1 px in 1 of 40 random views.
-        let mut stage = OnSolid::new(cx.gpu, "envmap", EYE);
+        let mut stage = SolidGeometry::new(cx.gpu, "envmap", EYE);
         stage.auto = |_| FaceOrder::Mesh;
-        Shaded::build(cx, "envmap", p, stage, &LOOK, own)
+        MaterialScene::build_with(cx, p, stage, &MATERIAL, own)
     },
-};
+);
 
-static LOOK: Look = Look::new(&[Pass::new("envmap.vert", "envmap.frag")]).hook(env_map);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("envmap.vert", "envmap.frag")]).derive(env_map);
 
 /// The eye.
 const EYE: Vec3 = Vec3::new(0.0, 0.0, 4.0);
 
 /// The `EnvMap` block of `envmap.vert`: `modelMatrix` = Rx(xangle)·Ry(yangle), `eyeWorld` the
 /// eye in world space.
-fn env_map(p: &Params, c: &mut Computed) {
-    c.set("modelMatrix", &UstcStage::model(p).to_cols_array());
+fn env_map(p: &Params, c: &mut Derived) {
+    c.set("modelMatrix", &UstcView::model(p).to_cols_array());
     c.set("eyeWorld", &EYE.to_array());
 }

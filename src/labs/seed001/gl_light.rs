@@ -12,9 +12,9 @@
 //! (`GL_SHININESS` must be ≤ 128).
 
 use crate::gpu::Gpu;
-use crate::lab::{Input, Key::C, KeyRow, Keys, Stage, DOWN, LEFT, PAGE_DOWN, PAGE_UP, RIGHT, UP};
+use crate::lab::{Geometry, Input, Key::C, KeyRow, Keys, DOWN, LEFT, PAGE_DOWN, PAGE_UP, RIGHT, UP};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Bind, Faces, GpuMesh, Uniforms};
+use crate::render::{Bind, Culling, GpuMesh, Uniforms};
 
 /// `struct LightSourceParameters` of `gl_light.glsl` (the members the course reads).
 #[repr(C)]
@@ -234,16 +234,16 @@ impl GlLight {
     }
 }
 
-/// A [`Stage`] lit by GL's light: the stage's blocks plus the `GlLight` block, written for the
+/// A [`Geometry`] lit by GL's light: the stage's blocks plus the `GlLight` block, written for the
 /// parameters every frame. The light keys are the lab's key rows ([`LightSetup::keys`]).
-pub struct Lit<S: Stage> {
+pub struct Lit<S: Geometry> {
     /// The stage.
     pub stage: S,
     /// The light.
     pub light: GlLight,
 }
 
-impl<S: Stage> Lit<S> {
+impl<S: Geometry> Lit<S> {
     /// `stage` lit by `setup`.
     pub fn new(gpu: &Gpu, label: &str, setup: &'static LightSetup, stage: S) -> Self {
         Lit {
@@ -253,7 +253,7 @@ impl<S: Stage> Lit<S> {
     }
 }
 
-impl<S: Stage> Stage for Lit<S> {
+impl<S: Geometry> Geometry for Lit<S> {
     type Vertex = S::Vertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -263,8 +263,8 @@ impl<S: Stage> Stage for Lit<S> {
         binds.push(self.light.uniforms.bind());
         binds
     }
-    fn faces(&self, p: &Params) -> Option<Faces> {
-        self.stage.faces(p)
+    fn culling(&self, p: &Params) -> Option<Culling> {
+        self.stage.culling(p)
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<S::Vertex> {
         self.light.upload(gpu, p);

@@ -10,22 +10,22 @@
 use glam::Vec3;
 
 use crate::geometry::shapes::HeightVertex;
-use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::ParamSpec;
 use crate::render::{GpuMesh, RenderState};
 
 use crate::labs::seed001::immediate::Immediate;
-use crate::labs::seed001::stage::{OnPicked, UstcStage, ROTATION};
+use crate::labs::seed001::stage::{ChosenGeometry, UstcView, ROTATION};
 
 /// Seed 001, §1.1: no uniform block besides the Transform; `mode` picks the strip.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "height",
         "ref001",
         "custom vertex attribute",
         Keys::rows(&[KeyRow::cycle(&[C('v')], "mode")], "left drag rotates"),
     ),
-    params: &[
+    &[
         &[ParamSpec::choice(
             "mode",
             &[0.0],
@@ -34,24 +34,21 @@ pub static RECIPE: Recipe = Recipe {
         )],
         ROTATION,
     ],
-    animated: false,
-    title: None,
-    build: |cx, p| {
-        let stage = OnPicked {
-            stage: UstcStage::new(cx.gpu, "height", Vec3::new(0.0, 0.0, 4.0)),
+    |cx, p| {
+        let stage = ChosenGeometry {
+            stage: UstcView::new(cx.gpu, "height", Vec3::new(0.0, 0.0, 4.0)),
             meshes: vec![
                 GpuMesh::new(cx.gpu, "height.immediate", &immediate_strip(), None),
                 GpuMesh::new(cx.gpu, "height.arrays", &array_strip(), None),
             ],
             choice: "mode",
         };
-        Shaded::build(cx, "height", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+);
 
-static LOOK: Look =
-    Look::new(&[Pass::new("height.vert", "pass_color.frag")
-        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("height.vert", "pass_color.frag")
+    .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))]);
 
 // glVertex2f's x, y and the `height` attribute (GL converts both to the shader's types).
 crate::vertex_type!(HeightVertex, {

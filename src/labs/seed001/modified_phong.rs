@@ -14,13 +14,13 @@
 use glam::Vec3;
 
 use crate::error::Result;
-use crate::lab::{Input, Key::C, KeyRow, Keys, BuildContext, Scene, Stage};
+use crate::lab::{BuildContext, Geometry, Input, Key::C, KeyRow, Keys, Scene};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
-use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION, TESS};
+use crate::labs::seed001::stage::{SolidGeometry, OBJECT, ROTATION, TESS};
 
 /// Where the lighting is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,7 +56,7 @@ pub const PARAMS: &[&[ParamSpec]] = &[OBJECT, ROTATION, COURSE.params, OWN, TESS
 struct ModifiedPhong {
     label: &'static str,
     shading: Shading,
-    stage: Lit<OnSolid>,
+    stage: Lit<SolidGeometry>,
     per_vertex: Program<Vertex>,
     per_fragment: Program<Vertex>,
 }
@@ -67,7 +67,7 @@ pub fn build(cx: &BuildContext, label: &'static str, shading: Shading) -> Result
         cx.gpu,
         label,
         &COURSE,
-        OnSolid::new(cx.gpu, label, Vec3::new(0.0, 0.0, 4.0)),
+        SolidGeometry::new(cx.gpu, label, Vec3::new(0.0, 0.0, 4.0)),
     );
     let program = |suffix: &str, vert: &str, frag: &str| -> Result<Program<Vertex>> {
         let mut program = Program::new(cx, &format!("{label}.{suffix}"), vert, frag, RenderState::GL)?;

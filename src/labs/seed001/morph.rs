@@ -17,22 +17,22 @@ use std::f64::consts::TAU;
 use glam::Vec3;
 
 use crate::geometry::shapes::{morph_vertices, MorphVertex};
-use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Computed, GpuMesh};
+use crate::render::{Derived, GpuMesh};
 
 use crate::labs::seed001::immediate::Immediate;
-use crate::labs::seed001::stage::{OnMesh, UstcStage, ROTATION};
+use crate::labs::seed001::stage::{MeshGeometry, UstcView, ROTATION};
 
 /// Seed 001, §1.4: the `Morph` block's `time` is [`time_uniform`] of the clock.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "morph",
         "ref001",
         "morphing",
         Keys::text("Space pauses the clock; left drag rotates"),
     ),
-    params: &[
+    &[
         &[ParamSpec::real(
             "time",
             &[0.0],
@@ -42,19 +42,18 @@ pub static RECIPE: Recipe = Recipe {
         )],
         ROTATION,
     ],
-    animated: true,
-    title: None,
-    build: |cx, p| {
-        let stage = OnMesh {
-            stage: UstcStage::new(cx.gpu, "morph", Vec3::new(0.0, 0.0, 4.0)),
+    |cx, p| {
+        let stage = MeshGeometry {
+            stage: UstcView::new(cx.gpu, "morph", Vec3::new(0.0, 0.0, 4.0)),
             mesh: GpuMesh::new(cx.gpu, "morph.triangles", &course_triangles()[..DRAWN], None),
         };
-        Shaded::build(cx, "morph", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+)
+.animated();
 
-static LOOK: Look = Look::new(&[Pass::new("morph.vert", "pass_color.frag")])
-    .hook(|p: &Params, c: &mut Computed| c.set("time", &[time_uniform(p.f64("time"))]));
+static MATERIAL: Material = Material::new(&[ShaderPair::new("morph.vert", "pass_color.frag")])
+    .derive(|p: &Params, c: &mut Derived| c.set("time", &[time_uniform(p.f64("time"))]));
 
 // gl_Vertex (vertices_one) and the vertices2 attribute (vertices_two).
 crate::vertex_type!(MorphVertex, {

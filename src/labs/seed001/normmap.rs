@@ -8,7 +8,7 @@
 
 use crate::error::Result;
 use crate::geometry::images;
-use crate::lab::{Lab, BuildContext, Look, Pass, Recipe, Runner, Scene};
+use crate::lab::{BuildContext, Lab, Material, Recipe, Runner, Scene, ShaderPair};
 use crate::params::Params;
 use crate::render::{sampler, Bind, SamplerDesc, Texture};
 
@@ -19,13 +19,11 @@ pub static RECIPE: Recipe = recipe::<CUBE_SIZE>();
 
 /// The lab with a cube map of `SIZE` texels per side (the course's is [`CUBE_SIZE`]).
 const fn recipe<const SIZE: u32>() -> Recipe {
-    Recipe {
-        info: super::info("normmap", "ref001", "normalization cube map", tangent_bump::KEYS),
-        params: tangent_bump::PARAMS,
-        animated: false,
-        title: None,
-        build: build::<SIZE>,
-    }
+    Recipe::new(
+        super::info("normmap", "ref001", "normalization cube map", tangent_bump::KEYS),
+        tangent_bump::PARAMS,
+        build::<SIZE>,
+    )
 }
 
 /// The sizes and their labs from one list, so the two cannot disagree.
@@ -61,10 +59,10 @@ fn build<const SIZE: u32>(cx: &BuildContext, p: &Params) -> Result<Box<dyn Scene
         Bind::texture("normMap", &cube),
         Bind::sampler("normMapSampler", &sampler),
     ];
-    tangent_bump::build(cx, "normmap", p, &LOOK, unit1)
+    tangent_bump::build(cx, "normmap", p, &MATERIAL, unit1)
 }
 
 /// Texels per side of each face of the normalization cube map.
 const CUBE_SIZE: u32 = 32;
 
-static LOOK: Look = Look::new(&[Pass::new("bump.vert", "normmap.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("bump.vert", "normmap.frag")]);

@@ -10,17 +10,17 @@ use glam::{Mat4, Vec3};
 
 use crate::geometry::shapes::{particle_velocities, PARTICLE_COUNT};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Geometry, Input, Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::{ParamSpec, Params};
-use crate::render::{Bind, Computed, GpuMesh, RenderState};
+use crate::render::{Bind, Derived, GpuMesh, RenderState};
 
 use crate::labs::seed001::immediate::Immediate;
-use crate::labs::seed001::stage::{UstcStage, ROTATION};
+use crate::labs::seed001::stage::{UstcView, ROTATION};
 
 /// Seed 001, §1.5: the `Particles` block's `g` and `m` are parameters, its `t` the clock
 /// `time` as is (no wrap: the course's t grows).
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "particles",
         "ref001",
         "particle system",
@@ -32,7 +32,7 @@ pub static RECIPE: Recipe = Recipe {
             "Space pauses the clock; r: restart at t = 0; left drag rotates",
         ),
     ),
-    params: &[
+    &[
         &[
             ParamSpec::real(
                 "time",
@@ -46,22 +46,20 @@ pub static RECIPE: Recipe = Recipe {
         ],
         ROTATION,
     ],
-    animated: true,
-    title: None,
-    build: |cx, p| {
+    |cx, p| {
         let stage = Fountain {
-            stage: UstcStage::new(cx.gpu, "particles", Vec3::new(0.0, 1.0, 4.0)),
+            stage: UstcView::new(cx.gpu, "particles", Vec3::new(0.0, 1.0, 4.0)),
             points: GpuMesh::new(cx.gpu, "particles.points", &course_points(), None),
         };
-        Shaded::build(cx, "particles", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+)
+.animated();
 
 // GL_POINTS at GL's default point size 1 (the only size WebGPU draws).
-static LOOK: Look =
-    Look::new(&[Pass::new("particles.vert", "particles.frag")
-        .state(RenderState::GL.topology(wgpu::PrimitiveTopology::PointList))])
-    .hook(|p: &Params, c: &mut Computed| c.set("t", &[p.f("time")]));
+static MATERIAL: Material = Material::new(&[ShaderPair::new("particles.vert", "particles.frag")
+    .state(RenderState::GL.topology(wgpu::PrimitiveTopology::PointList))])
+.derive(|p: &Params, c: &mut Derived| c.set("t", &[p.f("time")]));
 
 /// One particle: `glVertexAttrib3fv(vel, …); glVertex3f(0, −1, 0);`.
 #[repr(C)]
@@ -110,15 +108,15 @@ pub fn gl_point_rule(projection: Mat4, width: u32) -> Mat4 {
 
 /// The frame with the points drawn by GL's rule ([`gl_point_rule`]), and key `r`.
 struct Fountain {
-    stage: UstcStage,
+    stage: UstcView,
     points: GpuMesh<ParticleVertex>,
 }
 
-impl Stage for Fountain {
+impl Geometry for Fountain {
     type Vertex = ParticleVertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         if input == Input::Key('r') {
-            p.put("time", &[0.0]);
+            p.set_unchecked("time", &[0.0]);
             return true;
         }
         self.stage.input(p, input)
@@ -127,7 +125,7 @@ impl Stage for Fountain {
         vec![self.stage.transform.bind()]
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<ParticleVertex> {
-        let projection = gl_point_rule(UstcStage::projection(width, height), width);
+        let projection = gl_point_rule(UstcView::projection(width, height), width);
         self.stage.upload_with(gpu, p, projection);
         &self.points
     }

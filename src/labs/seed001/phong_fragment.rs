@@ -6,15 +6,13 @@ use crate::lab::Recipe;
 use crate::labs::seed001::modified_phong::{self, Shading};
 
 /// Seed 001, §1.8.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "phong_fragment",
         "ref001",
         "modified Phong, per fragment",
         modified_phong::KEYS,
     ),
-    params: modified_phong::PARAMS,
-    animated: false,
-    title: None,
-    build: |cx, _| modified_phong::build(cx, "phong_fragment", Shading::Fragment),
-};
+    modified_phong::PARAMS,
+    |cx, _| modified_phong::build(cx, "phong_fragment", Shading::Fragment),
+);

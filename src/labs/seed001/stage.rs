@@ -14,7 +14,7 @@ use crate::gpu::Gpu;
 use crate::lab::Input;
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
-use crate::render::{Bind, Faces, GpuMesh, Uniforms, VertexType, ViewOrdered};
+use crate::render::{Bind, Culling, GpuMesh, Uniforms, VertexType, ViewOrdered};
 use crate::tess::Object;
 
 use crate::labs::common::{self, object_key, FaceOrder, GlutMouse, TransformUniforms, XANGLE, YANGLE};
@@ -70,7 +70,7 @@ pub fn teapot_and_torus_facing_first(object: Object) -> FaceOrder {
 const PERSPECTIVE: (f64, f64, f64) = (45.0, 0.1, 100.0);
 
 /// Camera, rotation, mouse and the Transform block of one exercise.
-pub struct UstcStage {
+pub struct UstcView {
     /// The eye of `gluLookAt(eye, (0,0,0), (0,1,0))`.
     pub eye: Vec3,
     mouse: GlutMouse,
@@ -78,11 +78,11 @@ pub struct UstcStage {
     pub transform: Uniforms<TransformUniforms>,
 }
 
-impl UstcStage {
+impl UstcView {
     /// A stage looking from `eye` at the origin.
     pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
-        UstcStage {
+        UstcView {
             eye,
             mouse: GlutMouse::default(),
             transform: Uniforms::new(gpu, &format!("{label}.transform"), identity),
@@ -193,36 +193,36 @@ impl Solids {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Stage`]): GLUT's solid chosen by `object`.
-pub struct OnSolid {
+/// The frame as the runner draws it ([`crate::lab::Geometry`]): GLUT's solid chosen by `object`.
+pub struct SolidGeometry {
     /// The frame.
-    pub stage: UstcStage,
+    pub stage: UstcView,
     solids: Solids,
     /// The face order of `faces=auto`, by solid ([`teapot_and_torus_facing_first`] unless the
     /// lab sets it).
     pub auto: fn(Object) -> FaceOrder,
 }
 
-impl OnSolid {
+impl SolidGeometry {
     /// A frame looking from `eye`.
     pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
-        OnSolid {
-            stage: UstcStage::new(gpu, label, eye),
+        SolidGeometry {
+            stage: UstcView::new(gpu, label, eye),
             solids: Solids::default(),
             auto: teapot_and_torus_facing_first,
         }
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Stage`]): the lab's own mesh.
-pub struct OnMesh<V: VertexType> {
+/// The frame as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh.
+pub struct MeshGeometry<V: VertexType> {
     /// The frame.
-    pub stage: UstcStage,
+    pub stage: UstcView,
     /// The mesh.
     pub mesh: GpuMesh<V>,
 }
 
-impl crate::lab::Stage for OnSolid {
+impl crate::lab::Geometry for SolidGeometry {
     type Vertex = Vertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -230,22 +230,22 @@ impl crate::lab::Stage for OnSolid {
     fn binds(&self) -> Vec<Bind> {
         vec![self.stage.transform.bind()]
     }
-    /// By the `faces` parameter (`auto`: [`OnSolid::auto`]).
-    fn faces(&self, p: &Params) -> Option<Faces> {
-        let object = UstcStage::object(p);
-        Some(FaceOrder::of(p, (self.auto)(object)).faces(object.outside_winding()))
+    /// By the `faces` parameter (`auto`: [`SolidGeometry::auto`]).
+    fn culling(&self, p: &Params) -> Option<Culling> {
+        let object = UstcView::object(p);
+        Some(FaceOrder::of(p, (self.auto)(object)).culling(object.outside_winding()))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
         self.stage.upload(gpu, p, width, height);
         let level = if p.has("tess") { p.f64("tess") as u32 } else { 0 };
-        let object = UstcStage::object(p);
+        let object = UstcView::object(p);
         let view = (FaceOrder::of(p, (self.auto)(object)) == FaceOrder::FacingFirst)
             .then(|| self.stage.object_to_clip(p, width, height));
         self.solids.get(gpu, object, level, view)
     }
 }
 
-impl<V: VertexType + 'static> crate::lab::Stage for OnMesh<V> {
+impl<V: VertexType + 'static> crate::lab::Geometry for MeshGeometry<V> {
     type Vertex = V;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -259,11 +259,11 @@ impl<V: VertexType + 'static> crate::lab::Stage for OnMesh<V> {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Stage`]): the lab's own mesh of a solid in
-/// the face order the `faces` parameter asks for ([`FACES`]; `auto`: [`OnOrdered::auto`]).
-pub struct OnOrdered<V: VertexType> {
+/// The frame as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh of a solid in
+/// the face order the `faces` parameter asks for ([`FACES`]; `auto`: [`OrderedGeometry::auto`]).
+pub struct OrderedGeometry<V: VertexType> {
     /// The frame.
-    pub stage: UstcStage,
+    pub stage: UstcView,
     /// The mesh, with its positions for the CPU's facing test.
     pub mesh: ViewOrdered<V>,
     /// How the solid's outside faces are wound.
@@ -272,10 +272,10 @@ pub struct OnOrdered<V: VertexType> {
     pub auto: FaceOrder,
 }
 
-/// The face order parameter alone, for the labs on [`OnOrdered`].
+/// The face order parameter alone, for the labs on [`OrderedGeometry`].
 pub const FACES: &[ParamSpec] = &[common::FACES];
 
-impl<V: VertexType + 'static> crate::lab::Stage for OnOrdered<V> {
+impl<V: VertexType + 'static> crate::lab::Geometry for OrderedGeometry<V> {
     type Vertex = V;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -283,8 +283,8 @@ impl<V: VertexType + 'static> crate::lab::Stage for OnOrdered<V> {
     fn binds(&self) -> Vec<Bind> {
         vec![self.stage.transform.bind()]
     }
-    fn faces(&self, p: &Params) -> Option<Faces> {
-        Some(FaceOrder::of(p, self.auto).faces(self.outside))
+    fn culling(&self, p: &Params) -> Option<Culling> {
+        Some(FaceOrder::of(p, self.auto).culling(self.outside))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
         self.stage.upload(gpu, p, width, height);
@@ -294,18 +294,18 @@ impl<V: VertexType + 'static> crate::lab::Stage for OnOrdered<V> {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Stage`]): one of the lab's meshes, the one a
+/// The frame as the runner draws it ([`crate::lab::Geometry`]): one of the lab's meshes, the one a
 /// choice parameter names (meshes in the choice's order).
-pub struct OnPicked<V: VertexType> {
+pub struct ChosenGeometry<V: VertexType> {
     /// The frame.
-    pub stage: UstcStage,
+    pub stage: UstcView,
     /// The meshes, indexed by the choice.
     pub meshes: Vec<GpuMesh<V>>,
     /// The choice parameter.
     pub choice: &'static str,
 }
 
-impl<V: VertexType + 'static> crate::lab::Stage for OnPicked<V> {
+impl<V: VertexType + 'static> crate::lab::Geometry for ChosenGeometry<V> {
     type Vertex = V;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)

@@ -11,12 +11,12 @@ use crate::error::Result;
 use crate::geometry::images;
 use crate::geometry::shapes::{bump_quad, needs_clipping, BumpVertex, QUAD_SPLIT_CLIPPED, QUAD_SPLIT_UNCLIPPED};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Keys, BuildContext, Look, Scene, Shaded, Stage};
+use crate::lab::{BuildContext, Geometry, Input, Keys, Material, MaterialScene, Scene};
 use crate::params::{ParamSpec, Params};
 use crate::render::{sampler, Bind, GpuMesh, SamplerDesc, Texture};
 
 use crate::labs::seed001::gl_light::{Lit, BUMP, BUMP_KEYS};
-use crate::labs::seed001::stage::{UstcStage, ROTATION};
+use crate::labs::seed001::stage::{UstcView, ROTATION};
 
 /// The keys of `bump` and `normmap`.
 pub const KEYS: Keys = Keys::rows(&BUMP_KEYS, "left drag rotates");
@@ -35,7 +35,7 @@ crate::vertex_type!(BumpVertex, {
 /// The quad on the common frame: its four corners twice, with each of Mesa's `GL_QUADS`
 /// splits as indices (the unclipped one, then the clipped one).
 struct Quad {
-    stage: UstcStage,
+    stage: UstcView,
     splits: [GpuMesh<BumpVertex>; 2],
 }
 
@@ -47,7 +47,7 @@ fn clipped(mvp: &[[f32; 4]; 4]) -> bool {
     needs_clipping(bump_quad().map(|v| mvp * Vec4::from((Vec3::from(v.position), 1.0))))
 }
 
-impl Stage for Quad {
+impl Geometry for Quad {
     type Vertex = BumpVertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -63,7 +63,13 @@ impl Stage for Quad {
 
 /// Builds the bump scene `name` drawn by `look`, with `extra` bindings (texture unit 1 of
 /// `normmap`).
-pub fn build(cx: &BuildContext, name: &str, p: &Params, look: &'static Look, extra: Vec<Bind>) -> Result<Box<dyn Scene>> {
+pub fn build(
+    cx: &BuildContext,
+    name: &str,
+    p: &Params,
+    look: &'static Material,
+    extra: Vec<Bind>,
+) -> Result<Box<dyn Scene>> {
     let map = images::bump_normal_map();
     let normal_map = Texture::new(
         cx.gpu,
@@ -83,8 +89,8 @@ pub fn build(cx: &BuildContext, name: &str, p: &Params, look: &'static Look, ext
     let corners = bump_quad();
     let split = |indices: &[u32]| GpuMesh::new(cx.gpu, &format!("{name}.quad"), &corners, Some(indices));
     let quad = Quad {
-        stage: UstcStage::new(cx.gpu, name, Vec3::new(0.0, 0.0, 4.0)),
+        stage: UstcView::new(cx.gpu, name, Vec3::new(0.0, 0.0, 4.0)),
         splits: [split(&QUAD_SPLIT_UNCLIPPED), split(&QUAD_SPLIT_CLIPPED)],
     };
-    Shaded::build(cx, name, p, Lit::new(cx.gpu, name, &BUMP, quad), look, own)
+    MaterialScene::build_with(cx, p, Lit::new(cx.gpu, name, &BUMP, quad), look, own)
 }

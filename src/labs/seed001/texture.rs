@@ -9,32 +9,27 @@ use glam::Vec3;
 
 use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
-use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
 use crate::mesh::Mesh;
 use crate::render::{sampler, Bind, SamplerDesc, Texture, ViewOrdered};
 use crate::tess::Object;
 
-use crate::labs::seed001::stage::{OnOrdered, UstcStage, FACES, ROTATION};
+use crate::labs::seed001::stage::{OrderedGeometry, UstcView, FACES, ROTATION};
 
 /// Seed 001, §1.9: no uniform block besides the Transform; the image and its sampler are the
 /// lab's own bindings.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info("texture", "ref001", "texture mapping", Keys::text("left drag rotates")),
-    params: &[ROTATION, FACES],
-    animated: false,
-    title: None,
-    build: |cx, p| {
+pub static RECIPE: Recipe = Recipe::new(
+    super::info("texture", "ref001", "texture mapping", Keys::text("left drag rotates")),
+    &[ROTATION, FACES],
+    |cx, p| {
         let image = images::uvgrid();
         let texture = Texture::new(cx.gpu, "texture.uvgrid", image.width, image.height, 1, &[image.rgba]);
-        // GL_REPEAT on s and t, GL_LINEAR for both filters, no mipmaps.
         let sampler = sampler(cx.gpu, "texture.sampler", &SamplerDesc::default());
         let (vertices, indices) = textured_teapot();
-        // Facing the eye first: 0.979 of mesh order (wall, 11 alternating pairs; CPU 0.960),
-        // 1000 random views byte-identical to it.
         let positions = vertices.iter().map(|v| v.position).collect();
-        let stage = OnOrdered {
-            stage: UstcStage::new(cx.gpu, "texture", Vec3::new(0.0, 0.0, 4.0)),
+        let stage = OrderedGeometry {
+            stage: UstcView::new(cx.gpu, "texture", Vec3::new(0.0, 0.0, 4.0)),
             mesh: ViewOrdered::new(cx.gpu, "texture.teapot", &vertices, Some(indices), positions),
             outside: Object::Teapot.outside_winding(),
             auto: FaceOrder::FacingFirst,
@@ -43,11 +38,11 @@ pub static RECIPE: Recipe = Recipe {
             Bind::texture("myTexture", &texture),
             Bind::sampler("myTextureSampler", &sampler),
         ];
-        Shaded::build(cx, "texture", p, stage, &LOOK, own)
+        MaterialScene::build_with(cx, p, stage, &MATERIAL, own)
     },
-};
+);
 
-static LOOK: Look = Look::new(&[Pass::new("texture.vert", "texture.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("texture.vert", "texture.frag")]);
 
 /// A GLUT vertex with freeglut's solid-teapot texture coordinates.
 #[repr(C)]

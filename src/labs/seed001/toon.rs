@@ -9,34 +9,25 @@
 
 use glam::Vec3;
 
-use crate::lab::{Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Keys, Material, MaterialScene, Recipe, ShaderPair};
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
-use crate::labs::seed001::stage::{torus_facing_first, OnSolid, OBJECT, ROTATION, TESS};
+use crate::labs::seed001::stage::{torus_facing_first, SolidGeometry, OBJECT, ROTATION, TESS};
 
 /// Seed 001, §1.6: the Transform and GlLight blocks come from the stage.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "toon",
         "ref001",
         "toon shading",
         Keys::rows(&COURSE_KEYS, "1-4: objects; left drag rotates"),
     ),
-    params: &[OBJECT, ROTATION, COURSE.params, TESS],
-    animated: false,
-    title: None,
-    build: |cx, p| {
-        let mut stage = OnSolid::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
+    &[OBJECT, ROTATION, COURSE.params, TESS],
+    |cx, p| {
+        let mut stage = SolidGeometry::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
         stage.auto = torus_facing_first;
-        Shaded::build(
-            cx,
-            "toon",
-            p,
-            Lit::new(cx.gpu, "toon", &COURSE, stage),
-            &LOOK,
-            Vec::new(),
-        )
+        MaterialScene::build(cx, p, Lit::new(cx.gpu, "toon", &COURSE, stage), &MATERIAL)
     },
-};
+);
 
-static LOOK: Look = Look::new(&[Pass::new("toon.vert", "pass_color.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("toon.vert", "pass_color.frag")]);

@@ -17,19 +17,19 @@ use glam::Vec3;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Geometry, Input, Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms};
 use crate::shader::CompiledShader;
 
 use crate::labs::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
-use crate::labs::seed001::stage::{OnSolid, OBJECT, ROTATION};
+use crate::labs::seed001::stage::{SolidGeometry, OBJECT, ROTATION};
 
 /// Seed 001, §1.2: both blocks are the stage's (`Course`): the `UniformArrays` block as the
 /// course's setters leave it for `mode`, and the GL light state.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "uniform_arrays",
         "ref001",
         "uniform vectors and arrays",
@@ -44,7 +44,7 @@ pub static RECIPE: Recipe = Recipe {
             "1-4: objects; left drag rotates",
         ),
     ),
-    params: &[
+    &[
         &[ParamSpec::choice(
             "mode",
             &[0.0],
@@ -55,22 +55,20 @@ pub static RECIPE: Recipe = Recipe {
         ROTATION,
         COURSE.params,
     ],
-    animated: false,
-    title: None,
-    build: |cx, p| {
-        let shader = cx.source.compile(LOOK.passes[0].frag)?;
+    |cx, p| {
+        let shader = cx.source.compile(MATERIAL.passes[0].frag)?;
         let modes = [course_uniforms(&shader, 0)?, course_uniforms(&shader, 1)?];
-        let solid = OnSolid::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0));
+        let solid = SolidGeometry::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0));
         let stage = Course {
             lit: Lit::new(cx.gpu, "uniform_arrays", &COURSE, solid),
             block: Uniforms::new(cx.gpu, "uniform_arrays.params", modes[0]),
             modes,
         };
-        Shaded::build(cx, "uniform_arrays", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+);
 
-static LOOK: Look = Look::new(&[Pass::new("uniform_arrays.vert", "uniform_arrays.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("uniform_arrays.vert", "uniform_arrays.frag")]);
 
 /// The `UniformArrays` block of `uniform_arrays.frag` (std140: a float, then 16-byte slots).
 #[repr(C)]
@@ -233,12 +231,12 @@ pub fn course_uniforms(shader: &CompiledShader, mode: usize) -> Result<UniformAr
 /// GLUT's solid with the GL light state and the `UniformArrays` block of the current `mode`
 /// (each computed once, by [`course_uniforms`] on the fragment shader).
 struct Course {
-    lit: Lit<OnSolid>,
+    lit: Lit<SolidGeometry>,
     block: Uniforms<UniformArraysUniforms>,
     modes: [UniformArraysUniforms; 2],
 }
 
-impl Stage for Course {
+impl Geometry for Course {
     type Vertex = Vertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.lit.input(p, input)

@@ -17,11 +17,11 @@ use glam::Vec3;
 
 use crate::geometry::shapes::{indexed_quads, wave_grid_sub, ColorVertex};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Geometry, Input, Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::{ParamSpec, Params};
-use crate::render::{note_once, Bind, Computed, GpuMesh, LARGE_MESH_TRIANGLES};
+use crate::render::{note_once, Bind, Derived, GpuMesh, LARGE_MESH_TRIANGLES};
 
-use crate::labs::seed001::stage::{UstcStage, ROTATION};
+use crate::labs::seed001::stage::{UstcView, ROTATION};
 
 /// The finest `subdiv` (each cell 32 × 32 quads: 9.8 million vertices).
 pub const MAX_SUBDIV: u32 = 32;
@@ -77,8 +77,8 @@ pub fn auto_subdiv(p: &Params, eye: Vec3, height: u32) -> u32 {
 
 /// Seed 001, §1.3: the `Wave` block's `xs`, `zs`, `h` are parameters, its `time` the wrapped
 /// clock ([`wave_time`]).
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "wave",
         "ref001",
         "wave motion",
@@ -91,7 +91,7 @@ pub static RECIPE: Recipe = Recipe {
             "Space pauses the clock; left drag rotates",
         ),
     ),
-    params: &[
+    &[
         &[
             ParamSpec::real("time", &[0.0], -1e9, 1e9, "seconds (a clock in a window; Space pauses)"),
             ParamSpec::real("h", &[0.1], -10.0, 10.0, "height scale (h H)"),
@@ -108,23 +108,22 @@ pub static RECIPE: Recipe = Recipe {
         ],
         ROTATION,
     ],
-    animated: true,
-    title: None,
-    build: |cx, p| {
+    |cx, p| {
         let mut stage = WaveGrid {
-            stage: UstcStage::new(cx.gpu, "wave", Vec3::new(0.0, 3.5, 6.5)),
+            stage: UstcView::new(cx.gpu, "wave", Vec3::new(0.0, 3.5, 6.5)),
             meshes: HashMap::new(),
             drawn: 1,
             capped: false,
         };
         stage.mesh(cx.gpu, 1);
-        Shaded::build(cx, "wave", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+)
+.animated();
 
 /// Seed 001's frame over the grid, built for each `subdiv` asked for (the course's first).
 struct WaveGrid {
-    stage: UstcStage,
+    stage: UstcView,
     meshes: HashMap<u32, GpuMesh<ColorVertex>>,
     drawn: u32,
     /// Whether `auto` stopped at its most without meeting its budget.
@@ -142,7 +141,7 @@ impl WaveGrid {
     }
 }
 
-impl Stage for WaveGrid {
+impl Geometry for WaveGrid {
     type Vertex = ColorVertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
@@ -176,22 +175,25 @@ impl Stage for WaveGrid {
         self.drawn = k;
         self.mesh(gpu, k)
     }
-    fn status(&self, p: &Params) -> String {
-        if p.f64("subdiv") == 0.0 {
-            let capped = if self.capped {
-                " (its most; over half a pixel)"
-            } else {
-                ""
-            };
-            format!(" | subdiv auto: {}{capped}", self.drawn)
-        } else {
-            String::new()
-        }
+    fn title(&self, info: &crate::lab::LabInfo, p: &Params) -> String {
+        crate::lab::params_title(info, p)
+            + &{
+                if p.f64("subdiv") == 0.0 {
+                    let capped = if self.capped {
+                        " (its most; over half a pixel)"
+                    } else {
+                        ""
+                    };
+                    format!(" | subdiv auto: {}{capped}", self.drawn)
+                } else {
+                    String::new()
+                }
+            }
     }
 }
 
-static LOOK: Look = Look::new(&[Pass::new("wave.vert", "pass_color.frag")])
-    .hook(|p: &Params, c: &mut Computed| c.set("time", &[wave_time(p)]));
+static MATERIAL: Material = Material::new(&[ShaderPair::new("wave.vert", "pass_color.frag")])
+    .derive(|p: &Params, c: &mut Derived| c.set("time", &[wave_time(p)]));
 
 // gl_Vertex and glColor3f's colour.
 crate::vertex_type!(ColorVertex, {

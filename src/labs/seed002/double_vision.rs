@@ -20,9 +20,9 @@
 use crate::geometry::images::uvgrid;
 use crate::geometry::shapes::{double_vision_triangle, TexVertex2};
 use crate::gpu::Gpu;
-use crate::lab::{Input, Keys, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Geometry, Input, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::{ParamSpec, Params};
-use crate::render::{sampler, Bind, Computed, GpuMesh, RenderState, SamplerDesc, Texture};
+use crate::render::{sampler, Bind, Derived, GpuMesh, RenderState, SamplerDesc, Texture};
 
 crate::vertex_type!(TexVertex2, {
     position: "vertex_position" => Float32x2,
@@ -30,14 +30,14 @@ crate::vertex_type!(TexVertex2, {
 });
 
 /// `double_vision`.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "double_vision",
         "ref002",
         "double vision",
         Keys::text("[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)"),
     ),
-    params: &[&[
+    &[&[
         ParamSpec::real(
             "left_x",
             &[0.1],
@@ -55,26 +55,22 @@ pub static RECIPE: Recipe = Recipe {
         ParamSpec::real("left_y", &[0.0], -100.0, 100.0, "left_separation.t"),
         ParamSpec::real("right_y", &[0.0], -100.0, 100.0, "right_separation.t"),
     ]],
-    animated: false,
-    title: None,
-    build: |cx, p| {
+    |cx, p| {
         let image = uvgrid();
         let texture = Texture::new(cx.gpu, "uvgrid", image.width, image.height, 1, &[image.rgba]);
-        // REPEAT/REPEAT, LINEAR/LINEAR, no mipmaps (SPEC §2.2, pinned).
         let sampler = sampler(cx.gpu, "double_vision.sampler", &SamplerDesc::default());
         let triangle = GpuMesh::new(cx.gpu, "double_vision.triangle", &double_vision_triangle(), None);
         let own = vec![Bind::texture("tex", &texture), Bind::sampler("tex_sampler", &sampler)];
-        Shaded::build(cx, "double_vision", p, Triangle(triangle), &LOOK, own)
+        MaterialScene::build_with(cx, p, Triangle(triangle), &MATERIAL, own)
     },
-};
+);
 
-static LOOK: Look =
-    Look::new(&[Pass::new("double_vision.vert", "double_vision.frag").state(RenderState::GL.no_depth())]).hook(
-        |p: &Params, c: &mut Computed| {
+static MATERIAL: Material =
+    Material::new(&[ShaderPair::new("double_vision.vert", "double_vision.frag").state(RenderState::GL.no_depth())])
+        .derive(|p: &Params, c: &mut Derived| {
             c.set("left_separation", &[p.f("left_x"), p.f("left_y")]);
             c.set("right_separation", &[p.f("right_x"), p.f("right_y")]);
-        },
-    );
+        });
 
 /// The separation step of keys `[` and `]`.
 const STEP: f64 = 0.02;
@@ -82,7 +78,7 @@ const STEP: f64 = 0.02;
 /// The triangle in clip space, and the separation keys.
 struct Triangle(GpuMesh<TexVertex2>);
 
-impl Stage for Triangle {
+impl Geometry for Triangle {
     type Vertex = TexVertex2;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         let delta = match input {

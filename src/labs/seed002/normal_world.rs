@@ -12,7 +12,7 @@
 
 use glam::Vec3;
 
-use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded};
+use crate::lab::{Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::ParamSpec;
 
 use crate::labs::seed002::stage::{model_zyx, Teapot};
@@ -21,8 +21,8 @@ use crate::labs::seed002::stage::{model_zyx, Teapot};
 const TURNS: f64 = 36000.0;
 
 /// `normal_world`: the shaders read the Transform block alone.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "normal_world",
         "ref002",
         "normal as colour, world space",
@@ -35,7 +35,7 @@ pub static RECIPE: Recipe = Recipe {
             "",
         ),
     ),
-    params: &[&[
+    &[&[
         ParamSpec::real(
             "rx",
             &[0.0],
@@ -60,11 +60,7 @@ pub static RECIPE: Recipe = Recipe {
         ),
         crate::labs::common::FACES,
     ]],
-    animated: false,
-    title: None,
-    build: |cx, p| {
-        // Mesh order: with any other (outside faces first included) 1 px changed in 4 of 1000
-        // random views, where faces in front and behind tie in depth at the silhouette.
+    |cx, p| {
         let stage = Teapot::new(
             cx.gpu,
             "normal_world",
@@ -76,8 +72,8 @@ pub static RECIPE: Recipe = Recipe {
             },
             crate::labs::common::FaceOrder::Mesh,
         );
-        Shaded::build(cx, "normal_world", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+);
 
-static LOOK: Look = Look::new(&[Pass::new("normal_world.vert", "normal_world.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("normal_world.vert", "normal_world.frag")]);

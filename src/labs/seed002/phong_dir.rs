@@ -18,16 +18,16 @@
 
 use glam::Mat4;
 
-use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, DOWN, UP};
+use crate::lab::{Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair, DOWN, UP};
 use crate::params::{ParamSpec, Params};
-use crate::render::Computed;
+use crate::render::Derived;
 
 use crate::labs::common::FaceOrder;
 use crate::labs::seed002::stage::{self, Teapot};
 
 /// `phong_dir`.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "phong_dir",
         "ref002",
         "Phong, directional light",
@@ -39,7 +39,7 @@ pub static RECIPE: Recipe = Recipe {
             "",
         ),
     ),
-    params: &[&[
+    &[&[
         ParamSpec::real("rx", &[0.0], -36000.0, 36000.0, "glRotated about x, degrees (Up/Down)"),
         ParamSpec::flag(
             "fixpos",
@@ -48,26 +48,22 @@ pub static RECIPE: Recipe = Recipe {
         ),
         crate::labs::common::FACES,
     ]],
-    animated: false,
-    title: None,
-    build: |cx, p| {
-        // Facing the eye first: 0.841 of outside faces first (two draws), itself 0.855 against
-        // 1.083 of the original in mesh order; 1000 random views byte-identical to mesh order.
+    |cx, p| {
         let stage = Teapot::new(
             cx.gpu,
             "phong_dir",
             |p| (model_rx(p.f("rx")), stage::EYE),
             FaceOrder::FacingFirst,
         );
-        Shaded::build(cx, "phong_dir", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+);
 
-static LOOK: Look = Look::new(&[Pass::new("phong_dir.vert", "phong_dir.frag")]).hook(course);
+static MATERIAL: Material = Material::new(&[ShaderPair::new("phong_dir.vert", "phong_dir.frag")]).derive(course);
 
 /// The course's values (SPEC §2.4), and `gl_ModelViewProjectionMatrix` in GL's depth
 /// convention for the model.
-fn course(p: &Params, c: &mut Computed) {
+fn course(p: &Params, c: &mut Derived) {
     c.set("material_ambient", &[0.1, 0.1, 0.1]);
     c.set("material_shininess", &[100.0]);
     c.set("material_diffuse", &[0.5, 0.5, 0.8]);

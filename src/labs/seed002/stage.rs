@@ -13,7 +13,7 @@ use glam::{Mat4, Vec3};
 
 use crate::camera;
 use crate::gpu::Gpu;
-use crate::lab::Stage;
+use crate::lab::Geometry;
 use crate::labs::common::{FaceOrder, TransformUniforms};
 use crate::mesh::Vertex;
 use crate::params::Params;
@@ -56,7 +56,7 @@ pub fn teapot(gpu: &Gpu, label: &str) -> ViewOrdered<Vertex> {
 /// The model matrix and the `gluLookAt` eye a lab computes from its parameters.
 pub type Pose = fn(&Params) -> (Mat4, Vec3);
 
-/// The stage as the runner draws it ([`Stage`]): the teapot, turned by the lab's [`Pose`], seen
+/// The stage as the runner draws it ([`Geometry`]): the teapot, turned by the lab's [`Pose`], seen
 /// through [`projection_stack`] (whatever the window's aspect), as the `Transform` block.
 pub struct Teapot {
     pose: Pose,
@@ -82,7 +82,7 @@ impl Teapot {
     }
 }
 
-impl Stage for Teapot {
+impl Geometry for Teapot {
     type Vertex = Vertex;
     fn binds(&self) -> Vec<Bind> {
         vec![self.transform.bind()]
@@ -90,8 +90,8 @@ impl Stage for Teapot {
     /// By the `faces` parameter (the lab's order in `auto`; freeglut winds the teapot's
     /// outside clockwise): the same pixels as GL's mesh order but at exact depth ties, with
     /// the inside faces behind them rejected by the depth test before they are shaded.
-    fn faces(&self, p: &Params) -> Option<crate::render::Faces> {
-        Some(FaceOrder::of(p, self.auto).faces(wgpu::FrontFace::Cw))
+    fn culling(&self, p: &Params) -> Option<crate::render::Culling> {
+        Some(FaceOrder::of(p, self.auto).culling(wgpu::FrontFace::Cw))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, _width: u32, _height: u32) -> &GpuMesh<Vertex> {
         let (model, eye) = (self.pose)(p);

@@ -16,11 +16,11 @@
 use std::collections::HashMap;
 
 use crate::geometry::shapes::{indexed_quads, twist_grid_n};
+use crate::geometry::twist::{auto_grid, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
 use crate::gpu::Gpu;
-use crate::lab::{Key::C, KeyRow, Keys, Look, Pass, Recipe, Shaded, Stage};
+use crate::lab::{Geometry, Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::params::{ParamSpec, Params};
 use crate::render::{note_once, GpuMesh, RenderState};
-use crate::geometry::twist::{auto_grid, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX, MAX_GRID};
 
 /// One vertex of the grid: `glVertex2f(x, y)`.
 #[repr(C)]
@@ -32,14 +32,14 @@ pub struct TwistVertex {
 crate::vertex_type!(TwistVertex, { position: "vertex_position" => Float32x2 });
 
 /// `twist`: the `Twist` block's `twisting` and `color` are its parameters.
-pub static RECIPE: Recipe = Recipe {
-    info: super::info(
+pub static RECIPE: Recipe = Recipe::new(
+    super::info(
         "twist",
         "ref002",
         "2D twisting",
         Keys::rows(&[KeyRow::step(&[C('-'), C('+')], "twisting", 0.25)], ""),
     ),
-    params: &[&[
+    &[&[
         ParamSpec::real(
             "twisting",
             &[4.25],
@@ -63,14 +63,12 @@ pub static RECIPE: Recipe = Recipe {
         )
         .with_auto(0.0),
     ]],
-    animated: false,
-    title: None,
-    build: |cx, p| {
+    |cx, p| {
         let mut stage = Grid::default();
         stage.mesh(cx.gpu, COURSE_GRID);
-        Shaded::build(cx, "twist", p, stage, &LOOK, Vec::new())
+        MaterialScene::build(cx, p, stage, &MATERIAL)
     },
-};
+);
 
 /// The grid, built for each size asked for (the course's first) and kept.
 #[derive(Default)]
@@ -125,7 +123,7 @@ impl Grid {
     }
 }
 
-impl Stage for Grid {
+impl Geometry for Grid {
     type Vertex = TwistVertex;
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<TwistVertex> {
         let n = self.size(p, width, height);
@@ -136,13 +134,17 @@ impl Stage for Grid {
         self.drawn = n;
         self.mesh(gpu, n)
     }
-    fn status(&self, p: &Params) -> String {
-        if p.f64("grid") == 0.0 {
-            format!(" | grid auto: {}", self.drawn)
-        } else {
-            String::new()
-        }
+    fn title(&self, info: &crate::lab::LabInfo, p: &Params) -> String {
+        crate::lab::params_title(info, p)
+            + &{
+                if p.f64("grid") == 0.0 {
+                    format!(" | grid auto: {}", self.drawn)
+                } else {
+                    String::new()
+                }
+            }
     }
 }
 
-static LOOK: Look = Look::new(&[Pass::new("twist.vert", "twist.frag").state(RenderState::GL.no_depth())]);
+static MATERIAL: Material =
+    Material::new(&[ShaderPair::new("twist.vert", "twist.frag").state(RenderState::GL.no_depth())]);

@@ -34,15 +34,15 @@ use crate::camera::fly::{FlyCamera, FlyStart, Move};
 use crate::camera::gl_to_wgpu_depth;
 use crate::geometry::shapes::{bezier_strip, bezier_strip_n, StripVertex};
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Input, Keys, LabInfo, Look, Pass, Recipe, Shaded, Special, Stage};
+use crate::lab::{FilesTaken, Geometry, Input, Keys, LabInfo, Material, MaterialScene, Recipe, ShaderPair, Special};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, RenderState, Uniforms};
 
 /// `specular_strip`: the strip seen by the live camera ([`Fly`]), one pass.
-pub static RECIPE: Recipe = Recipe {
-    info: LabInfo {
+pub static RECIPE: Recipe = Recipe::new(
+    LabInfo {
         name: "specular_strip",
-        title: "ref003",
+        original_title: "ref003",
         label: "Bezier strip, specular light",
         lecture: "003 LETI lab 5",
         size: (640, 480),
@@ -52,13 +52,11 @@ pub static RECIPE: Recipe = Recipe {
         ),
         files: FilesTaken::NONE,
     },
-    params: &[PARAMS],
-    animated: false,
-    title: None,
-    build: |cx, p| Shaded::build(cx, "specular_strip", p, Fly::new(cx.gpu, p), &LOOK, Vec::new()),
-};
+    &[PARAMS],
+    |cx, p| MaterialScene::build(cx, p, Fly::new(cx.gpu, p), &MATERIAL),
+);
 
-static LOOK: Look = Look::new(&[Pass::new("specular_strip.vert", "specular_strip.frag")
+static MATERIAL: Material = Material::new(&[ShaderPair::new("specular_strip.vert", "specular_strip.frag")
     .state(RenderState::GL.topology(wgpu::PrimitiveTopology::TriangleStrip))]);
 
 crate::vertex_type!(StripVertex, {
@@ -274,7 +272,7 @@ impl Fly {
     }
 }
 
-impl Stage for Fly {
+impl Geometry for Fly {
     type Vertex = StripVertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.sync(p);
@@ -347,21 +345,24 @@ impl Stage for Fly {
     }
     /// The live camera, once it has left the parameters' start state, and `segments=auto`'s
     /// choice.
-    fn status(&self, p: &Params) -> String {
-        let c = &self.camera;
-        let auto = if p.f64("segments") == 0.0 {
-            format!(" | segments auto: {}", self.segments)
-        } else {
-            String::new()
-        };
-        if *c == FlyCamera::from_start(&start_of(p)) {
-            auto
-        } else {
-            let Vec3 { x, y, z } = c.position;
-            format!(
-                " | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}{auto}",
-                c.yaw, c.pitch
-            )
-        }
+    fn title(&self, info: &crate::lab::LabInfo, p: &Params) -> String {
+        crate::lab::params_title(info, p)
+            + &{
+                let c = &self.camera;
+                let auto = if p.f64("segments") == 0.0 {
+                    format!(" | segments auto: {}", self.segments)
+                } else {
+                    String::new()
+                };
+                if *c == FlyCamera::from_start(&start_of(p)) {
+                    auto
+                } else {
+                    let Vec3 { x, y, z } = c.position;
+                    format!(
+                        " | camera ({x:.3}, {y:.3}, {z:.3}) yaw {:.1} pitch {:.1}{auto}",
+                        c.yaw, c.pitch
+                    )
+                }
+            }
     }
 }

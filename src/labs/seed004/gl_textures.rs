@@ -13,7 +13,7 @@ use std::path::Path;
 use crate::error::Result;
 use crate::geometry::images::{self, Image};
 use crate::gpu::Gpu;
-use crate::lab::{Input, BuildContext, Pass, Scene, Stage, UserFile};
+use crate::lab::{BuildContext, Geometry, Input, Scene, ShaderPair, UserFile};
 use crate::params::Params;
 use crate::render::{sampler, AnyProgram, Bind, Frame, Load, Program, SamplerDesc, Texture};
 
@@ -190,7 +190,7 @@ pub fn bmp(gpu: &Gpu, user: Option<&UserFile<Image>>) -> Result<GlTexture> {
 /// A stage drawn by one pass sampling texture unit 0 (`tex`, `tex_sampler`): the texture and
 /// the GL parameters `pick` chooses for the parameters, bound again when they change
 /// (`glBindTexture`, `glTexParameteri`).
-pub struct Sampled<S: Stage> {
+pub struct Sampled<S: Geometry> {
     label: String,
     stage: S,
     program: Program<S::Vertex>,
@@ -199,13 +199,13 @@ pub struct Sampled<S: Stage> {
     bound: Option<(usize, TexParams)>,
 }
 
-impl<S: Stage> Sampled<S> {
+impl<S: Geometry> Sampled<S> {
     /// Compiles `pass`; the first frame binds the stage's blocks and the texture picked.
     pub fn build(
         cx: &BuildContext,
         name: &str,
         stage: S,
-        pass: Pass,
+        pass: ShaderPair,
         textures: Vec<GlTexture>,
         pick: fn(&Params) -> (usize, TexParams),
     ) -> Result<Box<dyn Scene>> {
@@ -220,7 +220,7 @@ impl<S: Stage> Sampled<S> {
     }
 }
 
-impl<S: Stage> Scene for Sampled<S> {
+impl<S: Geometry> Scene for Sampled<S> {
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
         self.stage.input(p, input)
     }

@@ -23,7 +23,7 @@ use crate::lab::{FilesTaken, Keys, LabInfo};
 pub const fn info(name: &'static str, label: &'static str, keys: Keys, files: FilesTaken) -> LabInfo {
     LabInfo {
         name,
-        title: "OpenGL III",
+        original_title: "OpenGL III",
         label,
         lecture: "004 OpenGL III – Basic Shaders",
         size: (640, 480),

@@ -12,10 +12,10 @@ use crate::camera::{self, glm};
 use crate::error::Result;
 use crate::geometry::obj::{self, ObjCorner};
 use crate::gpu::Gpu;
-use crate::lab::{Input, BuildContext, Stage};
+use crate::lab::{BuildContext, Geometry, Input};
 use crate::labs::common::{self, std140_mat3, FaceOrder};
 use crate::params::{ParamSpec, Params};
-use crate::render::{check_fits, Bind, Faces, GpuMesh, Uniforms, ViewOrdered};
+use crate::render::{check_fits, Bind, Culling, GpuMesh, Uniforms, ViewOrdered};
 
 // The course's attributes, found by name (glGetAttribLocation): stride 36, offsets 0, 16, 24.
 crate::vertex_type!(ObjCorner, {
@@ -99,7 +99,7 @@ pub enum Normals {
     Vertex,
 }
 
-/// The stage as the runner draws it ([`Stage`]): the model, its rotation and the Matrices
+/// The stage as the runner draws it ([`Geometry`]): the model, its rotation and the Matrices
 /// block, drawing the VBO `normals` picks for the parameters (one exercise's own, or the
 /// shading model's).
 pub struct Model {
@@ -181,7 +181,7 @@ impl Model {
     }
 }
 
-impl Stage for Model {
+impl Geometry for Model {
     type Vertex = ObjCorner;
 
     /// Left-button drag: yangle += 0.5° per pixel of x, xangle += 0.5° per pixel of y.
@@ -202,7 +202,7 @@ impl Stage for Model {
                 // Kept within one turn, so a long session never loses float precision.
                 for (name, pixels) in [("yangle", x - x0), ("xangle", y - y0)] {
                     let angle = (params.f(name) + 0.5 * pixels as f32).rem_euclid(360.0);
-                    params.put(name, &[f64::from(angle)]);
+                    params.set_unchecked(name, &[f64::from(angle)]);
                 }
                 true
             }
@@ -217,8 +217,8 @@ impl Stage for Model {
     /// By the `faces` parameter; in `auto`, as [`Model::auto`] says (Suzanne's outside faces
     /// are counter-clockwise, as Blender writes them): the same pixels, with the faces behind
     /// them rejected by the depth test before they are shaded.
-    fn faces(&self, p: &Params) -> Option<Faces> {
-        Some(self.order(p).faces(wgpu::FrontFace::Ccw))
+    fn culling(&self, p: &Params) -> Option<Culling> {
+        Some(self.order(p).culling(wgpu::FrontFace::Ccw))
     }
 
     /// Writes the Matrices block for the current angles and returns the VBO `normals` picks.

@@ -17,11 +17,11 @@
 
 use crate::error::Result;
 use crate::lab::{
-    FilesTaken, Key::C, KeyRow, Keys, BuildContext, Look, Pass, Recipe, Scene, Shaded, DOWN, LEFT, PAGE_DOWN, PAGE_UP,
-    RIGHT, UP,
+    BuildContext, FilesTaken, Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, Scene, ShaderPair, DOWN, LEFT,
+    PAGE_DOWN, PAGE_UP, RIGHT, UP,
 };
 use crate::params::{ParamSpec, Params};
-use crate::render::Computed;
+use crate::render::Derived;
 
 use super::gl_textures::{self, Sampled, TexParams};
 use super::info;
@@ -45,13 +45,7 @@ const fn files(texture: bool) -> FilesTaken {
 
 /// A normals-as-colour exercise: the rotation is its only parameter.
 pub const fn colour(name: &'static str, label: &'static str, build: Build) -> Recipe {
-    Recipe {
-        info: info(name, label, Keys::text(DRAG), files(false)),
-        params: &[ANGLES],
-        animated: false,
-        title: None,
-        build,
-    }
+    Recipe::new(info(name, label, Keys::text(DRAG), files(false)), &[ANGLES], build)
 }
 
 /// The model drawn by `look` with the normals `normals` picks.
@@ -59,10 +53,10 @@ pub fn draw(
     cx: &BuildContext,
     p: &Params,
     name: &str,
-    look: &'static Look,
+    look: &'static Material,
     normals: fn(&Params) -> Normals,
 ) -> Result<Box<dyn Scene>> {
-    Shaded::build(cx, name, p, Model::new(cx, name, normals)?, look, Vec::new())
+    MaterialScene::build(cx, p, Model::new(cx, name, normals)?, look)
 }
 
 /// A textured exercise's parameters: `tex`, then the rotation.
@@ -78,13 +72,11 @@ const TEXTURED_PARAMS: &[&[ParamSpec]] = &[
 
 /// A textured exercise.
 pub const fn textured(name: &'static str, label: &'static str, build: Build) -> Recipe {
-    Recipe {
-        info: info(name, label, Keys::rows(TEXTURED_KEYS, DRAG), files(true)),
-        params: TEXTURED_PARAMS,
-        animated: false,
-        title: None,
+    Recipe::new(
+        info(name, label, Keys::rows(TEXTURED_KEYS, DRAG), files(true)),
+        TEXTURED_PARAMS,
         build,
-    }
+    )
 }
 
 /// Key `t` toggles the texture.
@@ -108,7 +100,7 @@ pub fn sample(
         cx,
         name,
         model,
-        Pass::new("suzanne_normal_matrix.vert", frag),
+        ShaderPair::new("suzanne_normal_matrix.vert", frag),
         textures,
         |p| {
             let tex = p.index_of("tex").min(1);
@@ -178,26 +170,24 @@ const LIT_KEYS: &[KeyRow] = &[
 
 /// A lit exercise starting with the model `start`.
 pub const fn lit(name: &'static str, label: &'static str, start: Shading, build: Build) -> Recipe {
-    Recipe {
-        info: info(name, label, Keys::rows(LIT_KEYS, DRAG), files(false)),
-        params: LIT_PARAMS[start as usize],
-        animated: false,
-        title: None,
+    Recipe::new(
+        info(name, label, Keys::rows(LIT_KEYS, DRAG), files(false)),
+        LIT_PARAMS[start as usize],
         build,
-    }
+    )
 }
 
 /// The three models' passes, `shading` picking one (keys switch without a pause).
-static LIT: Look = Look::new(&[
-    Pass::new("suzanne_flat.vert", "suzanne_flat.frag").named("flat"),
-    Pass::new("suzanne_gouraud.vert", "suzanne_gouraud.frag").named("gouraud"),
-    Pass::new("suzanne_phong.vert", "suzanne_phong.frag").named("phong"),
+static LIT: Material = Material::new(&[
+    ShaderPair::new("suzanne_flat.vert", "suzanne_flat.frag").named("flat"),
+    ShaderPair::new("suzanne_gouraud.vert", "suzanne_gouraud.frag").named("gouraud"),
+    ShaderPair::new("suzanne_phong.vert", "suzanne_phong.frag").named("phong"),
 ])
-.pick("shading")
-.hook(light);
+.chosen_by("shading")
+.derive(light);
 
 /// The `Light` block's members that are not parameters as they stand.
-pub fn light(p: &Params, c: &mut Computed) {
+pub fn light(p: &Params, c: &mut Derived) {
     let (ka, ks) = (p.f("ka"), p.f("ks"));
     c.set("Ka", &[ka, ka, ka, 1.0]);
     c.set("Kd", &[p.f("kdr"), p.f("kdg"), p.f("kdb"), 1.0]);
@@ -219,5 +209,5 @@ pub fn shade(cx: &BuildContext, p: &Params, name: &str) -> Result<Box<dyn Scene>
     // order.
     let mut model = Model::new(cx, name, normals)?;
     model.auto = |_| FaceOrder::FacingFirst;
-    Shaded::build(cx, name, p, model, &LIT, Vec::new())
+    MaterialScene::build(cx, p, model, &LIT)
 }

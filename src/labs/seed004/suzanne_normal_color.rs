@@ -4,13 +4,16 @@
 //!
 //! Keys: left drag rotates (0.5° per pixel).
 
-use crate::lab::{Look, Pass, Recipe};
+use crate::lab::{Material, Recipe, ShaderPair};
 use crate::labs::seed004::stage::Normals;
 use crate::labs::seed004::suzanne::{colour, draw};
 
 /// Seed 004 §4.1.
 pub static RECIPE: Recipe = colour("suzanne_normal_color", "normal colour", |cx, p| {
-    draw(cx, p, RECIPE.info.name, &LOOK, |_| Normals::Face)
+    draw(cx, p, RECIPE.info.name, &MATERIAL, |_| Normals::Face)
 });
 
-static LOOK: Look = Look::new(&[Pass::new("suzanne_normal_color.vert", "suzanne_normal_color.frag")]);
+static MATERIAL: Material = Material::new(&[ShaderPair::new(
+    "suzanne_normal_color.vert",
+    "suzanne_normal_color.frag",
+)]);

@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::geometry::obj::ObjCorner;
 use crate::geometry::shapes;
 use crate::gpu::Gpu;
-use crate::lab::{FilesTaken, Key::C, KeyRow, Keys, BuildContext, Pass, Recipe, Scene, Stage};
+use crate::lab::{BuildContext, FilesTaken, Geometry, Key::C, KeyRow, Keys, Recipe, Scene, ShaderPair};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms};
 
@@ -26,8 +26,8 @@ use crate::labs::seed004::info;
 use crate::labs::seed004::stage::SuzanneMatrices;
 
 /// Seed 004 §4.6.
-pub static RECIPE: Recipe = Recipe {
-    info: info(
+pub static RECIPE: Recipe = Recipe::new(
+    info(
         "texparams",
         "texture parameters",
         Keys::rows(
@@ -44,7 +44,7 @@ pub static RECIPE: Recipe = Recipe {
             ..FilesTaken::NONE
         },
     ),
-    params: &[&[
+    &[&[
         ParamSpec::choice(
             "wrap_s",
             &[0.0],
@@ -77,10 +77,8 @@ pub static RECIPE: Recipe = Recipe {
             "port: anisotropic filtering, samples (1 off; above 1 trilinear + anisotropic, min and mag ignored)",
         ),
     ]],
-    animated: false,
-    title: None,
     build,
-};
+);
 
 /// V = `lookAt((0, 0.5, 3), (0, −1, −3), (0, 1, 0))`; M = identity.
 pub fn view() -> Mat4 {
@@ -103,7 +101,7 @@ struct Floor {
     mesh: GpuMesh<ObjCorner>,
 }
 
-impl Stage for Floor {
+impl Geometry for Floor {
     type Vertex = ObjCorner;
     fn binds(&self) -> Vec<Bind> {
         vec![self.matrices.bind()]
@@ -133,6 +131,6 @@ fn build(cx: &BuildContext, _p: &Params) -> Result<Box<dyn Scene>> {
         matrices: Uniforms::new(cx.gpu, "texparams.matrices", matrices),
         mesh: GpuMesh::new(cx.gpu, "texparams.floor", &shapes::texparams_floor(), None),
     };
-    let pass = Pass::new("suzanne_normal_matrix.vert", "suzanne_texture.frag");
+    let pass = ShaderPair::new("suzanne_normal_matrix.vert", "suzanne_texture.frag");
     Sampled::build(cx, "texparams", floor, pass, vec![texture], |p| (0, tex_params(p)))
 }

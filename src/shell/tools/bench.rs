@@ -5,7 +5,6 @@
 //! a comparison with the original is measured side by side, alternating, with
 //! `../shared/original/bench-vs-original`, never against stored figures.
 
-use clap::{CommandFactory, FromArgMatches, Parser};
 use crate::lab::BuildContext;
 use crate::offscreen::COLOR_FORMAT;
 use crate::params::Kind;
@@ -13,6 +12,7 @@ use crate::shader::ShaderSource;
 use crate::shell::bench;
 use crate::shell::{say, tool_exit};
 use crate::{labs, Gpu};
+use clap::{CommandFactory, FromArgMatches, Parser};
 
 #[derive(Parser)]
 #[command(name = "bench", about = "Benchmark every lab (and object) offscreen")]
@@ -48,6 +48,7 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
         source: &source,
         format: COLOR_FORMAT,
         files: &crate::lab::NO_FILES,
+        lab: "",
     };
     let bar = crate::shell::progress_bar(labs::ALL.len() as u64, "labs");
     for entry in labs::ALL {

@@ -20,10 +20,10 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::{bail, Context};
-use clap::{CommandFactory, FromArgMatches, Parser};
 use crate::fsutil::{check_output_path, same_file, write_atomic, Batch};
 use crate::shader::compile_file;
+use anyhow::{bail, Context};
+use clap::{CommandFactory, FromArgMatches, Parser};
 
 /// Translate GLSL 450 shaders to WGSL with naga.
 #[derive(Parser, Debug)]
@@ -166,8 +166,7 @@ pub fn main() -> ExitCode {
 /// The translator for a command line (program name first); `shaderlab glsl2wgsl` calls it too.
 pub fn main_from(argv: impl IntoIterator<Item = std::ffi::OsString>) -> ExitCode {
     let matches = crate::shell::parse_command_line(Args::command(), argv);
-    let args =
-        Args::from_arg_matches(&matches).unwrap_or_else(|e| crate::shell::exit_on_clap_error("glsl2wgsl", e));
+    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| crate::shell::exit_on_clap_error("glsl2wgsl", e));
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -296,7 +296,7 @@ impl App {
         let entry = self.entry;
         let (width, height) = self.args.size(entry);
         let attributes = Window::default_attributes()
-            .with_title(format!("{} {}", entry.info.title, entry.info.label))
+            .with_title(format!("{} {}", entry.info.original_title, entry.info.label))
             .with_inner_size(PhysicalSize::new(width, height));
         let window = Arc::new(
             event_loop
@@ -332,6 +332,7 @@ impl App {
             source: &self.source,
             format: screen.format(),
             files: &self.files,
+            lab: "",
         })?;
         if let Some(params) = self.params.take() {
             *lab.params_mut() = params;
@@ -505,6 +506,7 @@ impl WindowState {
             source: &self.sources.source,
             format: self.screen.format(),
             files: &self.sources.files,
+            lab: "",
         };
         match self.session.reload(&cx) {
             Ok(()) if had_error => eprintln!("{}: shaders reloaded, error fixed", self.name()),
