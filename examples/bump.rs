@@ -1,4 +1,2 @@
 //! `cargo run --release --example bump`: Seed 001 §1.11, tangent-space bump mapping. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::BUMP)
-}
+shaderlab::lab_example!();

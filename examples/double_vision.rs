@@ -1,4 +1,2 @@
 //! `cargo run --release --example double_vision`: Seed 002 (Lecture 12), double vision (`ref002`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::DOUBLE_VISION)
-}
+shaderlab::lab_example!();

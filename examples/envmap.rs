@@ -1,4 +1,2 @@
 //! `cargo run --release --example envmap`: Seed 001 §1.10, cube-map environment (reflection) map. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::ENVMAP)
-}
+shaderlab::lab_example!();

@@ -1,4 +1,2 @@
 //! `cargo run --release --example height`: Seed 001 §1.1, custom vertex attribute `height`. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::HEIGHT)
-}
+shaderlab::lab_example!();

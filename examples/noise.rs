@@ -1,4 +1,2 @@
 //! `cargo run --release --example noise`: Exercise 4, simplex noise (`Lab05-4`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::NOISE)
-}
+shaderlab::lab_example!();

@@ -1,4 +1,2 @@
 //! `cargo run --release --example normal_rgb`: Exercise 2, normal → RGB (`Lab05-2`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::NORMAL_RGB)
-}
+shaderlab::lab_example!();

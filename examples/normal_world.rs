@@ -1,4 +1,2 @@
 //! `cargo run --release --example normal_world`: Seed 002 (Lecture 12), normal as colour in world space (`ref002`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::NORMAL_WORLD)
-}
+shaderlab::lab_example!();

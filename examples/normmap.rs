@@ -1,4 +1,2 @@
 //! `cargo run --release --example normmap`: Seed 001 §1.12, normalization cube map. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::NORMMAP)
-}
+shaderlab::lab_example!();

@@ -1,4 +1,2 @@
 //! `cargo run --release --example phong`: Exercise 3, Phong per-pixel lighting (`Lab05-3`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::PHONG)
-}
+shaderlab::lab_example!();

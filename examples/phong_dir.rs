@@ -1,4 +1,2 @@
 //! `cargo run --release --example phong_dir`: Seed 002 (Lecture 12), Phong with a directional light (`ref002`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::PHONG_DIR)
-}
+shaderlab::lab_example!();

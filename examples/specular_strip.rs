@@ -1,4 +1,2 @@
 //! `cargo run --release --example specular_strip`: Seed 003 (LETI lab 5), Bezier strip with specular light (`ref003`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::SPECULAR_STRIP)
-}
+shaderlab::lab_example!();

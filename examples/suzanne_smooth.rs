@@ -1,4 +1,2 @@
 //! `cargo run --release --example suzanne_smooth`: seed 004 §4.3, smooth. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::SUZANNE_SMOOTH)
-}
+shaderlab::lab_example!();

@@ -1,4 +1,2 @@
 //! `cargo run --release --example texparams`: seed 004 §4.6, texture parameters. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::TEXPARAMS)
-}
+shaderlab::lab_example!();

@@ -1,4 +1,2 @@
 //! `cargo run --release --example twist`: Seed 002 (Lecture 12), 2D twisting (`ref002`). Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::TWIST)
-}
+shaderlab::lab_example!();

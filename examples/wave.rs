@@ -1,4 +1,2 @@
 //! `cargo run --release --example wave`: Seed 001 §1.3, wave-motion vertex shader. Run with `--help` for the command line.
-fn main() -> std::process::ExitCode {
-    shaderlab::shell::main(shaderlab::labs::WAVE)
-}
+shaderlab::lab_example!();

@@ -9,9 +9,8 @@ pub mod targets;
 pub(crate) mod host_memory;
 
 /// How long [`Gpu::poll_then_wait`] polls before it blocks, unless `SHADERLAB_POLL_US` says
-/// otherwise (0: block at once, as before; for measuring). Measured on lavapipe (2 vCPUs),
-/// against blocking at once, 9 alternating pairs: a 0.25 ms frame 8 % faster, 0.7-1.6 ms
-/// frames 2-6 % faster; 500 µs gave the same frame times as 200.
+/// otherwise (0: block at once; for measuring): long enough to cover a cheap frame whole, short
+/// enough to leave a dear one's CPU to the rasteriser (figures: `docs/speed.md`, "Polling").
 pub const POLL_BEFORE_WAIT: std::time::Duration = std::time::Duration::from_micros(200);
 
 /// [`POLL_BEFORE_WAIT`], or `SHADERLAB_POLL_US` microseconds (at most one second) when set to a
@@ -275,11 +274,10 @@ impl Gpu {
     ///
     /// Why not block at once: on a CPU driver (lavapipe) the work runs on the driver's queue
     /// thread and rasteriser threads, and a blocked waiter is woken by a futex from another
-    /// CPU, which on a small virtual machine costs tens of microseconds each time: a frame of
-    /// an 8x8 target took 0.095 ms blocking and 0.073 ms polling (height, 5 alternating runs each). Polling for the whole frame
-    /// takes CPU from the rasteriser threads (frames of 1 ms ran up to 14 % slower), so only
-    /// the first [`POLL_BEFORE_WAIT`] is polled: it covers a cheap frame whole, and in a dear
-    /// one it overlaps the driver's vertex and binning work, when the rasterisers are idle.
+    /// CPU, which on a small virtual machine costs tens of microseconds each time. Polling for
+    /// the whole frame takes CPU from the rasteriser threads, so only the first
+    /// [`POLL_BEFORE_WAIT`] is polled: it covers a cheap frame whole, and in a dear one it
+    /// overlaps the driver's vertex and binning work, when the rasterisers are idle.
     pub fn poll_then_wait(
         &self,
         done: impl Fn(wgpu::PollStatus) -> bool,

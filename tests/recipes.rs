@@ -56,7 +56,6 @@ fn every_lab_draws_the_same_picture_through_wgsl() {
         }
     }
     println!("{}", report.join("\n"));
-    assert_eq!(report.len(), labs::ALL.len());
 }
 
 #[test]

@@ -8,17 +8,15 @@
 
 mod common;
 
-use common::{build as lab, example, render_state as render, seed_reference as reference, shot};
+use common::{build as lab, example, render_state as render, shot};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use image::RgbImage;
 use shaderlab::geometry::images;
-use shaderlab::lab::{Input, LabEntry, Special};
+use shaderlab::lab::{Input, Special};
 use shaderlab::labs::{self, seed004::gl_textures};
-use shaderlab::metrics::{diff_image, mean_color, psnr};
-
-const MIN_PSNR: f64 = 40.0;
+use shaderlab::metrics::{mean_color, psnr};
 
 /// Where the tests leave their images.
 fn output_dir() -> PathBuf {
@@ -29,67 +27,6 @@ fn output_dir() -> PathBuf {
 
 fn save(image: &RgbImage, name: &str) {
     image.save(output_dir().join(name)).expect("write a test image");
-}
-
-/// Renders `entry` at its first state and compares it with the reference `004_<name>.png`.
-fn check_reference(entry: &LabEntry, reference_name: &str, state: &[(&str, &str)]) -> f64 {
-    let actual = render(entry, state);
-    let expected = reference(&format!("004_{reference_name}.png"));
-    let db = psnr(&actual, &expected).expect("same size");
-    println!("004_{reference_name}: PSNR {db:.2} dB");
-    save(&actual, &format!("{reference_name}.png"));
-    if db < MIN_PSNR {
-        if let Some(d) = diff_image(&actual, &expected) {
-            save(&d, &format!("{reference_name}.diff.png"));
-        }
-    }
-    assert!(db >= MIN_PSNR, "004_{reference_name}: {db:.2} dB < {MIN_PSNR}");
-    db
-}
-
-#[test]
-fn normal_color_matches_reference() {
-    check_reference(labs::SUZANNE_NORMAL_COLOR, "normal_color_default", &[]);
-}
-
-#[test]
-fn normal_matrix_matches_reference() {
-    check_reference(labs::SUZANNE_NORMAL_MATRIX, "normal_matrix_default", &[]);
-}
-
-#[test]
-fn smooth_matches_reference() {
-    check_reference(labs::SUZANNE_SMOOTH, "smooth_default", &[]);
-}
-
-#[test]
-fn texture_matches_reference() {
-    check_reference(labs::SUZANNE_TEXTURE, "texture_checker", &[("tex", "0")]);
-}
-
-#[test]
-fn texture_color_matches_reference() {
-    check_reference(labs::SUZANNE_TEXTURE_COLOR, "texture_color_checker", &[("tex", "0")]);
-}
-
-#[test]
-fn texparams_matches_reference() {
-    check_reference(labs::TEXPARAMS, "texparams_default", &[]);
-}
-
-#[test]
-fn flat_matches_reference() {
-    check_reference(labs::SUZANNE_FLAT, "flat_default", &[]);
-}
-
-#[test]
-fn gouraud_matches_reference() {
-    check_reference(labs::SUZANNE_GOURAUD, "gouraud_default", &[]);
-}
-
-#[test]
-fn phong_matches_reference() {
-    check_reference(labs::SUZANNE_PHONG, "phong_default", &[]);
 }
 
 /// Writes `assets/uvgrid.bmp` from [`images::uvgrid`]: run deliberately with

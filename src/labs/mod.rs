@@ -19,6 +19,27 @@ macro_rules! lecture {
     };
 }
 
+/// A lab's name is its module's: the last segment of `path` (`module_path!()` in the lab's
+/// file, as [`lab_name!`] writes it), so that the registration alone names a lab.
+pub const fn module_name(path: &'static str) -> &'static str {
+    let bytes = path.as_bytes();
+    let mut start = bytes.len();
+    while start > 0 && bytes[start - 1] != b':' {
+        start -= 1;
+    }
+    match std::str::from_utf8(bytes.split_at(start).1) {
+        Ok(name) => name,
+        Err(_) => panic!("a module path is UTF-8"),
+    }
+}
+
+/// The name of the lab whose file this is written in (its module's name).
+macro_rules! lab_name {
+    () => {
+        $crate::labs::module_name(module_path!())
+    };
+}
+
 pub mod common;
 pub mod legacy;
 pub mod seed000;

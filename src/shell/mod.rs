@@ -117,6 +117,35 @@ pub fn main(entry: &'static LabEntry) -> ExitCode {
     main_from(entry, std::env::args_os().collect())
 }
 
+/// The `main` of a lab's example (`examples/NAME.rs`): the lab is the one registered under the
+/// example's own name, so the example names it nowhere.
+#[macro_export]
+macro_rules! lab_example {
+    () => {
+        fn main() -> std::process::ExitCode {
+            $crate::shell::main_named(env!("CARGO_CRATE_NAME"))
+        }
+    };
+}
+
+/// [`main`] for the lab registered as `name` (an example's crate name): status 2 and the list
+/// of labs when there is none.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn main_named(name: &str) -> ExitCode {
+    match crate::labs::find(name) {
+        Some(entry) => main(entry),
+        None => {
+            let names: Vec<&str> = crate::labs::ALL.iter().map(|e| e.info.name).collect();
+            let _ = writeln!(
+                std::io::stderr(),
+                "no lab called `{name}`; the labs are: {}",
+                names.join(", ")
+            );
+            ExitCode::from(2)
+        }
+    }
+}
+
 /// [`main`] with the command line given (program name first): what `shaderlab run NAME …` calls.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> ExitCode {

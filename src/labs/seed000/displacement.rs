@@ -15,13 +15,10 @@ use crate::tess::Object;
 use crate::labs::seed000::stage::{title_000, Solid, PARAMS_000};
 use crate::labs::seed000::{noise_time, NOISE_PARAMS, SHADE_KEYS};
 
-/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order):
-/// same pixels, fewer fragments shaded). Measured (7 alternating pairs, wall time of the new
-/// order over the old): issue 14's `outside_first` against mesh order, torus 0.93, cube 1.02,
-/// sphere 1.02, teapot 1.00 (the vertex shader, noise per vertex, is dear, so a second pass over
-/// the geometry does not pay); issue 22's one-pass `facing_first` at the bench view (rotate
-/// 30,45,0), torus 0.936 against outside_first, teapot 0.997 against mesh order (left as GL
-/// draws: the displaced teapot's order for the undisplaced one gains nothing).
+/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order)):
+/// the torus facing the eye first, which draws the same pixels and shades fewer fragments;
+/// the other objects in mesh order, where no order measured faster (figures: `docs/speed.md`,
+/// "Face orders").
 const AUTO: &[(Object, FaceOrder)] = &[(Object::Torus, FaceOrder::FacingFirst)];
 
 /// `[`/`]` on the strength, then the shade keys.
@@ -36,7 +33,7 @@ const KEYS: &[KeyRow] = &[
 /// `time` the wrapped clock; `smooth` is the stage's ([`Solid`]).
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "displacement",
+        lab_name!(),
         "Lab05-5",
         "displacement",
         Keys::rows(KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
@@ -67,7 +64,7 @@ pub static RECIPE: Recipe = Recipe::new(
         PARAMS_000,
     ],
     |cx, p| {
-        let stage = Solid::new(cx.gpu, "displacement", AUTO).titled(title);
+        let stage = Solid::new(cx.gpu, cx.lab, AUTO).titled(title);
         MaterialScene::build(cx, p, stage, &MATERIAL)
     },
 )

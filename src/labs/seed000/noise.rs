@@ -12,12 +12,10 @@ use crate::tess::Object;
 use crate::labs::seed000::stage::{title_000, Solid, PARAMS_000};
 use crate::labs::seed000::{noise_time, NOISE_PARAMS, SHADE_KEYS};
 
-/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order):
-/// same pixels, fewer fragments shaded). Measured (7 alternating pairs, wall time of the new
-/// order over the old): issue 14's `outside_first` against mesh order, torus 0.73, teapot 0.92,
-/// sphere 1.00 and cube 0.95 within the noise; issue 22's `facing_first` against outside_first
-/// at the bench view (rotate 30,45,0), torus 0.975, teapot 0.973. Sphere and cube stay in mesh
-/// order.
+/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order)):
+/// the torus and the teapot facing the eye first, which draws the same pixels and shades fewer fragments;
+/// the other objects in mesh order, where no order measured faster (figures: `docs/speed.md`,
+/// "Face orders").
 const AUTO: &[(Object, FaceOrder)] = &[
     (Object::Torus, FaceOrder::FacingFirst),
     (Object::Teapot, FaceOrder::FacingFirst),
@@ -26,7 +24,7 @@ const AUTO: &[(Object, FaceOrder)] = &[
 /// Exercise 4: the `NoiseParams` block's `shade` is a parameter, its `time` the wrapped clock.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "noise",
+        lab_name!(),
         "Lab05-4",
         "simplex noise",
         Keys::rows(SHADE_KEYS, "1-4: objects; left drag rotates; Space pauses the clock"),
@@ -42,7 +40,7 @@ pub static RECIPE: Recipe = Recipe::new(
         NOISE_PARAMS,
         PARAMS_000,
     ],
-    |cx, p| MaterialScene::build(cx, p, Solid::new(cx.gpu, "noise", AUTO).titled(title), &MATERIAL),
+    |cx, p| MaterialScene::build(cx, p, Solid::new(cx.gpu, cx.lab, AUTO).titled(title), &MATERIAL),
 )
 .animated();
 

@@ -29,7 +29,7 @@ use crate::labs::seed000::stage::{title_000, GlutGeometry, StageConfig, PARAMS_0
 
 /// Exercise 3.
 pub static INFO: LabInfo = super::info(
-    "phong",
+    lab_name!(),
     "Lab05-3",
     "Phong",
     Keys::rows(
@@ -38,11 +38,10 @@ pub static INFO: LabInfo = super::info(
     ),
 );
 
-/// The face order by object ([`GlutGeometry::face_order`]: same pixels, fewer fragments shaded).
-/// Measured (7 alternating pairs, wall time of the new order over the old): issue 14's
-/// `outside_first` against mesh order, torus 0.81, teapot 0.93, sphere 1.05, cube 0.96 (within
-/// the noise); issue 22's `facing_first` against outside_first at the bench view (rotate
-/// 30,45,0), torus 0.969, teapot 0.967. Sphere and cube stay in mesh order.
+/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order)):
+/// the torus and the teapot facing the eye first, which draws the same pixels and shades fewer fragments;
+/// the other objects in mesh order, where no order measured faster (figures: `docs/speed.md`,
+/// "Face orders").
 const AUTO: &[(Object, FaceOrder)] = &[
     (Object::Torus, FaceOrder::FacingFirst),
     (Object::Teapot, FaceOrder::FacingFirst),

@@ -9,12 +9,10 @@ use crate::tess::Object;
 use crate::labs::seed000::stage::{Solid, PARAMS_000};
 use crate::labs::seed000::STAGE_KEYS;
 
-/// The face order by object ([`GlutGeometry::face_order`]; same pixels, fewer fragments shaded).
-/// Measured at the bench view (rotate 30,45,0; 7 alternating pairs, wall time of the new order
-/// over the old): issue 14's `outside_first` against mesh order, torus 0.97-0.98, sphere
-/// 1.04-1.12, teapot 1.00-1.09, cube 0.99-1.00; issue 22's `facing_first` against the order
-/// before it, torus 0.956 (against outside_first), teapot 0.955, sphere 1.032 (mesh order
-/// already draws its near half first), cube 0.934 (not used: the cube ties at some views).
+/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order)):
+/// the torus and the teapot facing the eye first, which draws the same pixels and shades fewer fragments;
+/// the other objects in mesh order, where no order measured faster (figures: `docs/speed.md`,
+/// "Face orders").
 const AUTO: &[(Object, FaceOrder)] = &[
     (Object::Torus, FaceOrder::FacingFirst),
     (Object::Teapot, FaceOrder::FacingFirst),
@@ -22,10 +20,10 @@ const AUTO: &[(Object, FaceOrder)] = &[
 
 /// Exercise 1: the stage and one pass, no uniforms of its own.
 pub static RECIPE: Recipe = Recipe::new(
-    super::info("position_rgb", "Lab05-1", "position to RGB", STAGE_KEYS),
+    super::info(lab_name!(), "Lab05-1", "position to RGB", STAGE_KEYS),
     &[PARAMS_000],
     |cx, p| {
-        let stage = Solid::new(cx.gpu, "position_rgb", AUTO);
+        let stage = Solid::new(cx.gpu, cx.lab, AUTO);
         MaterialScene::build(cx, p, stage, &MATERIAL)
     },
 );

@@ -16,7 +16,7 @@ use crate::labs::seed001::tangent_bump;
 
 /// Seed 001, §1.11.
 pub static RECIPE: Recipe = Recipe::new(
-    super::info("bump", "ref001", "bump mapping", tangent_bump::KEYS),
+    super::info(lab_name!(), "ref001", "bump mapping", tangent_bump::KEYS),
     tangent_bump::PARAMS,
     |cx, p| tangent_bump::build(cx, "bump", p, &MATERIAL, Vec::new()),
 );

@@ -21,7 +21,7 @@ use crate::labs::seed001::stage::{SolidGeometry, UstcView, OBJECT, ROTATION};
 /// sampler are the lab's own bindings.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "envmap",
+        lab_name!(),
         "ref001",
         "environment map",
         Keys::text("1-4: objects; left drag rotates"),
@@ -40,7 +40,7 @@ pub static RECIPE: Recipe = Recipe::new(
             },
         );
         let own = vec![Bind::texture("texMap", &cube), Bind::sampler("texMapSampler", &sampler)];
-        let mut stage = SolidGeometry::new(cx.gpu, "envmap", EYE);
+        let mut stage = SolidGeometry::new(cx.gpu, cx.lab, EYE);
         stage.auto = |_| FaceOrder::Mesh;
         MaterialScene::build_with(cx, p, stage, &MATERIAL, own)
     },

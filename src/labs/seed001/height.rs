@@ -20,7 +20,7 @@ use crate::labs::seed001::stage::{ChosenGeometry, UstcView, ROTATION};
 /// Seed 001, §1.1: no uniform block besides the Transform; `mode` picks the strip.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "height",
+        lab_name!(),
         "ref001",
         "custom vertex attribute",
         Keys::rows(&[KeyRow::cycle(&[C('v')], "mode")], "left drag rotates"),
@@ -36,7 +36,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let stage = ChosenGeometry {
-            stage: UstcView::new(cx.gpu, "height", Vec3::new(0.0, 0.0, 4.0)),
+            stage: UstcView::new(cx.gpu, cx.lab, Vec3::new(0.0, 0.0, 4.0)),
             meshes: vec![
                 GpuMesh::new(cx.gpu, "height.immediate", &immediate_strip(), None),
                 GpuMesh::new(cx.gpu, "height.arrays", &array_strip(), None),

@@ -27,7 +27,7 @@ use crate::labs::seed001::stage::{MeshGeometry, UstcView, ROTATION};
 /// Seed 001, §1.4: the `Morph` block's `time` is [`time_uniform`] of the clock.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "morph",
+        lab_name!(),
         "ref001",
         "morphing",
         Keys::text("Space pauses the clock; left drag rotates"),
@@ -44,7 +44,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let stage = MeshGeometry {
-            stage: UstcView::new(cx.gpu, "morph", Vec3::new(0.0, 0.0, 4.0)),
+            stage: UstcView::new(cx.gpu, cx.lab, Vec3::new(0.0, 0.0, 4.0)),
             mesh: GpuMesh::new(cx.gpu, "morph.triangles", &course_triangles()[..DRAWN], None),
         };
         MaterialScene::build(cx, p, stage, &MATERIAL)

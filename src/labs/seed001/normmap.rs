@@ -20,7 +20,7 @@ pub static RECIPE: Recipe = recipe::<CUBE_SIZE>();
 /// The lab with a cube map of `SIZE` texels per side (the course's is [`CUBE_SIZE`]).
 const fn recipe<const SIZE: u32>() -> Recipe {
     Recipe::new(
-        super::info("normmap", "ref001", "normalization cube map", tangent_bump::KEYS),
+        super::info(lab_name!(), "ref001", "normalization cube map", tangent_bump::KEYS),
         tangent_bump::PARAMS,
         build::<SIZE>,
     )

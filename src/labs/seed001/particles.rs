@@ -21,7 +21,7 @@ use crate::labs::seed001::stage::{UstcView, ROTATION};
 /// `time` as is (no wrap: the course's t grows).
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "particles",
+        lab_name!(),
         "ref001",
         "particle system",
         Keys::rows(
@@ -48,7 +48,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let stage = Fountain {
-            stage: UstcView::new(cx.gpu, "particles", Vec3::new(0.0, 1.0, 4.0)),
+            stage: UstcView::new(cx.gpu, cx.lab, Vec3::new(0.0, 1.0, 4.0)),
             points: GpuMesh::new(cx.gpu, "particles.points", &course_points(), None),
         };
         MaterialScene::build(cx, p, stage, &MATERIAL)

@@ -8,7 +8,7 @@ use crate::labs::seed001::modified_phong::{self, Shading};
 /// Seed 001, §1.8.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "phong_fragment",
+        lab_name!(),
         "ref001",
         "modified Phong, per fragment",
         modified_phong::KEYS,

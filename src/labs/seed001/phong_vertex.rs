@@ -8,7 +8,7 @@ use crate::labs::seed001::modified_phong::{self, Shading};
 /// Seed 001, §1.7.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "phong_vertex",
+        lab_name!(),
         "ref001",
         "modified Phong, per vertex",
         modified_phong::KEYS,

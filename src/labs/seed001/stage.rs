@@ -42,9 +42,8 @@ pub const OBJECT: &[ParamSpec] = &[
 
 /// The face order of `faces=auto` for `toon`: the torus's triangles facing the eye first
 /// ([`FaceOrder::FacingFirst`]: the same pixels, fewer fragments shaded), the others in mesh
-/// order. Measured (alternating pairs, wall time against mesh order, default view): torus
-/// 0.943; teapot 0.994 (15 pairs) and 1.023 (9 pairs), no gain for the cheapest shading; the
-/// sphere's mesh order already draws its near half first, and the cube gains nothing.
+/// order, where no order measured faster for the cheapest shading (figures: `docs/speed.md`,
+/// "Face orders").
 pub fn torus_facing_first(object: Object) -> FaceOrder {
     match object {
         Object::Torus => FaceOrder::FacingFirst,
@@ -53,12 +52,10 @@ pub fn torus_facing_first(object: Object) -> FaceOrder {
 }
 
 /// The face order of `faces=auto` for the other lit solids (uniform_arrays, phong_vertex,
-/// phong_fragment): teapot and torus facing the eye first. Wall time against mesh order
-/// (alternating pairs, default view): torus 0.674, 0.884, 0.651; teapot 0.923, 0.945, 0.936
-/// (9 pairs of 1000 frames; CPU time 0.898, 0.952, 0.920). The teapot's exact depth ties (its
-/// spout and handle pass through its body, and this camera's near plane at 0.1 makes depths
-/// coarse) are what [`crate::render::TieGuard`] keeps in mesh order: 1000 random views of each
-/// lab byte-identical to mesh order, where without it 2-6 of 1000 showed 1 px.
+/// phong_fragment): teapot and torus facing the eye first, which shades fewer fragments. The
+/// teapot's exact depth ties (its spout and handle pass through its body, and this camera's
+/// near plane at 0.1 makes depths coarse) are what [`crate::render::TieGuard`] keeps in mesh
+/// order, so the pixels are mesh order's (figures: `docs/speed.md`, "Face orders").
 pub fn teapot_and_torus_facing_first(object: Object) -> FaceOrder {
     match object {
         Object::Torus | Object::Teapot => FaceOrder::FacingFirst,

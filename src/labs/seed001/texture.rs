@@ -20,7 +20,12 @@ use crate::labs::seed001::stage::{OrderedGeometry, UstcView, FACES, ROTATION};
 /// Seed 001, §1.9: no uniform block besides the Transform; the image and its sampler are the
 /// lab's own bindings.
 pub static RECIPE: Recipe = Recipe::new(
-    super::info("texture", "ref001", "texture mapping", Keys::text("left drag rotates")),
+    super::info(
+        lab_name!(),
+        "ref001",
+        "texture mapping",
+        Keys::text("left drag rotates"),
+    ),
     &[ROTATION, FACES],
     |cx, p| {
         let image = images::uvgrid();
@@ -29,7 +34,7 @@ pub static RECIPE: Recipe = Recipe::new(
         let (vertices, indices) = textured_teapot();
         let positions = vertices.iter().map(|v| v.position).collect();
         let stage = OrderedGeometry {
-            stage: UstcView::new(cx.gpu, "texture", Vec3::new(0.0, 0.0, 4.0)),
+            stage: UstcView::new(cx.gpu, cx.lab, Vec3::new(0.0, 0.0, 4.0)),
             mesh: ViewOrdered::new(cx.gpu, "texture.teapot", &vertices, Some(indices), positions),
             outside: Object::Teapot.outside_winding(),
             auto: FaceOrder::FacingFirst,

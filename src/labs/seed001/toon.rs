@@ -17,16 +17,16 @@ use crate::labs::seed001::stage::{torus_facing_first, SolidGeometry, OBJECT, ROT
 /// Seed 001, §1.6: the Transform and GlLight blocks come from the stage.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "toon",
+        lab_name!(),
         "ref001",
         "toon shading",
         Keys::rows(&COURSE_KEYS, "1-4: objects; left drag rotates"),
     ),
     &[OBJECT, ROTATION, COURSE.params, TESS],
     |cx, p| {
-        let mut stage = SolidGeometry::new(cx.gpu, "toon", Vec3::new(0.0, 0.0, 4.0));
+        let mut stage = SolidGeometry::new(cx.gpu, cx.lab, Vec3::new(0.0, 0.0, 4.0));
         stage.auto = torus_facing_first;
-        MaterialScene::build(cx, p, Lit::new(cx.gpu, "toon", &COURSE, stage), &MATERIAL)
+        MaterialScene::build(cx, p, Lit::new(cx.gpu, cx.lab, &COURSE, stage), &MATERIAL)
     },
 );
 

@@ -30,7 +30,7 @@ use crate::labs::seed001::stage::{SolidGeometry, OBJECT, ROTATION};
 /// course's setters leave it for `mode`, and the GL light state.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "uniform_arrays",
+        lab_name!(),
         "ref001",
         "uniform vectors and arrays",
         Keys::rows(
@@ -58,9 +58,9 @@ pub static RECIPE: Recipe = Recipe::new(
     |cx, p| {
         let shader = cx.source.compile(MATERIAL.passes[0].frag)?;
         let modes = [course_uniforms(&shader, 0)?, course_uniforms(&shader, 1)?];
-        let solid = SolidGeometry::new(cx.gpu, "uniform_arrays", Vec3::new(0.0, 0.0, 4.0));
+        let solid = SolidGeometry::new(cx.gpu, cx.lab, Vec3::new(0.0, 0.0, 4.0));
         let stage = Course {
-            lit: Lit::new(cx.gpu, "uniform_arrays", &COURSE, solid),
+            lit: Lit::new(cx.gpu, cx.lab, &COURSE, solid),
             block: Uniforms::new(cx.gpu, "uniform_arrays.params", modes[0]),
             modes,
         };

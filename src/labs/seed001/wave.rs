@@ -79,7 +79,7 @@ pub fn auto_subdiv(p: &Params, eye: Vec3, height: u32) -> u32 {
 /// clock ([`wave_time`]).
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "wave",
+        lab_name!(),
         "ref001",
         "wave motion",
         Keys::rows(
@@ -110,7 +110,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let mut stage = WaveGrid {
-            stage: UstcView::new(cx.gpu, "wave", Vec3::new(0.0, 3.5, 6.5)),
+            stage: UstcView::new(cx.gpu, cx.lab, Vec3::new(0.0, 3.5, 6.5)),
             meshes: HashMap::new(),
             drawn: 1,
             capped: false,

@@ -32,7 +32,7 @@ crate::vertex_type!(TexVertex2, {
 /// `double_vision`.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "double_vision",
+        lab_name!(),
         "ref002",
         "double vision",
         Keys::text("[/]: separation ∓/±0.02 (left_x = +sep, right_x = -sep)"),

@@ -23,7 +23,7 @@ const TURNS: f64 = 36000.0;
 /// `normal_world`: the shaders read the Transform block alone.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "normal_world",
+        lab_name!(),
         "ref002",
         "normal as colour, world space",
         Keys::rows(

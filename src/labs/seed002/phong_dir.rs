@@ -28,7 +28,7 @@ use crate::labs::seed002::stage::{self, Teapot};
 /// `phong_dir`.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "phong_dir",
+        lab_name!(),
         "ref002",
         "Phong, directional light",
         Keys::rows(

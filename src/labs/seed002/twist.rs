@@ -34,7 +34,7 @@ crate::vertex_type!(TwistVertex, { position: "vertex_position" => Float32x2 });
 /// `twist`: the `Twist` block's `twisting` and `color` are its parameters.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(
-        "twist",
+        lab_name!(),
         "ref002",
         "2D twisting",
         Keys::rows(&[KeyRow::step(&[C('-'), C('+')], "twisting", 0.25)], ""),

@@ -113,12 +113,8 @@ pub struct Model {
     pub normals: fn(&Params) -> Normals,
     /// The face order of `faces=auto` ([`FaceOrder`]) on the vertex-normal VBO: mesh order
     /// unless a lab sets otherwise. On the face-normal VBO `auto` is mesh order whatever this
-    /// says: reordered, it draws the same pixels (1000 random views of flat, normal colour and
-    /// normal matrix, with [`crate::render::TieGuard`]) but gained nothing measurable. Measured
-    /// facing first (alternating pairs, wall time against mesh order, default view): Gouraud
-    /// 0.917 (9 pairs), texture 0.947 (9), smooth 0.991 (15), texture colour 0.990 (9), normal
-    /// colour 0.987 and normal matrix 0.982 (7); per-pixel Phong 0.925 against outside faces
-    /// first (two draws, itself 14 % less CPU than mesh order).
+    /// says: reordered, it draws the same pixels but gains nothing (figures: `docs/speed.md`,
+    /// "Face orders").
     pub auto: fn(&Params) -> FaceOrder,
 }
 

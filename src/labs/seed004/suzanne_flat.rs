@@ -7,6 +7,6 @@ use crate::lab::Recipe;
 use crate::labs::seed004::suzanne::{lit, shade, Shading};
 
 /// Seed 004 §4.7.
-pub static RECIPE: Recipe = lit("suzanne_flat", "Flat shading", Shading::Flat, |cx, p| {
+pub static RECIPE: Recipe = lit(lab_name!(), "Flat shading", Shading::Flat, |cx, p| {
     shade(cx, p, RECIPE.info.name)
 });

@@ -7,6 +7,6 @@ use crate::lab::Recipe;
 use crate::labs::seed004::suzanne::{lit, shade, Shading};
 
 /// Seed 004 §4.8.
-pub static RECIPE: Recipe = lit("suzanne_gouraud", "Gouraud shading", Shading::Gouraud, |cx, p| {
+pub static RECIPE: Recipe = lit(lab_name!(), "Gouraud shading", Shading::Gouraud, |cx, p| {
     shade(cx, p, RECIPE.info.name)
 });

@@ -9,7 +9,7 @@ use crate::labs::seed004::stage::Normals;
 use crate::labs::seed004::suzanne::{colour, draw};
 
 /// Seed 004 §4.2.
-pub static RECIPE: Recipe = colour("suzanne_normal_matrix", "normal matrix", |cx, p| {
+pub static RECIPE: Recipe = colour(lab_name!(), "normal matrix", |cx, p| {
     draw(cx, p, RECIPE.info.name, &MATERIAL, |_| Normals::Face)
 });
 

@@ -7,6 +7,6 @@ use crate::lab::Recipe;
 use crate::labs::seed004::suzanne::{lit, shade, Shading};
 
 /// Seed 004 §4.9.
-pub static RECIPE: Recipe = lit("suzanne_phong", "Phong shading", Shading::Phong, |cx, p| {
+pub static RECIPE: Recipe = lit(lab_name!(), "Phong shading", Shading::Phong, |cx, p| {
     shade(cx, p, RECIPE.info.name)
 });

@@ -9,7 +9,7 @@ use crate::labs::seed004::stage::Normals;
 use crate::labs::seed004::suzanne::{colour, draw};
 
 /// Seed 004 §4.3.
-pub static RECIPE: Recipe = colour("suzanne_smooth", "smooth", |cx, p| {
+pub static RECIPE: Recipe = colour(lab_name!(), "smooth", |cx, p| {
     draw(cx, p, RECIPE.info.name, &MATERIAL, |_| Normals::Vertex)
 });
 

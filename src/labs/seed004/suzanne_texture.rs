@@ -9,7 +9,7 @@ use crate::labs::common::FaceOrder;
 use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.4.
-pub static RECIPE: Recipe = textured("suzanne_texture", "texture", |cx, _| {
+pub static RECIPE: Recipe = textured(lab_name!(), "texture", |cx, _| {
     // Facing the eye first: 0.947 of mesh order (wall, 9 alternating pairs; CPU 0.939).
     sample(cx, RECIPE.info.name, "suzanne_texture.frag", |_| FaceOrder::FacingFirst)
 });

@@ -8,7 +8,7 @@ use crate::labs::common::FaceOrder;
 use crate::labs::seed004::suzanne::{sample, textured};
 
 /// Seed 004 §4.5.
-pub static RECIPE: Recipe = textured("suzanne_texture_color", "texture × colour", |cx, _| {
+pub static RECIPE: Recipe = textured(lab_name!(), "texture × colour", |cx, _| {
     // Mesh order: facing the eye first measured 0.990 of it (wall, 9 pairs), no gain.
     sample(cx, RECIPE.info.name, "suzanne_texture_color.frag", |_| FaceOrder::Mesh)
 });
