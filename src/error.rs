@@ -66,7 +66,7 @@ pub enum Error {
     },
     /// A signal (SIGINT, SIGTERM, SIGHUP) stopped the work; what it had written was removed or,
     /// for a window's recording, finished and kept.
-    #[error("stopped by {}", crate::fsutil::signals::name(*.signal))]
+    #[error("stopped by {}", signal_name(*.signal))]
     Interrupted {
         /// The signal's number.
         signal: i32,
@@ -92,6 +92,17 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+}
+
+/// The name of a signal, for messages: `SIGINT`, `SIGTERM`, `SIGHUP` (their numbers on every
+/// Unix) or `signal N`.
+pub fn signal_name(signal: i32) -> String {
+    match signal {
+        1 => "SIGHUP".into(),
+        2 => "SIGINT".into(),
+        15 => "SIGTERM".into(),
+        n => format!("signal {n}"),
+    }
 }
 
 fn obj_location(path: &std::path::Path, line: &Option<usize>) -> String {

@@ -5,16 +5,22 @@
 //! normal → RGB, Phong, simplex noise and displacement, on GLUT-exact cube, sphere, torus and
 //! teapot meshes, rendered like the original in a window or offscreen.
 //!
-//! Layers, each using only those below it:
-//! - [`shell`]: command line, window, `--screenshot`/`--bench`; drives any [`Lab`].
+//! Layers, each using only those below it (no module reaches up, and there are no import
+//! circles):
+//! - [`shell`]: the command line, the window and the browser page, each around one
+//!   [`shell::session::Session`]; `--screenshot`, `--bench`, `--record`, the tools. It drives any
+//!   [`Lab`] through its [`LabEntry`] and never names an exercise.
 //! - [`labs`]: one module per exercise and [`labs::ALL`], the one list of labs.
-//! - [`lab`] and [`params`]: the contract a lab fulfils, and parameters by name.
-//! - [`render`]: programs reflected from their shaders, uniforms, meshes, textures, frames.
+//! - [`lab`]: the contract a lab fulfils ([`Lab`], [`lab::Input`]) and the runner of labs
+//!   described as data ([`lab::Recipe`]: a [`lab::Geometry`] drawn with a [`lab::Material`]).
 //! - [`legacy`]: a course's own GLSL 1.10/1.20 shaders translated to GLSL 450 (source-mapped).
-//! - [`shader`] (GLSL loading, diagnostics, reflection), [`camera`] (GLU matrices),
-//!   [`mesh`] and [`tess`] (GLUT geometry), [`gpu`], [`offscreen`], [`error`].
-//! - The speed/accuracy yardsticks, used by tests and studies only: [`exact`], [`metrics`],
-//!   [`noise`].
+//! - [`render`]: programs reflected from their shaders, uniform blocks, meshes, textures, frames.
+//! - Foundations: [`shader`] (GLSL loading, diagnostics, reflection), [`offscreen`] and [`gpu`]
+//!   (targets and the device), [`camera`] (GLU matrices), [`geometry`] ([`mesh`], [`tess`]:
+//!   GLUT's solids, OBJ models, pictures), [`params`] (named, ranged values), [`user_files`],
+//!   [`fsutil`] (files in and out, never lost), [`error`].
+//! - The speed/accuracy yardsticks of the tests and studies, which nothing above uses: [`exact`],
+//!   [`metrics`], [`noise`].
 //!
 //! Everything that needs no GPU can be used directly, e.g. GLUT's meshes and the tessellation
 //! level `--tess auto` would pick:

@@ -52,13 +52,14 @@ fn suzanne_supersampled_reference_is_converged() {
     assert!(e < 0.8, "RMSE {e:.3}");
 }
 
-/// The README quotes each study's lesson from `docs/tradeoff/index.md` (the run's own words):
-/// after a new run, `scripts/sync-lessons` copies them; until then this fails, naming the study.
+/// `docs/studies.md` quotes each study's lesson from `docs/tradeoff/index.md` (the run's own
+/// words): after a new run, `scripts/sync-lessons` copies them; until then this fails, naming
+/// the study.
 #[test]
-fn readme_lessons_match_the_index() {
+fn the_lessons_quoted_match_the_index() {
     let root = env!("CARGO_MANIFEST_DIR");
     let index = std::fs::read_to_string(format!("{root}/docs/tradeoff/index.md")).unwrap();
-    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let readme = std::fs::read_to_string(format!("{root}/docs/studies.md")).unwrap();
     let mut studies = 0;
     for section in index.split("\n## ").skip(1) {
         let lines: Vec<&str> = section.lines().collect();
@@ -71,19 +72,19 @@ fn readme_lessons_match_the_index() {
             .iter()
             .find(|l| !l.trim().is_empty())
             .expect("a lesson under each chart");
-        // The README's copy sits under a bold heading of the same title.
+        // docs/studies.md's copy sits under a bold heading of the same title.
         let at = readme
             .find(&format!("**{title}**"))
-            .unwrap_or_else(|| panic!("README has no heading **{title}**"));
+            .unwrap_or_else(|| panic!("docs/studies.md has no heading **{title}**"));
         let next = readme[at + 2..].find("\n**").map_or(readme.len(), |n| at + 2 + n);
         assert!(
             readme[at..next].lines().any(|l| l == *lesson),
-            "README's lesson for \"{title}\" is not the index's; run scripts/sync-lessons"
+            "docs/studies.md's lesson for \"{title}\" is not the index's; run scripts/sync-lessons"
         );
         studies += 1;
     }
     assert_eq!(studies, 8, "docs/tradeoff/index.md should hold the eight studies");
-    // The README dates the run it shows: the index's date must appear in that paragraph.
+    // docs/studies.md dates the run it shows: the index's date must appear in that paragraph.
     let date = index
         .lines()
         .find(|l| l.starts_with("Data:"))
@@ -92,10 +93,10 @@ fn readme_lessons_match_the_index() {
         .expect("a Data line ending in its date");
     let shown = readme
         .find("`docs/tradeoff/` holds the run shown here")
-        .expect("the README's paragraph on the run");
+        .expect("docs/studies.md's paragraph on the run");
     assert!(
         readme[shown..shown + 200].contains(date),
-        "README's run date is not the index's {date}"
+        "docs/studies.md's run date is not the index's {date}"
     );
 }
 

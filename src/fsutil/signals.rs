@@ -1,7 +1,7 @@
 //! What SIGINT, SIGTERM and SIGHUP do to files being written.
 //!
 //! By default a signal ends the process at once, as it would without shaderlab, after removing
-//! the temporary files being written ([`register`]), so that an interrupted run leaves what was
+//! the temporary files being written (registered as they are made), so that an interrupted run leaves what was
 //! there before.
 //!
 //! Work that must end cleanly instead (a recording that is kept, a set of files moved into
@@ -66,7 +66,7 @@ pub fn exit_now(code: i32) -> ! {
 
 /// The name of a signal, for messages: `SIGINT`, `SIGTERM`, `SIGHUP` or `signal N`.
 pub fn name(signal: i32) -> String {
-    imp::name(signal)
+    crate::error::signal_name(signal)
 }
 
 pub(super) use imp::{register, Registered};
@@ -181,15 +181,6 @@ mod imp {
         unsafe { libc::_exit(code) }
     }
 
-    pub(super) fn name(signal: i32) -> String {
-        match signal {
-            libc::SIGINT => "SIGINT".into(),
-            libc::SIGTERM => "SIGTERM".into(),
-            libc::SIGHUP => "SIGHUP".into(),
-            n => format!("signal {n}"),
-        }
-    }
-
     extern "C" fn on_signal(signal: libc::c_int) {
         // Only async-signal-safe calls here: atomics, write, unlink, signal, raise.
         if DEFER.load(Ordering::SeqCst) > 0
@@ -254,8 +245,5 @@ mod imp {
     }
     pub(super) fn exit_now(code: i32) -> ! {
         std::process::exit(code)
-    }
-    pub(super) fn name(signal: i32) -> String {
-        format!("signal {signal}")
     }
 }

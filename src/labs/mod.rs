@@ -20,7 +20,7 @@ macro_rules! lecture {
 }
 
 /// A lab's name is its module's: the last segment of `path` (`module_path!()` in the lab's
-/// file, as [`lab_name!`] writes it), so that the registration alone names a lab.
+/// file, as `lab_name!()` writes it), so that the registration alone names a lab.
 pub const fn module_name(path: &'static str) -> &'static str {
     let bytes = path.as_bytes();
     let mut start = bytes.len();

@@ -247,7 +247,7 @@ pub fn print(text: &str) -> Result<(), Error> {
 }
 
 /// Parses a command line with clap, for every command and example: `--help` and `--version`
-/// are written to stdout with [`print`] (a write that fails ends the process with one line and
+/// are written to stdout with [`print()`] (a write that fails ends the process with one line and
 /// status 1, instead of clap's panic or silent loss), usage errors go to stderr with status 2.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn parse_command_line(

@@ -1,5 +1,5 @@
 //! What every front end does with the lab it shows, written once: the window
-//! ([`super::window`]) and the page ([`super::web`]) each hold a [`Session`] and keep only what
+//! ([`super::window`]) and the page (`shell::web`, in the browser build) each hold a [`Session`] and keep only what
 //! their platform forces (where events come from, how a frame reaches the screen).
 //!
 //! A session holds the lab (its parameters with it), the clock of an animated lab, the frames

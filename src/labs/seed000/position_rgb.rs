@@ -9,23 +9,19 @@ use crate::tess::Object;
 use crate::labs::seed000::stage::{Solid, PARAMS_000};
 use crate::labs::seed000::STAGE_KEYS;
 
-/// The face order by object ([`GlutGeometry::face_order`](super::stage::GlutGeometry::face_order)):
-/// the torus and the teapot facing the eye first, which draws the same pixels and shades fewer fragments;
-/// the other objects in mesh order, where no order measured faster (figures: `docs/speed.md`,
-/// "Face orders").
+/// The face order of `faces=auto`: the torus and the teapot facing the eye first, which draws
+/// the same pixels and shades fewer fragments; the others in mesh order, where no order measured
+/// faster (figures: `docs/speed.md`, "Face orders").
 const AUTO: &[(Object, FaceOrder)] = &[
     (Object::Torus, FaceOrder::FacingFirst),
     (Object::Teapot, FaceOrder::FacingFirst),
 ];
 
-/// Exercise 1: the stage and one pass, no uniforms of its own.
+/// Exercise 1: seed 000's GLUT solid drawn by one shader pair with no uniforms of its own.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(lab_name!(), "Lab05-1", "position to RGB", STAGE_KEYS),
     &[PARAMS_000],
-    |cx, p| {
-        let stage = Solid::new(cx.gpu, cx.lab, AUTO);
-        MaterialScene::build(cx, p, stage, &MATERIAL)
-    },
+    |cx, p| MaterialScene::build(cx, p, Solid::new(cx.gpu, cx.lab, AUTO), &MATERIAL),
 );
 
 static MATERIAL: Material = Material::new(&[ShaderPair::new("position_rgb.vert", "position_rgb.frag")]);

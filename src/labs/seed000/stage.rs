@@ -131,7 +131,7 @@ impl GlutGeometry {
 
     /// The faces a lab's program draws for the current object. With `cull` on, the outside
     /// faces only ([`Culling::OutsideOnly`], back-face culling: not exact, an opt-in); otherwise
-    /// as [`GlutGeometry::face_order`] says ([`FaceOrder::faces`]).
+    /// as [`GlutGeometry::face_order`] says ([`FaceOrder::culling`]).
     pub fn culling(params: &Params, auto: &[(Object, FaceOrder)]) -> Culling {
         let winding = Self::object(params).outside_winding();
         if params.on("cull") {

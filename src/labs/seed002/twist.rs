@@ -1,5 +1,5 @@
 //! Seed 002 (Lecture 12, P. Khungurn) `twist`, SPEC §2.1: 2D twisting. The course's 100×100
-//! `GL_QUADS` grid over [−0.5, 0.5]² ([`twist_grid`], float loop) is given in clip space — no
+//! `GL_QUADS` grid over [−0.5, 0.5]² (`twist_grid`, float loop) is given in clip space — no
 //! matrices, no camera — and the vertex shader turns each vertex by
 //! `twisting · length(gl_Vertex.xy)` radians. Depth test off (2D, nothing overlaps).
 //!

@@ -1,5 +1,5 @@
 //! The window: winit's events turned into the [`Session`]'s (the lab, its clock, keys and
-//! mouse, written once for the window and the page), a [`Screen`] the frames reach (the
+//! mouse, written once for the window and the page), a `Screen` the frames reach (the
 //! swapchain or X shared memory), and what only a desktop window has: F12 screenshots, F10
 //! recordings, the F1 panel drawn with egui, live shader reload from files, pacing near the
 //! monitor's refresh rate, and signals. Labs never see winit.
@@ -937,10 +937,8 @@ impl ApplicationHandler<Wake> for App {
                 is_synthetic: false,
                 ..
             } => state.key(&event, event_loop),
-            WindowEvent::CursorMoved { position, .. } => {
-                if state.session.moved(position.x as i32, position.y as i32) {
-                    state.update_title();
-                }
+            WindowEvent::CursorMoved { position, .. } if state.session.moved(position.x as i32, position.y as i32) => {
+                state.update_title();
             }
             WindowEvent::MouseInput {
                 state: button_state,
