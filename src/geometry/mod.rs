@@ -10,3 +10,18 @@ pub mod obj;
 pub mod shapes;
 pub mod tess;
 pub mod twist;
+
+/// The least `n` in `lo + 1 ..= hi` for which `ok(n)` holds, given `ok(lo)` false (or `lo` not
+/// a candidate) and `ok(hi)` true, by bisection: the automatic grids and tessellation levels
+/// search for the coarsest one within an error budget this way.
+pub(crate) fn least_passing(mut lo: u32, mut hi: u32, ok: impl Fn(u32) -> bool) -> u32 {
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if ok(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}

@@ -193,16 +193,7 @@ pub fn choose_level(object: Object, distance: f64, height: u32, budget_px: f64) 
     if !fits(max) {
         return max;
     }
-    let (mut lo, mut hi) = (MIN_LEVEL, max); // fits(lo) false, fits(hi) true
-    while hi - lo > 1 {
-        let mid = (lo + hi) / 2;
-        if fits(mid) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi
+    super::least_passing(MIN_LEVEL, max, fits) // fits(MIN_LEVEL) false, fits(max) true
 }
 
 #[cfg(test)]

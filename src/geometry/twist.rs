@@ -126,16 +126,7 @@ pub fn auto_grid(twisting: f64, width: u32, height: u32, budget_px: f64) -> u32 
         }
         hi = (hi * 2).min(MAX_GRID);
     }
-    let mut lo = hi / 2; // not ok (or 0)
-    while hi - lo > 1 {
-        let mid = (lo + hi) / 2;
-        if ok(mid) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi
+    super::least_passing(hi / 2, hi, ok) // ok(hi / 2) is false (or hi / 2 is 0)
 }
 
 #[cfg(test)]
