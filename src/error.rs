@@ -75,6 +75,10 @@ pub enum Error {
     /// anything is made.
     #[error("{0}")]
     Limit(String),
+    /// The debugger could not replay a pixel: a pixel outside the picture, an operation the
+    /// interpreter does not run (named, with its file and line), a shader past the step budget.
+    #[error("{0}")]
+    Debug(String),
     /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
     #[error("{0}")]
     Hang(String),

@@ -40,6 +40,7 @@
 #![warn(missing_docs)]
 
 pub mod camera;
+pub mod debug;
 pub mod error;
 pub mod fsutil;
 pub mod geometry;

@@ -18,6 +18,9 @@ Usage:
   shaderlab record NAME OUT [FLAGS…]  run NAME --record OUT (needs --frames N; OUT.gif, OUT.mp4,
                                       OUT.webm, frames-%04d.png or a directory)
   shaderlab legacy VERT FRAG [FLAGS…] a course's own GLSL 1.10/1.20 pair
+  shaderlab debug NAME --pixel X,Y [--json] [FLAGS…]
+                                      why pixel X,Y has its colour: the covering triangle,
+                                      the shaders line by line with their values
   shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
   shaderlab --version
@@ -60,7 +63,7 @@ fn main() -> ExitCode {
             lines.push(String::new());
             print(&lines.join("\n"))
         }
-        Some(verb @ ("run" | "record" | "legacy")) => {
+        Some(verb @ ("run" | "record" | "legacy" | "debug")) => {
             let (name, rest) = if verb == "legacy" {
                 (Some("legacy"), 2)
             } else {
@@ -96,6 +99,27 @@ fn main() -> ExitCode {
                     }
                 }
                 args.extend(argv.drain(4..));
+            } else if verb == "debug" {
+                // `--pixel X,Y` is the lab's `--debug X,Y`.
+                let rest: Vec<OsString> = argv.drain(rest.min(argv.len())..).collect();
+                let mut pixel = false;
+                for a in rest {
+                    if a == "--pixel" {
+                        args.push("--debug".into());
+                        pixel = true;
+                    } else if let Some(v) = a.to_str().and_then(|s| s.strip_prefix("--pixel=")) {
+                        args.push(format!("--debug={v}").into());
+                        pixel = true;
+                    } else {
+                        args.push(a);
+                    }
+                }
+                if !pixel {
+                    eprintln!(
+                        "shaderlab debug: which pixel? Usage: shaderlab debug NAME --pixel X,Y [--json] [FLAGS…]"
+                    );
+                    return ExitCode::from(2);
+                }
             } else {
                 args.extend(argv.drain(rest.min(argv.len())..));
             }

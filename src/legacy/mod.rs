@@ -103,6 +103,10 @@ impl Translated {
             source: Spliced {
                 text: text.clone(),
                 line_map,
+                files: vec![
+                    (self.source.path.clone(), self.source.text.clone()),
+                    (self.other.path.clone(), self.other.text.clone()),
+                ],
             },
             module,
             info,

@@ -3,6 +3,8 @@
 use crate::gpu::Gpu;
 use crate::offscreen::DEPTH_FORMAT;
 
+use super::log::DrawLog;
+
 /// What a render pass does with the target first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Load {
@@ -28,6 +30,8 @@ pub struct Frame<'a> {
     pub height: u32,
     /// Timestamp writes for the first pass (`--bench --gpu-time`), taken by [`Frame::pass`].
     pub timestamps: Option<wgpu::RenderPassTimestampWrites<'a>>,
+    /// Where the draws are written down, when the debugger asks ([`DrawLog`]).
+    pub log: Option<&'a DrawLog>,
 }
 
 impl<'a> Frame<'a> {
@@ -48,11 +52,17 @@ impl<'a> Frame<'a> {
             width,
             height,
             timestamps: None,
+            log: None,
         }
     }
 
+    /// With every draw written down in `log` (what the debugger replays on the CPU).
+    pub fn logged(self, log: &'a DrawLog) -> Frame<'a> {
+        Frame { log: Some(log), ..self }
+    }
+
     /// Begins a render pass over the whole target.
-    pub fn pass(&mut self, label: &str, load: Load) -> wgpu::RenderPass<'_> {
+    pub fn pass(&mut self, label: &str, load: Load) -> Pass<'_> {
         let (color_load, depth_load) = match load {
             Load::Clear([r, g, b]) => (
                 wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
@@ -61,7 +71,10 @@ impl<'a> Frame<'a> {
             Load::Keep => (wgpu::LoadOp::Load, wgpu::LoadOp::Load),
         };
         let _ = DEPTH_FORMAT; // the depth view is always of this format
-        self.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        if let Some(log) = self.log {
+            log.begin_pass(load, self.width, self.height);
+        }
+        let pass = self.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view: self.color,
@@ -83,11 +96,34 @@ impl<'a> Frame<'a> {
             timestamp_writes: self.timestamps.take(),
             occlusion_query_set: None,
             multiview_mask: None,
-        })
+        });
+        Pass { pass, log: self.log }
     }
 
     /// Width over height as the originals compute it: `(float)w / h`, height 0 taken as 1.
     pub fn aspect(&self) -> f32 {
         self.width as f32 / self.height.max(1) as f32
+    }
+}
+
+/// A render pass of a [`Frame`]: wgpu's pass, and the frame's [`DrawLog`] when the debugger
+/// asked for one ([`Program::draw`](super::Program::draw) writes each draw into it).
+pub struct Pass<'p> {
+    /// The pass.
+    pub pass: wgpu::RenderPass<'p>,
+    /// Where draws are written down.
+    pub log: Option<&'p DrawLog>,
+}
+
+impl<'p> std::ops::Deref for Pass<'p> {
+    type Target = wgpu::RenderPass<'p>;
+    fn deref(&self) -> &Self::Target {
+        &self.pass
+    }
+}
+
+impl std::ops::DerefMut for Pass<'_> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.pass
     }
 }

@@ -137,7 +137,8 @@ impl<V: VertexType> GpuMesh<V> {
         let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}.vertices")),
             contents,
-            usage: wgpu::BufferUsages::VERTEX,
+            // COPY_SRC: the debugger reads the vertices back.
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_SRC,
         });
         let (indices, count) = match indices {
             Some(idx) if !idx.is_empty() => (
@@ -145,7 +146,7 @@ impl<V: VertexType> GpuMesh<V> {
                     label: Some(&format!("{label}.indices")),
                     contents: bytemuck::cast_slice(idx),
                     // COPY_DST: [`ViewOrdered`] rewrites the order of the same triangles.
-                    usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+                    usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
                 })),
                 idx.len() as u32,
             ),
@@ -165,7 +166,7 @@ impl<V: VertexType> GpuMesh<V> {
         let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}.indices")),
             contents: bytemuck::cast_slice(indices),
-            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
         });
         GpuMesh {
             vertices: self.vertices.clone(),
@@ -178,6 +179,16 @@ impl<V: VertexType> GpuMesh<V> {
     /// Vertices (or indices) drawn.
     pub fn count(&self) -> u32 {
         self.count
+    }
+
+    /// The vertex buffer.
+    pub(crate) fn vertex_buffer(&self) -> &wgpu::Buffer {
+        &self.vertices
+    }
+
+    /// The index buffer (32-bit), if indexed.
+    pub(crate) fn index_buffer(&self) -> Option<&wgpu::Buffer> {
+        self.indices.as_ref()
     }
 
     /// Records the draw of `range` of the vertices (or indices).

@@ -25,13 +25,15 @@ pub struct BuildContext<'a> {
 }
 
 mod frame;
+mod log;
 mod mesh;
 mod param_block;
 mod program;
 mod texture;
 mod uniforms;
 
-pub use frame::{Frame, Load};
+pub use frame::{Frame, Load, Pass};
+pub use log::{DrawCall, DrawLog, Texels};
 pub use mesh::{
     check_fits, facing_first, note_once, GpuMesh, TieGuard, VertexAttr, VertexType, ViewOrdered, LARGE_MESH_TRIANGLES,
     SORT_EVERY_FRAME,
@@ -41,5 +43,5 @@ pub use program::{
     reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Culling, Program, RenderState,
     Resource, VertexInput,
 };
-pub use texture::{check_texture_size, sampler, SamplerDesc, Texture};
+pub use texture::{check_texture_size, sampler, Sampler, SamplerDesc, Texture};
 pub use uniforms::Uniforms;

@@ -7,6 +7,7 @@
 //! block, or a vertex input without a matching attribute is a typed error naming both sides.
 
 use std::marker::PhantomData;
+use std::sync::Arc;
 
 use super::BuildContext;
 use crate::error::{Error, Result};
@@ -15,6 +16,7 @@ use crate::offscreen::DEPTH_FORMAT;
 use crate::shader::{BlockLayout, CompiledShader, ShaderSource};
 
 use super::mesh::{GpuMesh, VertexType};
+use super::Pass;
 
 /// Fixed-function state of a program: what GL sets with glEnable and friends.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -188,10 +190,19 @@ pub enum Resource {
         /// The layout its bytes follow.
         layout: BlockLayout,
     },
-    /// A texture view.
-    Texture(wgpu::TextureView, wgpu::TextureViewDimension),
+    /// A texture view, its dimension, the texels behind it and the levels the view shows.
+    Texture {
+        /// The view.
+        view: wgpu::TextureView,
+        /// `D2` or `Cube`.
+        dimension: wgpu::TextureViewDimension,
+        /// The texels as uploaded (what the debugger samples).
+        texels: Arc<super::Texels>,
+        /// The levels the view shows.
+        levels: std::ops::Range<u32>,
+    },
     /// A sampler.
-    Sampler(wgpu::Sampler),
+    Sampler(super::Sampler),
 }
 
 impl Resource {
@@ -199,7 +210,7 @@ impl Resource {
         match self {
             Resource::Buffer { rust_name, .. } => format!("uniform buffer of {rust_name}"),
             Resource::Block { layout, .. } => format!("uniform block {} filled by name", layout.name),
-            Resource::Texture(_, d) => format!("texture ({d:?})"),
+            Resource::Texture { dimension, .. } => format!("texture ({dimension:?})"),
             Resource::Sampler(_) => "sampler".into(),
         }
     }
@@ -219,21 +230,32 @@ impl Bind {
     pub fn texture(name: &str, texture: &super::Texture) -> Bind {
         Bind {
             name: name.to_owned(),
-            resource: Resource::Texture(texture.view.clone(), texture.dimension),
+            resource: Resource::Texture {
+                view: texture.view.clone(),
+                dimension: texture.dimension,
+                texels: texture.texels.clone(),
+                levels: 0..texture.texels.levels.len().max(1) as u32,
+            },
         }
     }
 
     /// A texture bound to the `texture2D`/`textureCube` called `name`, seen as a sampler with
     /// `desc` reads it ([`Texture::view_for`](super::Texture::view_for)).
     pub fn texture_for(name: &str, texture: &super::Texture, desc: &super::SamplerDesc) -> Bind {
+        let all = texture.texels.levels.len().max(1) as u32;
         Bind {
             name: name.to_owned(),
-            resource: Resource::Texture(texture.view_for(desc).clone(), texture.dimension),
+            resource: Resource::Texture {
+                view: texture.view_for(desc).clone(),
+                dimension: texture.dimension,
+                texels: texture.texels.clone(),
+                levels: if desc.mipmap.is_some() { 0..all } else { 0..1 },
+            },
         }
     }
 
     /// A sampler bound to the GLSL `sampler` called `name`.
-    pub fn sampler(name: &str, sampler: &wgpu::Sampler) -> Bind {
+    pub fn sampler(name: &str, sampler: &super::Sampler) -> Bind {
         Bind {
             name: name.to_owned(),
             resource: Resource::Sampler(sampler.clone()),
@@ -441,8 +463,8 @@ fn vertex_attributes<V: VertexType>(path: &str, inputs: &[VertexInput]) -> Resul
 type PipelineCache = Vec<(Option<wgpu::Face>, wgpu::RenderPipeline)>;
 
 struct Built {
-    vertex: CompiledShader,
-    fragment: CompiledShader,
+    vertex: Arc<CompiledShader>,
+    fragment: Arc<CompiledShader>,
     bindings: Vec<BindingInfo>,
     bind_group_layout: wgpu::BindGroupLayout,
     stages: CompiledShaders,
@@ -621,8 +643,8 @@ impl<V: VertexType> Program<V> {
             Self::pipelines(gpu, label, &bindings, attributes, vs, fs, state, format)?;
         let pipelines = Self::in_order(&cache, state);
         Ok(Built {
-            vertex,
-            fragment,
+            vertex: Arc::new(vertex),
+            fragment: Arc::new(fragment),
             bindings,
             bind_group_layout,
             stages,
@@ -828,10 +850,10 @@ impl<V: VertexType> Program<V> {
                     }
                     buffer.as_entire_binding()
                 }
-                (BindingKind::Texture(want), Resource::Texture(view, have)) if want == have => {
+                (BindingKind::Texture(want), Resource::Texture { view, dimension, .. }) if want == dimension => {
                     wgpu::BindingResource::TextureView(view)
                 }
-                (BindingKind::Sampler, Resource::Sampler(s)) => wgpu::BindingResource::Sampler(s),
+                (BindingKind::Sampler, Resource::Sampler(s)) => wgpu::BindingResource::Sampler(&s.sampler),
                 (kind, resource) => {
                     problems.push(format!(
                         "`{}` is a {} in {files} but {label} provides a {}",
@@ -934,14 +956,32 @@ impl<V: VertexType> Program<V> {
     }
 
     /// Draws all of `mesh`.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, mesh: &GpuMesh<V>) {
+    pub fn draw(&self, pass: &mut Pass<'_>, mesh: &GpuMesh<V>) {
         self.draw_range(pass, mesh, 0..mesh.count());
     }
 
     /// Draws `range` of `mesh`'s vertices (or indices): once, or front faces then back faces
-    /// (see [`Culling`]).
-    pub fn draw_range(&self, pass: &mut wgpu::RenderPass<'_>, mesh: &GpuMesh<V>, range: std::ops::Range<u32>) {
-        for pipeline in &self.built.pipelines {
+    /// (see [`Culling`]); each draw is written into the pass's log when it has one.
+    pub fn draw_range(&self, pass: &mut Pass<'_>, mesh: &GpuMesh<V>, range: std::ops::Range<u32>) {
+        let culls = self.state.culls();
+        for (k, pipeline) in self.built.pipelines.iter().enumerate() {
+            if let Some(log) = pass.log {
+                log.draw(super::DrawCall {
+                    pass: 0,
+                    label: self.label.clone(),
+                    vertex: self.built.vertex.clone(),
+                    fragment: self.built.fragment.clone(),
+                    bindings: self.built.bindings.clone(),
+                    resources: self.resources.clone(),
+                    state: self.state,
+                    cull: culls.get(k).copied().flatten(),
+                    vertices: mesh.vertex_buffer().clone(),
+                    stride: std::mem::size_of::<V>() as u64,
+                    attributes: self.built.stages.attributes.clone(),
+                    indices: mesh.index_buffer().cloned(),
+                    range: range.clone(),
+                });
+            }
             pass.set_pipeline(pipeline);
             if let Some(group) = &self.bind_group {
                 pass.set_bind_group(0, group, &[]);

@@ -3,6 +3,7 @@
 //! CPU, not by a GPU blit), and GL's sampler state expressed as wgpu's.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
@@ -38,6 +39,8 @@ pub struct Texture {
     pub base_view: wgpu::TextureView,
     /// `D2` or `Cube`.
     pub dimension: wgpu::TextureViewDimension,
+    /// The texels as uploaded, kept for the debugger's CPU lookups.
+    pub texels: Arc<super::Texels>,
 }
 
 impl Texture {
@@ -105,6 +108,12 @@ impl Texture {
             view,
             base_view,
             dimension,
+            texels: Arc::new(super::Texels {
+                width,
+                height,
+                layers,
+                levels: levels.to_vec(),
+            }),
         }
     }
 }
@@ -154,9 +163,18 @@ impl Default for SamplerDesc {
     }
 }
 
+/// A sampler and the GL state it stands for (what the debugger filters with).
+#[derive(Clone, Debug)]
+pub struct Sampler {
+    /// The sampler.
+    pub sampler: wgpu::Sampler,
+    /// Its state.
+    pub desc: SamplerDesc,
+}
+
 /// A sampler for `desc`.
-pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
-    gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> Sampler {
+    let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some(label),
         address_mode_u: desc.wrap[0],
         address_mode_v: desc.wrap[1],
@@ -168,7 +186,8 @@ pub fn sampler(gpu: &Gpu, label: &str, desc: &SamplerDesc) -> wgpu::Sampler {
         mipmap_filter: desc.mipmap.unwrap_or(wgpu::MipmapFilterMode::Nearest),
         anisotropy_clamp: desc.anisotropy.max(1),
         ..Default::default()
-    })
+    });
+    Sampler { sampler, desc: *desc }
 }
 
 #[cfg(test)]

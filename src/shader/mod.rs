@@ -253,6 +253,9 @@ pub struct Spliced {
     pub text: String,
     /// For each line of `text` (0-based), the file (display path) and its 1-based line.
     pub line_map: Vec<(String, u32)>,
+    /// Each file as its author wrote it: display path and text (the main file first), for
+    /// showing a line next to what it computed.
+    pub files: Vec<(String, String)>,
 }
 
 impl Spliced {
@@ -279,6 +282,7 @@ pub fn splice(path: &str, text: &str, resolve: &IncludeResolver) -> Result<Splic
         out: Spliced {
             text: String::new(),
             line_map: Vec::new(),
+            files: Vec::new(),
         },
         resolve,
         seen: HashSet::new(),
@@ -386,6 +390,7 @@ impl Splicer<'_, '_> {
     fn splice_into(&mut self, name: &str, path: &str, text: &str) -> Result<()> {
         self.stack.push((name.to_owned(), path.to_owned()));
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        self.out.files.push((path.to_owned(), text.to_owned()));
         for (i, line) in text.lines().enumerate() {
             let line_no = i as u32 + 1;
             let fail = |column: usize, msg: String| {

@@ -87,6 +87,14 @@ pub struct Args {
     /// In a window: draw as fast as possible (present mode Immediate, no pacing), to measure frame time.
     #[arg(long)]
     pub unpaced: bool,
+    /// Explain pixel X,Y (column, row from the top left, as in --screenshot's PNG): which
+    /// triangle covers it, the vertex shader at its corners, the interpolated inputs, the
+    /// fragment shader line by line with every value, and the stored colour. No window.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["record", "bench"])]
+    pub debug: Option<(u32, u32)>,
+    /// With --debug: print one JSON object (pixel, covered, trace, ...) instead of the text.
+    #[arg(long, requires = "debug")]
+    pub json: bool,
 }
 
 /// One `--texture`: a picture for the lab's texture, or for the texture called `name`.
@@ -166,6 +174,15 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(bad());
     }
     Ok((w, h))
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{s}`: expected X,Y (column and row from the top left, e.g. 320,180)");
+    let (x, y) = s.split_once(',').ok_or_else(bad)?;
+    Ok((
+        x.trim().parse::<u32>().map_err(|_| bad())?,
+        y.trim().parse::<u32>().map_err(|_| bad())?,
+    ))
 }
 
 fn parse_set(s: &str) -> Result<(String, String), String> {

@@ -10,7 +10,7 @@ use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
 
-use super::draw::{render_into, screenshot};
+use crate::lab::draw::{render_into, screenshot};
 use super::{say, Args, Failure};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
@@ -78,6 +78,28 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
                 format!("wrote {} frames to {}", recording.frames, path.display())
             }
         })?;
+    }
+    if let Some((x, y)) = args.debug {
+        if x >= width || y >= height {
+            return Err(Error::Param(format!(
+                "--debug {x},{y}: the pixel is outside the {width}x{height} picture (x 0..{}, y 0..{})",
+                width - 1,
+                height - 1
+            ))
+            .into());
+        }
+        let (image, captured) = crate::debug::capture_lab(&gpu, lab.as_mut(), width, height)?;
+        let inspection = crate::debug::Inspection::new(entry.info.name, &captured, x, y)?;
+        if let Some(path) = &args.screenshot {
+            save_png(&image, path)?;
+            eprintln!("wrote {}", path.display());
+        }
+        if args.json {
+            say(&inspection.json())?;
+        } else {
+            super::print(&inspection.text())?;
+        }
+        return Ok(());
     }
     if let Some(path) = &args.screenshot {
         let image = screenshot(&gpu, lab.as_mut(), width, height)?;
@@ -218,13 +240,8 @@ pub fn bench(
         });
         {
             let mut f = Frame {
-                gpu,
-                encoder: &mut encoder,
-                color: &target.color,
-                depth: &target.depth,
-                width,
-                height,
                 timestamps: writes,
+                ..Frame::new(gpu, &mut encoder, &target.color, &target.depth, width, height)
             };
             lab.render(&mut f)?;
         }

@@ -17,7 +17,6 @@ mod args;
 mod capture;
 pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
-mod draw;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod panel;
@@ -44,7 +43,7 @@ use std::process::ExitCode;
 #[cfg(not(target_arch = "wasm32"))]
 pub use args::Args;
 #[cfg(not(target_arch = "wasm32"))]
-pub use draw::{render_into, screenshot};
+pub use crate::lab::draw::{render_into, screenshot};
 #[cfg(not(target_arch = "wasm32"))]
 pub use headless::{bench, progress_bar, BenchResult};
 
@@ -152,7 +151,7 @@ pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> Exi
     ensure_runtime_dir();
     let name = entry.info.name;
     let args = Args::parse_from_for(entry, argv);
-    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() {
+    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() || args.debug.is_some() {
         skip_display_device_select();
     }
     let result = run(entry, args);
@@ -201,7 +200,7 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     }
     args.shader_source()?;
     let files = args.files(entry)?;
-    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() {
+    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() || args.debug.is_some() {
         headless::run(entry, &args, params, &files)
     } else if !window::has_display() {
         // No display: still do something useful.

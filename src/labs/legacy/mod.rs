@@ -198,7 +198,7 @@ struct Bound {
     uniform_params: Vec<&'static str>,
     state: Option<wgpu::Buffer>,
     uniforms: Option<wgpu::Buffer>,
-    _textures: Vec<(Texture, wgpu::Sampler)>,
+    _textures: Vec<(Texture, crate::render::Sampler)>,
 }
 
 struct LegacyLab {
@@ -216,7 +216,7 @@ fn buffer(gpu: &Gpu, label: &str, size: usize) -> wgpu::Buffer {
     gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size: size.max(16) as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     })
 }

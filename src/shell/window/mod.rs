@@ -688,7 +688,7 @@ impl WindowState {
         let (w, h) = self.screen.size();
         // Drawn by the window's own pipelines (its format), read back as RGB.
         let target = Offscreen::with_format(&self.gpu, w, h, self.screen.format());
-        match super::draw::render_into(&self.gpu, self.session.lab_mut(), &target)
+        match crate::lab::draw::render_into(&self.gpu, self.session.lab_mut(), &target)
             .and_then(|()| target.read(&self.gpu))
             .and_then(|image| save_png(&image, &path))
         {

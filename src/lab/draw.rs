@@ -1,26 +1,35 @@
-//! Drawing a lab into an offscreen target: one place for `--screenshot`, `--record`, F10 and
-//! F12 (a leaf of the shell: it uses the lab and the offscreen target, nothing of the shell).
+//! Drawing a lab into an offscreen target: one place for `--screenshot`, `--record`, F10, F12
+//! and the debugger's capture (it uses the lab and the offscreen target, nothing above).
 
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::lab::Lab;
 use crate::offscreen::{Offscreen, COLOR_FORMAT};
-use crate::render::Frame;
+use crate::render::{DrawLog, Frame};
 
 /// Records one frame of `lab` into `target` and submits it.
 pub fn render_into(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen) -> Result<()> {
+    render_logged(gpu, lab, target, None)
+}
+
+/// [`render_into`], writing every draw into `log` when given (the debugger's capture).
+pub fn render_logged(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen, log: Option<&DrawLog>) -> Result<()> {
     let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("shaderlab.frame"),
     });
     gpu.checked(&format!("{}.render", lab.info().name), || {
-        lab.render(&mut Frame::new(
+        let frame = Frame::new(
             gpu,
             &mut encoder,
             &target.color,
             &target.depth,
             target.width,
             target.height,
-        ))
+        );
+        lab.render(&mut match log {
+            Some(log) => frame.logged(log),
+            None => frame,
+        })
     })??;
     gpu.queue.submit([encoder.finish()]);
     if let Some(e) = lab.take_error() {

@@ -1,0 +1,239 @@
+//! A frame's draws brought to the CPU: the [`DrawLog`] of a frame with every buffer it drew
+//! from read back (vertices, indices, uniform blocks) and every texture's texels and sampler
+//! state, as plain data that another thread can replay.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+
+use crate::error::{Error, Result};
+use crate::gpu::Gpu;
+use crate::render::{BindingInfo, DrawLog, Load, RenderState, Resource, SamplerDesc, Texels};
+use crate::shader::CompiledShader;
+
+/// A texture binding as the debugger reads it.
+#[derive(Clone, Debug)]
+pub struct TextureBinding {
+    /// The binding number.
+    pub binding: u32,
+    /// The texels.
+    pub texels: Arc<Texels>,
+    /// The levels the bound view shows.
+    pub levels: std::ops::Range<u32>,
+    /// A cube map.
+    pub cube: bool,
+}
+
+/// One draw with its data on the CPU.
+#[derive(Clone)]
+pub struct Draw {
+    /// Which pass of the frame.
+    pub pass: usize,
+    /// The program's label.
+    pub label: String,
+    /// The vertex shader.
+    pub vertex: Arc<CompiledShader>,
+    /// The fragment shader.
+    pub fragment: Arc<CompiledShader>,
+    /// The shaders' bindings.
+    pub bindings: Vec<BindingInfo>,
+    /// The fixed-function state.
+    pub state: RenderState,
+    /// This draw's culling.
+    pub cull: Option<wgpu::Face>,
+    /// The vertex buffer's bytes.
+    pub vertices: Arc<Vec<u8>>,
+    /// Bytes per vertex.
+    pub stride: u64,
+    /// Attributes by shader location.
+    pub attributes: Vec<wgpu::VertexAttribute>,
+    /// The indices, if indexed.
+    pub indices: Option<Arc<Vec<u32>>>,
+    /// The vertices (or indices) drawn.
+    pub range: std::ops::Range<u32>,
+    /// Uniform blocks: binding and bytes.
+    pub uniforms: Vec<(u32, Arc<Vec<u8>>)>,
+    /// Textures.
+    pub textures: Vec<TextureBinding>,
+    /// Samplers: binding and state.
+    pub samplers: Vec<(u32, SamplerDesc)>,
+    /// The clip-space positions of its vertices, computed by the first replay that needs them
+    /// (every pixel of a frame shares them).
+    pub(crate) positions: Arc<std::sync::OnceLock<super::replay::Positions>>,
+}
+
+/// A frame on the CPU: its passes (load operation, size) and draws.
+#[derive(Clone)]
+pub struct Captured {
+    /// The passes: how each began, and the target's size.
+    pub passes: Vec<(Load, u32, u32)>,
+    /// The draws, in order.
+    pub draws: Vec<Draw>,
+}
+
+/// The buffers of a [`DrawLog`] being read back.
+pub struct Pending {
+    log: Vec<crate::render::DrawCall>,
+    passes: Vec<(Load, u32, u32)>,
+    /// Each distinct buffer, its staging copy and its size.
+    buffers: Vec<(wgpu::Buffer, wgpu::Buffer, u64)>,
+    mapped: Arc<AtomicUsize>,
+    failed: Arc<AtomicBool>,
+}
+
+impl Pending {
+    /// Copies every buffer `log` drew from into staging buffers and asks for them to be
+    /// mapped; call after the frame was submitted.
+    pub fn start(gpu: &Gpu, log: &DrawLog) -> Pending {
+        let draws = log.draws();
+        let mut buffers: Vec<(wgpu::Buffer, wgpu::Buffer, u64)> = Vec::new();
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("shaderlab.debug.readback"),
+        });
+        let mut want = |buffer: &wgpu::Buffer| {
+            if buffers.iter().any(|(b, _, _)| b == buffer) {
+                return;
+            }
+            let size = buffer.size() & !3;
+            let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("shaderlab.debug.staging"),
+                size: size.max(4),
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            });
+            if size > 0 {
+                encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+            }
+            buffers.push((buffer.clone(), staging, size));
+        };
+        for d in &draws {
+            want(&d.vertices);
+            if let Some(i) = &d.indices {
+                want(i);
+            }
+            for r in &d.resources {
+                match &r.resource {
+                    Resource::Buffer { buffer, .. } | Resource::Block { buffer, .. } => want(buffer),
+                    _ => {}
+                }
+            }
+        }
+        gpu.queue.submit([encoder.finish()]);
+        let mapped = Arc::new(AtomicUsize::new(0));
+        let failed = Arc::new(AtomicBool::new(false));
+        for (_, staging, _) in &buffers {
+            let (m, f) = (mapped.clone(), failed.clone());
+            staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+                if r.is_err() {
+                    f.store(true, Ordering::SeqCst);
+                }
+                m.fetch_add(1, Ordering::SeqCst);
+            });
+        }
+        Pending {
+            log: draws,
+            passes: log.passes(),
+            buffers,
+            mapped,
+            failed,
+        }
+    }
+
+    /// Whether every buffer is mapped (or failed).
+    pub fn ready(&self) -> bool {
+        self.mapped.load(Ordering::SeqCst) >= self.buffers.len()
+    }
+
+    /// Blocks until the buffers are mapped, then [`Pending::finish`].
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn wait(self, gpu: &Gpu) -> Result<Captured> {
+        gpu.wait()?;
+        self.finish()
+    }
+
+    /// The frame on the CPU, once [`Pending::ready`].
+    pub fn finish(self) -> Result<Captured> {
+        if self.failed.load(Ordering::SeqCst) || !self.ready() {
+            return Err(Error::Wgpu {
+                context: "reading the frame's buffers back for the debugger".into(),
+                message: "a buffer could not be mapped".into(),
+            });
+        }
+        let mut bytes: Vec<(wgpu::Buffer, Arc<Vec<u8>>)> = Vec::new();
+        for (buffer, staging, size) in &self.buffers {
+            let data = {
+                let view = staging.slice(..).get_mapped_range().map_err(|e| Error::Wgpu {
+                    context: "reading the frame's buffers back for the debugger".into(),
+                    message: e.to_string(),
+                })?;
+                view[..*size as usize].to_vec()
+            };
+            staging.unmap();
+            bytes.push((buffer.clone(), Arc::new(data)));
+        }
+        let find = |b: &wgpu::Buffer| -> Arc<Vec<u8>> {
+            bytes
+                .iter()
+                .find(|(x, _)| x == b)
+                .map(|(_, d)| d.clone())
+                .unwrap_or_default()
+        };
+        let mut draws = Vec::with_capacity(self.log.len());
+        for call in &self.log {
+            let mut uniforms = Vec::new();
+            let mut textures = Vec::new();
+            let mut samplers = Vec::new();
+            for binding in &call.bindings {
+                let Some(bind) = call.resources.iter().find(|r| r.name == binding.name) else {
+                    continue;
+                };
+                match &bind.resource {
+                    Resource::Buffer { buffer, .. } | Resource::Block { buffer, .. } => {
+                        uniforms.push((binding.binding, find(buffer)));
+                    }
+                    Resource::Texture {
+                        texels,
+                        levels,
+                        dimension,
+                        ..
+                    } => textures.push(TextureBinding {
+                        binding: binding.binding,
+                        texels: texels.clone(),
+                        levels: levels.clone(),
+                        cube: *dimension == wgpu::TextureViewDimension::Cube,
+                    }),
+                    Resource::Sampler(s) => samplers.push((binding.binding, s.desc)),
+                }
+            }
+            let indices = call.indices.as_ref().map(|b| {
+                let raw = find(b);
+                Arc::new(
+                    raw.chunks_exact(4)
+                        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                        .collect(),
+                )
+            });
+            draws.push(Draw {
+                pass: call.pass,
+                label: call.label.clone(),
+                vertex: call.vertex.clone(),
+                fragment: call.fragment.clone(),
+                bindings: call.bindings.clone(),
+                state: call.state,
+                cull: call.cull,
+                vertices: find(&call.vertices),
+                stride: call.stride,
+                attributes: call.attributes.clone(),
+                indices,
+                range: call.range.clone(),
+                uniforms,
+                textures,
+                samplers,
+                positions: Arc::default(),
+            });
+        }
+        Ok(Captured {
+            passes: self.passes,
+            draws,
+        })
+    }
+}

@@ -1,0 +1,389 @@
+//! GLSL's built-in functions (naga's `MathFunction`s) on the interpreter's values, in `f32`
+//! as a GPU computes them: one operation at a time, sums left to right.
+
+use naga::{MathFunction as M, Span, TypeInner};
+
+use super::interp::{math_name, Failure};
+use super::value::{Bits, Comp, Kind};
+
+type Res<T> = std::result::Result<T, Failure>;
+
+fn f(c: &Comp, g: impl Fn(f32) -> f32) -> Comp {
+    Comp::new(Kind::F32, c.bits.map(|b| g(f32::from_bits(b)).to_bits()))
+}
+
+fn f2(a: &Comp, b: &Comp, g: impl Fn(f32, f32) -> f32) -> Comp {
+    Comp::new(Kind::F32, a.bits.zip(&b.bits, |x, y| g(f32::from_bits(x), f32::from_bits(y)).to_bits()))
+}
+
+fn f3(a: &Comp, b: &Comp, c: &Comp, g: impl Fn(f32, f32, f32) -> f32) -> Comp {
+    Comp::new(
+        Kind::F32,
+        a.bits.zip3(&b.bits, &c.bits, |x, y, z| {
+            g(f32::from_bits(x), f32::from_bits(y), f32::from_bits(z)).to_bits()
+        }),
+    )
+}
+
+/// `x` at component `k` of an operand that may be a scalar standing for every component.
+fn at(v: &[Comp], k: usize) -> &Comp {
+    if v.len() == 1 {
+        &v[0]
+    } else {
+        &v[k]
+    }
+}
+
+/// Σ a_k b_k, left to right.
+fn dot(a: &[Comp], b: &[Comp]) -> Comp {
+    let mut acc = f2(&a[0], &b[0], |x, y| x * y);
+    for k in 1..a.len() {
+        let p = f2(&a[k], &b[k], |x, y| x * y);
+        acc = f2(&acc, &p, |x, y| x + y);
+    }
+    acc
+}
+
+/// Runs `fun` on `a` (of type `ty`) and the further arguments.
+pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &TypeInner, span: Span) -> Res<Vec<Comp>> {
+    let need = |x: Option<&[Comp]>| -> Res<Vec<Comp>> {
+        x.map(<[Comp]>::to_vec).ok_or_else(|| Failure {
+            message: format!("{} without its arguments", math_name(fun)),
+            span,
+        })
+    };
+    let kind = a[0].kind;
+    let float = kind == Kind::F32;
+    let each = |g: &dyn Fn(f32) -> f32| -> Vec<Comp> { a.iter().map(|c| f(c, g)).collect() };
+    Ok(match fun {
+        M::Abs if float => each(&f32::abs),
+        M::Abs => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(|x| if kind == Kind::I32 { (x as i32).wrapping_abs() as u32 } else { x })))
+            .collect(),
+        M::Min | M::Max => {
+            let b = need(b)?;
+            let max = fun == M::Max;
+            (0..a.len())
+                .map(|k| {
+                    let (x, y) = (&a[k], at(&b, k));
+                    match kind {
+                        // GLSL: min(x, y) = y < x ? y : x.
+                        Kind::F32 => f2(x, y, |x, y| {
+                            if max {
+                                if x < y {
+                                    y
+                                } else {
+                                    x
+                                }
+                            } else if y < x {
+                                y
+                            } else {
+                                x
+                            }
+                        }),
+                        Kind::I32 => Comp::new(
+                            kind,
+                            x.bits.zip(&y.bits, |p, q| {
+                                let (p, q) = (p as i32, q as i32);
+                                (if max { p.max(q) } else { p.min(q) }) as u32
+                            }),
+                        ),
+                        _ => Comp::new(kind, x.bits.zip(&y.bits, |p, q| if max { p.max(q) } else { p.min(q) })),
+                    }
+                })
+                .collect()
+        }
+        M::Clamp => {
+            let (lo, hi) = (need(b)?, need(c)?);
+            (0..a.len())
+                .map(|k| match kind {
+                    Kind::F32 => f3(&a[k], at(&lo, k), at(&hi, k), |x, l, h| {
+                        let m = if x < l { l } else { x };
+                        if h < m {
+                            h
+                        } else {
+                            m
+                        }
+                    }),
+                    Kind::I32 => Comp::new(
+                        kind,
+                        a[k].bits.zip3(&at(&lo, k).bits, &at(&hi, k).bits, |x, l, h| {
+                            (x as i32).max(l as i32).min(h as i32) as u32
+                        }),
+                    ),
+                    _ => Comp::new(kind, a[k].bits.zip3(&at(&lo, k).bits, &at(&hi, k).bits, |x, l, h| x.max(l).min(h))),
+                })
+                .collect()
+        }
+        M::Saturate => each(&|x| x.clamp(0.0, 1.0)),
+        M::Cos => each(&f32::cos),
+        M::Cosh => each(&f32::cosh),
+        M::Sin => each(&f32::sin),
+        M::Sinh => each(&f32::sinh),
+        M::Tan => each(&f32::tan),
+        M::Tanh => each(&f32::tanh),
+        M::Acos => each(&f32::acos),
+        M::Asin => each(&f32::asin),
+        M::Atan => each(&f32::atan),
+        M::Asinh => each(&f32::asinh),
+        M::Acosh => each(&f32::acosh),
+        M::Atanh => each(&f32::atanh),
+        M::Atan2 => {
+            let b = need(b)?;
+            (0..a.len()).map(|k| f2(&a[k], at(&b, k), f32::atan2)).collect()
+        }
+        M::Radians => each(&|x| x * (std::f32::consts::PI / 180.0)),
+        M::Degrees => each(&|x| x * (180.0 / std::f32::consts::PI)),
+        M::Ceil => each(&f32::ceil),
+        M::Floor => each(&f32::floor),
+        // GLSL's roundEven, as SPIR-V's RoundEven and naga's `round`.
+        M::Round => each(&f32::round_ties_even),
+        M::Fract => each(&|x| x - x.floor()),
+        M::Trunc => each(&f32::trunc),
+        M::Exp => each(&f32::exp),
+        M::Exp2 => each(&f32::exp2),
+        M::Log => each(&f32::ln),
+        M::Log2 => each(&f32::log2),
+        M::Pow => {
+            let b = need(b)?;
+            (0..a.len()).map(|k| f2(&a[k], at(&b, k), f32::powf)).collect()
+        }
+        M::Sqrt => each(&f32::sqrt),
+        M::InverseSqrt => each(&|x| 1.0 / x.sqrt()),
+        M::Sign if float => each(&|x| {
+            if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        }),
+        M::Sign => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(|x| (x as i32).signum() as u32)))
+            .collect(),
+        M::Step => {
+            // step(edge, x): 0 where x < edge.
+            let b = need(b)?;
+            let n = a.len().max(b.len());
+            (0..n)
+                .map(|k| f2(at(a, k), at(&b, k), |e, x| if x < e { 0.0 } else { 1.0 }))
+                .collect()
+        }
+        M::SmoothStep => {
+            let (b, x) = (need(b)?, need(c)?);
+            let n = a.len().max(b.len()).max(x.len());
+            (0..n)
+                .map(|k| {
+                    f3(at(a, k), at(&b, k), at(&x, k), |e0, e1, x| {
+                        let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+                        t * t * (3.0 - 2.0 * t)
+                    })
+                })
+                .collect()
+        }
+        M::Mix => {
+            let (b, t) = (need(b)?, need(c)?);
+            if t[0].kind == Kind::Bool {
+                (0..a.len())
+                    .map(|k| Comp::new(kind, at(&t, k).bits.zip3(&a[k].bits, &at(&b, k).bits, |t, x, y| if t != 0 { y } else { x })))
+                    .collect()
+            } else {
+                // x·(1 − a) + y·a, as GLSL defines it.
+                (0..a.len())
+                    .map(|k| f3(&a[k], at(&b, k), at(&t, k), |x, y, t| x * (1.0 - t) + y * t))
+                    .collect()
+            }
+        }
+        M::Fma => {
+            let (b, c) = (need(b)?, need(c)?);
+            (0..a.len()).map(|k| f3(&a[k], at(&b, k), at(&c, k), f32::mul_add)).collect()
+        }
+        M::Dot => vec![dot(a, &need(b)?)],
+        M::Length => {
+            let d = dot(a, a);
+            vec![f(&d, f32::sqrt)]
+        }
+        M::Distance => {
+            let b = need(b)?;
+            let diff: Vec<Comp> = (0..a.len()).map(|k| f2(&a[k], &b[k], |x, y| x - y)).collect();
+            vec![f(&dot(&diff, &diff), f32::sqrt)]
+        }
+        M::Normalize => {
+            let d = dot(a, a);
+            let inv = f(&d, |x| 1.0 / x.sqrt());
+            a.iter().map(|c| f2(c, &inv, |x, s| x * s)).collect()
+        }
+        M::Cross => {
+            let b = need(b)?;
+            let m = |i: usize, j: usize| f2(&a[i], &b[j], |x, y| x * y);
+            vec![
+                f2(&m(1, 2), &m(2, 1), |x, y| x - y),
+                f2(&m(2, 0), &m(0, 2), |x, y| x - y),
+                f2(&m(0, 1), &m(1, 0), |x, y| x - y),
+            ]
+        }
+        M::Reflect => {
+            // I − 2·dot(N, I)·N.
+            let n = need(b)?;
+            let d = dot(&n, a);
+            (0..a.len())
+                .map(|k| f3(&a[k], &n[k], &d, |i, n, d| i - 2.0 * d * n))
+                .collect()
+        }
+        M::Refract => {
+            let n = need(b)?;
+            let eta = need(c)?;
+            let d = dot(&n, a);
+            let k = f2(&d, &eta[0], |d, e| 1.0 - e * e * (1.0 - d * d));
+            (0..a.len())
+                .map(|j| {
+                    Comp::new(
+                        Kind::F32,
+                        bits(
+                            (0..lanes(&[&a[j], &n[j], &d, &k, &eta[0]]))
+                                .map(|l| {
+                                    let (i, nn, dd, kk, e) = (a[j].f(l), n[j].f(l), d.f(l), k.f(l), eta[0].f(l));
+                                    let r = if kk < 0.0 { 0.0 } else { e * i - (e * dd + kk.sqrt()) * nn };
+                                    r.to_bits()
+                                })
+                                .collect(),
+                        ),
+                    )
+                })
+                .collect()
+        }
+        M::FaceForward => {
+            // faceforward(N, I, Nref): N if dot(Nref, I) < 0, else −N.
+            let (i, nref) = (need(b)?, need(c)?);
+            let d = dot(&nref, &i);
+            a.iter()
+                .map(|n| f2(n, &d, |n, d| if d < 0.0 { n } else { -n }))
+                .collect()
+        }
+        M::Transpose => {
+            let (rows, cols) = matrix_shape(ty, fun, span)?;
+            let mut out = Vec::with_capacity(a.len());
+            for r in 0..rows {
+                for c in 0..cols {
+                    out.push(a[c * rows + r].clone());
+                }
+            }
+            out
+        }
+        M::Determinant => {
+            let (n, _) = matrix_shape(ty, fun, span)?;
+            let lanes = lanes(&a.iter().collect::<Vec<_>>());
+            let v: Vec<f32> = (0..lanes)
+                .map(|l| {
+                    let m: Vec<f64> = a.iter().map(|c| f64::from(c.f(l))).collect();
+                    det(&m, n) as f32
+                })
+                .collect();
+            vec![Comp::new(Kind::F32, bits(v.into_iter().map(f32::to_bits).collect()))]
+        }
+        M::Inverse => {
+            let (n, _) = matrix_shape(ty, fun, span)?;
+            let lanes = lanes(&a.iter().collect::<Vec<_>>());
+            let mut out: Vec<Vec<u32>> = vec![Vec::with_capacity(lanes); n * n];
+            for l in 0..lanes {
+                let m: Vec<f64> = a.iter().map(|c| f64::from(c.f(l))).collect();
+                for (k, v) in inverse(&m, n).into_iter().enumerate() {
+                    out[k].push((v as f32).to_bits());
+                }
+            }
+            out.into_iter().map(|b| Comp::new(Kind::F32, bits(b))).collect()
+        }
+        M::Modf | M::Frexp | M::Ldexp => {
+            return Err(Failure {
+                message: format!("the debugger does not run {}", math_name(fun)),
+                span,
+            })
+        }
+        _ => {
+            return Err(Failure {
+                message: format!("the debugger does not run {} on {kind:?} values", math_name(fun)),
+                span,
+            })
+        }
+    })
+}
+
+/// Per-lane bits, as one value when there is one lane's worth (every input was shared).
+fn bits(v: Vec<u32>) -> Bits {
+    if v.len() == 1 {
+        Bits::One(v[0])
+    } else {
+        Bits::Each(v)
+    }
+}
+
+fn lanes(comps: &[&Comp]) -> usize {
+    comps.iter().map(|c| c.bits.len()).max().unwrap_or(1)
+}
+
+fn matrix_shape(ty: &TypeInner, fun: M, span: Span) -> Res<(usize, usize)> {
+    match ty {
+        TypeInner::Matrix { columns, rows, .. } => Ok((*rows as usize, *columns as usize)),
+        _ => Err(Failure {
+            message: format!("{} of something that is not a matrix", math_name(fun)),
+            span,
+        }),
+    }
+}
+
+/// The determinant of an n×n column-major matrix (n ≤ 4), by cofactors.
+fn det(m: &[f64], n: usize) -> f64 {
+    let at = |r: usize, c: usize| m[c * n + r];
+    match n {
+        1 => m[0],
+        2 => at(0, 0) * at(1, 1) - at(0, 1) * at(1, 0),
+        _ => {
+            let mut sum = 0.0;
+            for c in 0..n {
+                let mut minor = Vec::with_capacity((n - 1) * (n - 1));
+                for cc in 0..n {
+                    if cc == c {
+                        continue;
+                    }
+                    for r in 1..n {
+                        minor.push(at(r, cc));
+                    }
+                }
+                let sign = if c % 2 == 0 { 1.0 } else { -1.0 };
+                sum += sign * at(0, c) * det(&minor, n - 1);
+            }
+            sum
+        }
+    }
+}
+
+/// The inverse of an n×n column-major matrix, by the adjugate (as GLSL's `inverse`).
+fn inverse(m: &[f64], n: usize) -> Vec<f64> {
+    let d = det(m, n);
+    let at = |r: usize, c: usize| m[c * n + r];
+    let mut out = vec![0.0; n * n];
+    for r in 0..n {
+        for c in 0..n {
+            // Cofactor of (r, c), placed at (c, r).
+            let mut minor = Vec::with_capacity((n - 1) * (n - 1));
+            for cc in 0..n {
+                if cc == c {
+                    continue;
+                }
+                for rr in 0..n {
+                    if rr == r {
+                        continue;
+                    }
+                    minor.push(at(rr, cc));
+                }
+            }
+            let sign = if (r + c) % 2 == 0 { 1.0 } else { -1.0 };
+            let cof = if n == 1 { 1.0 } else { sign * det(&minor, n - 1) };
+            out[r * n + c] = cof / d;
+        }
+    }
+    out
+}

@@ -1,0 +1,463 @@
+//! The GLSL debugger: why a pixel has its colour.
+//!
+//! A frame is drawn as usual with its draws written down ([`crate::render::DrawLog`]), the
+//! buffers they drew from are read back ([`capture`]), and the frame is replayed on the CPU for
+//! one pixel ([`replay`]): the vertex shader over every vertex for the positions, the
+//! rasteriser's coverage, depth test and `discard` for which fragment stays ([`raster`]), then
+//! that fragment traced — its triangle's corners through the vertex shader and its 2×2 quad
+//! through the fragment shader ([`interp`], naga's IR of the very module the pipeline was built
+//! from, with textures filtered on the CPU by [`sample`]). Each step names the file and line of
+//! the GLSL the user edits (through `#include`s and the course translator's source map).
+//!
+//! [`Inspection`] is the result: the stored pixel, the covering draw and primitive, the corner
+//! values, the interpolated inputs and the steps; [`Inspection::text`] and
+//! [`Inspection::json`] write it for people and programs.
+
+pub mod capture;
+pub mod interp;
+mod math;
+pub mod raster;
+pub mod replay;
+pub mod sample;
+pub mod value;
+
+use std::fmt::Write as _;
+
+use crate::error::{Error, Result};
+use crate::shader::CompiledShader;
+
+pub use capture::{Captured, Pending};
+pub use replay::{replay, Fragment, Named, Replayed};
+
+/// Which stage a step ran in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// The vertex shader (at one corner).
+    Vertex,
+    /// The fragment shader (at the pixel).
+    Fragment,
+}
+
+impl Stage {
+    fn name(self) -> &'static str {
+        match self {
+            Stage::Vertex => "vertex",
+            Stage::Fragment => "fragment",
+        }
+    }
+}
+
+/// One step of the trace, placed in the user's file.
+#[derive(Clone, Debug)]
+pub struct TraceStep {
+    /// The stage.
+    pub stage: Stage,
+    /// For a vertex step, which corner (0–2).
+    pub corner: Option<usize>,
+    /// The file, as shown to the user.
+    pub file: String,
+    /// The 1-based line.
+    pub line: u32,
+    /// What it did: the variable assigned (`L`, `color.rgb`), or `if`, `loop`, `call f`,
+    /// `discard`.
+    pub name: String,
+    /// Its value's components (bools as 0/1; the iteration for `loop`; 1/0 for `if`).
+    pub value: Vec<f64>,
+    /// Whether the value is a bool.
+    pub boolean: bool,
+}
+
+/// Why a pixel has its colour.
+#[derive(Clone, Debug)]
+pub struct Inspection {
+    /// The lab.
+    pub lab: String,
+    /// The pixel: column and row from the top left.
+    pub x: u32,
+    /// Its row.
+    pub y: u32,
+    /// The picture's size.
+    pub width: u32,
+    /// Its height.
+    pub height: u32,
+    /// The replay.
+    pub replayed: Replayed,
+    /// Every step, vertex corners first, then the fragment.
+    pub steps: Vec<TraceStep>,
+}
+
+/// The file and line of a span of `shader`'s source (through its includes or source map).
+pub fn locate(shader: &CompiledShader, span: naga::Span) -> Option<(String, u32)> {
+    let range = span.to_range()?;
+    if range.start == 0 && range.end == 0 {
+        return None;
+    }
+    let text = &shader.source.text;
+    let start = range.start.min(text.len());
+    let line = text.as_bytes()[..start].iter().filter(|&&b| b == b'\n').count() as u32 + 1;
+    Some(shader.source.origin(line))
+}
+
+/// The text of `line` of `file` as its author wrote it.
+pub fn source_line<'s>(shader: &'s CompiledShader, file: &str, line: u32) -> Option<&'s str> {
+    let (_, text) = shader.source.files.iter().find(|(p, _)| p == file)?;
+    text.lines().nth(line.checked_sub(1)? as usize)
+}
+
+fn steps_of(stage: Stage, shader: &CompiledShader, steps: &[interp::Step], out: &mut Vec<TraceStep>) {
+    for step in steps {
+        let Some((file, line)) = locate(shader, step.span) else {
+            continue;
+        };
+        let name = match &step.kind {
+            interp::StepKind::Assign(n) => n.clone(),
+            interp::StepKind::Branch => "if".into(),
+            interp::StepKind::Iteration => "loop".into(),
+            interp::StepKind::Call(f) => format!("call {f}"),
+            interp::StepKind::Discard => "discard".into(),
+        };
+        let boolean = step.kinds.iter().all(|k| *k == value::Kind::Bool) && !step.kinds.is_empty();
+        for (lane, v) in step.values.iter().enumerate() {
+            let Some(v) = v else { continue };
+            out.push(TraceStep {
+                stage,
+                corner: (stage == Stage::Vertex).then_some(lane),
+                file: file.clone(),
+                line,
+                name: name.clone(),
+                value: v.clone(),
+                boolean,
+            });
+        }
+    }
+}
+
+impl Inspection {
+    /// The inspection of pixel (x, y) of a captured frame of lab `lab`.
+    pub fn new(lab: &str, captured: &Captured, x: u32, y: u32) -> Result<Inspection> {
+        let (width, height) = captured.passes.last().map_or((0, 0), |p| (p.1, p.2));
+        let replayed = replay(captured, x, y).map_err(|e| match e.at {
+            Some((shader, span)) => match locate(&shader, span) {
+                Some((file, line)) => {
+                    let text = source_line(&shader, &file, line).unwrap_or("").trim();
+                    Error::Debug(format!("{file}:{line}: {}\n    {line} | {text}", e.message))
+                }
+                None => Error::Debug(format!("{}: {}", shader.path, e.message)),
+            },
+            None => Error::Debug(e.message),
+        })?;
+        let mut steps = Vec::new();
+        if let Some(f) = &replayed.fragment {
+            steps_of(Stage::Vertex, &f.vertex, &f.vertex_steps, &mut steps);
+            steps_of(Stage::Fragment, &f.fragment, &f.fragment_steps, &mut steps);
+        }
+        Ok(Inspection {
+            lab: lab.to_owned(),
+            x,
+            y,
+            width,
+            height,
+            replayed,
+            steps,
+        })
+    }
+
+    /// Whether a primitive covers the pixel.
+    pub fn covered(&self) -> bool {
+        self.replayed.fragment.is_some()
+    }
+
+    /// The report for people: what covers the pixel, the corners, the inputs, the fragment
+    /// shader line by line with the values each line computed, and the stored colour.
+    pub fn text(&self) -> String {
+        let mut out = String::new();
+        let r = &self.replayed;
+        let _ = writeln!(
+            out,
+            "{}: pixel {},{} of {}x{}",
+            self.lab, self.x, self.y, self.width, self.height
+        );
+        let Some(f) = &r.fragment else {
+            let c = r.clear;
+            let _ = writeln!(
+                out,
+                "no triangle covers this pixel: the clear colour ({}, {}, {}) shows, stored as rgba{:?}",
+                num(c[0]),
+                num(c[1]),
+                num(c[2]),
+                r.pixel
+            );
+            return out;
+        };
+        let what = if f.points { "point" } else { "triangle" };
+        let ids: Vec<String> = f.corners.iter().map(|c| c.index.to_string()).collect();
+        let _ = writeln!(
+            out,
+            "covered by {what} {} of draw {} (`{}`; vertices {}), {}, depth {}{}",
+            f.primitive,
+            f.draw,
+            f.label,
+            ids.join(", "),
+            if f.front_facing { "front-facing" } else { "back-facing" },
+            num(f64::from(f.depth)),
+            if r.covering > 1 {
+                format!("; {} fragments covered the pixel, this one stayed", r.covering)
+            } else {
+                String::new()
+            }
+        );
+        let _ = writeln!(out, "\nvertex shader {} at the corners:", f.vertex.path);
+        let corner_row = |out: &mut String, label: &str, pick: &dyn Fn(&replay::Corner) -> &Vec<Named>| {
+            let Some(first) = f.corners.first() else { return };
+            for (k, n) in pick(first).iter().enumerate() {
+                let values: Vec<String> = f.corners.iter().map(|c| vector(&pick(c)[k].value)).collect();
+                let _ = writeln!(out, "  {label} {} = {}", n.name, values.join(" | "));
+            }
+        };
+        corner_row(&mut out, "in ", &|c| &c.inputs);
+        self.listing(&mut out, Stage::Vertex, &f.vertex);
+        corner_row(&mut out, "out", &|c| &c.outputs);
+        let _ = writeln!(out, "\nfragment inputs at the pixel:");
+        for n in &f.inputs {
+            let _ = writeln!(out, "  {} = {}", n.name, vector(&n.value));
+        }
+        let _ = writeln!(out, "\nfragment shader {}:", f.fragment.path);
+        self.listing(&mut out, Stage::Fragment, &f.fragment);
+        if f.steps_dropped > 0 {
+            let _ = writeln!(out, "  ({} more steps not kept)", f.steps_dropped);
+        }
+        let c = r.color;
+        let _ = writeln!(
+            out,
+            "\ncolour {} → stored rgba({}, {}, {}, {})",
+            vector(&c.map(f64::from)),
+            r.pixel[0],
+            r.pixel[1],
+            r.pixel[2],
+            r.pixel[3]
+        );
+        out
+    }
+
+    /// The lines of `shader`'s files that ran in `stage`, in file order, each with the values
+    /// its steps computed.
+    fn listing(&self, out: &mut String, stage: Stage, shader: &CompiledShader) {
+        let mut lines: Vec<(&str, u32)> = Vec::new();
+        for s in self.steps.iter().filter(|s| s.stage == stage) {
+            if !lines.contains(&(s.file.as_str(), s.line)) {
+                lines.push((s.file.as_str(), s.line));
+            }
+        }
+        let order: Vec<&str> = shader.source.files.iter().map(|(p, _)| p.as_str()).collect();
+        lines.sort_by_key(|(file, line)| (order.iter().position(|p| p == file).unwrap_or(usize::MAX), *line));
+        let mut current = "";
+        for (file, line) in lines {
+            if file != current {
+                if file != shader.path {
+                    let _ = writeln!(out, "  {file}:");
+                }
+                current = file;
+            }
+            let text = source_line(shader, file, line).unwrap_or("").trim();
+            let here: Vec<&TraceStep> = self
+                .steps
+                .iter()
+                .filter(|s| s.stage == stage && s.file == file && s.line == line)
+                .collect();
+            let _ = writeln!(out, "  {line:>4} | {text}");
+            let mut said = String::new();
+            for (i, s) in here.iter().enumerate() {
+                if i >= 12 {
+                    let _ = write!(said, "; … ({} more)", here.len() - i);
+                    break;
+                }
+                if !said.is_empty() {
+                    said.push_str("; ");
+                }
+                let corner = s.corner.map(|c| format!("[{c}] ")).unwrap_or_default();
+                let v = if s.boolean {
+                    match s.value.as_slice() {
+                        [b] => (if *b != 0.0 { "true" } else { "false" }).to_owned(),
+                        v => vector(v),
+                    }
+                } else {
+                    vector(&s.value)
+                };
+                match s.name.as_str() {
+                    "if" => {
+                        let _ = write!(said, "{corner}if → {}", if s.value.first() == Some(&1.0) { "then" } else { "else" });
+                    }
+                    "loop" => {
+                        let _ = write!(said, "{corner}iteration {v}");
+                    }
+                    n if n.starts_with("call ") || n == "discard" => {
+                        let _ = write!(said, "{corner}{n}");
+                    }
+                    n => {
+                        let _ = write!(said, "{corner}{n} = {v}");
+                    }
+                }
+            }
+            let _ = writeln!(out, "       ⇒ {said}");
+        }
+    }
+
+    /// The report for programs: one JSON object with `pixel` (the stored RGBA bytes),
+    /// `covered`, and `trace` (steps with `stage`, `file`, `line`, `name`, `value`), and the
+    /// covering draw, corners and inputs.
+    pub fn json(&self) -> String {
+        let r = &self.replayed;
+        let mut o = String::from("{");
+        let _ = write!(
+            o,
+            "\"lab\":{},\"x\":{},\"y\":{},\"width\":{},\"height\":{},\"pixel\":[{},{},{},{}],\"covered\":{},\"color\":{},\"clear\":{}",
+            jstr(&self.lab),
+            self.x,
+            self.y,
+            self.width,
+            self.height,
+            r.pixel[0],
+            r.pixel[1],
+            r.pixel[2],
+            r.pixel[3],
+            self.covered(),
+            jnums(&r.color.map(f64::from)),
+            jnums(&r.clear)
+        );
+        if let Some(f) = &r.fragment {
+            let named = |v: &[Named]| -> String {
+                let items: Vec<String> = v.iter().map(|n| format!("{}:{}", jstr(&n.name), jvalue(&n.value))).collect();
+                format!("{{{}}}", items.join(","))
+            };
+            let corners: Vec<String> = f
+                .corners
+                .iter()
+                .map(|c| {
+                    format!(
+                        "{{\"index\":{},\"inputs\":{},\"outputs\":{}}}",
+                        c.index,
+                        named(&c.inputs),
+                        named(&c.outputs)
+                    )
+                })
+                .collect();
+            let _ = write!(
+                o,
+                ",\"draw\":{},\"label\":{},\"primitive\":{},\"points\":{},\"vertex_shader\":{},\"fragment_shader\":{},\"depth\":{},\"front_facing\":{},\"covering\":{},\"corners\":[{}],\"inputs\":{},\"steps_dropped\":{}",
+                f.draw,
+                jstr(&f.label),
+                f.primitive,
+                f.points,
+                jstr(&f.vertex.path),
+                jstr(&f.fragment.path),
+                jnum(f64::from(f.depth)),
+                f.front_facing,
+                r.covering,
+                corners.join(","),
+                named(&f.inputs),
+                f.steps_dropped
+            );
+        }
+        let steps: Vec<String> = self
+            .steps
+            .iter()
+            .map(|s| {
+                let corner = s.corner.map(|c| format!(",\"corner\":{c}")).unwrap_or_default();
+                format!(
+                    "{{\"stage\":\"{}\"{corner},\"file\":{},\"line\":{},\"name\":{},\"value\":{}}}",
+                    s.stage.name(),
+                    jstr(&s.file),
+                    s.line,
+                    jstr(&s.name),
+                    jvalue(&s.value)
+                )
+            })
+            .collect();
+        let _ = write!(o, ",\"trace\":[{}]}}", steps.join(","));
+        o
+    }
+}
+
+/// A number as people read it: up to 4 decimals, no trailing zeros.
+fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    let s = format!("{v:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_owned()
+    }
+}
+
+fn vector(v: &[f64]) -> String {
+    match v {
+        [x] => num(*x),
+        _ => format!("({})", v.iter().map(|x| num(*x)).collect::<Vec<_>>().join(", ")),
+    }
+}
+
+/// A JSON string.
+fn jstr(s: &str) -> String {
+    let mut o = String::with_capacity(s.len() + 2);
+    o.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            '\n' => o.push_str("\\n"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(o, "\\u{:04x}", c as u32);
+            }
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
+}
+
+/// A JSON number; NaN and infinities (which JSON cannot hold) are `null`.
+fn jnum(v: f64) -> String {
+    if v.is_finite() {
+        let s = format!("{v}");
+        if s == "-0" {
+            "0".into()
+        } else {
+            s
+        }
+    } else {
+        "null".into()
+    }
+}
+
+fn jnums(v: &[f64]) -> String {
+    format!("[{}]", v.iter().map(|x| jnum(*x)).collect::<Vec<_>>().join(","))
+}
+
+fn jvalue(v: &[f64]) -> String {
+    match v {
+        [x] => jnum(*x),
+        _ => jnums(v),
+    }
+}
+
+/// Draws one frame of `lab` at `width` × `height` with its draws written down, and brings it
+/// to the CPU: the picture the GPU drew (as `--screenshot` would write it) and the frame to
+/// replay.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn capture_lab(
+    gpu: &crate::gpu::Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    width: u32,
+    height: u32,
+) -> Result<(image::RgbaImage, Captured)> {
+    let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
+    let log = crate::render::DrawLog::new();
+    crate::lab::draw::render_logged(gpu, lab, &target, Some(&log))?;
+    let pending = Pending::start(gpu, &log);
+    let image = target.read(gpu)?;
+    let captured = pending.wait(gpu)?;
+    Ok((image, captured))
+}

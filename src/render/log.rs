@@ -1,0 +1,92 @@
+//! The draws of a frame written down for the debugger: each draw's shaders (the naga modules
+//! its pipeline was built from), fixed-function state, vertex and index buffers, bound
+//! resources and the pass it belongs to. Nothing is copied while a frame is recorded but
+//! handles; [`crate::debug`] reads the buffers back afterwards, so what it replays is what the
+//! GPU was given.
+
+use std::cell::RefCell;
+use std::ops::Range;
+use std::sync::Arc;
+
+use super::{Bind, BindingInfo, Load, RenderState};
+use crate::shader::CompiledShader;
+
+/// A texture's texels as the CPU uploaded them: level 0 first, each level `layers` images
+/// (1 for 2D, 6 for a cube map: +X, −X, +Y, −Y, +Z, −Z) of RGBA8, row 0 first.
+#[derive(Debug)]
+pub struct Texels {
+    /// Level 0's width.
+    pub width: u32,
+    /// Level 0's height.
+    pub height: u32,
+    /// Images per level.
+    pub layers: u32,
+    /// The levels.
+    pub levels: Vec<Vec<u8>>,
+}
+
+/// One draw as recorded.
+#[derive(Clone)]
+pub struct DrawCall {
+    /// Which pass of the frame (an index into [`DrawLog::passes`]).
+    pub pass: usize,
+    /// The program's label.
+    pub label: String,
+    /// The vertex shader the pipeline was built from.
+    pub vertex: Arc<CompiledShader>,
+    /// The fragment shader.
+    pub fragment: Arc<CompiledShader>,
+    /// The bindings the shaders declare.
+    pub bindings: Vec<BindingInfo>,
+    /// What is bound to them.
+    pub resources: Vec<Bind>,
+    /// The fixed-function state.
+    pub state: RenderState,
+    /// This draw's culling (a program may draw twice, culling each winding in turn).
+    pub cull: Option<wgpu::Face>,
+    /// The vertex buffer.
+    pub vertices: wgpu::Buffer,
+    /// Bytes per vertex.
+    pub stride: u64,
+    /// The vertex attributes, by shader location.
+    pub attributes: Vec<wgpu::VertexAttribute>,
+    /// The index buffer (32-bit indices), if indexed.
+    pub indices: Option<wgpu::Buffer>,
+    /// The vertices (or indices) drawn.
+    pub range: Range<u32>,
+}
+
+/// The draws of one frame, in order, and its passes (each pass's load operation and target
+/// size).
+#[derive(Default)]
+pub struct DrawLog {
+    draws: RefCell<Vec<DrawCall>>,
+    passes: RefCell<Vec<(Load, u32, u32)>>,
+}
+
+impl DrawLog {
+    /// An empty log.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub(crate) fn begin_pass(&self, load: Load, width: u32, height: u32) {
+        self.passes.borrow_mut().push((load, width, height));
+    }
+
+    /// Writes down a draw of the current pass.
+    pub(crate) fn draw(&self, mut call: DrawCall) {
+        call.pass = self.passes.borrow().len().saturating_sub(1);
+        self.draws.borrow_mut().push(call);
+    }
+
+    /// The draws, in order.
+    pub fn draws(&self) -> Vec<DrawCall> {
+        self.draws.borrow().clone()
+    }
+
+    /// The passes: load operation, target width and height.
+    pub fn passes(&self) -> Vec<(Load, u32, u32)> {
+        self.passes.borrow().clone()
+    }
+}
