@@ -145,20 +145,28 @@ fn states() -> Vec<(String, Box<dyn Lab>)> {
         if name == "legacy" {
             continue;
         }
-        out.push((name.to_owned(), build(name, &none, &[])));
+        // At time 0 every particle is still at the fountain's mouth: a few pixels.
+        let set: &[(&str, &str)] = if name == "particles" { &[("time", "2")] } else { &[] };
+        out.push((name.to_owned(), build(name, &none, set)));
     }
     for lab in 1..=5 {
         let files = UserFiles {
             inputs: course(lab),
             ..UserFiles::default()
         };
-        out.push((format!("legacy lab{lab}"), build("legacy", &files, &[("object", "teapot")])));
+        let set: &[(&str, &str)] = if lab >= 4 {
+            &[("object", "teapot"), ("shade", "1,0.8,0.5"), ("time", "1.7")]
+        } else {
+            &[("object", "teapot")]
+        };
+        out.push((format!("legacy lab{lab}"), build("legacy", &files, set)));
     }
     let extra: &[(&str, &[(&str, &str)])] = &[
         ("phong", &[("object", "torus"), ("xangle", "30"), ("yangle", "40")]),
         ("noise", &[("object", "sphere"), ("time", "2.5")]),
         ("displacement", &[("object", "teapot"), ("time", "1.25")]),
         ("wave", &[("time", "3.5")]),
+        ("particles", &[("time", "3.3"), ("xangle", "20")]),
         ("morph", &[("time", "1.5")]),
         ("texparams", &[("min", "linear_mipmap_linear"), ("mag", "linear")]),
         ("texparams", &[("min", "nearest"), ("wrap_s", "clamp_to_edge")]),

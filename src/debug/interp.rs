@@ -27,10 +27,10 @@ use super::value::{self, Bits, Comp, Kind, Offset, Ptr, Root, Val};
 pub enum Lod {
     /// From the coordinate's derivatives across the quad, with a bias (0 for `texture`).
     Implicit {
-        /// d(coordinate)/dx.
-        dx: [f32; 3],
-        /// d(coordinate)/dy.
-        dy: [f32; 3],
+        /// d/dx and d/dy of the coordinate from the quad's top-left pixel (one per quad).
+        coarse: ([f32; 3], [f32; 3]),
+        /// d/dx and d/dy of the coordinate at this pixel (its row's and column's).
+        fine: ([f32; 3], [f32; 3]),
         /// `texture(s, uv, bias)`'s bias.
         bias: f32,
     },
@@ -983,18 +983,16 @@ impl<'m> Run<'m> {
                         if !self.quad {
                             vec![Lod::Level(0.0); self.lanes]
                         } else {
-                            let dx: Vec<Comp> = coord
-                                .iter()
-                                .map(|c| self.derivative(c, naga::DerivativeAxis::X, naga::DerivativeControl::Coarse))
-                                .collect();
-                            let dy: Vec<Comp> = coord
-                                .iter()
-                                .map(|c| self.derivative(c, naga::DerivativeAxis::Y, naga::DerivativeControl::Coarse))
-                                .collect();
+                            use naga::{DerivativeAxis as Ax, DerivativeControl as Ctl};
+                            let d = |axis, ctrl| -> Vec<Comp> {
+                                coord.iter().map(|c| self.derivative(c, axis, ctrl)).collect()
+                            };
+                            let (cx, cy) = (d(Ax::X, Ctl::Coarse), d(Ax::Y, Ctl::Coarse));
+                            let (fx, fy) = (d(Ax::X, Ctl::Fine), d(Ax::Y, Ctl::Fine));
                             (0..self.lanes)
                                 .map(|i| Lod::Implicit {
-                                    dx: vec3(&dx, i),
-                                    dy: vec3(&dy, i),
+                                    coarse: (vec3(&cx, i), vec3(&cy, i)),
+                                    fine: (vec3(&fx, i), vec3(&fy, i)),
                                     bias: bias.as_ref().map_or(0.0, |b| b[0].f(i)),
                                 })
                                 .collect()
@@ -1004,8 +1002,8 @@ impl<'m> Run<'m> {
                         let (dx, dy) = (self.data(*x)?, self.data(*y)?);
                         (0..self.lanes)
                             .map(|i| Lod::Implicit {
-                                dx: vec3(&dx, i),
-                                dy: vec3(&dy, i),
+                                coarse: (vec3(&dx, i), vec3(&dy, i)),
+                                fine: (vec3(&dx, i), vec3(&dy, i)),
                                 bias: 0.0,
                             })
                             .collect()

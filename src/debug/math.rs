@@ -199,7 +199,8 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
         }
         M::Fma => {
             let (b, c) = (need(b)?, need(c)?);
-            (0..a.len()).map(|k| f3(&a[k], at(&b, k), at(&c, k), f32::mul_add)).collect()
+            // Not fused: a multiply and an add, each rounded (GLSL leaves it open).
+            (0..a.len()).map(|k| f3(&a[k], at(&b, k), at(&c, k), |x, y, z| x * y + z)).collect()
         }
         M::Dot => vec![dot(a, &need(b)?)],
         M::Length => {
@@ -212,9 +213,9 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             vec![f(&dot(&diff, &diff), f32::sqrt)]
         }
         M::Normalize => {
-            let d = dot(a, a);
-            let inv = f(&d, |x| 1.0 / x.sqrt());
-            a.iter().map(|c| f2(c, &inv, |x, s| x * s)).collect()
+            // v / sqrt(dot(v, v)): a division per component.
+            let len = f(&dot(a, a), f32::sqrt);
+            a.iter().map(|c| f2(c, &len, |x, l| x / l)).collect()
         }
         M::Cross => {
             let b = need(b)?;

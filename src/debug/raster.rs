@@ -1,36 +1,13 @@
-//! Which primitive covers a pixel, as the rasteriser decides: the viewport transform, vertex
-//! positions snapped to the rasteriser's sub-pixel grid, edge functions with the top-left rule
-//! at the pixel centre, culling by winding, clipping against the near and far planes, and the
-//! barycentric weights (screen-space and perspective-correct) of a 2×2 quad of pixels, so that
-//! the neighbours a derivative reads are interpolated — or extrapolated — as the GPU does.
+//! Which primitive covers a pixel and what its planes give there, as the reference rasteriser
+//! (Mesa's llvmpipe, behind lavapipe) computes them: the viewport transform, positions snapped
+//! to 1/256 pixel for coverage with the top-left rule at the pixel centre, winding and culling,
+//! depth clipping, and attribute planes set up from the unsnapped positions and evaluated per
+//! pixel (perspective-correct through the plane of 1/w) for the four pixels of a 2×2 quad, so
+//! the neighbours a derivative reads are interpolated — or extrapolated — as on the GPU.
+//! Triangles that cross the eye's plane are covered in 2D homogeneous coordinates instead.
 
-/// Sub-pixel bits of the rasteriser's fixed-point positions (llvmpipe's `FIXED_ORDER`).
+/// Sub-pixel bits of fixed-point positions (llvmpipe's `FIXED_ORDER`).
 pub const SUBPIXEL_BITS: u32 = 8;
-
-/// What the rasteriser computes for one pixel of a primitive.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
-    /// Screen-space (linear) weights of the three vertices.
-    pub linear: [f64; 3],
-    /// Perspective-correct weights.
-    pub perspective: [f64; 3],
-    /// Depth (z/w interpolated), as stored.
-    pub depth: f32,
-    /// 1/w interpolated (`gl_FragCoord.w`).
-    pub inv_w: f32,
-}
-
-/// A primitive covering the pixel: its samples for the four pixels of the quad (0: top left,
-/// 1: top right, 2: bottom left, 3: bottom right) and whether it faces the viewer.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Cover {
-    /// The quad's samples (helpers extrapolated from the primitive's planes).
-    pub quad: [Sample; 4],
-    /// The lane of the pixel itself.
-    pub lane: usize,
-    /// Whether the primitive is front-facing.
-    pub front: bool,
-}
 
 /// The viewport: the target's size.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,31 +19,125 @@ pub struct Viewport {
 }
 
 impl Viewport {
-    /// Clip-space position → window position (x right, y down, in pixels) and depth, computed
-    /// in `f32` as the rasteriser does.
-    pub fn to_window(&self, p: [f32; 4]) -> [f32; 3] {
-        let inv_w = 1.0 / p[3];
+    /// Clip-space position → window position (x right, y down, in pixels), depth and 1/w, in
+    /// `f32` as the vertex pipeline's epilogue computes them.
+    pub fn to_window(&self, p: [f32; 4]) -> [f32; 4] {
+        let oow = 1.0 / p[3];
         let (hw, hh) = (self.width as f32 * 0.5, self.height as f32 * 0.5);
-        [p[0] * inv_w * hw + hw, -(p[1] * inv_w) * hh + hh, p[2] * inv_w]
+        [
+            (p[0] * oow).mul_add(hw, hw),
+            (p[1] * oow).mul_add(-hh, hh),
+            p[2] * oow,
+            oow,
+        ]
     }
 }
 
-fn quad_lanes(x: u32, y: u32) -> ([(f64, f64); 4], usize) {
-    let (qx, qy) = (f64::from(x & !1), f64::from(y & !1));
-    let lane = (x & 1) as usize + 2 * (y & 1) as usize;
-    (
-        [
-            (qx + 0.5, qy + 0.5),
-            (qx + 1.5, qy + 0.5),
-            (qx + 0.5, qy + 1.5),
-            (qx + 1.5, qy + 1.5),
-        ],
-        lane,
-    )
+/// How attribute values are interpolated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Interp {
+    /// Perspective-correct (GLSL's default).
+    Perspective,
+    /// Linear in screen space (`noperspective`).
+    Linear,
+    /// The provoking (first) vertex's value (`flat`).
+    Flat,
 }
 
-/// Whether a triangle of winding `ccw` (counter-clockwise seen with y up) is drawn under
-/// `cull`, and whether it is front-facing.
+/// A primitive's interpolation at the four pixels of a quad.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Setup {
+    /// Plane equations over the window (llvmpipe's): the three vertices' window x, y in the
+    /// rasteriser's order, that order (indices into the primitive's vertices), and each
+    /// vertex's 1/w; the quad's pixel indices.
+    Planes {
+        /// Window x and y of the vertices, in setup order.
+        xy: [[f32; 2]; 3],
+        /// The primitive's vertex of each setup vertex.
+        order: [usize; 3],
+        /// 1/w of each setup vertex.
+        oow: [f32; 3],
+        /// Window z of each setup vertex.
+        z: [f32; 3],
+    },
+    /// Weights computed per pixel: screen-space and perspective-correct, per quad pixel, for
+    /// the primitive's vertices (triangles crossing the eye's plane).
+    Weights {
+        /// Screen-space weights.
+        linear: [[f64; 3]; 4],
+        /// Perspective-correct weights.
+        perspective: [[f64; 3]; 4],
+    },
+    /// A point: every value is the vertex's.
+    Point,
+}
+
+/// A primitive covering the pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cover {
+    /// The quad's pixels (0: top left, 1: top right, 2: bottom left, 3: bottom right).
+    pub pixels: [(u32, u32); 4],
+    /// The lane of the pixel itself.
+    pub lane: usize,
+    /// Whether the primitive faces the viewer.
+    pub front: bool,
+    /// Depth at each pixel of the quad (clamped to 0..1), as stored.
+    pub depth: [f32; 4],
+    /// 1/w at each pixel (`gl_FragCoord.w`).
+    pub inv_w: [f32; 4],
+    /// How the primitive's values reach the quad.
+    pub setup: Setup,
+}
+
+/// One attribute's plane: its value at the framebuffer origin's pixel centre and its slopes.
+fn plane(xy: &[[f32; 2]; 3], a: [f32; 3]) -> (f32, f32, f32) {
+    let [[x0, y0], [x1, y1], [x2, y2]] = *xy;
+    let (dx01, dy01, dx20, dy20) = (x0 - x1, y0 - y1, x2 - x0, y2 - y0);
+    let ooa = 1.0f32 / (dx01 * dy20 - dy01 * dx20);
+    let (dx20o, dy20o, dx01o, dy01o) = (dx20 * ooa, dy20 * ooa, dx01 * ooa, dy01 * ooa);
+    let (da01, da20) = (a[0] - a[1], a[2] - a[0]);
+    let dadx = da01 * dy20o - da20 * dy01o;
+    let dady = da20 * dx01o - da01 * dx20o;
+    let a0 = a[0] - (dadx * (x0 - 0.5) + dady * (y0 - 0.5));
+    (a0, dadx, dady)
+}
+
+fn eval((a0, dadx, dady): (f32, f32, f32), x: u32, y: u32) -> f32 {
+    dady.mul_add(y as f32, dadx.mul_add(x as f32, a0))
+}
+
+impl Cover {
+    /// An attribute whose value at the primitive's vertices is `v`, at the quad's pixels.
+    pub fn interpolate(&self, v: [f32; 3], mode: Interp) -> [f32; 4] {
+        match (&self.setup, mode) {
+            (Setup::Point, _) | (_, Interp::Flat) => [v[0]; 4],
+            (Setup::Planes { xy, order, oow, .. }, Interp::Perspective) => {
+                let a = [0, 1, 2].map(|k| v[order[k]] * oow[k]);
+                let p = plane(xy, a);
+                let w = plane(xy, *oow);
+                self.pixels.map(|(x, y)| eval(p, x, y) * (1.0f32 / eval(w, x, y)))
+            }
+            (Setup::Planes { xy, order, .. }, Interp::Linear) => {
+                let p = plane(xy, [0, 1, 2].map(|k| v[order[k]]));
+                self.pixels.map(|(x, y)| eval(p, x, y))
+            }
+            (Setup::Weights { linear, perspective }, mode) => {
+                let w = if mode == Interp::Linear { linear } else { perspective };
+                let f = |k: usize| f64::from(v[k]);
+                [0, 1, 2, 3].map(|i| (w[i][0] * f(0) + w[i][1] * f(1) + w[i][2] * f(2)) as f32)
+            }
+        }
+    }
+}
+
+fn quad(x: u32, y: u32) -> ([(u32, u32); 4], usize) {
+    let (qx, qy) = (x & !1, y & !1);
+    let lane = (x & 1) as usize + 2 * (y & 1) as usize;
+    ([(qx, qy), (qx + 1, qy), (qx, qy + 1), (qx + 1, qy + 1)], lane)
+}
+
+/// Whether a triangle of winding `ccw` (Vulkan's positive area) is drawn under `cull`, and
+/// whether it is front-facing.
 fn facing(ccw: bool, front_face: wgpu::FrontFace, cull: Option<wgpu::Face>) -> Option<bool> {
     let front = ccw == (front_face == wgpu::FrontFace::Ccw);
     match cull {
@@ -76,7 +147,14 @@ fn facing(ccw: bool, front_face: wgpu::FrontFace, cull: Option<wgpu::Face>) -> O
     }
 }
 
-/// Whether the triangle `clip` (clip-space positions) covers pixel (x, y), and its samples if so.
+/// `cvtps2dq((v − 0.5) · 256)`: a window coordinate snapped to the sub-pixel grid, whose
+/// integer points are pixel centres.
+fn snap(v: f32) -> i64 {
+    ((v - 0.5) * (1u32 << SUBPIXEL_BITS) as f32).round_ties_even() as i64
+}
+
+/// Whether the triangle `clip` (clip-space positions) covers pixel (x, y), and how it
+/// interpolates there if so.
 pub fn triangle(
     clip: [[f32; 4]; 3],
     vp: Viewport,
@@ -85,70 +163,56 @@ pub fn triangle(
     front_face: wgpu::FrontFace,
     cull: Option<wgpu::Face>,
 ) -> Option<Cover> {
-    let needs_clip = clip.iter().any(|p| !(p[3] > 0.0) || p.iter().any(|c| !c.is_finite()));
+    let needs_homogeneous = clip.iter().any(|p| !(p[3] > 0.0) || p.iter().any(|c| !c.is_finite()));
     let window = clip.map(|p| vp.to_window(p));
     let huge = window.iter().any(|w| w[0].abs() > 1e7 || w[1].abs() > 1e7);
-    if needs_clip || huge {
+    if needs_homogeneous || huge {
         return homogeneous(clip, vp, x, y, front_face, cull);
     }
-    let one = f64::from(1u32 << SUBPIXEL_BITS);
-    let fixed = window.map(|w| [(f64::from(w[0]) * one).round() as i64, (f64::from(w[1]) * one).round() as i64]);
-    let [a, b, c] = fixed;
-    // Twice the signed area with y down: negative for a triangle counter-clockwise with y up.
-    let area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    let fixed = window.map(|w| [snap(w[0]), snap(w[1])]);
+    let [f0, f1, f2] = fixed;
+    let area = (f0[0] - f1[0]) * (f2[1] - f0[1]) - (f2[0] - f0[0]) * (f0[1] - f1[1]);
     if area == 0 {
         return None;
     }
-    let front = facing(area < 0, front_face, cull)?;
-    let sign = area.signum();
-    // Edge i is opposite vertex i; its function is positive inside.
-    let edge = |i: usize, p: [i64; 2]| -> i64 {
-        let (s, e) = (fixed[(i + 1) % 3], fixed[(i + 2) % 3]);
-        sign * ((e[0] - s[0]) * (p[1] - s[1]) - (e[1] - s[1]) * (p[0] - s[0]))
-    };
-    let top_left = |i: usize| -> bool {
-        let (s, e) = (fixed[(i + 1) % 3], fixed[(i + 2) % 3]);
-        let n = [-(e[1] - s[1]) * sign, (e[0] - s[0]) * sign];
-        n[0] > 0 || (n[0] == 0 && n[1] > 0)
-    };
-    let half = 1i64 << (SUBPIXEL_BITS - 1);
-    let centre = [i64::from(x) * one as i64 + half, i64::from(y) * one as i64 + half];
+    let front = facing(area > 0, front_face, cull)?;
+    // A clockwise triangle is set up as (v0, v2, v1), keeping the provoking vertex first.
+    let order = if area > 0 { [0, 1, 2] } else { [0, 2, 1] };
+    let v = order.map(|k| fixed[k]);
+    let (px, py) = (i64::from(x) << SUBPIXEL_BITS, i64::from(y) << SUBPIXEL_BITS);
     for i in 0..3 {
-        let e = edge(i, centre);
-        if e < 0 || (e == 0 && !top_left(i)) {
+        let (a, b) = (v[i], v[(i + 1) % 3]);
+        let dcdx = a[1] - b[1];
+        let dcdy = a[0] - b[0];
+        let mut c = dcdx * a[0] - dcdy * a[1];
+        // The top-left rule: left edges and top edges (horizontal, running toward −x) own
+        // the pixel centres on them.
+        if dcdx < 0 || (dcdx == 0 && dcdy > 0) {
+            c += 1;
+        }
+        if c + dcdy * py - dcdx * px <= 0 {
             return None;
         }
     }
-    let abs_area = (area * sign) as f64;
-    let (pixels, lane) = quad_lanes(x, y);
-    let z = window.map(|w| f64::from(w[2]));
-    let inv_w = clip.map(|p| 1.0 / f64::from(p[3]));
-    let quad = pixels.map(|(px, py)| {
-        let p = [px * one, py * one];
-        let e = |i: usize| -> f64 {
-            let (s, t) = (fixed[(i + 1) % 3], fixed[(i + 2) % 3]);
-            let (s, t) = ([s[0] as f64, s[1] as f64], [t[0] as f64, t[1] as f64]);
-            sign as f64 * ((t[0] - s[0]) * (p[1] - s[1]) - (t[1] - s[1]) * (p[0] - s[0]))
-        };
-        let linear = [e(0) / abs_area, e(1) / abs_area, e(2) / abs_area];
-        sample(linear, z, inv_w)
-    });
-    let depth = quad[lane].depth;
-    if !(0.0..=1.0).contains(&depth) {
-        return None; // clipped by the near or far plane
+    let (pixels, lane) = quad(x, y);
+    let xy = order.map(|k| [window[k][0], window[k][1]]);
+    let z = order.map(|k| window[k][2]);
+    let oow = order.map(|k| window[k][3]);
+    let zp = plane(&xy, z);
+    let wp = plane(&xy, oow);
+    let depth = pixels.map(|(x, y)| eval(zp, x, y));
+    // Depth clipping: the near and far planes (the clamp to 0..1 then changes nothing).
+    if !(0.0..=1.0).contains(&depth[lane]) {
+        return None;
     }
-    Some(Cover { quad, lane, front })
-}
-
-fn sample(linear: [f64; 3], z: [f64; 3], inv_w: [f64; 3]) -> Sample {
-    let q = [linear[0] * inv_w[0], linear[1] * inv_w[1], linear[2] * inv_w[2]];
-    let sum = q[0] + q[1] + q[2];
-    Sample {
-        linear,
-        perspective: [q[0] / sum, q[1] / sum, q[2] / sum],
-        depth: (linear[0] * z[0] + linear[1] * z[1] + linear[2] * z[2]) as f32,
-        inv_w: sum as f32,
-    }
+    Some(Cover {
+        pixels,
+        lane,
+        front,
+        depth: depth.map(|d| d.clamp(0.0, 1.0)),
+        inv_w: pixels.map(|(x, y)| eval(wp, x, y)),
+        setup: Setup::Planes { xy, order, oow, z },
+    })
 }
 
 /// Coverage of a triangle that crosses the eye's plane (w ≤ 0) or lies far outside the
@@ -172,12 +236,13 @@ fn homogeneous(
         return None;
     }
     let front = facing(det > 0.0, front_face, cull)?;
-    let (pixels, lane) = quad_lanes(x, y);
+    let (pixels, lane) = quad(x, y);
     let z = clip.map(|p| f64::from(p[2]));
-    let weights = |px: f64, py: f64| -> [f64; 3] {
+    let w = clip.map(|p| f64::from(p[3]));
+    let weights = |px: u32, py: u32| -> [f64; 3] {
         let p = [
-            px / f64::from(vp.width) * 2.0 - 1.0,
-            1.0 - py / f64::from(vp.height) * 2.0,
+            (f64::from(px) + 0.5) / f64::from(vp.width) * 2.0 - 1.0,
+            1.0 - (f64::from(py) + 0.5) / f64::from(vp.height) * 2.0,
             1.0,
         ];
         [
@@ -186,55 +251,60 @@ fn homogeneous(
             det3(m[0], m[1], p) / det,
         ]
     };
-    let k = weights(pixels[lane].0, pixels[lane].1);
+    let k = weights(x, y);
     if k.iter().any(|&v| v < 0.0) || k.iter().sum::<f64>() <= 0.0 {
         return None;
     }
-    let quad = pixels.map(|(px, py)| {
+    let mut linear = [[0.0; 3]; 4];
+    let mut perspective = [[0.0; 3]; 4];
+    let mut depth = [0.0f32; 4];
+    let mut inv_w = [0.0f32; 4];
+    for (i, &(px, py)) in pixels.iter().enumerate() {
         let k = weights(px, py);
         let sum: f64 = k.iter().sum();
-        let perspective = [k[0] / sum, k[1] / sum, k[2] / sum];
-        let depth = k[0] * z[0] + k[1] * z[1] + k[2] * z[2];
-        // Screen-space weights: the perspective ones divided by w, renormalised.
-        let w = clip.map(|p| f64::from(p[3]));
-        let l = [perspective[0] / w[0], perspective[1] / w[1], perspective[2] / w[2]];
+        perspective[i] = [k[0] / sum, k[1] / sum, k[2] / sum];
+        depth[i] = (k[0] * z[0] + k[1] * z[1] + k[2] * z[2]) as f32;
+        inv_w[i] = sum as f32;
+        let l = [0, 1, 2].map(|j| perspective[i][j] / w[j]);
         let ls: f64 = l.iter().sum();
-        Sample {
-            linear: [l[0] / ls, l[1] / ls, l[2] / ls],
-            perspective,
-            depth: depth as f32,
-            inv_w: sum as f32,
-        }
-    });
-    if !(0.0..=1.0).contains(&quad[lane].depth) {
+        linear[i] = l.map(|v| v / ls);
+    }
+    if !(0.0..=1.0).contains(&depth[lane]) {
         return None;
     }
-    Some(Cover { quad, lane, front })
+    Some(Cover {
+        pixels,
+        lane,
+        front,
+        depth: depth.map(|d| d.clamp(0.0, 1.0)),
+        inv_w,
+        setup: Setup::Weights { linear, perspective },
+    })
 }
 
-/// Whether a point at `clip` (size 1) covers pixel (x, y): the pixel's centre inside the
-/// one-pixel square around the point (left and top edges included).
+/// Whether a point at `clip` (size 1) covers pixel (x, y): one pixel square around the
+/// point, snapped, left and top edges included. A point is dropped only behind the eye or
+/// past the near and far planes (points outside the viewport still light the pixels inside).
 pub fn point(clip: [f32; 4], vp: Viewport, x: u32, y: u32) -> Option<Cover> {
     let w = clip[3];
-    if !(w > 0.0) || clip[0].abs() > w || clip[1].abs() > w || clip[2] < 0.0 || clip[2] > w {
+    if !(w > 0.0) || clip.iter().any(|c| !c.is_finite()) || clip[2] < 0.0 || clip[2] > w {
         return None;
     }
-    let [sx, sy, depth] = vp.to_window(clip);
-    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
-    if !(sx - 0.5 <= cx && cx < sx + 0.5 && sy - 0.5 <= cy && cy < sy + 0.5) {
+    let [sx, sy, z, oow] = vp.to_window(clip);
+    let one = 1i64 << SUBPIXEL_BITS;
+    let (x0, y0) = (snap(sx) - one / 2, snap(sy) - one / 2);
+    let (px, py) = (i64::from(x) * one, i64::from(y) * one);
+    if !(x0 <= px && px < x0 + one && y0 <= py && py < y0 + one) {
         return None;
     }
-    let (_, lane) = quad_lanes(x, y);
-    let s = Sample {
-        linear: [1.0, 0.0, 0.0],
-        perspective: [1.0, 0.0, 0.0],
-        depth,
-        inv_w: 1.0 / w,
-    };
+    let (pixels, lane) = quad(x, y);
     Some(Cover {
-        quad: [s; 4],
+        pixels,
         lane,
         front: true,
+        depth: [z.clamp(0.0, 1.0); 4],
+        inv_w: [oow; 4],
+        setup: Setup::Point,
     })
 }
 

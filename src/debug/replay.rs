@@ -8,7 +8,7 @@ use naga::{Binding, BuiltIn, Handle, Module, TypeInner};
 
 use super::capture::{Captured, Draw};
 use super::interp::{Failure, Host, Lod, Run, Step};
-use super::raster::{self, Cover, Viewport};
+use super::raster::{self, Cover, Interp, Viewport};
 use super::sample::{self, View};
 use super::value::{self, Bits, Comp, Kind};
 use crate::render::Load;
@@ -408,9 +408,6 @@ struct Candidate {
     ids: [u32; 3],
     cover: Cover,
     points: bool,
-    /// The pixel.
-    x: u32,
-    y: u32,
 }
 
 fn candidates(draw_index: usize, draw: &Draw, vp: Viewport, x: u32, y: u32) -> Res<Vec<Candidate>> {
@@ -452,8 +449,6 @@ fn candidates(draw_index: usize, draw: &Draw, vp: Viewport, x: u32, y: u32) -> R
                 ids: vid,
                 cover,
                 points,
-                x,
-                y,
             });
         }
     }
@@ -550,24 +545,23 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
                         if flat {
                             return Comp::new(comp.kind, Bits::One(at(0)));
                         }
-                        let linear = matches!(interpolation, Some(naga::Interpolation::Linear));
-                        let vals = c.cover.quad.map(|s| {
-                            let w = if linear { s.linear } else { s.perspective };
-                            let f = |i: usize| f64::from(f32::from_bits(at(i)));
-                            (w[0] * f(0) + w[1] * f(1) + w[2] * f(2)) as f32
-                        });
-                        Comp::f32s(vals)
+                        let mode = if matches!(interpolation, Some(naga::Interpolation::Linear)) {
+                            Interp::Linear
+                        } else {
+                            Interp::Perspective
+                        };
+                        let v = [0, 1, 2].map(|i| f32::from_bits(at(i)));
+                        Comp::f32s(c.cover.interpolate(v, mode))
                     })
                     .collect()
             }
             Binding::BuiltIn(BuiltIn::Position { .. }) => {
-                let (qx, qy) = ((c.x & !1) as f32, (c.y & !1) as f32);
-                let q = &c.cover.quad;
+                let p = c.cover.pixels;
                 vec![
-                    Comp::f32s([qx + 0.5, qx + 1.5, qx + 0.5, qx + 1.5]),
-                    Comp::f32s([qy + 0.5, qy + 0.5, qy + 1.5, qy + 1.5]),
-                    Comp::f32s(q.map(|s| s.depth)),
-                    Comp::f32s(q.map(|s| s.inv_w)),
+                    Comp::f32s(p.map(|(x, _)| x as f32 + 0.5)),
+                    Comp::f32s(p.map(|(_, y)| y as f32 + 0.5)),
+                    Comp::f32s(c.cover.depth),
+                    Comp::f32s(c.cover.inv_w),
                 ]
             }
             Binding::BuiltIn(BuiltIn::FrontFacing) => vec![Comp::new(Kind::Bool, Bits::One(u32::from(c.cover.front)))],
@@ -582,7 +576,7 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
     let lane = c.cover.lane;
     let fout = output_slots(fmodule, fep);
     let mut color = [0.0f32; 4];
-    let mut depth = c.cover.quad[lane].depth;
+    let mut depth = c.cover.depth[lane];
     for s in &fout {
         match s.binding {
             Binding::Location { location: 0, .. } => {
@@ -635,7 +629,8 @@ pub fn to_unorm8(c: f32) -> u8 {
     if c.is_nan() {
         return 0;
     }
-    (c.clamp(0.0, 1.0) * 255.0).round() as u8
+    // clamp(roundeven(x · 255)): the multiply rounded first, then half to even.
+    (c.clamp(0.0, 1.0) * 255.0).round_ties_even() as u8
 }
 
 /// Replays `captured` for pixel (x, y) of the last pass's target.
@@ -670,7 +665,7 @@ pub fn replay(captured: &Captured, x: u32, y: u32) -> Res<Replayed> {
         let decides = writes_depth_or_discards(&draw.fragment) || draw.state.blend.is_some();
         for cand in candidates(i, draw, vp, x, y)? {
             covering += 1;
-            let z = cand.cover.quad[cand.cover.lane].depth;
+            let z = cand.cover.depth[cand.cover.lane];
             if draw.state.depth_test && !(z < depth) && !decides {
                 continue;
             }
