@@ -90,7 +90,8 @@ fn pixels(image: &image::RgbaImage, clear: [u8; 4], seed: u64) -> Vec<(u32, u32)
 fn agreement(name: &str, mut lab: Box<dyn Lab>, seed: u64) -> (usize, Vec<String>) {
     let (w, h) = lab.info().size;
     eprintln!("checking {name}");
-    let (image, captured) = capture_lab(gpu(), lab.as_mut(), w, h).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let (image, captured) = capture_lab(gpu(), lab.as_mut(), w, h, true).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let image = image.expect("the picture");
     let clear = captured
         .passes
         .last()

@@ -104,7 +104,10 @@ fn fail<T>(span: Span, message: impl Into<String>) -> Res<T> {
 
 /// How much work a run may do: lane-evaluations of expressions (one per lane an expression is
 /// computed for, one for a value shared by all lanes).
-pub const DEFAULT_BUDGET: u64 = 50_000_000;
+pub const DEFAULT_BUDGET: u64 = 10_000_000;
+
+/// The budget per lane of a run over many lanes (a generous vertex shader's evaluations).
+pub const PER_LANE_BUDGET: u64 = 2_000;
 
 /// The most steps a trace keeps (a loop of a million iterations keeps its first ones).
 pub const MAX_STEPS: usize = 20_000;
@@ -142,6 +145,8 @@ pub struct Run<'m> {
     breakables: Vec<Breakable>,
     /// Lanes that executed `discard`.
     pub killed: Vec<bool>,
+    /// The span of the statement running (for an expression naga gave no span).
+    at: Span,
     /// Work done so far and the most allowed.
     work: u64,
     budget: u64,
@@ -203,8 +208,10 @@ impl<'m> Run<'m> {
             frames: Vec::new(),
             breakables: Vec::new(),
             killed: vec![false; lanes],
+            at: Span::UNDEFINED,
             work: 0,
-            budget: DEFAULT_BUDGET,
+            // A vertex shader over a whole mesh does work in proportion to its vertices.
+            budget: DEFAULT_BUDGET.max(lanes as u64 * PER_LANE_BUDGET),
             traced,
             steps: Vec::new(),
             steps_dropped: 0,
@@ -328,6 +335,9 @@ impl<'m> Run<'m> {
     }
 
     fn statement(&mut self, statement: &'m naga::Statement, span: Span, active: &mut Vec<bool>) -> Res<()> {
+        if span != Span::UNDEFINED {
+            self.at = span;
+        }
         match statement {
             S::Emit(range) => {
                 for h in range.clone() {
@@ -663,7 +673,13 @@ impl<'m> Run<'m> {
         let function: &'m naga::Function = self.frame().function;
         let span = function.expressions.get_span(h);
         let expr = &function.expressions[h];
-        let v = self.eval_expr(h, expr, span)?;
+        let at = self.at;
+        let v = self.eval_expr(h, expr, span).map_err(|mut f| {
+            if f.span == Span::UNDEFINED {
+                f.span = at;
+            }
+            f
+        })?;
         if let Val::Data(d) = &v {
             let n = d.iter().map(|c| c.bits.len()).max().unwrap_or(1);
             self.charge(n, span)?;
@@ -1333,8 +1349,27 @@ fn expression_name(e: &naga::Expression) -> String {
     }
 }
 
-/// The math functions whose names people know, for messages.
+/// A math function by its GLSL name, for messages.
 pub fn math_name(fun: M) -> String {
+    let glsl = match fun {
+        M::CountOneBits => "bitCount",
+        M::ReverseBits => "bitfieldReverse",
+        M::ExtractBits => "bitfieldExtract",
+        M::InsertBits => "bitfieldInsert",
+        M::FirstTrailingBit => "findLSB",
+        M::FirstLeadingBit => "findMSB",
+        M::QuantizeToF16 => "quantizeToF16",
+        M::Pack2x16float => "packHalf2x16",
+        M::Unpack2x16float => "unpackHalf2x16",
+        M::Saturate => "clamp(x, 0, 1)",
+        M::InverseSqrt => "inversesqrt",
+        M::Outer => "outerProduct",
+        M::Fma => "fma",
+        _ => "",
+    };
+    if !glsl.is_empty() {
+        return format!("`{glsl}`");
+    }
     let debug = format!("{fun:?}");
     let mut out = String::new();
     for (i, ch) in debug.chars().enumerate() {
@@ -1344,5 +1379,5 @@ pub fn math_name(fun: M) -> String {
             out.push(ch);
         }
     }
-    out
+    format!("`{out}`")
 }

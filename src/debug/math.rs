@@ -297,19 +297,161 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             }
             out.into_iter().map(|b| Comp::new(Kind::F32, bits(b))).collect()
         }
-        M::Modf | M::Frexp | M::Ldexp => {
+        M::Modf => {
+            // A struct: the fractional parts, then the whole parts.
+            let mut out: Vec<Comp> = a.iter().map(|c| f(c, |x| x - x.trunc())).collect();
+            out.extend(a.iter().map(|c| f(c, f32::trunc)));
+            out
+        }
+        M::Frexp => {
+            let mut out: Vec<Comp> = a.iter().map(|c| f(c, |x| frexp(x).0)).collect();
+            out.extend(
+                a.iter()
+                    .map(|c| Comp::new(Kind::I32, c.bits.map(|b| frexp(f32::from_bits(b)).1 as u32))),
+            );
+            out
+        }
+        M::Ldexp => {
+            let e = need(b)?;
+            (0..a.len())
+                .map(|k| {
+                    Comp::new(
+                        Kind::F32,
+                        a[k].bits.zip(&at(&e, k).bits, |x, e| {
+                            (f32::from_bits(x) * 2f32.powi(e as i32)).to_bits()
+                        }),
+                    )
+                })
+                .collect()
+        }
+        M::Outer => {
+            let b = need(b)?;
+            let mut out = Vec::with_capacity(a.len() * b.len());
+            for column in &b {
+                for row in a {
+                    out.push(f2(row, column, |x, y| x * y));
+                }
+            }
+            out
+        }
+        M::CountOneBits => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::count_ones))).collect(),
+        M::ReverseBits => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::reverse_bits))).collect(),
+        M::CountTrailingZeros => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::trailing_zeros))).collect(),
+        M::CountLeadingZeros => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::leading_zeros))).collect(),
+        M::FirstTrailingBit => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(|x| if x == 0 { u32::MAX } else { x.trailing_zeros() })))
+            .collect(),
+        M::FirstLeadingBit => a
+            .iter()
+            .map(|c| {
+                Comp::new(
+                    kind,
+                    c.bits.map(|x| {
+                        // findMSB: for a negative int, the highest 0 bit.
+                        let v = if kind == Kind::I32 && (x as i32) < 0 { !x } else { x };
+                        if v == 0 {
+                            u32::MAX
+                        } else {
+                            31 - v.leading_zeros()
+                        }
+                    }),
+                )
+            })
+            .collect(),
+        M::ExtractBits => {
+            let (offset, count) = (need(b)?, need(c)?);
+            let (o, n) = (offset[0].bits.at(0).min(32), count[0].bits.at(0));
+            let n = n.min(32 - o);
+            a.iter()
+                .map(|c| {
+                    Comp::new(
+                        kind,
+                        c.bits.map(|x| {
+                            if n == 0 {
+                                return 0;
+                            }
+                            let v = (x >> o) & if n == 32 { u32::MAX } else { (1 << n) - 1 };
+                            if kind == Kind::I32 && n < 32 && v >> (n - 1) & 1 == 1 {
+                                v | !((1u32 << n) - 1)
+                            } else {
+                                v
+                            }
+                        }),
+                    )
+                })
+                .collect()
+        }
+        M::Pack4x8unorm | M::Pack4x8snorm | M::Pack2x16unorm | M::Pack2x16snorm => {
+            let lanes = lanes(&a.iter().collect::<Vec<_>>());
+            let (n, bits) = if matches!(fun, M::Pack4x8unorm | M::Pack4x8snorm) { (4, 8) } else { (2, 16) };
+            let signed = matches!(fun, M::Pack4x8snorm | M::Pack2x16snorm);
+            let max = ((1u32 << (bits - u32::from(signed))) - 1) as f32;
+            let v: Vec<u32> = (0..lanes)
+                .map(|l| {
+                    (0..n).fold(0u32, |acc, k| {
+                        let x = a[k].f(l);
+                        let q = if signed {
+                            (x.clamp(-1.0, 1.0) * max).round() as i32 as u32
+                        } else {
+                            (x.clamp(0.0, 1.0) * max).round() as u32
+                        };
+                        acc | ((q & ((1u32 << bits) - 1)) << (k as u32 * bits))
+                    })
+                })
+                .collect();
+            vec![Comp::new(Kind::U32, bits_of(v))]
+        }
+        M::Unpack4x8unorm | M::Unpack4x8snorm | M::Unpack2x16unorm | M::Unpack2x16snorm => {
+            let (n, width) = if matches!(fun, M::Unpack4x8unorm | M::Unpack4x8snorm) { (4u32, 8u32) } else { (2, 16) };
+            let signed = matches!(fun, M::Unpack4x8snorm | M::Unpack2x16snorm);
+            let max = ((1u32 << (width - u32::from(signed))) - 1) as f32;
+            (0..n)
+                .map(|k| {
+                    Comp::new(
+                        Kind::F32,
+                        a[0].bits.map(|x| {
+                            let q = (x >> (k * width)) & ((1u32 << width) - 1);
+                            let v = if signed {
+                                let s = ((q << (32 - width)) as i32) >> (32 - width);
+                                (s as f32 / max).max(-1.0)
+                            } else {
+                                q as f32 / max
+                            };
+                            v.to_bits()
+                        }),
+                    )
+                })
+                .collect()
+        }
+        _ => {
             return Err(Failure {
                 message: format!("the debugger does not run {}", math_name(fun)),
                 span,
             })
         }
-        _ => {
-            return Err(Failure {
-                message: format!("the debugger does not run {} on {kind:?} values", math_name(fun)),
-                span,
-            })
-        }
     })
+}
+
+/// `x = m · 2^e` with `m` in [0.5, 1) (0 for 0).
+fn frexp(x: f32) -> (f32, i32) {
+    if x == 0.0 || !x.is_finite() {
+        return (x, 0);
+    }
+    let e = x.abs().log2().floor() as i32 + 1;
+    let m = x / 2f32.powi(e);
+    // Correct a rounding of log2 near powers of two.
+    if m.abs() >= 1.0 {
+        (m / 2.0, e + 1)
+    } else if m.abs() < 0.5 {
+        (m * 2.0, e - 1)
+    } else {
+        (m, e)
+    }
+}
+
+fn bits_of(v: Vec<u32>) -> Bits {
+    bits(v)
 }
 
 /// Per-lane bits, as one value when there is one lane's worth (every input was shared).

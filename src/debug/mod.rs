@@ -181,11 +181,14 @@ impl Inspection {
             let c = r.clear;
             let _ = writeln!(
                 out,
-                "no triangle covers this pixel: the clear colour ({}, {}, {}) shows, stored as rgba{:?}",
+                "no triangle covers this pixel: the clear colour ({}, {}, {}) shows, stored as rgba({}, {}, {}, {})",
                 num(c[0]),
                 num(c[1]),
                 num(c[2]),
-                r.pixel
+                r.pixel[0],
+                r.pixel[1],
+                r.pixel[2],
+                r.pixel[3]
             );
             return out;
         };
@@ -443,21 +446,25 @@ fn jvalue(v: &[f64]) -> String {
     }
 }
 
-/// Draws one frame of `lab` at `width` × `height` with its draws written down, and brings it
-/// to the CPU: the picture the GPU drew (as `--screenshot` would write it) and the frame to
-/// replay.
+/// Records one frame of `lab` at `width` × `height` with its draws written down and brings
+/// them to the CPU, without running the frame on the GPU (so that a shader that never ends
+/// can still be debugged); with `picture`, then runs it and reads back what the GPU drew (as
+/// `--screenshot` would write it).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn capture_lab(
     gpu: &crate::gpu::Gpu,
     lab: &mut dyn crate::lab::Lab,
     width: u32,
     height: u32,
-) -> Result<(image::RgbaImage, Captured)> {
+    picture: bool,
+) -> Result<(Option<image::RgbaImage>, Captured)> {
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
     let log = crate::render::DrawLog::new();
-    crate::lab::draw::render_logged(gpu, lab, &target, Some(&log))?;
-    let pending = Pending::start(gpu, &log);
-    let image = target.read(gpu)?;
-    let captured = pending.wait(gpu)?;
-    Ok((image, captured))
+    let frame = crate::lab::draw::record(gpu, lab, &target, Some(&log))?;
+    let captured = Pending::start(gpu, &log).wait(gpu)?;
+    if !picture {
+        return Ok((None, captured));
+    }
+    gpu.queue.submit([frame]);
+    Ok((Some(target.read(gpu)?), captured))
 }

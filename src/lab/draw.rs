@@ -9,11 +9,16 @@ use crate::render::{DrawLog, Frame};
 
 /// Records one frame of `lab` into `target` and submits it.
 pub fn render_into(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen) -> Result<()> {
-    render_logged(gpu, lab, target, None)
+    let frame = record(gpu, lab, target, None)?;
+    gpu.queue.submit([frame]);
+    Ok(())
 }
 
-/// [`render_into`], writing every draw into `log` when given (the debugger's capture).
-pub fn render_logged(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen, log: Option<&DrawLog>) -> Result<()> {
+/// Records one frame of `lab` into `target` without submitting it, writing every draw into
+/// `log` when given (the debugger's capture: the draws' data can be read back before, or
+/// without, the frame running on the GPU). The frame's uniform uploads go with the next
+/// submission.
+pub fn record(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen, log: Option<&DrawLog>) -> Result<wgpu::CommandBuffer> {
     let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("shaderlab.frame"),
     });
@@ -31,11 +36,10 @@ pub fn render_logged(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen, log: Opti
             None => frame,
         })
     })??;
-    gpu.queue.submit([encoder.finish()]);
     if let Some(e) = lab.take_error() {
         return Err(e);
     }
-    Ok(())
+    Ok(encoder.finish())
 }
 
 /// Renders one frame offscreen at `width` x `height` (RGBA8) and reads it back, top row first.

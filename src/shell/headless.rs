@@ -88,9 +88,10 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
             ))
             .into());
         }
-        let (image, captured) = crate::debug::capture_lab(&gpu, lab.as_mut(), width, height)?;
+        let picture = args.screenshot.is_some();
+        let (image, captured) = crate::debug::capture_lab(&gpu, lab.as_mut(), width, height, picture)?;
         let inspection = crate::debug::Inspection::new(entry.info.name, &captured, x, y)?;
-        if let Some(path) = &args.screenshot {
+        if let (Some(path), Some(image)) = (&args.screenshot, &image) {
             save_png(&image, path)?;
             eprintln!("wrote {}", path.display());
         }

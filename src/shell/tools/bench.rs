@@ -26,6 +26,11 @@ struct Args {
     /// Also time each frame on the GPU with timestamp queries.
     #[arg(long)]
     gpu_time: bool,
+    /// Time the debugger instead: per lab, the capture of a frame, the first trace of a pixel
+    /// (which shades every vertex for the positions) and later traces (median and slowest of
+    /// `--frames` pixels on the drawn surface).
+    #[arg(long)]
+    debugger: bool,
 }
 
 /// `bench`'s `main`: the command line of the process.
@@ -39,6 +44,9 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
     let matches = crate::shell::parse_command_line(Args::command(), argv);
     let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| crate::shell::exit_on_clap_error("bench", e));
     let gpu = Gpu::headless()?;
+    if args.debugger {
+        return debugger(&gpu, &args);
+    }
     say(&format!("adapter: {}; {} frames per case", gpu.describe(), args.frames))?;
     say("| lab | object | size | ms/frame | gpu ms |")?;
     say("|---|---|---|---|---|")?;
@@ -93,5 +101,75 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
         }
     }
     bar.finish_and_clear();
+    Ok(())
+}
+
+/// `bench --debugger`: how long the debugger takes per lab.
+fn debugger(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
+    use std::time::Instant;
+    let pixels = args.frames.min(1000) as usize;
+    say(&format!(
+        "adapter: {}; debugger: capture, first trace, then {pixels} traces at pixels on the drawn surface",
+        gpu.describe()
+    ))?;
+    say("| lab | size | capture ms | first trace ms | trace ms (median) | trace ms (slowest) |")?;
+    say("|---|---|---|---|---|---|")?;
+    let source = ShaderSource::Embedded;
+    let cx = BuildContext {
+        gpu,
+        source: &source,
+        format: COLOR_FORMAT,
+        files: &crate::lab::NO_FILES,
+        lab: "",
+    };
+    for entry in labs::ALL {
+        if args.only.as_ref().is_some_and(|o| !entry.info.name.contains(o.as_str())) {
+            continue;
+        }
+        let Ok(mut lab) = (entry.new)(&cx) else { continue };
+        if lab.params().has("time") {
+            lab.params_mut().set("time", &[2.0])?;
+        }
+        let (w, h) = entry.info.size;
+        let start = Instant::now();
+        let (image, captured) = crate::debug::capture_lab(gpu, lab.as_mut(), w, h, true)?;
+        let image = image.unwrap_or_default();
+        let capture = start.elapsed();
+        // Pixels unlike the top-left one (the background), spread by a fixed stride.
+        let background = *image.get_pixel(0, 0);
+        let drawn: Vec<(u32, u32)> = image
+            .enumerate_pixels()
+            .filter(|(_, _, p)| **p != background)
+            .map(|(x, y, _)| (x, y))
+            .collect();
+        let pick = |k: usize| -> (u32, u32) {
+            if drawn.is_empty() {
+                (w / 2, h / 2)
+            } else {
+                drawn[(k * 7919) % drawn.len()]
+            }
+        };
+        let (x, y) = pick(0);
+        let start = Instant::now();
+        crate::debug::Inspection::new(entry.info.name, &captured, x, y)?;
+        let first = start.elapsed();
+        let mut times = Vec::with_capacity(pixels);
+        for k in 1..=pixels {
+            let (x, y) = pick(k);
+            let start = Instant::now();
+            crate::debug::Inspection::new(entry.info.name, &captured, x, y)?;
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        times.sort_by(f64::total_cmp);
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        say(&format!(
+            "| {} | {w}x{h} | {:.1} | {:.2} | {:.2} | {:.2} |",
+            entry.info.name,
+            ms(capture),
+            ms(first),
+            times.get(times.len() / 2).copied().unwrap_or(0.0),
+            times.last().copied().unwrap_or(0.0)
+        ))?;
+    }
     Ok(())
 }
