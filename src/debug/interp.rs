@@ -76,6 +76,8 @@ pub enum StepKind {
 pub struct Step {
     /// The statement's span in the module's source.
     pub span: Span,
+    /// The function it ran in.
+    pub function: Option<String>,
     /// What happened.
     pub kind: StepKind,
     /// The kinds of the value's components.
@@ -105,6 +107,9 @@ fn fail<T>(span: Span, message: impl Into<String>) -> Res<T> {
 /// How much work a run may do: lane-evaluations of expressions (one per lane an expression is
 /// computed for, one for a value shared by all lanes).
 pub const DEFAULT_BUDGET: u64 = 10_000_000;
+
+/// The name shown for a variable the compiler made (a `?:`'s result, a copy).
+pub const TEMPORARY: &str = "(temporary)";
 
 /// The budget per lane of a run over many lanes (a generous vertex shader's evaluations).
 pub const PER_LANE_BUDGET: u64 = 2_000;
@@ -272,7 +277,7 @@ impl<'m> Run<'m> {
             if let Some(init) = local.init {
                 let v = self.data(init)?;
                 self.frames[depth].locals[h.index()] = v.clone();
-                let name = local.name.clone().unwrap_or_else(|| format!("local{}", h.index()));
+                let name = local.name.clone().unwrap_or_else(|| TEMPORARY.into());
                 self.step(function.local_variables.get_span(h), StepKind::Assign(name), &v, mask);
             }
         }
@@ -316,6 +321,7 @@ impl<'m> Run<'m> {
             .collect();
         self.steps.push(Step {
             span,
+            function: self.frames.last().and_then(|f| f.function.name.clone()),
             kind,
             kinds: comps.iter().map(|c| c.kind).collect(),
             values,
@@ -735,7 +741,7 @@ impl<'m> Run<'m> {
                     root: Root::Local(self.frames.len() - 1, *l),
                     offset: Offset::Fixed(0),
                     len: value::count(module, &module.types[local.ty].inner),
-                    name: local.name.clone().unwrap_or_else(|| format!("local{}", l.index())),
+                    name: local.name.clone().unwrap_or_else(|| TEMPORARY.into()),
                 })
             }
             E::Load { pointer } => {

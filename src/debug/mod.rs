@@ -104,16 +104,37 @@ pub fn source_line<'s>(shader: &'s CompiledShader, file: &str, line: u32) -> Opt
     text.lines().nth(line.checked_sub(1)? as usize)
 }
 
+/// A name as the user wrote it. The course translator renames: a uniform it holds in another
+/// form is `sl_u_NAME`, a built-in input or output `sl_Vertex` (for `gl_Vertex`), a name GLSL
+/// 450 reserves `sl_texture`.
+pub fn user_name(shader: &CompiledShader, name: &str) -> String {
+    if !shader.translated {
+        return name.to_owned();
+    }
+    if let Some(rest) = name.strip_prefix("sl_u_") {
+        return rest.to_owned();
+    }
+    match name.strip_prefix("sl_") {
+        Some(rest) if rest.starts_with(|c: char| c.is_ascii_uppercase()) => format!("gl_{rest}"),
+        Some(rest) => rest.to_owned(),
+        None => name.to_owned(),
+    }
+}
+
 fn steps_of(stage: Stage, shader: &CompiledShader, steps: &[interp::Step], out: &mut Vec<TraceStep>) {
     for step in steps {
+        // The translator's own `main` (it calls the user's) is not the user's code.
+        if shader.translated && step.function.as_deref() == Some("main") {
+            continue;
+        }
         let Some((file, line)) = locate(shader, step.span) else {
             continue;
         };
         let name = match &step.kind {
-            interp::StepKind::Assign(n) => n.clone(),
+            interp::StepKind::Assign(n) => user_name(shader, n),
             interp::StepKind::Branch => "if".into(),
             interp::StepKind::Iteration => "loop".into(),
-            interp::StepKind::Call(f) => format!("call {f}"),
+            interp::StepKind::Call(f) => format!("call {}", user_name(shader, f)),
             interp::StepKind::Discard => "discard".into(),
         };
         let boolean = step.kinds.iter().all(|k| *k == value::Kind::Bool) && !step.kinds.is_empty();

@@ -268,11 +268,10 @@ fn builtin_name(b: BuiltIn) -> String {
     }
 }
 
-fn slot_name(module: &Module, slot: &Slot) -> String {
-    let _ = module;
+fn slot_name(shader: &CompiledShader, slot: &Slot) -> String {
     match &slot.binding {
         Binding::BuiltIn(b) => builtin_name(*b),
-        Binding::Location { .. } => slot.name.clone(),
+        Binding::Location { .. } => super::user_name(shader, &slot.name),
     }
 }
 
@@ -499,7 +498,7 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
             .iter()
             .zip(values)
             .map(|(s, v)| Named {
-                name: slot_name(vmodule, s),
+                name: slot_name(&draw.vertex, s),
                 kinds: v.iter().map(|c| c.kind).collect(),
                 value: value::numbers(v, lane),
             })
@@ -595,7 +594,7 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
         .iter()
         .zip(&fvalues)
         .map(|(s, v)| Named {
-            name: slot_name(fmodule, s),
+            name: slot_name(fshader, s),
             kinds: v.iter().map(|c| c.kind).collect(),
             value: value::numbers(v, lane),
         })

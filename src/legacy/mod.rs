@@ -110,6 +110,7 @@ impl Translated {
             },
             module,
             info,
+            translated: true,
         })
     }
 

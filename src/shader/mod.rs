@@ -587,6 +587,10 @@ pub struct CompiledShader {
     pub module: naga::Module,
     /// Validation results (needed for WGSL output).
     pub info: ModuleInfo,
+    /// Translated from a course's GLSL 1.10 ([`crate::legacy`]): its `main` is the
+    /// translator's (the user's is `sl_main`), and `sl_` prefixes the names it renamed; the
+    /// debugger shows neither.
+    pub translated: bool,
 }
 
 /// Splices, parses and validates GLSL text.
@@ -641,6 +645,7 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
         source,
         module,
         info,
+        translated: false,
     })
 }
 
