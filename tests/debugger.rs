@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::gpu;
-use shaderlab::debug::{capture_lab, Inspection};
+use shaderlab::debug::{capture_lab, Inspection, Stage};
 use shaderlab::lab::{BuildContext, Lab, UserFiles};
 use shaderlab::offscreen::COLOR_FORMAT;
 use shaderlab::shader::ShaderSource;
@@ -96,9 +96,7 @@ fn agreement(name: &str, mut lab: Box<dyn Lab>, seed: u64) -> (usize, Vec<String
         .passes
         .last()
         .map(|p| match p.0 {
-            shaderlab::render::Load::Clear(c) => {
-                [c[0], c[1], c[2]].map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
-            }
+            shaderlab::render::Load::Clear(c) => [c[0], c[1], c[2]].map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8),
             shaderlab::render::Load::Keep => [0, 0, 0],
         })
         .unwrap_or([0, 0, 0]);
@@ -113,7 +111,10 @@ fn agreement(name: &str, mut lab: Box<dyn Lab>, seed: u64) -> (usize, Vec<String
         match Inspection::new(name, &captured, x, y) {
             Ok(i) => {
                 let cpu = i.replayed.pixel;
-                let off = (0..4).map(|k| (i32::from(cpu[k]) - i32::from(gpu_px[k])).abs()).max().unwrap_or(0);
+                let off = (0..4)
+                    .map(|k| (i32::from(cpu[k]) - i32::from(gpu_px[k])).abs())
+                    .max()
+                    .unwrap_or(0);
                 if off > 2 {
                     misses.push(format!("{name} pixel {x},{y}: debugger {cpu:?}, GPU {gpu_px:?}"));
                 }
@@ -176,7 +177,10 @@ fn states() -> Vec<(String, Box<dyn Lab>)> {
     for (name, set) in extra {
         let label = format!(
             "{name} {}",
-            set.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>().join(" ")
+            set.iter()
+                .map(|(k, v)| format!("{k}={v}"))
+                .collect::<Vec<_>>()
+                .join(" ")
         );
         out.push((label, build(name, &none, set)));
     }
@@ -200,6 +204,616 @@ fn the_debugger_stores_the_pixel_the_gpu_stores() {
             report.push(format!("    miss: {m}"));
         }
     }
-    println!("| state | pixels | within 2/255 |\n|---|---|---|\n{}", report.join("\n"));
+    println!(
+        "| state | pixels | within 2/255 |\n|---|---|---|\n{}",
+        report.join("\n")
+    );
     assert!(failures.is_empty(), "{}\n{}", failures.join("\n"), report.join("\n"));
+}
+
+// ----- known values: one pixel of each lecture, computed by hand from the scene -----
+
+/// The last value the trace gives `name` (in `stage`, at `corner` for the vertex stage).
+fn traced(i: &Inspection, stage: Stage, name: &str, corner: Option<usize>) -> Vec<f64> {
+    i.steps
+        .iter()
+        .rev()
+        .find(|s| s.stage == stage && s.name == name && s.corner == corner)
+        .unwrap_or_else(|| panic!("no step assigns `{name}` ({stage:?}, corner {corner:?}):\n{}", i.text()))
+        .value
+        .clone()
+}
+
+fn inspect(name: &str, set: &[(&str, &str)], x: u32, y: u32) -> (Inspection, Box<dyn Lab>) {
+    let mut lab = build(name, &UserFiles::default(), set);
+    let (w, h) = lab.info().size;
+    let (_, captured) = capture_lab(gpu(), lab.as_mut(), w, h, false).expect("capture");
+    let i = Inspection::new(name, &captured, x, y).unwrap_or_else(|e| panic!("{name} {x},{y}: {e}"));
+    assert!(i.covered(), "{name} {x},{y} is covered:\n{}", i.text());
+    (i, lab)
+}
+
+fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: {a:?} vs {b:?}");
+    for (x, y) in a.iter().zip(b) {
+        assert!(
+            (x - y).abs() <= tol,
+            "{what}: traced {a:?}, by hand {b:?} (tolerance {tol})"
+        );
+    }
+}
+
+#[test]
+fn seed000_phong_n_dot_l_is_the_spheres_own() {
+    // GLUT's unit sphere at the origin, the eye at (0, 0, 5) looking down −z, gluPerspective
+    // (45°, w/h, 1, 100): the ray through the pixel's centre meets the sphere at P (eye space),
+    // whose normal is P − C; the light is `lightPosition` in eye space.
+    let (x, y) = (300, 150);
+    let (i, lab) = inspect("phong", &[("object", "sphere"), ("tess", "256")], x, y);
+    let (w, h) = (640.0, 360.0);
+    let t = (22.5f64).to_radians().tan();
+    let d = [
+        ((x as f64 + 0.5) / w * 2.0 - 1.0) * t * (w / h),
+        (1.0 - (y as f64 + 0.5) / h * 2.0) * t,
+        -1.0,
+    ];
+    let c = [0.0, 0.0, -5.0];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // |s·d − c|² = 1, the nearer root.
+    let (a, b, cc) = (dot(d, d), -2.0 * dot(d, c), dot(c, c) - 1.0);
+    let s = (-b - (b * b - 4.0 * a * cc).sqrt()) / (2.0 * a);
+    let p = d.map(|v| v * s);
+    let n = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+    let light = lab.params().get("lightPosition").expect("light").to_vec();
+    let l = [light[0] - p[0], light[1] - p[1], light[2] - p[2]];
+    let l = l.map(|v| v / dot(l, l).sqrt());
+    let n_dot_l = dot(n, l).max(0.0);
+    let diffuse = lab.params().get("diffuseColor").expect("diffuse").to_vec();
+    let traced_diffuse = traced(&i, Stage::Fragment, "Idiff", None);
+    close(&[traced_diffuse[0] / diffuse[0]], &[n_dot_l], 2e-3, "phong max(N·L, 0)");
+    close(&traced(&i, Stage::Fragment, "L", None), &l, 2e-3, "phong L");
+    // The interpolated eye-space position is the hit point.
+    let v = i
+        .replayed
+        .fragment
+        .as_ref()
+        .expect("covered")
+        .inputs
+        .iter()
+        .find(|n| n.name == "v")
+        .expect("v")
+        .value
+        .clone();
+    close(&v, &p, 2e-3, "phong v");
+}
+
+#[test]
+fn seed001_texture_lookup_is_the_texels_under_its_uv() {
+    // The course's uv grid: white lines every 32 texels, a dark disc of radius 40 at the centre,
+    // (i, j, 96) elsewhere; 256×256, bilinear, repeat.
+    let (i, _) = inspect("texture", &[], 256, 300);
+    let uv = traced(&i, Stage::Fragment, "texcoord", None);
+    let texel = |i: i64, j: i64| -> [f64; 3] {
+        let (i, j) = (i.rem_euclid(256), j.rem_euclid(256));
+        if i % 32 == 0 || j % 32 == 0 {
+            return [255.0; 3];
+        }
+        let (x, y) = (i as f64 + 0.5 - 128.0, j as f64 + 0.5 - 128.0);
+        if x * x + y * y < 1600.0 {
+            [16.0; 3]
+        } else {
+            [i as f64, j as f64, 96.0]
+        }
+    };
+    let (u, v) = (uv[0] * 256.0 - 0.5, uv[1] * 256.0 - 0.5);
+    let (i0, j0) = (u.floor() as i64, v.floor() as i64);
+    let (a, b) = (u - u.floor(), v - v.floor());
+    let by_hand: Vec<f64> = (0..3)
+        .map(|k| {
+            let top = texel(i0, j0)[k] * (1.0 - a) + texel(i0 + 1, j0)[k] * a;
+            let bottom = texel(i0, j0 + 1)[k] * (1.0 - a) + texel(i0 + 1, j0 + 1)[k] * a;
+            (top * (1.0 - b) + bottom * b) / 255.0
+        })
+        .collect();
+    let color = traced(&i, Stage::Fragment, "texcolor", None);
+    // 8-bit filter weights: within 2/255.
+    close(&color[..3], &by_hand, 2.0 / 255.0, "texture lookup");
+}
+
+#[test]
+fn seed002_twist_angle_is_twisting_times_the_radius() {
+    let (i, lab) = inspect("twist", &[("twisting", "2.5")], 256, 200);
+    let twisting = lab.params().f64("twisting");
+    let f = i.replayed.fragment.as_ref().expect("covered");
+    for (k, corner) in f.corners.iter().enumerate() {
+        let p = &corner
+            .inputs
+            .iter()
+            .find(|n| n.name == "vertex_position")
+            .expect("input")
+            .value;
+        let angle = twisting * (p[0] * p[0] + p[1] * p[1]).sqrt();
+        close(
+            &traced(&i, Stage::Vertex, "angle", Some(k)),
+            &[angle],
+            1e-5,
+            "twist angle",
+        );
+        let (s, c) = angle.sin_cos();
+        let gx = traced(&i, Stage::Vertex, "gl_Position.x", Some(k));
+        close(&gx, &[c * p[0] - s * p[1]], 1e-5, "twisted x");
+    }
+}
+
+#[test]
+fn seed003_specular_strip_diffuse_is_the_lights_cosine() {
+    let (i, lab) = inspect(
+        "specular_strip",
+        &[("lightx", "2"), ("lighty", "3"), ("lightz", "1")],
+        400,
+        350,
+    );
+    let p = lab.params();
+    let light = [p.f64("lightx"), p.f64("lighty"), p.f64("lightz")];
+    let f = i.replayed.fragment.as_ref().expect("covered");
+    let input = |n: &str| f.inputs.iter().find(|x| x.name == n).expect("input").value.clone();
+    let (normal, pos) = (input("Normal"), input("FragPos"));
+    let len = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let l: Vec<f64> = (0..3).map(|k| light[k] - pos[k]).collect();
+    let diff = (0..3)
+        .map(|k| normal[k] / len(&normal) * l[k] / len(&l))
+        .sum::<f64>()
+        .max(0.0);
+    close(
+        &traced(&i, Stage::Fragment, "diff", None),
+        &[diff],
+        1e-5,
+        "specular_strip diff",
+    );
+}
+
+#[test]
+fn seed004_suzanne_normal_colour_is_the_normals_absolute_value() {
+    let (i, _) = inspect("suzanne_normal_color", &[], 320, 240);
+    let f = i.replayed.fragment.as_ref().expect("covered");
+    for (k, corner) in f.corners.iter().enumerate() {
+        let n = &corner
+            .inputs
+            .iter()
+            .find(|x| x.name == "v_normal")
+            .expect("input")
+            .value;
+        let want = [n[0].abs(), n[1].abs(), n[2].abs(), 1.0];
+        close(
+            &traced(&i, Stage::Vertex, "color", Some(k)),
+            &want,
+            0.0,
+            "suzanne colour",
+        );
+    }
+}
+
+// ----- the trace points at the user's lines -----
+
+#[test]
+fn every_step_names_what_its_line_assigns() {
+    for (name, lab) in states().into_iter().take(40) {
+        let mut lab = lab;
+        let (w, h) = lab.info().size;
+        let (image, captured) = capture_lab(gpu(), lab.as_mut(), w, h, true).expect("capture");
+        let image = image.expect("picture");
+        let background = *image.get_pixel(0, 0);
+        let Some((x, y, _)) = image
+            .enumerate_pixels()
+            .find(|(x, y, p)| **p != background && x % 7 == 3 && y % 5 == 2)
+        else {
+            continue;
+        };
+        let i = Inspection::new(&name, &captured, x, y).expect("inspection");
+        let f = i.replayed.fragment.as_ref().expect("covered");
+        assert!(
+            i.steps.iter().any(|s| s.stage == Stage::Fragment),
+            "{name}: no fragment steps"
+        );
+        for s in &i.steps {
+            let shader = if s.stage == Stage::Vertex {
+                &f.vertex
+            } else {
+                &f.fragment
+            };
+            let line = shaderlab::debug::source_line(shader, &s.file, s.line)
+                .unwrap_or_else(|| panic!("{name}: {}:{} is not a line of the file", s.file, s.line));
+            let root = s.name.split(['.', '[']).next().unwrap_or("");
+            if s.name.starts_with('(') || ["if", "loop", "discard"].contains(&root) || s.name.starts_with("call ") {
+                continue;
+            }
+            assert!(
+                line.contains(root),
+                "{name}: step `{}` at {}:{} but the line is `{line}`",
+                s.name,
+                s.file,
+                s.line
+            );
+        }
+    }
+}
+
+// ----- discard and blending -----
+
+mod overlap {
+    use shaderlab::lab::{BuildContext, Input, Keys, Lab, LabInfo};
+    use shaderlab::mesh::Vertex;
+    use shaderlab::params::Params;
+    use shaderlab::render::{Frame, GpuMesh, Load, Program, RenderState};
+
+    pub static INFO: LabInfo = LabInfo::new(
+        "overlap",
+        "overlap",
+        "discard and blending",
+        "tests",
+        (160, 120),
+        Keys::text(""),
+    );
+
+    const VERT: &str = "#version 450
+layout(location = 0) in vec3 vertex_position;
+layout(location = 1) in vec3 vertex_normal;
+layout(location = 0) out vec3 color;
+void main() {
+    color = vertex_normal;
+    gl_Position = vec4(vertex_position, 1.0);
+}
+";
+    const HOLES: &str = "#version 450
+layout(location = 0) in vec3 color;
+layout(location = 0) out vec4 frag_color;
+void main() {
+    if (mod(floor(gl_FragCoord.x / 3.0) + floor(gl_FragCoord.y / 5.0), 2.0) == 0.0) {
+        discard;
+    }
+    frag_color = vec4(color, 1.0);
+}
+";
+    const GLASS: &str = "#version 450
+layout(location = 0) in vec3 color;
+layout(location = 0) out vec4 frag_color;
+void main() {
+    frag_color = vec4(color, 0.35 + 0.3 * color.r);
+}
+";
+
+    /// Three triangles: an opaque one behind, one with holes (discard) in the middle, and a
+    /// translucent one (alpha blending) in front.
+    pub struct Overlap {
+        params: Params,
+        programs: Vec<(Program<Vertex>, GpuMesh<Vertex>)>,
+    }
+
+    fn tri(gpu: &shaderlab::Gpu, z: f32, shift: f32, color: [f32; 3]) -> GpuMesh<Vertex> {
+        let v = |x: f32, y: f32, c: [f32; 3]| Vertex {
+            position: [x + shift, y, z],
+            normal: c,
+        };
+        let c2 = [color[1], color[2], color[0]];
+        GpuMesh::new(
+            gpu,
+            "overlap",
+            &[v(-0.8, -0.7, color), v(0.7, -0.5, c2), v(-0.1, 0.8, color)],
+            None,
+        )
+    }
+
+    impl Overlap {
+        pub fn new(cx: &BuildContext) -> shaderlab::Result<Overlap> {
+            let blend = RenderState {
+                blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                ..RenderState::GL
+            };
+            let mut programs = Vec::new();
+            for (frag, state, z, shift, color) in [
+                ("solid.frag", RenderState::GL, 0.8, -0.2, [0.9, 0.2, 0.1]),
+                ("holes.frag", RenderState::GL, 0.5, 0.0, [0.1, 0.8, 0.3]),
+                ("glass.frag", blend, 0.3, 0.25, [0.2, 0.3, 0.95]),
+            ] {
+                let mut p = Program::new(cx, frag, "overlap.vert", frag, state)?;
+                p.bind(cx.gpu, Vec::new())?;
+                programs.push((p, tri(cx.gpu, z, shift, color)));
+            }
+            Ok(Overlap {
+                params: Params::new(&[]),
+                programs,
+            })
+        }
+
+        pub fn source() -> shaderlab::shader::ShaderSource {
+            let files = [
+                ("overlap.vert", VERT),
+                ("solid.frag", GLASS.replace("0.35 + 0.3 * color.r", "1.0").as_str()),
+                ("holes.frag", HOLES),
+                ("glass.frag", GLASS),
+            ]
+            .map(|(n, t)| (n.to_owned(), t.to_owned()));
+            shaderlab::shader::ShaderSource::Edited(std::sync::Arc::new(files.into_iter().collect()))
+        }
+    }
+
+    impl Lab for Overlap {
+        fn info(&self) -> &'static LabInfo {
+            &INFO
+        }
+        fn params(&self) -> &Params {
+            &self.params
+        }
+        fn params_mut(&mut self) -> &mut Params {
+            &mut self.params
+        }
+        fn input(&mut self, _: Input) -> bool {
+            false
+        }
+        fn reload(&mut self, _: &BuildContext) -> shaderlab::Result<()> {
+            Ok(())
+        }
+        fn render(&mut self, frame: &mut Frame<'_>) -> shaderlab::Result<()> {
+            let mut pass = frame.pass("overlap", Load::Clear([0.1, 0.1, 0.1]));
+            for (p, mesh) in &self.programs {
+                p.draw(&mut pass, mesh);
+            }
+            Ok(())
+        }
+    }
+}
+
+#[test]
+fn discard_and_blending_replay_as_the_gpu_draws() {
+    let source = overlap::Overlap::source();
+    let cx = BuildContext {
+        gpu: gpu(),
+        source: &source,
+        format: COLOR_FORMAT,
+        files: &UserFiles::default(),
+        lab: "",
+    };
+    let lab = overlap::Overlap::new(&cx).expect("overlap builds");
+    let (checked, misses) = agreement("overlap", Box::new(lab), 0x0d15_ca4d);
+    assert!(checked >= SURFACE, "{checked} pixels");
+    assert!(
+        misses.len() * 100 <= checked,
+        "{} of {checked} differ:\n{}",
+        misses.len(),
+        misses.join("\n")
+    );
+    // A pixel under all three: the glass blended over the solid triangle seen through a hole,
+    // or over the holed one.
+    let mut lab = overlap::Overlap::new(&cx).expect("overlap builds");
+    let (_, captured) = capture_lab(gpu(), &mut lab, 160, 120, false).expect("capture");
+    let (mut blended, mut through_holes) = (0, 0);
+    for y in (20..100).step_by(3) {
+        for x in (20..140).step_by(3) {
+            let i = Inspection::new("overlap", &captured, x, y).expect("inspection");
+            let Some(f) = &i.replayed.fragment else { continue };
+            // The glass on top: what is stored is its colour blended over what was there.
+            if f.label == "glass.frag" && i.replayed.covering >= 2 {
+                assert_ne!(i.replayed.color, f.color, "{x},{y} blends");
+                blended += 1;
+            }
+            // The solid triangle seen where the holed one, in front of it, discarded.
+            if f.label == "solid.frag" && i.replayed.covering >= 2 {
+                through_holes += 1;
+            }
+        }
+    }
+    assert!(
+        blended > 20 && through_holes > 20,
+        "blended {blended}, through holes {through_holes}"
+    );
+}
+
+// ----- the command line -----
+
+fn shaderlab(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .args(args)
+        .output()
+        .expect("shaderlab runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+#[test]
+fn debug_json_has_the_stored_pixel_coverage_and_trace() {
+    let dir = common::output_dir();
+    let png = dir.join("debug_json_phong.png");
+    let out = shaderlab(&[
+        "debug",
+        "phong",
+        "--pixel",
+        "400,170",
+        "--json",
+        "--set",
+        "object=torus",
+        "--screenshot",
+        png.to_str().expect("utf-8 path"),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+    let pixel: Vec<u8> = v["pixel"]
+        .as_array()
+        .expect("pixel")
+        .iter()
+        .map(|c| c.as_u64().expect("a byte") as u8)
+        .collect();
+    let shot = image::open(&png).expect("the screenshot").to_rgba8();
+    let gpu_px = shot.get_pixel(400, 170).0;
+    for k in 0..4 {
+        assert!(
+            (i32::from(pixel[k]) - i32::from(gpu_px[k])).abs() <= 2,
+            "{pixel:?} vs {gpu_px:?}"
+        );
+    }
+    assert_eq!(v["covered"], serde_json::Value::Bool(true));
+    let trace = v["trace"].as_array().expect("trace");
+    assert!(trace.iter().any(|s| s["stage"] == "vertex") && trace.iter().any(|s| s["stage"] == "fragment"));
+    for s in trace {
+        assert!(
+            s["file"].is_string() && s["line"].is_u64() && s["name"].is_string(),
+            "{s}"
+        );
+        assert!(s["value"].is_number() || s["value"].is_array(), "{s}");
+    }
+    let frag = trace
+        .iter()
+        .find(|s| s["stage"] == "fragment" && s["name"] == "frag_color")
+        .expect("the output's step");
+    assert_eq!(frag["file"], "shaders_glsl/phong.frag");
+    // The same pixel as an example's flag.
+    let example = std::process::Command::new(common::example("phong"))
+        .args(["--debug", "400,170", "--set", "object=torus"])
+        .output()
+        .expect("the example runs");
+    assert!(example.status.success(), "{}", text(&example.stderr));
+    let report = text(&example.stdout);
+    assert!(
+        report.contains("fragment shader shaders_glsl/phong.frag") && report.contains("frag_color ="),
+        "{report}"
+    );
+}
+
+#[test]
+fn the_background_outside_pixels_and_missing_pixels_are_said_plainly() {
+    let out = shaderlab(&["debug", "phong", "--pixel", "2,2", "--json"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(v["covered"], serde_json::Value::Bool(false));
+    assert_eq!(v["pixel"], serde_json::json!([13, 26, 51, 255]));
+    let out = shaderlab(&["debug", "phong", "--pixel", "2,2"]);
+    assert!(text(&out.stdout).contains("no triangle covers this pixel: the clear colour (0.05, 0.1, 0.2)"));
+    for (pixel, want) in [
+        ("640,10", "outside the 640x360 picture"),
+        ("10,9999", "outside the 640x360 picture"),
+        ("-1,3", "expected X,Y"),
+        ("3", "expected X,Y"),
+    ] {
+        let out = shaderlab(&["debug", "phong", "--pixel", pixel]);
+        assert_eq!(out.status.code(), Some(2), "{pixel}: {}", text(&out.stderr));
+        assert!(text(&out.stderr).contains(want), "{pixel}: {}", text(&out.stderr));
+    }
+    let out = shaderlab(&["debug", "phong"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("which pixel?"), "{}", text(&out.stderr));
+    let out = shaderlab(&["debug", "phong", "--pixel", "3,3", "--record", "x.gif", "--frames", "2"]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+}
+
+/// The built-in shaders in a folder, `phong.frag` changed by `edit`.
+fn shaders_with(tag: &str, edit: impl Fn(&str) -> String) -> PathBuf {
+    let dir = common::output_dir().join(format!("debug_shaders_{tag}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    common::copy_shaders(&dir);
+    let path = dir.join("phong.frag");
+    let text = std::fs::read_to_string(&path).expect("phong.frag");
+    std::fs::write(&path, edit(&text)).expect("write phong.frag");
+    dir
+}
+
+#[test]
+fn operations_it_cannot_run_loops_without_end_and_broken_shaders_are_errors_at_their_line() {
+    let cases: [(&str, &str, &str); 3] = [
+        (
+            "unsupported",
+            "    float whole = bitfieldInsert(3, 1, 0, 1) > 0 ? 1.0 : 0.0;\n    frag_color = ",
+            "the debugger does not run `bitfieldInsert`",
+        ),
+        (
+            "endless",
+            "    float k = 0.0;\n    while (true) { k += 1.0; }\n    frag_color = k * ",
+            "stopped after 10000000 evaluations",
+        ),
+        (
+            "long",
+            "    float k = 0.0;\n    for (int i = 0; i < 1000000000; i++) { k += 1.0; }\n    frag_color = k * ",
+            "stopped after 10000000 evaluations",
+        ),
+    ];
+    for (tag, insert, want) in cases {
+        let dir = shaders_with(tag, |t| t.replacen("    frag_color = ", insert, 1));
+        let start = std::time::Instant::now();
+        let out = shaderlab(&[
+            "debug",
+            "phong",
+            "--pixel",
+            "320,180",
+            "--shaders",
+            dir.to_str().expect("utf-8"),
+        ]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{tag}: {err}");
+        assert!(err.contains(want), "{tag}: {err}");
+        // The message names the file and the line, and shows it.
+        let line = insert
+            .lines()
+            .find(|l| l.contains("bitfield") || l.contains("while") || l.contains("for"))
+            .unwrap_or("");
+        assert!(
+            err.contains("phong.frag:2") && err.contains(line.trim()),
+            "{tag}: {err}"
+        );
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(60),
+            "{tag} took {:?}",
+            start.elapsed()
+        );
+    }
+    let dir = shaders_with("broken", |t| {
+        t.replacen("    frag_color = ", "    frag_color = nope + ", 1)
+    });
+    let out = shaderlab(&[
+        "debug",
+        "phong",
+        "--pixel",
+        "320,180",
+        "--shaders",
+        dir.to_str().expect("utf-8"),
+    ]);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("phong.frag:21:") && err.contains("nope"), "{err}");
+}
+
+#[test]
+fn a_course_file_is_traced_at_its_own_lines() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
+    let (vert, frag) = (dir.join("lab3.vert"), dir.join("lab3.frag"));
+    let out = shaderlab(&[
+        "legacy",
+        vert.to_str().expect("utf-8"),
+        frag.to_str().expect("utf-8"),
+        "--debug",
+        "320,180",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let source = std::fs::read_to_string(&frag).expect("lab3.frag");
+    let lines: Vec<&str> = source.lines().collect();
+    let mut seen = 0;
+    for s in v["trace"].as_array().expect("trace") {
+        if s["stage"] != "fragment" {
+            continue;
+        }
+        assert!(s["file"].as_str().expect("file").ends_with("lab3.frag"), "{s}");
+        let line = lines[s["line"].as_u64().expect("line") as usize - 1];
+        let name = s["name"].as_str().expect("name");
+        if !name.starts_with("call") && !name.starts_with('(') {
+            assert!(line.contains(name), "{name} at `{line}`");
+            seen += 1;
+        }
+    }
+    assert!(seen >= 5, "{v}");
+    assert!(v["trace"]
+        .as_array()
+        .expect("trace")
+        .iter()
+        .any(|s| s["name"] == "gl_FragColor"));
 }

@@ -14,11 +14,12 @@
 //! at its line instead of a hang. An operation the interpreter does not implement is an error
 //! naming it, never a silently wrong value.
 
+// Lanes are indexed across several masks and values at once.
+#![allow(clippy::needless_range_loop)]
+
 use std::rc::Rc;
 
-use naga::{
-    BinaryOperator as B, Expression as E, Handle, MathFunction as M, Module, Span, Statement as S, TypeInner,
-};
+use naga::{BinaryOperator as B, Expression as E, Handle, MathFunction as M, Module, Span, Statement as S, TypeInner};
 
 use super::value::{self, Bits, Comp, Kind, Offset, Ptr, Root, Val};
 
@@ -331,11 +332,19 @@ impl<'m> Run<'m> {
     // ----- statements -----
 
     fn block(&mut self, block: &'m naga::Block, active: &mut Vec<bool>) -> Res<()> {
-        for (statement, span) in block.span_iter() {
+        let statements: Vec<(&naga::Statement, &Span)> = block.span_iter().collect();
+        for (k, &(statement, span)) in statements.iter().enumerate() {
             if !lanes_of(active) {
                 break;
             }
-            self.statement(statement, *span, active)?;
+            // An `Emit` computes what the next statement uses: its line is that statement's.
+            let mut span = *span;
+            if span == Span::UNDEFINED && matches!(statement, S::Emit(_)) {
+                if let Some((_, next)) = statements[k + 1..].iter().find(|(_, s)| **s != Span::UNDEFINED) {
+                    span = **next;
+                }
+            }
+            self.statement(statement, span, active)?;
         }
         Ok(())
     }
@@ -713,13 +722,14 @@ impl<'m> Run<'m> {
                 let v = self.data(*value)?;
                 Val::Data(vec![v[0].clone(); *size as usize])
             }
-            E::Swizzle {
-                size,
-                vector,
-                pattern,
-            } => {
+            E::Swizzle { size, vector, pattern } => {
                 let v = self.data(*vector)?;
-                Val::Data(pattern[..*size as usize].iter().map(|c| v[*c as usize].clone()).collect())
+                Val::Data(
+                    pattern[..*size as usize]
+                        .iter()
+                        .map(|c| v[*c as usize].clone())
+                        .collect(),
+                )
             }
             E::FunctionArgument(i) => self.frame().args[*i as usize].clone(),
             E::GlobalVariable(g) => {
@@ -796,7 +806,11 @@ impl<'m> Run<'m> {
                 let idx = &idx[0];
                 let signed = idx.kind == Kind::I32;
                 let clamp = |bits: u32, n: usize| -> usize {
-                    let i = if signed { (bits as i32).max(0) as usize } else { bits as usize };
+                    let i = if signed {
+                        (bits as i32).max(0) as usize
+                    } else {
+                        bits as usize
+                    };
                     i.min(n.saturating_sub(1))
                 };
                 match b.as_ref() {
@@ -879,7 +893,9 @@ impl<'m> Run<'m> {
                             (naga::UnaryOperator::Negate, _) => {
                                 Comp::new(c.kind, c.bits.map(|b| (b as i32).wrapping_neg() as u32))
                             }
-                            (naga::UnaryOperator::LogicalNot, _) => Comp::new(c.kind, c.bits.map(|b| u32::from(b == 0))),
+                            (naga::UnaryOperator::LogicalNot, _) => {
+                                Comp::new(c.kind, c.bits.map(|b| u32::from(b == 0)))
+                            }
                             (naga::UnaryOperator::BitwiseNot, Kind::Bool) => {
                                 Comp::new(c.kind, c.bits.map(|b| u32::from(b == 0)))
                             }
@@ -908,7 +924,10 @@ impl<'m> Run<'m> {
                         .enumerate()
                         .map(|(k, (x, y))| {
                             let cond = if c.len() == 1 { &c[0] } else { &c[k] };
-                            Comp::new(x.kind, cond.bits.zip3(&x.bits, &y.bits, |c, x, y| if c != 0 { x } else { y }))
+                            Comp::new(
+                                x.kind,
+                                cond.bits.zip3(&x.bits, &y.bits, |c, x, y| if c != 0 { x } else { y }),
+                            )
                         })
                         .collect(),
                 )
@@ -960,7 +979,11 @@ impl<'m> Run<'m> {
             }
             E::As { expr, kind, convert } => {
                 let v = self.data(*expr)?;
-                Val::Data(v.iter().map(|c| cast(c, *kind, convert.is_some(), span)).collect::<Res<_>>()?)
+                Val::Data(
+                    v.iter()
+                        .map(|c| cast(c, *kind, convert.is_some(), span))
+                        .collect::<Res<_>>()?,
+                )
             }
             E::CallResult(_) => return fail(span, "a call's result used before the call"),
             E::ImageSample {
@@ -986,7 +1009,8 @@ impl<'m> Run<'m> {
                 if offset.is_some() {
                     return fail(span, "the debugger does not run lookups with a texel offset");
                 }
-                let (Val::Image(img), Val::Sampler(smp)) = (self.get(*image)?.as_ref().clone(), self.get(*sampler)?.as_ref().clone())
+                let (Val::Image(img), Val::Sampler(smp)) =
+                    (self.get(*image)?.as_ref().clone(), self.get(*sampler)?.as_ref().clone())
                 else {
                     return fail(span, "a lookup whose texture or sampler the debugger cannot tell");
                 };
@@ -1031,7 +1055,7 @@ impl<'m> Run<'m> {
                             .collect()
                     }
                 };
-                let mut out = vec![Vec::with_capacity(self.lanes); 4];
+                let mut out: Vec<Vec<u32>> = (0..4).map(|_| Vec::with_capacity(self.lanes)).collect();
                 for (lane, lod) in lods.iter().enumerate() {
                     let rgba = self
                         .host
@@ -1051,14 +1075,17 @@ impl<'m> Run<'m> {
                 level,
             } => {
                 if array_index.is_some() || sample.is_some() {
-                    return fail(span, "the debugger does not run texelFetch on arrays or multisampled textures");
+                    return fail(
+                        span,
+                        "the debugger does not run texelFetch on arrays or multisampled textures",
+                    );
                 }
                 let Val::Image(img) = self.get(*image)?.as_ref().clone() else {
                     return fail(span, "a texelFetch whose texture the debugger cannot tell");
                 };
                 let coord = self.data(*coordinate)?;
                 let level = level.map(|l| self.data(l)).transpose()?;
-                let mut out = vec![Vec::with_capacity(self.lanes); 4];
+                let mut out: Vec<Vec<u32>> = (0..4).map(|_| Vec::with_capacity(self.lanes)).collect();
                 for lane in 0..self.lanes {
                     let c = [0, 1, 2].map(|k| coord.get(k).map_or(0, |c| c.bits.at(lane) as i32));
                     let l = level.as_ref().map_or(0, |l| l[0].bits.at(lane) as i32);
@@ -1102,7 +1129,8 @@ impl<'m> Run<'m> {
             return Comp::new(Kind::F32, Bits::One(0f32.to_bits()));
         }
         let v = |i: usize| c.f(i);
-        let coarse = matches!(ctrl, naga::DerivativeControl::Coarse) || COARSE_BY_DEFAULT && ctrl == naga::DerivativeControl::None;
+        let coarse = matches!(ctrl, naga::DerivativeControl::Coarse)
+            || COARSE_BY_DEFAULT && ctrl == naga::DerivativeControl::None;
         let dx = |i: usize| if coarse { v(1) - v(0) } else { v(i | 1) - v(i & !1) };
         let dy = |i: usize| if coarse { v(2) - v(0) } else { v(i | 2) - v(i & !2) };
         let out: Vec<f32> = (0..4)
@@ -1147,7 +1175,12 @@ fn literal(l: naga::Literal, span: Span) -> Res<Comp> {
         L::Bool(v) => Comp::new(Kind::Bool, Bits::One(u32::from(v))),
         L::AbstractInt(v) => Comp::new(Kind::I32, Bits::One(v as i32 as u32)),
         L::AbstractFloat(v) => Comp::new(Kind::F32, Bits::One((v as f32).to_bits())),
-        other => return fail(span, format!("the debugger does not hold {other:?} (only 32-bit numbers and bools)")),
+        other => {
+            return fail(
+                span,
+                format!("the debugger does not hold {other:?} (only 32-bit numbers and bools)"),
+            )
+        }
     })
 }
 
@@ -1169,7 +1202,12 @@ pub fn const_eval(module: &Module, h: Handle<naga::Expression>) -> Res<Vec<Comp>
             out
         }
         E::Splat { size, value } => vec![const_eval(module, *value)?[0].clone(); *size as usize],
-        other => return fail(span, format!("the debugger does not evaluate the constant {}", expression_name(other))),
+        other => {
+            return fail(
+                span,
+                format!("the debugger does not evaluate the constant {}", expression_name(other)),
+            )
+        }
     })
 }
 
@@ -1193,7 +1231,13 @@ fn cast(c: &Comp, kind: naga::ScalarKind, convert: bool, span: Span) -> Res<Comp
         (Kind::F32, Kind::Bool) => u32::from(f32::from_bits(b) != 0.0),
         (Kind::I32, Kind::F32) => (b as i32 as f32).to_bits(),
         (Kind::U32, Kind::F32) => (b as f32).to_bits(),
-        (Kind::Bool, Kind::F32) => if b != 0 { 1f32.to_bits() } else { 0 },
+        (Kind::Bool, Kind::F32) => {
+            if b != 0 {
+                1f32.to_bits()
+            } else {
+                0
+            }
+        }
         (Kind::I32 | Kind::U32, Kind::Bool) => u32::from(b != 0),
         (Kind::Bool, _) => u32::from(b != 0),
         _ => b, // i32 <-> u32: the same bits
@@ -1254,7 +1298,10 @@ fn binary(op: B, a: &[Comp], ta: &TypeInner, b: &[Comp], tb: &TypeInner, span: S
     // Component by component, a scalar operand applied to every component.
     let n = a.len().max(b.len());
     if !(a.len() == n || a.len() == 1) || !(b.len() == n || b.len() == 1) {
-        return fail(span, format!("operands of {op:?} with {} and {} components", a.len(), b.len()));
+        return fail(
+            span,
+            format!("operands of {op:?} with {} and {} components", a.len(), b.len()),
+        );
     }
     let mut out = Vec::with_capacity(n);
     for k in 0..n {
@@ -1278,8 +1325,14 @@ fn fadd(x: u32, y: u32) -> u32 {
 
 fn scalar_binary(op: B, x: &Comp, y: &Comp, span: Span) -> Res<Comp> {
     let kind = x.kind;
-    let f = |g: fn(f32, f32) -> f32| x.bits.zip(&y.bits, move |a, b| g(f32::from_bits(a), f32::from_bits(b)).to_bits());
-    let fc = |g: fn(f32, f32) -> bool| x.bits.zip(&y.bits, move |a, b| u32::from(g(f32::from_bits(a), f32::from_bits(b))));
+    let f = |g: fn(f32, f32) -> f32| {
+        x.bits
+            .zip(&y.bits, move |a, b| g(f32::from_bits(a), f32::from_bits(b)).to_bits())
+    };
+    let fc = |g: fn(f32, f32) -> bool| {
+        x.bits
+            .zip(&y.bits, move |a, b| u32::from(g(f32::from_bits(a), f32::from_bits(b))))
+    };
     let i = |g: fn(i32, i32) -> i32| x.bits.zip(&y.bits, move |a, b| g(a as i32, b as i32) as u32);
     let ic = |g: fn(i32, i32) -> bool| x.bits.zip(&y.bits, move |a, b| u32::from(g(a as i32, b as i32)));
     let u = |g: fn(u32, u32) -> u32| x.bits.zip(&y.bits, g);
@@ -1313,7 +1366,7 @@ fn scalar_binary(op: B, x: &Comp, y: &Comp, span: Span) -> Res<Comp> {
         (Kind::U32, B::Add) => Ok(Comp::new(kind, u(u32::wrapping_add))),
         (Kind::U32, B::Subtract) => Ok(Comp::new(kind, u(u32::wrapping_sub))),
         (Kind::U32, B::Multiply) => Ok(Comp::new(kind, u(u32::wrapping_mul))),
-        (Kind::U32, B::Divide) => Ok(Comp::new(kind, u(|a, b| if b == 0 { a } else { a / b }))),
+        (Kind::U32, B::Divide) => Ok(Comp::new(kind, u(|a, b| a.checked_div(b).unwrap_or(a)))),
         (Kind::U32, B::Modulo) => Ok(Comp::new(kind, u(|a, b| if b == 0 { 0 } else { a % b }))),
         (Kind::U32 | Kind::Bool, B::Equal) => cmp(uc(|a, b| a == b)),
         (Kind::U32 | Kind::Bool, B::NotEqual) => cmp(uc(|a, b| a != b)),
@@ -1351,7 +1404,11 @@ fn expression_name(e: &naga::Expression) -> String {
         E::AtomicResult { .. } => "atomic operations".into(),
         E::ArrayLength(_) => "runtime-sized arrays (.length())".into(),
         E::SubgroupBallotResult | E::SubgroupOperationResult { .. } => "subgroup operations".into(),
-        other => format!("{other:?}").split([' ', '(', '{']).next().unwrap_or("this").to_owned(),
+        other => format!("{other:?}")
+            .split([' ', '(', '{'])
+            .next()
+            .unwrap_or("this")
+            .to_owned(),
     }
 }
 

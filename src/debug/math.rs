@@ -13,7 +13,11 @@ fn f(c: &Comp, g: impl Fn(f32) -> f32) -> Comp {
 }
 
 fn f2(a: &Comp, b: &Comp, g: impl Fn(f32, f32) -> f32) -> Comp {
-    Comp::new(Kind::F32, a.bits.zip(&b.bits, |x, y| g(f32::from_bits(x), f32::from_bits(y)).to_bits()))
+    Comp::new(
+        Kind::F32,
+        a.bits
+            .zip(&b.bits, |x, y| g(f32::from_bits(x), f32::from_bits(y)).to_bits()),
+    )
 }
 
 fn f3(a: &Comp, b: &Comp, c: &Comp, g: impl Fn(f32, f32, f32) -> f32) -> Comp {
@@ -59,7 +63,18 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
         M::Abs if float => each(&f32::abs),
         M::Abs => a
             .iter()
-            .map(|c| Comp::new(kind, c.bits.map(|x| if kind == Kind::I32 { (x as i32).wrapping_abs() as u32 } else { x })))
+            .map(|c| {
+                Comp::new(
+                    kind,
+                    c.bits.map(|x| {
+                        if kind == Kind::I32 {
+                            (x as i32).wrapping_abs() as u32
+                        } else {
+                            x
+                        }
+                    }),
+                )
+            })
             .collect(),
         M::Min | M::Max => {
             let b = need(b)?;
@@ -112,7 +127,11 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
                             (x as i32).max(l as i32).min(h as i32) as u32
                         }),
                     ),
-                    _ => Comp::new(kind, a[k].bits.zip3(&at(&lo, k).bits, &at(&hi, k).bits, |x, l, h| x.max(l).min(h))),
+                    _ => Comp::new(
+                        kind,
+                        a[k].bits
+                            .zip3(&at(&lo, k).bits, &at(&hi, k).bits, |x, l, h| x.max(l).min(h)),
+                    ),
                 })
                 .collect()
         }
@@ -188,7 +207,14 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             let (b, t) = (need(b)?, need(c)?);
             if t[0].kind == Kind::Bool {
                 (0..a.len())
-                    .map(|k| Comp::new(kind, at(&t, k).bits.zip3(&a[k].bits, &at(&b, k).bits, |t, x, y| if t != 0 { y } else { x })))
+                    .map(|k| {
+                        Comp::new(
+                            kind,
+                            at(&t, k)
+                                .bits
+                                .zip3(&a[k].bits, &at(&b, k).bits, |t, x, y| if t != 0 { y } else { x }),
+                        )
+                    })
                     .collect()
             } else {
                 // x·(1 − a) + y·a, as GLSL defines it.
@@ -200,7 +226,9 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
         M::Fma => {
             let (b, c) = (need(b)?, need(c)?);
             // Not fused: a multiply and an add, each rounded (GLSL leaves it open).
-            (0..a.len()).map(|k| f3(&a[k], at(&b, k), at(&c, k), |x, y, z| x * y + z)).collect()
+            (0..a.len())
+                .map(|k| f3(&a[k], at(&b, k), at(&c, k), |x, y, z| x * y + z))
+                .collect()
         }
         M::Dot => vec![dot(a, &need(b)?)],
         M::Length => {
@@ -247,7 +275,11 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
                             (0..lanes(&[&a[j], &n[j], &d, &k, &eta[0]]))
                                 .map(|l| {
                                     let (i, nn, dd, kk, e) = (a[j].f(l), n[j].f(l), d.f(l), k.f(l), eta[0].f(l));
-                                    let r = if kk < 0.0 { 0.0 } else { e * i - (e * dd + kk.sqrt()) * nn };
+                                    let r = if kk < 0.0 {
+                                        0.0
+                                    } else {
+                                        e * i - (e * dd + kk.sqrt()) * nn
+                                    };
                                     r.to_bits()
                                 })
                                 .collect(),
@@ -335,9 +367,18 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             out
         }
         M::CountOneBits => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::count_ones))).collect(),
-        M::ReverseBits => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::reverse_bits))).collect(),
-        M::CountTrailingZeros => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::trailing_zeros))).collect(),
-        M::CountLeadingZeros => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::leading_zeros))).collect(),
+        M::ReverseBits => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(u32::reverse_bits)))
+            .collect(),
+        M::CountTrailingZeros => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(u32::trailing_zeros)))
+            .collect(),
+        M::CountLeadingZeros => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(u32::leading_zeros)))
+            .collect(),
         M::FirstTrailingBit => a
             .iter()
             .map(|c| Comp::new(kind, c.bits.map(|x| if x == 0 { u32::MAX } else { x.trailing_zeros() })))
@@ -384,7 +425,11 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
         }
         M::Pack4x8unorm | M::Pack4x8snorm | M::Pack2x16unorm | M::Pack2x16snorm => {
             let lanes = lanes(&a.iter().collect::<Vec<_>>());
-            let (n, bits) = if matches!(fun, M::Pack4x8unorm | M::Pack4x8snorm) { (4, 8) } else { (2, 16) };
+            let (n, bits) = if matches!(fun, M::Pack4x8unorm | M::Pack4x8snorm) {
+                (4, 8)
+            } else {
+                (2, 16)
+            };
             let signed = matches!(fun, M::Pack4x8snorm | M::Pack2x16snorm);
             let max = ((1u32 << (bits - u32::from(signed))) - 1) as f32;
             let v: Vec<u32> = (0..lanes)
@@ -403,7 +448,11 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             vec![Comp::new(Kind::U32, bits_of(v))]
         }
         M::Unpack4x8unorm | M::Unpack4x8snorm | M::Unpack2x16unorm | M::Unpack2x16snorm => {
-            let (n, width) = if matches!(fun, M::Unpack4x8unorm | M::Unpack4x8snorm) { (4u32, 8u32) } else { (2, 16) };
+            let (n, width) = if matches!(fun, M::Unpack4x8unorm | M::Unpack4x8snorm) {
+                (4u32, 8u32)
+            } else {
+                (2, 16)
+            };
             let signed = matches!(fun, M::Unpack4x8snorm | M::Unpack2x16snorm);
             let max = ((1u32 << (width - u32::from(signed))) - 1) as f32;
             (0..n)

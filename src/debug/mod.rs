@@ -309,7 +309,11 @@ impl Inspection {
                 };
                 match s.name.as_str() {
                     "if" => {
-                        let _ = write!(said, "{corner}if → {}", if s.value.first() == Some(&1.0) { "then" } else { "else" });
+                        let _ = write!(
+                            said,
+                            "{corner}if → {}",
+                            if s.value.first() == Some(&1.0) { "then" } else { "else" }
+                        );
                     }
                     "loop" => {
                         let _ = write!(said, "{corner}iteration {v}");
@@ -350,7 +354,10 @@ impl Inspection {
         );
         if let Some(f) = &r.fragment {
             let named = |v: &[Named]| -> String {
-                let items: Vec<String> = v.iter().map(|n| format!("{}:{}", jstr(&n.name), jvalue(&n.value))).collect();
+                let items: Vec<String> = v
+                    .iter()
+                    .map(|n| format!("{}:{}", jstr(&n.name), jvalue(&n.value)))
+                    .collect();
                 format!("{{{}}}", items.join(","))
             };
             let corners: Vec<String> = f

@@ -163,7 +163,9 @@ pub fn triangle(
     front_face: wgpu::FrontFace,
     cull: Option<wgpu::Face>,
 ) -> Option<Cover> {
-    let needs_homogeneous = clip.iter().any(|p| !(p[3] > 0.0) || p.iter().any(|c| !c.is_finite()));
+    let needs_homogeneous = clip
+        .iter()
+        .any(|p| p[3].is_nan() || p[3] <= 0.0 || p.iter().any(|c| !c.is_finite()));
     let window = clip.map(|p| vp.to_window(p));
     let huge = window.iter().any(|w| w[0].abs() > 1e7 || w[1].abs() > 1e7);
     if needs_homogeneous || huge {
@@ -287,7 +289,7 @@ fn homogeneous(
 /// past the near and far planes (points outside the viewport still light the pixels inside).
 pub fn point(clip: [f32; 4], vp: Viewport, x: u32, y: u32) -> Option<Cover> {
     let w = clip[3];
-    if !(w > 0.0) || clip.iter().any(|c| !c.is_finite()) || clip[2] < 0.0 || clip[2] > w {
+    if w.is_nan() || w <= 0.0 || clip.iter().any(|c| !c.is_finite()) || clip[2] < 0.0 || clip[2] > w {
         return None;
     }
     let [sx, sy, z, oow] = vp.to_window(clip);

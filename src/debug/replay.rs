@@ -208,7 +208,14 @@ struct Slot {
     len: usize,
 }
 
-fn slots_of(module: &Module, ty: Handle<naga::Type>, binding: Option<&Binding>, name: Option<&str>, arg: usize, out: &mut Vec<Slot>) {
+fn slots_of(
+    module: &Module,
+    ty: Handle<naga::Type>,
+    binding: Option<&Binding>,
+    name: Option<&str>,
+    arg: usize,
+    out: &mut Vec<Slot>,
+) {
     let inner = &module.types[ty].inner;
     match (binding, inner) {
         (Some(b), _) => out.push(Slot {
@@ -360,12 +367,25 @@ fn run_vertices(draw: &Draw, ids: &[u32], traced: bool) -> Res<VertexRun> {
     let args = arguments(module, ep, &slots, &inputs)?;
     let host = DrawHost { module, draw };
     let traced_lanes = if traced { (0..ids.len()).collect() } else { Vec::new() };
-    let mut run = Run::new(module, &shader.info, ids.len(), false, &host, &uniforms(module, draw), traced_lanes)
-        .map_err(in_shader(shader))?;
+    let mut run = Run::new(
+        module,
+        &shader.info,
+        ids.len(),
+        false,
+        &host,
+        &uniforms(module, draw),
+        traced_lanes,
+    )
+    .map_err(in_shader(shader))?;
     let result = run.entry(ep, args).map_err(in_shader(shader))?;
     let outputs = output_slots(module, ep)
         .iter()
-        .map(|s| result.get(s.offset..s.offset + s.len).map(<[Comp]>::to_vec).unwrap_or_default())
+        .map(|s| {
+            result
+                .get(s.offset..s.offset + s.len)
+                .map(<[Comp]>::to_vec)
+                .unwrap_or_default()
+        })
         .collect();
     Ok(VertexRun {
         inputs,
@@ -569,8 +589,16 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
     }
     let args = arguments(fmodule, fep, &fin, &fvalues)?;
     let host = DrawHost { module: fmodule, draw };
-    let mut run = Run::new(fmodule, &fshader.info, 4, true, &host, &uniforms(fmodule, draw), vec![c.cover.lane])
-        .map_err(in_shader(fshader))?;
+    let mut run = Run::new(
+        fmodule,
+        &fshader.info,
+        4,
+        true,
+        &host,
+        &uniforms(fmodule, draw),
+        vec![c.cover.lane],
+    )
+    .map_err(in_shader(fshader))?;
     let result = run.entry(fep, args).map_err(in_shader(fshader))?;
     let lane = c.cover.lane;
     let fout = output_slots(fmodule, fep);
@@ -645,10 +673,9 @@ pub fn replay(captured: &Captured, x: u32, y: u32) -> Res<Replayed> {
         )));
     }
     let vp = Viewport { width, height };
-    let mut color = [0.0f32, 0.0, 0.0, 1.0];
     let mut clear = [0.0f64; 3];
     let mut depth = 1.0f32;
-    let mut winner: Option<(Candidate, Option<Shaded>)> = None;
+    let mut top = Top::Clear([0.0, 0.0, 0.0, 1.0]);
     let mut covering = 0;
     let mut pass = usize::MAX;
     for (i, draw) in captured.draws.iter().enumerate() {
@@ -656,47 +683,50 @@ pub fn replay(captured: &Captured, x: u32, y: u32) -> Res<Replayed> {
             pass = draw.pass;
             if let Some((Load::Clear(c), _, _)) = captured.passes.get(pass) {
                 clear = *c;
-                color = [c[0] as f32, c[1] as f32, c[2] as f32, 1.0];
+                top = Top::Clear([c[0] as f32, c[1] as f32, c[2] as f32, 1.0]);
                 depth = 1.0;
-                winner = None;
             }
         }
+        // Without discard, a depth output or blending, the depth test alone decides which
+        // fragment stays: only that one is shaded, at the end.
         let decides = writes_depth_or_discards(&draw.fragment) || draw.state.blend.is_some();
         for cand in candidates(i, draw, vp, x, y)? {
             covering += 1;
             let z = cand.cover.depth[cand.cover.lane];
-            if draw.state.depth_test && !(z < depth) && !decides {
-                continue;
-            }
-            if decides {
-                let shaded = shade(captured, &cand)?;
-                if !shaded.kept || (draw.state.depth_test && !(shaded.depth < depth)) {
+            if !decides {
+                if draw.state.depth_test && !depth_passes(z, depth) {
                     continue;
                 }
                 if draw.state.depth_test {
-                    depth = shaded.depth;
-                }
-                color = blend(draw.state.blend, shaded.color, color);
-                winner = Some((cand, Some(shaded)));
-            } else {
-                if draw.state.depth_test {
                     depth = z;
                 }
-                winner = Some((cand, None));
+                top = Top::Lazy(Box::new(cand));
+                continue;
             }
+            let shaded = shade(captured, &cand)?;
+            if !shaded.kept || (draw.state.depth_test && !depth_passes(shaded.depth, depth)) {
+                continue;
+            }
+            if draw.state.depth_test {
+                depth = shaded.depth;
+            }
+            let color = match draw.state.blend {
+                None => shaded.color,
+                Some(state) => {
+                    // The destination is what the target stores: 8 bits a channel.
+                    let (stored, _, _) = resolve(captured, top)?;
+                    blend(state, shaded.color, stored.map(|v| f32::from(v) / 255.0))
+                }
+            };
+            top = Top::Done {
+                color,
+                fragment: Box::new(shaded.fragment),
+            };
         }
     }
-    let fragment = match winner {
-        None => None,
-        Some((_, Some(shaded))) => Some(shaded.fragment),
-        Some((cand, None)) => {
-            let shaded = shade(captured, &cand)?;
-            color = shaded.color;
-            Some(shaded.fragment)
-        }
-    };
+    let (pixel, color, fragment) = resolve(captured, top)?;
     Ok(Replayed {
-        pixel: color.map(to_unorm8),
+        pixel,
         color,
         clear,
         fragment,
@@ -704,8 +734,32 @@ pub fn replay(captured: &Captured, x: u32, y: u32) -> Res<Replayed> {
     })
 }
 
-fn blend(state: Option<wgpu::BlendState>, src: [f32; 4], dst: [f32; 4]) -> [f32; 4] {
-    let Some(b) = state else { return src };
+/// What a pixel holds so far: its clear colour, the fragment that stays but has not been
+/// shaded yet, or a colour written.
+enum Top {
+    Clear([f32; 4]),
+    Lazy(Box<Candidate>),
+    Done { color: [f32; 4], fragment: Box<Fragment> },
+}
+
+/// `GL_LESS` as the rasteriser compares (unordered: a NaN passes).
+fn depth_passes(z: f32, stored: f32) -> bool {
+    z < stored || z.is_nan() || stored.is_nan()
+}
+
+/// The stored bytes, the colour and the fragment that made it.
+fn resolve(captured: &Captured, top: Top) -> Res<([u8; 4], [f32; 4], Option<Fragment>)> {
+    Ok(match top {
+        Top::Clear(c) => (c.map(to_unorm8), c, None),
+        Top::Lazy(cand) => {
+            let shaded = shade(captured, &cand)?;
+            (shaded.color.map(to_unorm8), shaded.color, Some(shaded.fragment))
+        }
+        Top::Done { color, fragment } => (color.map(to_unorm8), color, Some(*fragment)),
+    })
+}
+
+fn blend(b: wgpu::BlendState, src: [f32; 4], dst: [f32; 4]) -> [f32; 4] {
     let factor = |f: wgpu::BlendFactor, k: usize| -> f32 {
         use wgpu::BlendFactor as F;
         match f {

@@ -305,7 +305,15 @@ fn wrap_linear_float(mode: wgpu::AddressMode, u: f32, size: u32) -> (u32, u32, f
     }
 }
 
-fn filter_float(view: &View, wrap: [wgpu::AddressMode; 3], filter: wgpu::FilterMode, level: u32, face: u32, u: f32, v: f32) -> [f32; 4] {
+fn filter_float(
+    view: &View,
+    wrap: [wgpu::AddressMode; 3],
+    filter: wgpu::FilterMode,
+    level: u32,
+    face: u32,
+    u: f32,
+    v: f32,
+) -> [f32; 4] {
     let (w, h) = view.level_size(level);
     match filter {
         wgpu::FilterMode::Nearest => {
@@ -403,7 +411,16 @@ fn sample_cube(view: &View, desc: &SamplerDesc, d: [f32; 3], lod: Lod) -> [f32; 
 /// Linear filtering on a cube face whose texels past an edge come from the neighbouring face
 /// (the missing fourth texel at a corner gives a third of its weight to each of the others).
 #[allow(clippy::too_many_arguments)]
-fn seamless(view: &View, level: u32, face: u32, major: usize, sc: (usize, f32), tc: (usize, f32), s: f32, t: f32) -> [f32; 4] {
+fn seamless(
+    view: &View,
+    level: u32,
+    face: u32,
+    major: usize,
+    sc: (usize, f32),
+    tc: (usize, f32),
+    s: f32,
+    t: f32,
+) -> [f32; 4] {
     let (size, _) = view.level_size(level);
     let n = size as f32;
     let cs = s.max(0.0) * n - 0.5;

@@ -211,14 +211,12 @@ pub fn count(module: &Module, inner: &TypeInner) -> usize {
         TypeInner::Scalar(_) | TypeInner::Atomic(_) => 1,
         TypeInner::Vector { size, .. } => *size as usize,
         TypeInner::Matrix { columns, rows, .. } => *columns as usize * *rows as usize,
-        TypeInner::Array { base, size, .. } => match size {
-            naga::ArraySize::Constant(n) => n.get() as usize * count(module, &module.types[*base].inner),
-            _ => 0,
-        },
-        TypeInner::Struct { members, .. } => members
-            .iter()
-            .map(|m| count(module, &module.types[m.ty].inner))
-            .sum(),
+        TypeInner::Array {
+            base,
+            size: naga::ArraySize::Constant(n),
+            ..
+        } => n.get() as usize * count(module, &module.types[*base].inner),
+        TypeInner::Struct { members, .. } => members.iter().map(|m| count(module, &module.types[m.ty].inner)).sum(),
         _ => 0,
     }
 }
@@ -231,7 +229,9 @@ pub fn kinds(module: &Module, inner: &TypeInner) -> Option<Vec<Kind>> {
         TypeInner::Vector { size, scalar } => vec![Kind::of(*scalar)?; *size as usize],
         TypeInner::Matrix { columns, rows, scalar } => vec![Kind::of(*scalar)?; *columns as usize * *rows as usize],
         TypeInner::Array { base, size, .. } => {
-            let naga::ArraySize::Constant(n) = size else { return None };
+            let naga::ArraySize::Constant(n) = size else {
+                return None;
+            };
             let one = kinds(module, &module.types[*base].inner)?;
             let mut out = Vec::with_capacity(one.len() * n.get() as usize);
             for _ in 0..n.get() {
@@ -356,14 +356,28 @@ pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: usiz
             }
         }
         TypeInner::Array { base, size, stride } => {
-            let naga::ArraySize::Constant(n) = size else { return None };
+            let naga::ArraySize::Constant(n) = size else {
+                return None;
+            };
             for i in 0..n.get() as usize {
-                read_bytes(module, &module.types[*base].inner, bytes, offset + i * *stride as usize, out)?;
+                read_bytes(
+                    module,
+                    &module.types[*base].inner,
+                    bytes,
+                    offset + i * *stride as usize,
+                    out,
+                )?;
             }
         }
         TypeInner::Struct { members, .. } => {
             for m in members {
-                read_bytes(module, &module.types[m.ty].inner, bytes, offset + m.offset as usize, out)?;
+                read_bytes(
+                    module,
+                    &module.types[m.ty].inner,
+                    bytes,
+                    offset + m.offset as usize,
+                    out,
+                )?;
             }
         }
         _ => return None,

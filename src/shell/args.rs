@@ -90,7 +90,7 @@ pub struct Args {
     /// Explain pixel X,Y (column, row from the top left, as in --screenshot's PNG): which
     /// triangle covers it, the vertex shader at its corners, the interpolated inputs, the
     /// fragment shader line by line with every value, and the stored colour. No window.
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["record", "bench"])]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true, conflicts_with_all = ["record", "bench"])]
     pub debug: Option<(u32, u32)>,
     /// With --debug: print one JSON object (pixel, covered, trace, ...) instead of the text.
     #[arg(long, requires = "debug")]

@@ -10,8 +10,8 @@ use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
 
-use crate::lab::draw::{render_into, screenshot};
 use super::{say, Args, Failure};
+use crate::lab::draw::{render_into, screenshot};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
 pub(crate) fn check_png_path(path: &Path) -> Result<()> {
@@ -92,7 +92,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         let (image, captured) = crate::debug::capture_lab(&gpu, lab.as_mut(), width, height, picture)?;
         let inspection = crate::debug::Inspection::new(entry.info.name, &captured, x, y)?;
         if let (Some(path), Some(image)) = (&args.screenshot, &image) {
-            save_png(&image, path)?;
+            save_png(image, path)?;
             eprintln!("wrote {}", path.display());
         }
         if args.json {

@@ -41,9 +41,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[cfg(not(target_arch = "wasm32"))]
-pub use args::Args;
-#[cfg(not(target_arch = "wasm32"))]
 pub use crate::lab::draw::{render_into, screenshot};
+#[cfg(not(target_arch = "wasm32"))]
+pub use args::Args;
 #[cfg(not(target_arch = "wasm32"))]
 pub use headless::{bench, progress_bar, BenchResult};
 

@@ -123,7 +123,11 @@ fn debugger(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
         lab: "",
     };
     for entry in labs::ALL {
-        if args.only.as_ref().is_some_and(|o| !entry.info.name.contains(o.as_str())) {
+        if args
+            .only
+            .as_ref()
+            .is_some_and(|o| !entry.info.name.contains(o.as_str()))
+        {
             continue;
         }
         let Ok(mut lab) = (entry.new)(&cx) else { continue };
