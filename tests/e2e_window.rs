@@ -2131,3 +2131,71 @@ fn f1_panel_edits_parameters_and_hides_to_the_exact_picture() {
         drop(lab);
     }
 }
+
+/// F2 turns the inspector on; a click picks a pixel and the inspector shows it, with the
+/// colour the window shows there; a key that changes the lab inspects again (the view stays
+/// live) while frames keep coming; F2 again hides it, back to the exact picture.
+#[test]
+fn f2_inspects_the_clicked_pixel_and_follows_the_lab() {
+    let x = Xvfb::start("inspect");
+    let mut lab = x.launch("phong", &["--set", "object=torus"], &[]);
+    lab.first_frame();
+    let plain = lab.settled();
+    let (px, py) = (450u32, 180u32);
+    let inspected = |n: usize| -> [u8; 4] {
+        let line = poll(PATIENCE, || {
+            let err = lab.stderr();
+            let lines: Vec<&str> = err
+                .lines()
+                .filter(|l| l.starts_with("shaderlab-test: inspected"))
+                .collect();
+            lines.get(n - 1).map(|l| l.to_string())
+        })
+        .unwrap_or_else(|| panic!("no inspection {n}; stderr:\n{}", lab.stderr()));
+        let rgba = line
+            .split_once("rgba(")
+            .and_then(|(_, r)| r.strip_suffix(')'))
+            .unwrap_or_else(|| panic!("{line}"));
+        let v: Vec<u8> = rgba.split(", ").map(|c| c.parse().expect("a byte")).collect();
+        assert!(line.contains(&format!("inspected {px},{py} ")), "{line}");
+        [v[0], v[1], v[2], v[3]]
+    };
+    lab.keys(&["F2"]);
+    lab.idle();
+    lab.x.xdotool(&[
+        "mousemove",
+        "--window",
+        &lab.window,
+        &px.to_string(),
+        &py.to_string(),
+        "click",
+        "1",
+    ]);
+    let first = inspected(1);
+    let shown = plain.get_pixel(px, py).0;
+    for k in 0..3 {
+        assert!(
+            (i32::from(first[k]) - i32::from(shown[k])).abs() <= 2,
+            "inspected {first:?}, window {shown:?}"
+        );
+    }
+    let with_panel = lab.settled();
+    lab.save(&with_panel, "inspector");
+    assert_ne!(with_panel, plain, "the inspector is shown");
+    // The light moves: the same pixel is inspected again, and its colour changes.
+    let frames = lab.said("frame");
+    lab.key_n("X", 8);
+    let second = inspected(2);
+    assert_ne!(first, second, "the inspection follows the lab");
+    assert!(lab.said("frame") > frames, "frames kept coming");
+    // Hidden, shown again, hidden again: the picture without the inspector is the same.
+    lab.keys(&["F2"]);
+    let hidden = lab.settled();
+    lab.keys(&["F2"]);
+    let _ = inspected(3);
+    assert_ne!(lab.settled(), hidden, "shown again");
+    lab.keys(&["F2"]);
+    assert_eq!(lab.settled(), hidden, "hidden again");
+    assert!(!lab.stderr().contains("inspected error"), "{}", lab.stderr());
+    lab.escape();
+}

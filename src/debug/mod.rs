@@ -67,6 +67,44 @@ pub struct TraceStep {
     pub boolean: bool,
 }
 
+impl TraceStep {
+    /// The step in words: `L = (0.1, 0.2, 0.9)`, `if → then`, `iteration 3`, `call f`, with
+    /// the corner first for a vertex step (`[1] v = …`).
+    pub fn describe(&self) -> String {
+        let corner = self.corner.map(|c| format!("[{c}] ")).unwrap_or_default();
+        let v = match (self.boolean, self.value.as_slice()) {
+            (true, [b]) => (if *b != 0.0 { "true" } else { "false" }).to_owned(),
+            _ => vector(&self.value),
+        };
+        match self.name.as_str() {
+            "if" => format!(
+                "{corner}if → {}",
+                if self.value.first() == Some(&1.0) {
+                    "then"
+                } else {
+                    "else"
+                }
+            ),
+            "loop" => format!("{corner}iteration {v}"),
+            n if n.starts_with("call ") || n == "discard" => format!("{corner}{n}"),
+            n => format!("{corner}{n} = {v}"),
+        }
+    }
+}
+
+/// A line of a shader that ran, with what it computed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// The file.
+    pub file: String,
+    /// The 1-based line.
+    pub line: u32,
+    /// The line as written (trimmed).
+    pub text: String,
+    /// Its steps in words, `; `-separated.
+    pub values: String,
+}
+
 /// Why a pixel has its colour.
 #[derive(Clone, Debug)]
 pub struct Inspection {
@@ -263,9 +301,13 @@ impl Inspection {
         out
     }
 
-    /// The lines of `shader`'s files that ran in `stage`, in file order, each with the values
-    /// its steps computed.
-    fn listing(&self, out: &mut String, stage: Stage, shader: &CompiledShader) {
+    /// The lines of the shader that ran in `stage`, in file order (the main file first, then
+    /// the included ones), each with what its steps computed.
+    pub fn rows(&self, stage: Stage) -> Vec<Row> {
+        let Some(f) = &self.replayed.fragment else {
+            return Vec::new();
+        };
+        let shader = if stage == Stage::Vertex { &f.vertex } else { &f.fragment };
         let mut lines: Vec<(&str, u32)> = Vec::new();
         for s in self.steps.iter().filter(|s| s.stage == stage) {
             if !lines.contains(&(s.file.as_str(), s.line)) {
@@ -274,59 +316,47 @@ impl Inspection {
         }
         let order: Vec<&str> = shader.source.files.iter().map(|(p, _)| p.as_str()).collect();
         lines.sort_by_key(|(file, line)| (order.iter().position(|p| p == file).unwrap_or(usize::MAX), *line));
-        let mut current = "";
-        for (file, line) in lines {
-            if file != current {
-                if file != shader.path {
-                    let _ = writeln!(out, "  {file}:");
+        lines
+            .into_iter()
+            .map(|(file, line)| {
+                // What the line computed; its calls show at the called function's lines.
+                let here: Vec<&TraceStep> = self
+                    .steps
+                    .iter()
+                    .filter(|s| s.stage == stage && s.file == file && s.line == line && !s.name.starts_with("call "))
+                    .collect();
+                let mut said = String::new();
+                for (i, s) in here.iter().enumerate() {
+                    if i >= 12 {
+                        let _ = write!(said, "; … ({} more)", here.len() - i);
+                        break;
+                    }
+                    if !said.is_empty() {
+                        said.push_str("; ");
+                    }
+                    said.push_str(&s.describe());
                 }
-                current = file;
+                Row {
+                    file: file.to_owned(),
+                    line,
+                    text: source_line(shader, file, line).unwrap_or("").trim().to_owned(),
+                    values: said,
+                }
+            })
+            .collect()
+    }
+
+    fn listing(&self, out: &mut String, stage: Stage, shader: &CompiledShader) {
+        let mut current = String::new();
+        for row in self.rows(stage) {
+            if row.file != current {
+                if row.file != shader.path {
+                    let _ = writeln!(out, "  {}:", row.file);
+                }
+                current = row.file.clone();
             }
-            let text = source_line(shader, file, line).unwrap_or("").trim();
-            let here: Vec<&TraceStep> = self
-                .steps
-                .iter()
-                .filter(|s| s.stage == stage && s.file == file && s.line == line)
-                .collect();
-            let _ = writeln!(out, "  {line:>4} | {text}");
-            let mut said = String::new();
-            for (i, s) in here.iter().enumerate() {
-                if i >= 12 {
-                    let _ = write!(said, "; … ({} more)", here.len() - i);
-                    break;
-                }
-                if !said.is_empty() {
-                    said.push_str("; ");
-                }
-                let corner = s.corner.map(|c| format!("[{c}] ")).unwrap_or_default();
-                let v = if s.boolean {
-                    match s.value.as_slice() {
-                        [b] => (if *b != 0.0 { "true" } else { "false" }).to_owned(),
-                        v => vector(v),
-                    }
-                } else {
-                    vector(&s.value)
-                };
-                match s.name.as_str() {
-                    "if" => {
-                        let _ = write!(
-                            said,
-                            "{corner}if → {}",
-                            if s.value.first() == Some(&1.0) { "then" } else { "else" }
-                        );
-                    }
-                    "loop" => {
-                        let _ = write!(said, "{corner}iteration {v}");
-                    }
-                    n if n.starts_with("call ") || n == "discard" => {
-                        let _ = write!(said, "{corner}{n}");
-                    }
-                    n => {
-                        let _ = write!(said, "{corner}{n} = {v}");
-                    }
-                }
-            }
-            let _ = writeln!(out, "       ⇒ {said}");
+            let _ = writeln!(out, "  {:>4} | {}", row.line, row.text);
+            let _ = writeln!(out, "       ⇒ {}", row.values);
         }
     }
 
@@ -404,7 +434,29 @@ impl Inspection {
                 )
             })
             .collect();
-        let _ = write!(o, ",\"trace\":[{}]}}", steps.join(","));
+        let listing = |stage: Stage| -> String {
+            let rows: Vec<String> = self
+                .rows(stage)
+                .iter()
+                .map(|r| {
+                    format!(
+                        "{{\"file\":{},\"line\":{},\"text\":{},\"values\":{}}}",
+                        jstr(&r.file),
+                        r.line,
+                        jstr(&r.text),
+                        jstr(&r.values)
+                    )
+                })
+                .collect();
+            format!("[{}]", rows.join(","))
+        };
+        let _ = write!(
+            o,
+            ",\"listing\":{{\"vertex\":{},\"fragment\":{}}},\"trace\":[{}]}}",
+            listing(Stage::Vertex),
+            listing(Stage::Fragment),
+            steps.join(",")
+        );
         o
     }
 }

@@ -208,7 +208,7 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
                 for line in info.keys.help().split(";\n") {
                     ui.label(line);
                 }
-                ui.label("F1 panel · F10 record · F12 screenshot · Esc quits");
+                ui.label("F1 panel · F2 inspect a pixel · F10 record · F12 screenshot · Esc quits");
             });
         egui::CollapsingHeader::new("Shaders")
             .default_open(status.error.is_some())
@@ -308,10 +308,189 @@ fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
     false
 }
 
+/// What the pixel inspector shows (F2).
+pub struct InspectView<'a> {
+    /// The pixel picked, if any.
+    pub pixel: Option<(u32, u32)>,
+    /// The last inspection, or why it failed.
+    pub result: Option<&'a Result<crate::debug::Inspection, String>>,
+    /// Whether a capture or replay is under way.
+    pub busy: bool,
+}
+
+/// The inspector's width in logical pixels, at most (it takes at most 62 % of the window, on
+/// the side away from the inspected pixel, so that the pixel stays in sight).
+pub const INSPECTOR_WIDTH: f32 = 640.0;
+
+/// The inspector: the pixel's colour, what covers it, the fragment shader line by line with
+/// each line's values to its right, the inputs at the pixel, the vertex shader at the
+/// triangle's corners.
+pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
+    use crate::debug::Stage;
+    ui.horizontal(|ui| {
+        ui.heading(match view.pixel {
+            Some((x, y)) => format!("Pixel {x},{y}"),
+            None => "Inspect".to_owned(),
+        });
+        if view.busy {
+            ui.spinner();
+        }
+    });
+    let Some(result) = view.result else {
+        ui.label("Click a pixel of the picture to see why it has its colour (F2 turns this off).");
+        return;
+    };
+    let i = match result {
+        Ok(i) => i,
+        Err(e) => {
+            ui.colored_label(egui::Color32::LIGHT_RED, e);
+            return;
+        }
+    };
+    let r = &i.replayed;
+    ui.horizontal(|ui| {
+        let [red, green, blue, _] = r.pixel;
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(28.0, 28.0), egui::Sense::hover());
+        ui.painter()
+            .rect_filled(rect, 3.0, egui::Color32::from_rgb(red, green, blue));
+        ui.vertical(|ui| {
+            ui.monospace(format!(
+                "stored rgba({}, {}, {}, {})",
+                r.pixel[0], r.pixel[1], r.pixel[2], r.pixel[3]
+            ));
+            let c = r.color;
+            ui.monospace(format!("colour ({:.4}, {:.4}, {:.4}, {:.4})", c[0], c[1], c[2], c[3]));
+        });
+    });
+    let Some(f) = &r.fragment else {
+        let c = r.clear;
+        ui.label(format!(
+            "No triangle covers this pixel: the clear colour ({:.3}, {:.3}, {:.3}) shows.",
+            c[0], c[1], c[2]
+        ));
+        return;
+    };
+    ui.label(format!(
+        "{} {} of draw {} ({}), {}, depth {:.5}{}",
+        if f.points { "Point" } else { "Triangle" },
+        f.primitive,
+        f.draw,
+        f.label,
+        if f.front_facing { "front-facing" } else { "back-facing" },
+        f.depth,
+        if r.covering > 1 {
+            format!("; {} fragments covered the pixel", r.covering)
+        } else {
+            String::new()
+        }
+    ));
+    ui.separator();
+    egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
+        let listing = |ui: &mut egui::Ui, stage: Stage, id: &str| {
+            egui::Grid::new(id).num_columns(3).striped(true).show(ui, |ui| {
+                let mut file = String::new();
+                for row in i.rows(stage) {
+                    if row.file != file {
+                        file = row.file.clone();
+                        ui.label("");
+                        ui.strong(file_name(&row.file)).on_hover_text(&row.file);
+                        ui.end_row();
+                    }
+                    ui.monospace(format!("{:>4}", row.line));
+                    // The line, cut to leave room for its values; whole on hover.
+                    let short: String = if row.text.chars().count() > CODE_CHARS {
+                        row.text.chars().take(CODE_CHARS - 1).chain(['…']).collect()
+                    } else {
+                        row.text.clone()
+                    };
+                    ui.monospace(short).on_hover_text(&row.text);
+                    ui.label(
+                        egui::RichText::new(&row.values)
+                            .monospace()
+                            .color(egui::Color32::LIGHT_GREEN),
+                    );
+                    ui.end_row();
+                }
+            });
+        };
+        egui::CollapsingHeader::new(format!("Fragment shader {}", file_name(&f.fragment.path)))
+            .default_open(true)
+            .show(ui, |ui| listing(ui, Stage::Fragment, "inspector.fragment"));
+        egui::CollapsingHeader::new("Inputs at the pixel")
+            .default_open(true)
+            .show(ui, |ui| {
+                egui::Grid::new("inspector.inputs").num_columns(2).show(ui, |ui| {
+                    for n in &f.inputs {
+                        ui.monospace(&n.name);
+                        ui.monospace(numbers(&n.value));
+                        ui.end_row();
+                    }
+                });
+            });
+        egui::CollapsingHeader::new(format!("Vertex shader {} at the corners", file_name(&f.vertex.path)))
+            .default_open(false)
+            .show(ui, |ui| {
+                egui::Grid::new("inspector.corners")
+                    .num_columns(4)
+                    .striped(true)
+                    .show(ui, |ui| {
+                        ui.label("");
+                        for c in &f.corners {
+                            ui.strong(format!("vertex {}", c.index));
+                        }
+                        ui.end_row();
+                        if let Some(first) = f.corners.first() {
+                            for (k, n) in first.inputs.iter().enumerate() {
+                                ui.monospace(format!("in {}", n.name));
+                                for c in &f.corners {
+                                    ui.monospace(numbers(&c.inputs[k].value));
+                                }
+                                ui.end_row();
+                            }
+                            for (k, n) in first.outputs.iter().enumerate() {
+                                ui.monospace(format!("out {}", n.name));
+                                for c in &f.corners {
+                                    ui.monospace(numbers(&c.outputs[k].value));
+                                }
+                                ui.end_row();
+                            }
+                        }
+                    });
+                ui.add_space(6.0);
+                listing(ui, Stage::Vertex, "inspector.vertex");
+            });
+    });
+}
+
+/// Characters of a shader line shown beside its values.
+const CODE_CHARS: usize = 28;
+
+fn file_name(path: &str) -> &str {
+    path.rsplit(['/', '\\']).next().unwrap_or(path)
+}
+
+fn numbers(v: &[f64]) -> String {
+    let one = |x: f64| {
+        let s = format!("{x:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
+        if s == "-0" {
+            "0".into()
+        } else {
+            s
+        }
+    };
+    match v {
+        [x] => one(*x),
+        _ => format!("({})", v.iter().map(|x| one(*x)).collect::<Vec<_>>().join(", ")),
+    }
+}
+
 /// egui on the window: its input state, context and one renderer per target format.
 pub struct Panel {
     /// Whether it is shown (F1).
     pub shown: bool,
+    /// Whether the inspector is shown (F2): egui then runs even with the panel hidden.
+    pub inspecting: bool,
     ctx: egui::Context,
     input: egui_winit::State,
     renderers: Vec<(wgpu::TextureFormat, egui_wgpu::Renderer)>,
@@ -333,6 +512,7 @@ impl Panel {
         );
         Panel {
             shown: false,
+            inspecting: false,
             ctx,
             input,
             renderers: Vec::new(),
@@ -343,7 +523,7 @@ impl Panel {
     /// Feeds a window event to egui while the panel is shown; returns whether egui took it
     /// (a click on the panel, a key typed into one of its fields), so the lab must not.
     pub fn event(&mut self, window: &winit::window::Window, event: &winit::event::WindowEvent) -> bool {
-        if !self.shown {
+        if !self.shown && !self.inspecting {
             return false;
         }
         // Esc while a popup (a colour picker, a drop-down list) is open closes the popup, as
@@ -383,24 +563,69 @@ impl Panel {
         size: (u32, u32),
         lab: &mut dyn Lab,
         status: &Status,
+        inspect: Option<&InspectView>,
     ) -> (bool, Option<Request>) {
-        if !self.shown {
+        self.inspecting = inspect.is_some();
+        if !self.shown && !self.inspecting {
             self.repaint = false;
             return (false, None);
         }
         let raw = self.input.take_egui_input(window);
         let mut result = (false, None);
+        let shown = self.shown;
         let output = self.ctx.run_ui(raw, |ui| {
-            let panel = egui::Panel::right("shaderlab.panel")
-                .exact_size(PANEL_WIDTH)
-                .resizable(false)
-                // egui draws the line with the parent's painter at the position the panel had
-                // while it slid in, and the window draws only a frame or two after a change:
-                // it stayed behind as a stray line across the widgets. The panel's own
-                // background marks its edge.
-                .show_separator_line(false)
-                .show(ui, |ui| contents(ui, lab, status));
-            result = panel.inner;
+            if shown {
+                let panel = egui::Panel::right("shaderlab.panel")
+                    .exact_size(PANEL_WIDTH)
+                    .resizable(false)
+                    // egui draws the line with the parent's painter at the position the panel had
+                    // while it slid in, and the window draws only a frame or two after a change:
+                    // it stayed behind as a stray line across the widgets. The panel's own
+                    // background marks its edge.
+                    .show_separator_line(false)
+                    .show(ui, |ui| contents(ui, lab, status));
+                result = panel.inner;
+            }
+            if let Some(view) = inspect {
+                // Beside the pixel, not over it: on the side of the window it is not on.
+                let ppp = ui.ctx().pixels_per_point();
+                let left_half = view.pixel.is_some_and(|(x, _)| (x as f32) < size.0 as f32 * 0.5);
+                let panel = if left_half {
+                    egui::Panel::right("shaderlab.inspector")
+                } else {
+                    egui::Panel::left("shaderlab.inspector")
+                };
+                let width = (size.0 as f32 / ppp * 0.62).clamp(240.0, INSPECTOR_WIDTH);
+                panel
+                    .exact_size(width)
+                    .resizable(false)
+                    .show_separator_line(false)
+                    .show(ui, |ui| inspector(ui, view));
+                if let Some((x, y)) = view.pixel {
+                    // A frame around the inspected pixel.
+                    let painter = ui.ctx().layer_painter(egui::LayerId::new(
+                        egui::Order::Foreground,
+                        egui::Id::unique("shaderlab.inspector.marker"),
+                    ));
+                    let (px, py) = (x as f32 / ppp, y as f32 / ppp);
+                    let rect = egui::Rect::from_min_max(
+                        egui::pos2(px - 4.0, py - 4.0),
+                        egui::pos2(px + 1.0 / ppp + 4.0, py + 1.0 / ppp + 4.0),
+                    );
+                    painter.rect_stroke(
+                        rect,
+                        0.0,
+                        egui::Stroke::new(3.0, egui::Color32::BLACK),
+                        egui::StrokeKind::Outside,
+                    );
+                    painter.rect_stroke(
+                        rect,
+                        0.0,
+                        egui::Stroke::new(1.5, egui::Color32::YELLOW),
+                        egui::StrokeKind::Outside,
+                    );
+                }
+            }
         });
         // egui animates (a header opening) over frames it asks for; the window draws them.
         self.repaint = output

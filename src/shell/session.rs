@@ -57,7 +57,26 @@ pub struct Session {
     buttons: u32,
     cursor: (i32, i32),
     shader_error: Option<String>,
+    /// Bumped whenever what the lab draws may have changed (input, parameters, reload, time).
+    version: u64,
+    inspect: Inspect,
 }
+
+/// The pixel inspector's state: whether clicks pick a pixel (F2 in the window, the page's
+/// inspect toggle), the pixel picked, and the state of the lab its last inspection was of.
+#[derive(Clone, Debug, Default)]
+struct Inspect {
+    on: bool,
+    pixel: Option<(u32, u32)>,
+    /// The session's version the last capture was taken at.
+    taken: Option<u64>,
+    /// Where the left button went down in inspect mode: a click there picks the pixel, a
+    /// drag still turns the object.
+    press: Option<(i32, i32)>,
+}
+
+/// How far (in pixels) the mouse may move between press and release for a click.
+const CLICK_SLOP: i32 = 2;
 
 /// Frames drawn after a change: two, as a double-buffered window needs both its buffers new.
 const FRAMES_AFTER_A_CHANGE: u32 = 2;
@@ -75,6 +94,8 @@ impl Session {
             buttons: 0,
             cursor: (0, 0),
             shader_error: None,
+            version: 0,
+            inspect: Inspect::default(),
         }
     }
 
@@ -117,6 +138,9 @@ impl Session {
 
     /// Advances an animated lab's `time` to the clock at `now`.
     pub fn tick(&mut self, now: f64) {
+        if self.animated() {
+            self.version += 1;
+        }
         self.clock.tick(self.lab.as_mut(), now);
     }
 
@@ -135,6 +159,12 @@ impl Session {
         self.dirty = self.dirty.max(FRAMES_AFTER_A_CHANGE);
     }
 
+    /// The lab's state changed (a parameter, input, a reload): draw again, and inspect again.
+    pub fn touched(&mut self) {
+        self.changed();
+        self.version += 1;
+    }
+
     /// A frame was drawn.
     pub fn drawn(&mut self) {
         self.dirty = self.dirty.saturating_sub(1);
@@ -146,7 +176,7 @@ impl Session {
     /// whether the session took it (the page then keeps the browser from scrolling).
     pub fn key(&mut self, key: &str, now: f64) -> bool {
         if key == " " && self.clock.toggle(self.lab.as_ref(), now) {
-            self.changed();
+            self.touched();
             return true;
         }
         let special = match key {
@@ -176,6 +206,16 @@ impl Session {
     /// its title) changed.
     pub fn button(&mut self, button: Button, down: bool) -> bool {
         let (x, y) = self.cursor;
+        if self.inspect.on && button == Button::Left {
+            if down {
+                self.inspect.press = Some((x, y));
+            } else if let Some((px, py)) = self.inspect.press.take() {
+                // A click (not a drag) picks the pixel under the cursor.
+                if (x - px).abs() <= CLICK_SLOP && (y - py).abs() <= CLICK_SLOP && x >= 0 && y >= 0 {
+                    self.inspect_pixel(Some((x as u32, y as u32)));
+                }
+            }
+        }
         if down {
             self.buttons |= button.bit();
         } else {
@@ -198,7 +238,7 @@ impl Session {
 
     /// Hands `input` to the lab; returns whether its state (and so its title) changed.
     pub fn input(&mut self, input: Input) -> bool {
-        self.changed();
+        self.touched();
         self.lab.input(input)
     }
 
@@ -211,7 +251,7 @@ impl Session {
         if result.is_err() {
             *p = before;
         } else {
-            self.changed();
+            self.touched();
         }
         result
     }
@@ -230,7 +270,7 @@ impl Session {
     /// Compiles the lab's shaders again (live reload, an edit on the page); a failure keeps the
     /// last good pipelines and stands as [`Session::shader_error`] until a reload succeeds.
     pub fn reload(&mut self, cx: &BuildContext) -> Result<()> {
-        self.changed();
+        self.touched();
         match self.lab.reload(cx) {
             Ok(()) => {
                 self.shader_error = None;
@@ -241,6 +281,45 @@ impl Session {
                 Err(e)
             }
         }
+    }
+
+    /// Turns inspect mode on or off (F2): on, a click picks the pixel to inspect.
+    pub fn toggle_inspect(&mut self) {
+        self.inspect.on = !self.inspect.on;
+        self.inspect.press = None;
+        self.changed();
+    }
+
+    /// Whether inspect mode is on.
+    pub fn inspecting(&self) -> bool {
+        self.inspect.on
+    }
+
+    /// The pixel inspected, if one was picked (it stays while inspect mode is on).
+    pub fn inspected(&self) -> Option<(u32, u32)> {
+        self.inspect.pixel.filter(|_| self.inspect.on)
+    }
+
+    /// Picks the pixel to inspect (or none), turning inspect mode on for a pixel.
+    pub fn inspect_pixel(&mut self, pixel: Option<(u32, u32)>) {
+        if pixel.is_some() {
+            self.inspect.on = true;
+        }
+        self.inspect.pixel = pixel;
+        self.inspect.taken = None;
+        self.touched();
+    }
+
+    /// The pixel to inspect when the lab changed since its last inspection was captured:
+    /// the next frame should be drawn with its draws written down.
+    pub fn inspection_due(&self) -> Option<(u32, u32)> {
+        let pixel = self.inspected()?;
+        (self.inspect.taken != Some(self.version)).then_some(pixel)
+    }
+
+    /// The frame about to be drawn is the inspection's capture.
+    pub fn inspection_taken(&mut self) {
+        self.inspect.taken = Some(self.version);
     }
 
     /// Records the lab's frame; returns an error to show once (the frame's own, or one the lab

@@ -364,7 +364,7 @@ impl WebApp {
     /// Something on the page changed what is shown (a control, a resize): draw again.
     pub fn changed(&mut self) {
         if let Some(open) = self.open.as_mut() {
-            open.changed();
+            open.touched();
         }
     }
 

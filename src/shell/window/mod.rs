@@ -20,9 +20,11 @@
 //! `SHADERLAB_TEST_LOG=1` writes the window's own signals to stderr, so that a test waits for
 //! the program instead of for a time a busy machine can exceed: `shaderlab-test: frame N` after
 //! each frame is shown, `shaderlab-test: sync` when the key F11 arrives (every event sent before
-//! it has then been handled), and `shaderlab-test: idle` when the window has nothing more to
-//! draw after one of those.
+//! it has then been handled), `shaderlab-test: idle` when the window has nothing more to
+//! draw after one of those, and `shaderlab-test: inspected X,Y rgba(R, G, B, A)` when F2's
+//! inspector has a new result.
 
+mod inspector;
 mod screen;
 
 use std::path::PathBuf;
@@ -253,6 +255,8 @@ struct WindowState {
     stuck: Option<String>,
     /// `SHADERLAB_TEST_LOG`'s signals.
     test_log: Option<TestLog>,
+    /// F2's pixel inspector.
+    inspector: inspector::Inspector,
 }
 
 /// The window's signals for tests (see the module docs).
@@ -397,6 +401,7 @@ impl App {
             panel,
             stuck: None,
             test_log: std::env::var_os("SHADERLAB_TEST_LOG").map(|_| TestLog::default()),
+            inspector: inspector::Inspector::default(),
         })
     }
 }
@@ -488,7 +493,7 @@ impl WindowState {
     fn resize(&mut self, size: PhysicalSize<u32>) {
         self.minimised = !self.screen.resize(&self.gpu, size);
         if !self.minimised {
-            self.session.changed();
+            self.session.touched();
         }
     }
 
@@ -595,7 +600,8 @@ impl WindowState {
         } else {
             0.9 * self.pacing.frame_ms + 0.1 * ms
         };
-        if !self.panel.shown {
+        if !self.panel.shown && !self.session.inspecting() {
+            self.panel.inspecting = false;
             return;
         }
         let draw_ms = self.pacing.started.elapsed().as_secs_f64() * 1000.0;
@@ -619,6 +625,11 @@ impl WindowState {
             error: error.as_deref(),
             recording: self.capture.as_ref().map(super::capture::Capture::frames),
         };
+        let inspect = self.session.inspecting().then(|| super::panel::InspectView {
+            pixel: self.session.inspected(),
+            result: self.inspector.shown.as_ref(),
+            busy: self.inspector.busy,
+        });
         let (changed, request) = self.panel.draw(
             &self.gpu,
             &self.window,
@@ -628,9 +639,10 @@ impl WindowState {
             size,
             self.session.lab_mut(),
             &status,
+            inspect.as_ref(),
         );
         if changed {
-            self.session.changed();
+            self.session.touched();
             self.update_title();
         }
         if self.panel.repaint {
@@ -717,6 +729,8 @@ impl WindowState {
         if self.paused() {
             return Ok(());
         }
+        // A capture whose frame never reached the screen is dropped (it starts again).
+        self.inspector.abandon();
         self.pacing.started = Instant::now();
         // Pace from the previous deadline (no drift), but never plan a burst to catch up.
         let now = Instant::now();
@@ -740,14 +754,16 @@ impl WindowState {
             label: Some("window.frame"),
         });
         let (w, h) = target.size;
-        let error = self.session.render(&mut Frame::new(
-            &self.gpu,
-            &mut encoder,
-            &target.view,
-            &target.depth,
-            w,
-            h,
-        ));
+        // The frame on screen is the inspection's capture when the lab changed since the last.
+        let inspect = self.session.inspection_due().filter(|_| self.inspector.idle());
+        if inspect.is_some() {
+            self.session.inspection_taken();
+        }
+        let frame = Frame::new(&self.gpu, &mut encoder, &target.view, &target.depth, w, h);
+        let error = self.session.render(&mut match inspect {
+            Some(_) => frame.logged(self.inspector.begin()),
+            None => frame,
+        });
         if let Some(e) = error {
             // A lab may rebuild a program while drawing (a shading model chosen by key); a
             // broken shader file leaves the previous one in place, and the error is shown once.
@@ -756,7 +772,11 @@ impl WindowState {
         }
         let view = target.view.clone();
         self.draw_panel(&mut encoder, &view, target.format, target.size);
-        match self.screen.present(&self.gpu, target, encoder)? {
+        let shown = self.screen.present(&self.gpu, target, encoder)?;
+        if let Some(pixel) = inspect {
+            self.inspector.submitted(&self.gpu, pixel);
+        }
+        match shown {
             Shown::Yes => {}
             Shown::Again => self.session.changed(),
             Shown::Stuck(why) => {
@@ -810,6 +830,13 @@ impl WindowState {
             Key::Named(NamedKey::Escape) => event_loop.exit(),
             Key::Named(NamedKey::F12) => self.screenshot(),
             Key::Named(NamedKey::F10) => self.toggle_capture(),
+            Key::Named(NamedKey::F2) => {
+                self.session.toggle_inspect();
+                if !self.session.inspecting() {
+                    self.inspector.clear();
+                }
+                self.window.request_redraw();
+            }
             Key::Named(NamedKey::F1) => {
                 self.panel.shown = !self.panel.shown;
                 self.session.changed();
@@ -969,6 +996,19 @@ impl ApplicationHandler<Wake> for App {
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         let Some(state) = self.state.as_mut() else { return };
+        if state.inspector.busy && state.inspector.poll(&state.gpu, state.session.name()) {
+            // A new inspection to show.
+            state.session.changed();
+            if let (Some(log), Some(shown)) = (state.test_log.as_mut(), &state.inspector.shown) {
+                log.say(&match shown {
+                    Ok(i) => {
+                        let p = i.replayed.pixel;
+                        format!("inspected {},{} rgba({}, {}, {}, {})", i.x, i.y, p[0], p[1], p[2], p[3])
+                    }
+                    Err(e) => format!("inspected error: {}", e.lines().next().unwrap_or("")),
+                });
+            }
+        }
         let drawing = !state.paused() && (state.pacing.unpaced || state.session.wants_frame());
         if let Some(log) = state.test_log.as_mut().filter(|l| l.busy && !drawing) {
             log.busy = false;
@@ -1002,6 +1042,15 @@ impl ApplicationHandler<Wake> for App {
         } else {
             // Input still wakes the loop at once; only drawing waits for its turn.
             event_loop.set_control_flow(ControlFlow::WaitUntil(state.pacing.next));
+        }
+        if state.inspector.busy {
+            // An inspection in flight is looked at every few milliseconds until it is done.
+            let soon = Instant::now() + Duration::from_millis(8);
+            match event_loop.control_flow() {
+                ControlFlow::Wait => event_loop.set_control_flow(ControlFlow::WaitUntil(soon)),
+                ControlFlow::WaitUntil(t) if t > soon => event_loop.set_control_flow(ControlFlow::WaitUntil(soon)),
+                _ => {}
+            }
         }
     }
 }

@@ -1,0 +1,104 @@
+//! The window's pixel inspector (F2, then a click): the frame on screen is drawn with its
+//! draws written down, their buffers are read back while the next frames are drawn, and the
+//! pixel is replayed on a worker thread, so inspecting never stalls the frame loop. A change
+//! to the lab (a parameter, a key, a saved shader, an animated lab's clock) inspects again.
+
+use std::sync::mpsc;
+
+use crate::debug::{Inspection, Pending};
+use crate::gpu::Gpu;
+use crate::render::DrawLog;
+
+/// The inspector's work in flight and its last result.
+#[derive(Default)]
+pub struct Inspector {
+    /// The draws of the frame being captured (between recording and submission).
+    log: Option<DrawLog>,
+    /// The buffers being read back, and the pixel.
+    pending: Option<(Pending, (u32, u32))>,
+    /// The replay running on a worker thread.
+    worker: Option<mpsc::Receiver<Result<Inspection, String>>>,
+    /// The last inspection (or why it failed), for the panel.
+    pub shown: Option<Result<Inspection, String>>,
+    /// Whether a capture or replay is under way.
+    pub busy: bool,
+}
+
+impl Inspector {
+    /// Whether a new capture can start (none is in flight).
+    pub fn idle(&self) -> bool {
+        self.log.is_none() && self.pending.is_none() && self.worker.is_none()
+    }
+
+    /// A log for the frame about to be recorded.
+    pub fn begin(&mut self) -> &DrawLog {
+        self.busy = true;
+        self.log.insert(DrawLog::new())
+    }
+
+    /// The frame was submitted: reads the buffers of its draws back for `pixel`.
+    pub fn submitted(&mut self, gpu: &Gpu, pixel: (u32, u32)) {
+        if let Some(log) = self.log.take() {
+            self.pending = Some((Pending::start(gpu, &log), pixel));
+        }
+    }
+
+    /// Moves the work on without blocking: a read-back that finished goes to a worker thread,
+    /// a finished replay becomes [`Inspector::shown`]. Returns whether the result changed.
+    pub fn poll(&mut self, gpu: &Gpu, lab: &'static str) -> bool {
+        if let Some((pending, _)) = &self.pending {
+            let _ = gpu.device.poll(wgpu::PollType::Poll);
+            if pending.ready() {
+                let (pending, (x, y)) = self.pending.take().expect("checked above");
+                match pending.finish() {
+                    Ok(captured) => {
+                        let (tx, rx) = mpsc::channel();
+                        let spawned = std::thread::Builder::new()
+                            .name("shaderlab-inspect".into())
+                            .spawn(move || {
+                                let result = Inspection::new(lab, &captured, x, y).map_err(|e| e.to_string());
+                                let _ = tx.send(result);
+                            });
+                        match spawned {
+                            Ok(_) => self.worker = Some(rx),
+                            Err(e) => return self.done(Err(format!("cannot start the inspector's thread: {e}"))),
+                        }
+                    }
+                    Err(e) => return self.done(Err(e.to_string())),
+                }
+            }
+        }
+        if let Some(rx) = &self.worker {
+            match rx.try_recv() {
+                Ok(result) => {
+                    self.worker = None;
+                    return self.done(result);
+                }
+                Err(mpsc::TryRecvError::Empty) => {}
+                Err(mpsc::TryRecvError::Disconnected) => {
+                    self.worker = None;
+                    return self.done(Err("the inspector's thread ended without a result".into()));
+                }
+            }
+        }
+        false
+    }
+
+    fn done(&mut self, result: Result<Inspection, String>) -> bool {
+        self.busy = false;
+        self.shown = Some(result);
+        true
+    }
+
+    /// Drops a capture whose frame was recorded but never submitted.
+    pub fn abandon(&mut self) {
+        if self.log.take().is_some() && self.pending.is_none() && self.worker.is_none() {
+            self.busy = false;
+        }
+    }
+
+    /// Forgets the result (inspect mode turned off).
+    pub fn clear(&mut self) {
+        self.shown = None;
+    }
+}
