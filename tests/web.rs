@@ -477,3 +477,87 @@ fn a_pair_loaded_from_disk_draws_like_the_built_in_one() {
         "the same texts draw the same picture"
     );
 }
+
+/// Pixels inspected per case in the browser.
+const INSPECTED: usize = 12;
+
+/// The page's inspector agrees with the page: for each case, pixels on the drawn surface (a
+/// fixed stride through the native picture's drawn pixels) inspected in the page report the
+/// colour the page itself drew there. The replay follows lavapipe's rules (where rasterisers
+/// may differ: the sub-pixel grid, texture filtering weights and level of detail), so
+/// SwiftShader's pixels are asked to agree within 2/255 for [`BROWSER_AGREEMENT`] of all of
+/// them, and for [`CASE_AGREEMENT`] of each case's.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn the_pages_inspector_replays_what_the_page_draws() {
+    let server = serve(site());
+    let mut table = Vec::new();
+    let mut failures = Vec::new();
+    let (mut agreed, mut inspected) = (0, 0);
+    for backend in ["webgl2", "webgpu"] {
+        for (name, sets) in CASES {
+            let sets = sets_of(name, sets);
+            let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+            let want = native(name, &sets);
+            let background = *want.get_pixel(0, 0);
+            let drawn: Vec<(u32, u32)> = want
+                .enumerate_pixels()
+                .filter(|(_, _, p)| **p != background)
+                .map(|(x, y, _)| (x, y))
+                .collect();
+            if drawn.is_empty() {
+                failures.push(format!("{name}: nothing drawn natively"));
+                continue;
+            }
+            let pixels: Vec<(u32, u32)> = (0..INSPECTED).map(|k| drawn[(k * 7919 + 13) % drawn.len()]).collect();
+            let list: Vec<String> = pixels.iter().map(|(x, y)| format!("{x},{y}")).collect();
+            let q = format!("{}&inspect={}", query(name, &sets), encode(&list.join(";")));
+            let page = open(&server, backend, &q);
+            let Some(web) = page.image("capture") else {
+                if backend == "webgpu" {
+                    table.push(format!("| `{name}` | {backend} | no adapter |"));
+                    break;
+                }
+                failures.push(format!("{name} {backend}: the page drew nothing"));
+                continue;
+            };
+            let report = page.get("capture-inspection");
+            let mut agree = 0;
+            for line in report.lines() {
+                let (at, rgba) = line.split_once(' ').unwrap_or((line, ""));
+                let (x, y) = at.split_once(',').expect("x,y");
+                let (x, y): (u32, u32) = (x.parse().expect("x"), y.parse().expect("y"));
+                let v: Vec<i32> = rgba.split(',').filter_map(|c| c.parse().ok()).collect();
+                let shown = web.get_pixel(x, y).0;
+                let ok = v.len() == 4 && (0..3).all(|k| (v[k] - i32::from(shown[k])).abs() <= 2);
+                if ok {
+                    agree += 1;
+                } else {
+                    println!("{name} {backend} {x},{y}: inspector `{rgba}`, page {shown:?}");
+                }
+            }
+            let share = agree as f64 / INSPECTED as f64;
+            (agreed, inspected) = (agreed + agree, inspected + INSPECTED);
+            table.push(format!("| `{name}` | {backend} | {agree}/{INSPECTED} |"));
+            if share < CASE_AGREEMENT {
+                failures.push(format!("{name} {backend}: {agree} of {INSPECTED} agree:\n{report}"));
+            }
+        }
+    }
+    println!(
+        "The page's inspector against the page's own picture (within 2/255):\n| lab | API | pixels |\n|---|---|---|\n{}",
+        table.join("\n")
+    );
+    let share = agreed as f64 / inspected.max(1) as f64;
+    println!("{agreed} of {inspected} agree ({:.1} %)", 100.0 * share);
+    if share < BROWSER_AGREEMENT {
+        failures.push(format!("{agreed} of {inspected} agree, fewer than {BROWSER_AGREEMENT}"));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The share of all inspected pixels that must agree with SwiftShader's picture.
+const BROWSER_AGREEMENT: f64 = 0.9;
+/// The share of one case's inspected pixels that must agree (a cube map's seams or a
+/// checker's texel edges fall differently on SwiftShader for a few).
+const CASE_AGREEMENT: f64 = 0.7;

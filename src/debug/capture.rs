@@ -1,9 +1,9 @@
 //! A frame's draws brought to the CPU: the [`DrawLog`] of a frame with every buffer it drew
-//! from read back (vertices, indices, uniform blocks) and every texture's texels and sampler
-//! state, as plain data that another thread can replay.
+//! from read back (vertices, uniform blocks), the indices and texels as uploaded, and each
+//! sampler's state, as plain data that another thread can replay.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
@@ -77,7 +77,8 @@ pub struct Pending {
     /// Each distinct buffer, its staging copy and its size.
     buffers: Vec<(wgpu::Buffer, wgpu::Buffer, u64)>,
     mapped: Arc<AtomicUsize>,
-    failed: Arc<AtomicBool>,
+    /// Why a buffer could not be mapped, if one could not.
+    failed: Arc<Mutex<Option<String>>>,
 }
 
 impl Pending {
@@ -107,9 +108,6 @@ impl Pending {
         };
         for d in &draws {
             want(&d.vertices);
-            if let Some(i) = &d.indices {
-                want(i);
-            }
             for r in &d.resources {
                 match &r.resource {
                     Resource::Buffer { buffer, .. } | Resource::Block { buffer, .. } => want(buffer),
@@ -119,12 +117,14 @@ impl Pending {
         }
         gpu.queue.submit([encoder.finish()]);
         let mapped = Arc::new(AtomicUsize::new(0));
-        let failed = Arc::new(AtomicBool::new(false));
+        let failed = Arc::new(Mutex::new(None));
         for (_, staging, _) in &buffers {
             let (m, f) = (mapped.clone(), failed.clone());
             staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-                if r.is_err() {
-                    f.store(true, Ordering::SeqCst);
+                if let Err(e) = r {
+                    if let Ok(mut why) = f.lock() {
+                        why.get_or_insert(e.to_string());
+                    }
                 }
                 m.fetch_add(1, Ordering::SeqCst);
             });
@@ -152,10 +152,14 @@ impl Pending {
 
     /// The frame on the CPU, once [`Pending::ready`].
     pub fn finish(self) -> Result<Captured> {
-        if self.failed.load(Ordering::SeqCst) || !self.ready() {
+        let why = self.failed.lock().ok().and_then(|w| w.clone());
+        if why.is_some() || !self.ready() {
             return Err(Error::Wgpu {
                 context: "reading the frame's buffers back for the debugger".into(),
-                message: "a buffer could not be mapped".into(),
+                message: format!(
+                    "a buffer could not be mapped: {}",
+                    why.unwrap_or_else(|| "not mapped yet".into())
+                ),
             });
         }
         let mut bytes: Vec<(wgpu::Buffer, Arc<Vec<u8>>)> = Vec::new();
@@ -204,14 +208,7 @@ impl Pending {
                     Resource::Sampler(s) => samplers.push((binding.binding, s.desc)),
                 }
             }
-            let indices = call.indices.as_ref().map(|b| {
-                let raw = find(b);
-                Arc::new(
-                    raw.chunks_exact(4)
-                        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-                        .collect(),
-                )
-            });
+            let indices = call.indices.clone();
             draws.push(Draw {
                 pass: call.pass,
                 label: call.label.clone(),

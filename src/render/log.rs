@@ -50,8 +50,8 @@ pub struct DrawCall {
     pub stride: u64,
     /// The vertex attributes, by shader location.
     pub attributes: Vec<wgpu::VertexAttribute>,
-    /// The index buffer (32-bit indices), if indexed.
-    pub indices: Option<wgpu::Buffer>,
+    /// The indices, if indexed (kept on the CPU: WebGL2 cannot copy an index buffer).
+    pub indices: Option<std::sync::Arc<Vec<u32>>>,
     /// The vertices (or indices) drawn.
     pub range: Range<u32>,
 }

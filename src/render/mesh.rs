@@ -2,6 +2,7 @@
 //! [`Program`](super::Program) checks them against the reflected vertex inputs.
 
 use std::marker::PhantomData;
+use std::sync::Arc;
 
 use wgpu::util::DeviceExt;
 
@@ -106,10 +107,23 @@ pub fn note_once(message: String) {
     }
 }
 
+/// An index buffer holding `indices`.
+fn index_buffer(gpu: &Gpu, label: &str, indices: &[u32]) -> wgpu::Buffer {
+    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(&format!("{label}.indices")),
+        contents: bytemuck::cast_slice(indices),
+        // COPY_DST: [`ViewOrdered`] rewrites the order of the same triangles.
+        usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
 /// Vertices (and optionally indices) of one type on the GPU.
 pub struct GpuMesh<V: VertexType> {
     vertices: wgpu::Buffer,
     indices: Option<wgpu::Buffer>,
+    /// What `indices` holds, kept on the CPU for the debugger: WebGL2 cannot copy out of an
+    /// index buffer (a buffer bound as `ELEMENT_ARRAY_BUFFER` is bound as nothing else).
+    index_data: Option<Arc<Vec<u32>>>,
     count: u32,
     _vertex: PhantomData<V>,
 }
@@ -140,39 +154,38 @@ impl<V: VertexType> GpuMesh<V> {
             // COPY_SRC: the debugger reads the vertices back.
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_SRC,
         });
+        let index_data = indices.filter(|i| !i.is_empty()).map(|i| Arc::new(i.to_vec()));
         let (indices, count) = match indices {
-            Some(idx) if !idx.is_empty() => (
-                Some(gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(&format!("{label}.indices")),
-                    contents: bytemuck::cast_slice(idx),
-                    // COPY_DST: [`ViewOrdered`] rewrites the order of the same triangles.
-                    usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-                })),
-                idx.len() as u32,
-            ),
+            Some(idx) if !idx.is_empty() => (Some(index_buffer(gpu, label, idx)), idx.len() as u32),
             Some(_) => (None, 0),
             None => (None, vertices.len() as u32),
         };
         GpuMesh {
             vertices: buffer,
             indices,
+            index_data,
             count,
             _vertex: PhantomData,
         }
     }
 
     /// The same vertices drawn through `indices`: the vertex buffer is shared, not copied.
-    pub fn reindexed(&self, gpu: &Gpu, label: &str, indices: &[u32]) -> Self {
-        let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(&format!("{label}.indices")),
-            contents: bytemuck::cast_slice(indices),
-            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-        });
+    pub fn reindexed(&self, gpu: &Gpu, label: &str, indices: Vec<u32>) -> Self {
         GpuMesh {
             vertices: self.vertices.clone(),
-            indices: Some(buffer),
+            indices: Some(index_buffer(gpu, label, &indices)),
             count: indices.len() as u32,
+            index_data: Some(Arc::new(indices)),
             _vertex: PhantomData,
+        }
+    }
+
+    /// Writes `order` (as many indices as the mesh has) over the indices of a mesh made by
+    /// [`GpuMesh::reindexed`] (nothing for a mesh without an index buffer).
+    fn rewrite_indices(&mut self, gpu: &Gpu, order: Vec<u32>) {
+        if let Some(buffer) = &self.indices {
+            gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(&order));
+            self.index_data = Some(Arc::new(order));
         }
     }
 
@@ -186,9 +199,9 @@ impl<V: VertexType> GpuMesh<V> {
         &self.vertices
     }
 
-    /// The index buffer (32-bit), if indexed.
-    pub(crate) fn index_buffer(&self) -> Option<&wgpu::Buffer> {
-        self.indices.as_ref()
+    /// The indices (as uploaded last), if indexed.
+    pub(crate) fn index_data(&self) -> Option<&Arc<Vec<u32>>> {
+        self.index_data.as_ref()
     }
 
     /// Records the draw of `range` of the vertices (or indices).
@@ -627,13 +640,11 @@ impl<V: VertexType> ViewOrdered<V> {
                 .as_ref()
                 .map(|g| g.get_or_init(|| TieGuard::new(&self.positions, &self.indices)));
             let order = facing_first(&self.positions, &self.indices, mvp, outside, guard);
-            match &self.ordered {
-                Some(GpuMesh {
-                    indices: Some(buffer), ..
-                }) => {
-                    gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(&order));
+            match &mut self.ordered {
+                Some(mesh) if mesh.indices.is_some() => {
+                    mesh.rewrite_indices(gpu, order);
                 }
-                _ => self.ordered = Some(self.plain.reindexed(gpu, &self.label, &order)),
+                _ => self.ordered = Some(self.plain.reindexed(gpu, &self.label, order)),
             }
             self.ordered_for = want;
         }

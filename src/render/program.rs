@@ -978,7 +978,7 @@ impl<V: VertexType> Program<V> {
                     vertices: mesh.vertex_buffer().clone(),
                     stride: std::mem::size_of::<V>() as u64,
                     attributes: self.built.stages.attributes.clone(),
-                    indices: mesh.index_buffer().cloned(),
+                    indices: mesh.index_data().cloned(),
                     range: range.clone(),
                 });
             }

@@ -194,6 +194,8 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
         now: 0.0,
         error: None,
         reading: None,
+        inspecting: None,
+        inspection: String::new(),
     })
 }
 
@@ -218,6 +220,10 @@ pub struct WebApp {
     error: Option<String>,
     /// A picture being read back ([`WebApp::read_start`]), and whether it is mapped yet.
     reading: Option<(Offscreen, Rc<RefCell<Option<Result<(), String>>>>)>,
+    /// The inspector's capture being read back, and its pixel.
+    inspecting: Option<(crate::debug::Pending, (u32, u32))>,
+    /// The last inspection as JSON ("" before one).
+    inspection: String,
 }
 
 #[wasm_bindgen]
@@ -297,6 +303,8 @@ impl WebApp {
         }
         self.open = Some(session);
         self.error = None;
+        self.inspecting = None;
+        self.inspection.clear();
         Ok(refused.join("\n"))
     }
 
@@ -359,6 +367,77 @@ impl WebApp {
     /// draws from `requestAnimationFrame` only then).
     pub fn wants_frame(&self) -> bool {
         self.open.as_ref().is_some_and(Session::wants_frame)
+    }
+
+    /// Turns inspect mode on or off (the page's Inspect button, F2); returns whether it is on.
+    /// On, a click on the canvas picks the pixel to inspect ([`Session::button`]).
+    pub fn inspect_toggle(&mut self) -> bool {
+        let Some(open) = self.open.as_mut() else {
+            return false;
+        };
+        open.toggle_inspect();
+        if !open.inspecting() {
+            self.inspection.clear();
+        }
+        open.inspecting()
+    }
+
+    /// Inspects pixel (x, y) of the canvas (a link's `inspect=X,Y`).
+    pub fn inspect_at(&mut self, x: u32, y: u32) {
+        if let Some(open) = self.open.as_mut() {
+            open.inspect_pixel(Some((x, y)));
+        }
+    }
+
+    /// The pixel inspected as `X,Y` (for the link), or "".
+    pub fn inspected(&self) -> String {
+        self.open
+            .as_ref()
+            .and_then(Session::inspected)
+            .map(|(x, y)| format!("{x},{y}"))
+            .unwrap_or_default()
+    }
+
+    /// The latest inspection of the inspected pixel as JSON ([`crate::debug::Inspection::json`]:
+    /// `pixel`, `covered`, `listing`, `trace`, ...; `{"error": ...}` when it could not be
+    /// replayed), "" before the first. Call it every animation frame while inspecting: it
+    /// takes a new capture when the lab changed since the last one, and moves the capture's
+    /// read-back on (a browser cannot wait for it).
+    ///
+    /// The capture is the lab's frame recorded again offscreen at the canvas's size, with its
+    /// draws written down, rather than the frame on the canvas: the same state draws the same
+    /// picture, and a page whose canvas cannot be presented (headless Chromium's WebGPU) can
+    /// still be inspected.
+    pub fn inspection(&mut self) -> String {
+        let _ = self.gpu.device.poll(wgpu::PollType::Poll);
+        if self.inspecting.is_none() {
+            if let Some(open) = self.open.as_mut() {
+                if let Some(pixel) = open.inspection_due() {
+                    open.inspection_taken();
+                    let (w, h) = (self.config.width, self.config.height);
+                    let target = Offscreen::with_format(&self.gpu, w, h, self.config.format);
+                    let log = crate::render::DrawLog::new();
+                    match crate::lab::draw::record(&self.gpu, open.lab_mut(), &target, Some(&log)) {
+                        // The frame itself need not run: its buffers are copied after the
+                        // uniform writes it queued.
+                        Ok(_) => self.inspecting = Some((crate::debug::Pending::start(&self.gpu, &log), pixel)),
+                        Err(e) => self.inspection = format!("{{\"error\":{}}}", json(&e.to_string())),
+                    }
+                }
+            }
+        }
+        if self.inspecting.as_ref().is_some_and(|(p, _)| p.ready()) {
+            let (pending, (x, y)) = self.inspecting.take().expect("checked above");
+            let name = self.lab();
+            self.inspection = match pending
+                .finish()
+                .and_then(|captured| crate::debug::Inspection::new(&name, &captured, x, y))
+            {
+                Ok(i) => i.json(),
+                Err(e) => format!("{{\"error\":{}}}", json(&e.to_string())),
+            };
+        }
+        self.inspection.clone()
     }
 
     /// Something on the page changed what is shown (a control, a resize): draw again.
