@@ -172,6 +172,9 @@ fn states() -> Vec<(String, Box<dyn Lab>)> {
         ("morph", &[("time", "1.5")]),
         ("texparams", &[("min", "linear_mipmap_linear"), ("mag", "linear")]),
         ("texparams", &[("min", "nearest"), ("wrap_s", "clamp_to_edge")]),
+        // Anisotropic filtering: llvmpipe's elliptical weighted average.
+        ("texparams", &[("aniso", "16")]),
+        ("texparams", &[("aniso", "4"), ("wrap_t", "clamp_to_edge")]),
         ("specular_strip", &[("forward", "5"), ("yaw", "20"), ("pitch", "-10")]),
     ];
     for (name, set) in extra {

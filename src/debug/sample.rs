@@ -2,8 +2,9 @@
 //! computed the way the reference rasteriser (Mesa's llvmpipe, behind lavapipe) computes them:
 //! one level of detail per 2×2 quad from the top-left pixel's derivatives, the exact
 //! `floor(log2 ρ + ½)` for nearest-mipmap selection and its piecewise-linear `log2` otherwise,
-//! 8-bit fixed-point weights for RGBA8 2D textures under repeat or clamp-to-edge, and float
-//! weights with seamless edges for cube maps. The Vulkan rules leave some of this to the
+//! 8-bit fixed-point weights for RGBA8 2D textures under repeat or clamp-to-edge, float
+//! weights with seamless edges for cube maps, and an elliptical weighted average for
+//! anisotropic samplers. The Vulkan rules leave some of this to the
 //! implementation; where another GPU differs, it differs by a texel-edge tie or a rounding.
 //! `docs/debugger.md` lists the sources.
 
@@ -164,6 +165,9 @@ fn levels(view: &View, mip: Option<wgpu::MipmapFilterMode>, level: &Level) -> (u
 pub fn sample(view: &View, desc: &SamplerDesc, coord: [f32; 3], lod: Lod) -> [f32; 4] {
     if view.cube {
         return sample_cube(view, desc, coord, lod);
+    }
+    if desc.anisotropy > 1 {
+        return sample_aniso(view, desc, coord, lod);
     }
     let mip = mip_mode(view, desc);
     let (w0, h0) = view.level_size(view.base);
@@ -477,4 +481,119 @@ fn seamless(
         }
     }
     out
+}
+
+/// `cvttps2dq`: truncation, with the "integer indefinite" `i32::MIN` for NaN and out of range.
+fn itrunc(x: f32) -> i32 {
+    if x.is_nan() || x >= 2_147_483_648.0 || x < -2_147_483_648.0 {
+        i32::MIN
+    } else {
+        x as i32
+    }
+}
+
+/// The anisotropic filter's weights: `expf(−2 r²)` for r² = i / 1023, printed to six decimals
+/// (Mesa's `aniso_filter_table`, which was generated that way).
+fn aniso_weights() -> &'static [f32; 1024] {
+    static TABLE: std::sync::OnceLock<[f32; 1024]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        std::array::from_fn(|i| {
+            let w = (-2.0f32 * (i as f32 / 1023.0)).exp();
+            format!("{w:.6}").parse().unwrap_or(w)
+        })
+    })
+}
+
+/// Anisotropic filtering as llvmpipe does it (`lp_build_sample_aniso`, Mesa 22.3): an
+/// elliptical weighted average (Heckbert's EWA) of the nearest texels of one level, weighted
+/// by a Gaussian of the pixel's footprint, the level chosen from the footprint's *shorter*
+/// axis and truncated. Float arithmetic in the order llvmpipe's code does it (no fused
+/// operations), so that the stored byte is the GPU's.
+fn sample_aniso(view: &View, desc: &SamplerDesc, coord: [f32; 3], lod: Lod) -> [f32; 4] {
+    let (w0, h0) = view.level_size(0);
+    let (fw, fh) = (w0 as f32, h0 as f32);
+    // Derivatives of (s, t) across the quad: (ds/dx, ds/dy, dt/dx, dt/dy).
+    let (dx, dy, explicit, bias) = match lod {
+        Lod::Implicit { coarse, bias, .. } => (coarse.0, coarse.1, None, bias),
+        Lod::Level(l) => ([0.0; 3], [0.0; 3], Some(l), 0.0),
+    };
+    let d = [dx[0], dy[0], dx[1], dy[1]];
+    let lod = match explicit {
+        Some(l) => l,
+        None => {
+            // lp_build_pmin: the squared length of the shorter axis (its clamp by the
+            // anisotropy compares the shorter axis with itself, so it never applies).
+            let base = [fw, fw, fh, fh];
+            let sq: [f32; 4] = std::array::from_fn(|k| {
+                let v = d[k] * base[k];
+                v * v
+            });
+            let (px2, py2) = (sq[0] + sq[2], sq[1] + sq[3]);
+            let pmin2 = px2.min(py2);
+            0.5f32 * fast_log2(pmin2) + bias
+        }
+    };
+    let (first, last) = (view.base as i32, (view.base + view.count - 1) as i32);
+    let level = (first.saturating_add(itrunc(lod))).clamp(first, last) as u32;
+    let scaling = 1.0f32 / (1u32 << level.min(31)) as f32;
+    let (lw, lh) = view.level_size(level);
+    let (dim_w, dim_h) = (lw as f32, lh as f32);
+    let base = [fw, fw, fh, fh];
+    let e: [f32; 4] = std::array::from_fn(|k| d[k] * base[k] * scaling);
+    // The ellipse A·u² + B·u·v + C·v² = F.
+    let a = (e[2] * e[2] + e[3] * e[3]) + 1.0;
+    let b = (e[0] * e[2] + e[1] * e[3]) * -2.0;
+    let c = (e[0] * e[0] + e[1] * e[1]) + 1.0;
+    let f = a * c - (b * b) / 4.0;
+    let det = (0.0 - b * b) + (a * c) * 4.0;
+    let box_u = (2.0 / det) * ((det * c) * f).sqrt();
+    let box_v = (2.0 / det) * ((a * det) * f).sqrt();
+    let scale = 1023.0 / f;
+    let (a, b, c) = (a * scale, b * scale, c * scale);
+    let ddq = a * 2.0;
+    let tex_u = coord[0] * (fw * scaling) + -0.5;
+    let tex_v = coord[1] * (fh * scaling) + -0.5;
+    let u0 = itrunc((tex_u - box_u).floor());
+    let u1 = itrunc((tex_u + box_u).ceil());
+    let v0 = itrunc((tex_v - box_v).floor());
+    let v1 = itrunc((tex_v + box_v).ceil());
+    let big_u = u0 as f32 - tex_u;
+    let dq_base = (big_u * 2.0 + 1.0) * a;
+    let q_base = (big_u * big_u) * a;
+    let table = aniso_weights();
+    let mut color = [0.0f32; 4];
+    let mut den = 0.0f32;
+    // Bounded like the GPU's loop (a degenerate footprint spans the texture at most).
+    let span = |lo: i32, hi: i32| (hi as i64 - lo as i64).clamp(-1, 1 << 14);
+    let (nu, nv) = (span(u0, u1), span(v0, v1));
+    for j in 0..=nv {
+        let v = (v0 as i64 + j) as i32;
+        let big_v = v as f32 - tex_v;
+        let mut dq = big_v * b + dq_base;
+        let mut q = (c * big_v + b * big_u) * big_v + q_base;
+        for i in 0..=nu {
+            let u = (u0 as i64 + i) as i32;
+            let qi = itrunc(q);
+            if qi <= 0x3ff {
+                let weight = table[(qi.max(0) & 0x3ff) as usize];
+                if weight != 0.0 {
+                    let s = u as f32 / dim_w;
+                    let t = v as f32 / dim_h;
+                    let x = wrap_nearest(desc.wrap[0], s, lw);
+                    let y = wrap_nearest(desc.wrap[1], t, lh);
+                    let texel = unorm(view.texel(level, 0, x, y));
+                    for k in 0..4 {
+                        color[k] += texel[k] * weight;
+                    }
+                    den += weight;
+                }
+            }
+            q += dq;
+            dq += ddq;
+        }
+    }
+    if den == 0.0 {
+        return filter_float(view, desc.wrap, wgpu::FilterMode::Linear, level, 0, coord[0], coord[1]);
+    }
+    color.map(|v| v / den)
 }
