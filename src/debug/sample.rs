@@ -485,10 +485,11 @@ fn seamless(
 
 /// `cvttps2dq`: truncation, with the "integer indefinite" `i32::MIN` for NaN and out of range.
 fn itrunc(x: f32) -> i32 {
-    if x.is_nan() || x >= 2_147_483_648.0 || x < -2_147_483_648.0 {
-        i32::MIN
-    } else {
+    // NaN is outside every range.
+    if (-2_147_483_648.0..2_147_483_648.0).contains(&x) {
         x as i32
+    } else {
+        i32::MIN
     }
 }
 
