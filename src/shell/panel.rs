@@ -387,6 +387,10 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
     ui.separator();
     egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
         let listing = |ui: &mut egui::Ui, stage: Stage, id: &str| {
+            // A line gets a little over half the width, its values the rest.
+            let font = egui::TextStyle::Monospace.resolve(ui.style());
+            let glyph = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
+            let chars = ((ui.available_width() * 0.55 / glyph) as usize).clamp(MIN_CODE_CHARS, 96);
             egui::Grid::new(id).num_columns(3).striped(true).show(ui, |ui| {
                 let mut file = String::new();
                 for row in i.rows(stage) {
@@ -398,8 +402,9 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
                     }
                     ui.monospace(format!("{:>4}", row.line));
                     // The line, cut to leave room for its values; whole on hover.
-                    let short: String = if row.text.chars().count() > CODE_CHARS {
-                        row.text.chars().take(CODE_CHARS - 1).chain(['…']).collect()
+                    let short: String = if row.text.chars().count() > chars {
+                        let cut: String = row.text.chars().take(chars - 1).collect();
+                        format!("{}…", cut.trim_end())
                     } else {
                         row.text.clone()
                     };
@@ -462,8 +467,8 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
     });
 }
 
-/// Characters of a shader line shown beside its values.
-const CODE_CHARS: usize = 28;
+/// Characters of a shader line shown beside its values, at least.
+const MIN_CODE_CHARS: usize = 28;
 
 fn file_name(path: &str) -> &str {
     path.rsplit(['/', '\\']).next().unwrap_or(path)
