@@ -66,6 +66,9 @@ pub struct Draw {
 pub struct Captured {
     /// The passes: how each began, and the target's size.
     pub passes: Vec<(Load, u32, u32)>,
+    /// The adapter that drew the frame: its name and driver (`llvmpipe (LLVM 15.0.6, 256
+    /// bits), Mesa 22.3.6 (LLVM 15.0.6)`), for what the replay can promise about it.
+    pub adapter: String,
     /// The draws, in order.
     pub draws: Vec<Draw>,
 }
@@ -73,6 +76,7 @@ pub struct Captured {
 /// The buffers of a [`DrawLog`] being read back.
 pub struct Pending {
     log: Vec<crate::render::DrawCall>,
+    adapter: String,
     passes: Vec<(Load, u32, u32)>,
     /// Each distinct buffer, its staging copy and its size.
     buffers: Vec<(wgpu::Buffer, wgpu::Buffer, u64)>,
@@ -129,8 +133,10 @@ impl Pending {
                 m.fetch_add(1, Ordering::SeqCst);
             });
         }
+        let info = gpu.adapter.get_info();
         Pending {
             log: draws,
+            adapter: format!("{}, {}", info.name, info.driver_info),
             passes: log.passes(),
             buffers,
             mapped,
@@ -230,6 +236,7 @@ impl Pending {
         }
         Ok(Captured {
             passes: self.passes,
+            adapter: self.adapter,
             draws,
         })
     }

@@ -122,6 +122,37 @@ pub struct Inspection {
     pub replayed: Replayed,
     /// Every step, vertex corners first, then the fragment.
     pub steps: Vec<TraceStep>,
+    /// What the replay cannot promise for the adapter that drew the frame ([`caveats`]).
+    pub caveats: Vec<String>,
+}
+
+/// The replay follows llvmpipe's rules (Mesa 22.3, the same through 24.0): what it cannot
+/// promise about a frame drawn by `adapter` (name and driver, as [`Captured::adapter`]), with
+/// an `anisotropic` sampler bound to the covering draw or not. Empty for lavapipe 22.3–24.0.
+pub fn caveats(adapter: &str, anisotropic: bool) -> Vec<String> {
+    let llvmpipe = adapter.to_ascii_lowercase().contains("llvmpipe");
+    let mesa = adapter.split("Mesa ").nth(1).and_then(|v| {
+        let mut parts = v.split(|c: char| !c.is_ascii_digit());
+        Some((parts.next()?.parse::<u32>().ok()?, parts.next()?.parse::<u32>().ok()?))
+    });
+    let who = if adapter.trim_matches([' ', ',']).is_empty() {
+        "this GPU"
+    } else {
+        adapter
+    };
+    let mut out = Vec::new();
+    if !llvmpipe {
+        out.push(format!(
+            "replayed by the rules of llvmpipe (lavapipe); on {who} a pixel on a triangle's edge or a texel boundary can differ by a step"
+        ));
+    }
+    let known = llvmpipe && mesa.is_some_and(|m| ((22, 3)..=(24, 0)).contains(&m));
+    if anisotropic && !known {
+        out.push(format!(
+            "anisotropic filtering is replayed as llvmpipe of Mesa 22.3–24.0 does it (an elliptical weighted average); {who} may filter differently, so lookups through this draw's anisotropic sampler are approximate"
+        ));
+    }
+    out
 }
 
 /// The file and line of a span of `shader`'s source (through its includes or source map).
@@ -206,10 +237,16 @@ impl Inspection {
             None => Error::Debug(e.message),
         })?;
         let mut steps = Vec::new();
+        let mut anisotropic = false;
         if let Some(f) = &replayed.fragment {
             steps_of(Stage::Vertex, &f.vertex, &f.vertex_steps, &mut steps);
             steps_of(Stage::Fragment, &f.fragment, &f.fragment_steps, &mut steps);
+            anisotropic = captured
+                .draws
+                .get(f.draw)
+                .is_some_and(|d| d.samplers.iter().any(|(_, s)| s.anisotropy > 1));
         }
+        let caveats = caveats(&captured.adapter, anisotropic);
         Ok(Inspection {
             lab: lab.to_owned(),
             x,
@@ -218,6 +255,7 @@ impl Inspection {
             height,
             replayed,
             steps,
+            caveats,
         })
     }
 
@@ -298,6 +336,9 @@ impl Inspection {
             r.pixel[2],
             r.pixel[3]
         );
+        for caveat in &self.caveats {
+            let _ = writeln!(out, "note: {caveat}");
+        }
         out
     }
 
@@ -452,9 +493,10 @@ impl Inspection {
         };
         let _ = write!(
             o,
-            ",\"listing\":{{\"vertex\":{},\"fragment\":{}}},\"trace\":[{}]}}",
+            ",\"listing\":{{\"vertex\":{},\"fragment\":{}}},\"caveats\":[{}],\"trace\":[{}]}}",
             listing(Stage::Vertex),
             listing(Stage::Fragment),
+            self.caveats.iter().map(|c| jstr(c)).collect::<Vec<_>>().join(","),
             steps.join(",")
         );
         o

@@ -362,6 +362,9 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
             ui.monospace(format!("colour ({:.4}, {:.4}, {:.4}, {:.4})", c[0], c[1], c[2], c[3]));
         });
     });
+    for caveat in &i.caveats {
+        ui.colored_label(egui::Color32::from_rgb(230, 190, 90), format!("Note: {caveat}."));
+    }
     let Some(f) = &r.fragment else {
         let c = r.clear;
         ui.label(format!(
