@@ -88,7 +88,7 @@ fn pixels(image: &image::RgbaImage, clear: [u8; 4], seed: u64) -> Vec<(u32, u32)
 
 /// Checks one state; returns (pixels checked, misses, misses the inspection itself flagged as
 /// approximate: an anisotropic sampler on a driver whose anisotropic filter the replay does not
-/// follow, as Mesa 24.1 and later).
+/// follow, as that of Mesa 25).
 fn agreement(name: &str, mut lab: Box<dyn Lab>, seed: u64) -> (usize, Vec<String>, usize) {
     let (w, h) = lab.info().size;
     eprintln!("checking {name}");
@@ -837,7 +837,7 @@ fn an_inspection_says_what_it_cannot_promise_for_the_gpu_that_drew() {
         "22.3's anisotropic filter is the one replayed"
     );
     assert!(caveats("llvmpipe (LLVM 17.0.6, 256 bits), Mesa 24.0.3", true).is_empty());
-    // Mesa 24.1 rewrote llvmpipe's anisotropic filter (measured on 25.0.7: 28 % and 40 % of
+    // llvmpipe's anisotropic filter changed after Mesa 24.0.3 (measured on 25.0.7: 28 % and 40 % of
     // pixels agree through aniso 16 and 4, the other 45 states at every pixel).
     let newer = "llvmpipe (LLVM 15.0.6, 256 bits), Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)";
     assert!(caveats(newer, false).is_empty());
