@@ -561,3 +561,26 @@ const BROWSER_AGREEMENT: f64 = 0.9;
 /// The share of one case's inspected pixels that must agree (a cube map's seams or a
 /// checker's texel edges fall differently on SwiftShader for a few).
 const CASE_AGREEMENT: f64 = 0.7;
+
+/// In the page, Inspect and then a click on the canvas (pointer events, as a user's) inspect the
+/// pixel clicked: the inspector shows it, line by line, and the link carries it.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_click_in_inspect_mode_inspects_that_pixel_and_puts_it_in_the_link() {
+    let server = serve(site());
+    let page = open(
+        &server,
+        "webgl2",
+        &format!("{}&check=click&click=300,200", query("phong", &[])),
+    );
+    let json = page.get("capture-click");
+    assert!(json.contains("\"x\":300,\"y\":200"), "the pixel clicked: {json}");
+    assert!(json.contains("\"covered\":true"), "on the teapot: {json}");
+    let url = page.get("capture-click.url");
+    assert!(url.contains("inspect=300%2C200"), "the link: {url}");
+    let shown = page.get("capture-click.shown");
+    assert!(
+        shown.contains("Pixel 300,200") && shown.contains("frag_color = clamp("),
+        "the inspector: {shown}"
+    );
+}
