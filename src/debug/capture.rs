@@ -5,6 +5,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
+use super::error::ReplayError;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 use crate::render::{BindingInfo, DrawLog, Load, RenderState, Resource, SamplerDesc, Texels};
@@ -58,8 +59,12 @@ pub struct Draw {
     pub samplers: Vec<(u32, SamplerDesc)>,
     /// The clip-space positions of its vertices, computed by the first replay that needs them
     /// (every pixel of a frame shares them).
-    pub(crate) positions: Arc<std::sync::OnceLock<super::replay::Positions>>,
+    pub(crate) positions: Arc<std::sync::OnceLock<Positions>>,
 }
+
+/// A draw's shaded vertices: their ids, sorted, and their clip-space positions (or why the
+/// vertex shader could not run); the replay computes them once per captured draw.
+pub(crate) type Positions = std::result::Result<Arc<(Vec<u32>, Vec<[f32; 4]>)>, ReplayError>;
 
 /// A frame on the CPU: its passes (load operation, size) and draws.
 #[derive(Clone)]

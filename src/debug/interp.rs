@@ -19,8 +19,9 @@
 
 use std::rc::Rc;
 
-use naga::{BinaryOperator as B, Expression as E, Handle, MathFunction as M, Module, Span, Statement as S, TypeInner};
+use naga::{BinaryOperator as B, Expression as E, Handle, Module, Span, Statement as S, TypeInner};
 
+use super::error::Failure;
 use super::value::{self, Bits, Comp, Kind, Offset, Ptr, Root, Val};
 
 /// What a lookup's level of detail is, per lane.
@@ -85,15 +86,6 @@ pub struct Step {
     pub kinds: Vec<Kind>,
     /// Per traced lane, the value's components (numbers; bools as 0/1).
     pub values: Vec<Option<Vec<f64>>>,
-}
-
-/// Why a run stopped without a result.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Failure {
-    /// What went wrong, in words.
-    pub message: String,
-    /// Where in the module's source.
-    pub span: Span,
 }
 
 type Res<T> = std::result::Result<T, Failure>;
@@ -1410,37 +1402,4 @@ fn expression_name(e: &naga::Expression) -> String {
             .unwrap_or("this")
             .to_owned(),
     }
-}
-
-/// A math function by its GLSL name, for messages.
-pub fn math_name(fun: M) -> String {
-    let glsl = match fun {
-        M::CountOneBits => "bitCount",
-        M::ReverseBits => "bitfieldReverse",
-        M::ExtractBits => "bitfieldExtract",
-        M::InsertBits => "bitfieldInsert",
-        M::FirstTrailingBit => "findLSB",
-        M::FirstLeadingBit => "findMSB",
-        M::QuantizeToF16 => "quantizeToF16",
-        M::Pack2x16float => "packHalf2x16",
-        M::Unpack2x16float => "unpackHalf2x16",
-        M::Saturate => "clamp(x, 0, 1)",
-        M::InverseSqrt => "inversesqrt",
-        M::Outer => "outerProduct",
-        M::Fma => "fma",
-        _ => "",
-    };
-    if !glsl.is_empty() {
-        return format!("`{glsl}`");
-    }
-    let debug = format!("{fun:?}");
-    let mut out = String::new();
-    for (i, ch) in debug.chars().enumerate() {
-        if i == 0 {
-            out.extend(ch.to_lowercase());
-        } else {
-            out.push(ch);
-        }
-    }
-    format!("`{out}`")
 }

@@ -3,7 +3,7 @@
 
 use naga::{MathFunction as M, Span, TypeInner};
 
-use super::interp::{math_name, Failure};
+use super::error::Failure;
 use super::value::{Bits, Comp, Kind};
 
 type Res<T> = std::result::Result<T, Failure>;
@@ -578,4 +578,37 @@ fn inverse(m: &[f64], n: usize) -> Vec<f64> {
         }
     }
     out
+}
+
+/// A math function by its GLSL name, for messages.
+pub fn math_name(fun: M) -> String {
+    let glsl = match fun {
+        M::CountOneBits => "bitCount",
+        M::ReverseBits => "bitfieldReverse",
+        M::ExtractBits => "bitfieldExtract",
+        M::InsertBits => "bitfieldInsert",
+        M::FirstTrailingBit => "findLSB",
+        M::FirstLeadingBit => "findMSB",
+        M::QuantizeToF16 => "quantizeToF16",
+        M::Pack2x16float => "packHalf2x16",
+        M::Unpack2x16float => "unpackHalf2x16",
+        M::Saturate => "clamp(x, 0, 1)",
+        M::InverseSqrt => "inversesqrt",
+        M::Outer => "outerProduct",
+        M::Fma => "fma",
+        _ => "",
+    };
+    if !glsl.is_empty() {
+        return format!("`{glsl}`");
+    }
+    let debug = format!("{fun:?}");
+    let mut out = String::new();
+    for (i, ch) in debug.chars().enumerate() {
+        if i == 0 {
+            out.extend(ch.to_lowercase());
+        } else {
+            out.push(ch);
+        }
+    }
+    format!("`{out}`")
 }

@@ -14,6 +14,7 @@
 //! [`Inspection::json`] write it for people and programs.
 
 pub mod capture;
+pub mod error;
 pub mod interp;
 mod math;
 pub mod raster;

@@ -7,21 +7,14 @@
 use naga::{Binding, BuiltIn, Handle, Module, TypeInner};
 
 use super::capture::{Captured, Draw};
-use super::interp::{Failure, Host, Lod, Run, Step};
+use super::error::Failure;
+use super::error::ReplayError;
+use super::interp::{Host, Lod, Run, Step};
 use super::raster::{self, Cover, Interp, Viewport};
 use super::sample::{self, View};
 use super::value::{self, Bits, Comp, Kind};
 use crate::render::Load;
 use crate::shader::CompiledShader;
-
-/// Why a replay stopped: the message, and where in which shader when it is the shader's.
-#[derive(Clone, Debug)]
-pub struct ReplayError {
-    /// What went wrong.
-    pub message: String,
-    /// The shader and span, if a shader's operation.
-    pub at: Option<(std::sync::Arc<CompiledShader>, naga::Span)>,
-}
 
 type Res<T> = std::result::Result<T, ReplayError>;
 
@@ -414,10 +407,6 @@ fn positions(draw: &Draw, ids: &[u32]) -> Res<Vec<[f32; 4]>> {
     }
     Ok(out)
 }
-
-/// A draw's shaded vertices: their ids, sorted, and their clip-space positions (or why the
-/// vertex shader could not run).
-pub(crate) type Positions = Res<std::sync::Arc<(Vec<u32>, Vec<[f32; 4]>)>>;
 
 /// A fragment covering the pixel, found by the rasteriser.
 struct Candidate {

@@ -2,8 +2,8 @@
 //! a choice of objects), offscreen at its default size, rotated 30/45 degrees where it has
 //! angles, N frames each (submit + wait per frame, like the originals' swap + glFinish; animated
 //! labs advance their time by 1/60 s per frame). Prints the port's milliseconds per frame only:
-//! a comparison with the original is measured side by side, alternating, with
-//! `../shared/original/bench-vs-original`, never against stored figures.
+//! a comparison with the original is measured side by side, alternating, with the originals'
+//! `bench-vs-original` script (see `docs/speed.md`), never against stored figures.
 
 use crate::lab::BuildContext;
 use crate::offscreen::COLOR_FORMAT;
