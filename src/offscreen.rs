@@ -218,19 +218,11 @@ pub fn write_png(image: &image::RgbaImage, out: &mut dyn std::io::Write) -> std:
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fsutil::sorted_names;
     use std::fs;
 
     fn test_dir(name: &str) -> crate::fsutil::ScratchDir {
         crate::fsutil::ScratchDir::new(&format!("offscreen-{name}"))
-    }
-
-    fn names(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
     }
 
     #[test]
@@ -248,7 +240,7 @@ mod tests {
             );
             assert_eq!(fs::read(&path).unwrap(), b"a holiday photo", "{name} was touched");
         }
-        assert_eq!(names(&dir), ["x", "x.bmp", "x.gif", "x.jpg", "x.tiff"]);
+        assert_eq!(sorted_names(&dir), ["x", "x.bmp", "x.gif", "x.jpg", "x.tiff"]);
     }
 
     #[test]
@@ -261,7 +253,7 @@ mod tests {
         let back = image::open(&path).unwrap().to_rgb8();
         assert_eq!(back.dimensions(), (4, 3));
         assert_eq!(back.get_pixel(1, 1).0, [10, 20, 30]);
-        assert_eq!(names(&dir), ["shot.PNG"]);
+        assert_eq!(sorted_names(&dir), ["shot.PNG"]);
         fs::create_dir(dir.join("d.png")).unwrap();
         let err = save_png(&image, &dir.join("d.png")).unwrap_err();
         assert!(err.to_string().contains("is a directory"), "{err}");

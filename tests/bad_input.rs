@@ -312,16 +312,6 @@ fn port_options_work_from_the_command_line() {
 // ---------------------------------------------------------------------------------------------
 // Nothing a user types loses a file (issue 9)
 
-/// The names in `dir`, sorted (to see that no temporary file was left behind).
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
 #[test]
 fn screenshot_refuses_other_formats_and_keeps_the_file() {
     let dir = test_dir("screenshot_jpg");
@@ -337,7 +327,7 @@ fn screenshot_refuses_other_formats_and_keeps_the_file() {
         );
     }
     assert_eq!(std::fs::read(dir.join("x.jpg")).unwrap(), b"a holiday photo");
-    assert_eq!(names_in(&dir), ["x.jpg", "xdg"]);
+    assert_eq!(common::names_in(&dir), ["x.jpg", "xdg"]);
 }
 
 #[test]
@@ -347,8 +337,8 @@ fn screenshot_into_a_directory_says_so() {
     let run = run_in(&dir, "phong", &["--screenshot", "shots.png"], &[]);
     assert_eq!(run.code, Some(2), "{}", run.stderr);
     assert!(run.stderr.contains("shots.png: is a directory"), "{}", run.stderr);
-    assert_eq!(names_in(&dir), ["shots.png", "xdg"]);
-    assert!(names_in(&dir.join("shots.png")).is_empty());
+    assert_eq!(common::names_in(&dir), ["shots.png", "xdg"]);
+    assert!(common::names_in(&dir.join("shots.png")).is_empty());
 }
 
 /// A copy of the shaders in `dir/shaders` with `line` inserted after `#version` in phong.frag.
@@ -477,11 +467,11 @@ fn glsl2wgsl_refuses_to_overwrite_its_input() {
         .unwrap()
         .contains("fn main"));
     assert!(
-        !names_in(&dir)
+        !common::names_in(&dir)
             .iter()
             .any(|n| n.starts_with(".sl-") || n.contains(".tmp")),
         "{:?}",
-        names_in(&dir)
+        common::names_in(&dir)
     );
 }
 
@@ -913,7 +903,7 @@ fn screenshot_names_up_to_255_bytes_work() {
     let name = format!("{}.png", "a".repeat(251));
     let run = run_in(&dir, "phong", &["--screenshot", &name, "--size", "8x8"], &[]);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
-    let names: Vec<String> = names_in(&dir).into_iter().filter(|n| n != "xdg").collect();
+    let names: Vec<String> = common::names_in(&dir).into_iter().filter(|n| n != "xdg").collect();
     assert_eq!(names, [name]);
 }
 

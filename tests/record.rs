@@ -33,16 +33,6 @@ fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
-/// Files in `dir` other than `keep`.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
 #[test]
 fn a_gif_has_its_frames_moves_with_time_and_is_the_same_twice() {
     let dir = scratch("gif");
@@ -90,7 +80,7 @@ fn a_gif_has_its_frames_moves_with_time_and_is_the_same_twice() {
         first,
         "two runs write the same bytes"
     );
-    assert_eq!(listing(&dir), ["s.png", "w.gif"], "no temporary file left");
+    assert_eq!(common::names_in(&dir), ["s.png", "w.gif"], "no temporary file left");
 }
 
 #[test]
@@ -98,7 +88,7 @@ fn a_png_sequence_is_named_by_its_pattern_and_never_overwrites() {
     let dir = scratch("pngs");
     let out = run("twist", &dir, &["--record", "f-%03d.png", "--frames", "3"]);
     assert!(out.status.success(), "{}", stderr(&out));
-    assert_eq!(listing(&dir), ["f-000.png", "f-001.png", "f-002.png"]);
+    assert_eq!(common::names_in(&dir), ["f-000.png", "f-001.png", "f-002.png"]);
     let frame = image::open(dir.join("f-001.png")).unwrap();
     assert_eq!((frame.width(), frame.height()), (512, 512));
     let before = fs::read(dir.join("f-000.png")).unwrap();
@@ -114,7 +104,7 @@ fn a_png_sequence_is_named_by_its_pattern_and_never_overwrites() {
     fs::create_dir(dir.join("sub")).unwrap();
     let out = run("twist", &dir, &["--record", "sub", "--frames", "2"]);
     assert!(out.status.success(), "{}", stderr(&out));
-    assert_eq!(listing(&dir.join("sub")), ["twist-0000.png", "twist-0001.png"]);
+    assert_eq!(common::names_in(&dir.join("sub")), ["twist-0000.png", "twist-0001.png"]);
 }
 
 #[test]
@@ -153,7 +143,7 @@ fn bad_names_and_missing_tools_are_clear_and_write_nothing() {
         .unwrap();
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).contains("apt-get install ffmpeg"), "{}", stderr(&out));
-    assert_eq!(listing(&dir), ["empty-path"], "nothing written");
+    assert_eq!(common::names_in(&dir), ["empty-path"], "nothing written");
 }
 
 /// A stand-in `ffmpeg` that copies its input to its output (or fails): what the port pipes
@@ -198,7 +188,7 @@ fn a_video_is_the_frames_piped_through_ffmpeg_and_a_failure_keeps_the_old_file()
         3 * 64 * 32 * 4,
         "the old file stays"
     );
-    assert_eq!(listing(&dir), ["bin", "v.webm"], "no temporary file left");
+    assert_eq!(common::names_in(&dir), ["bin", "v.webm"], "no temporary file left");
 }
 
 #[test]
@@ -212,7 +202,7 @@ fn an_interrupted_recording_leaves_no_file() {
         .unwrap();
     // Wait until it is writing (its temporary file exists), then interrupt it.
     let started = std::time::Instant::now();
-    while !listing(&dir).iter().any(|n| n.ends_with(".tmp")) {
+    while !common::names_in(&dir).iter().any(|n| n.ends_with(".tmp")) {
         assert!(started.elapsed().as_secs() < 60, "the recording never started");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
@@ -227,7 +217,7 @@ fn an_interrupted_recording_leaves_no_file() {
         .unwrap();
     let status = child.wait().unwrap();
     assert!(!status.success());
-    assert_eq!(listing(&dir), ["long.gif"], "the temporary file is gone");
+    assert_eq!(common::names_in(&dir), ["long.gif"], "the temporary file is gone");
     assert_eq!(fs::read(dir.join("long.gif")).unwrap(), b"an older recording");
 }
 
@@ -274,7 +264,7 @@ fn two_recordings_into_one_pattern_never_mix() {
         "{}",
         stderr(loser)
     );
-    let names = listing(&dir.join("seq"));
+    let names = common::names_in(&dir.join("seq"));
     assert_eq!(names.len(), 40, "{names:?}");
     assert!(names.iter().all(|n| n.starts_with("f-")), "{names:?}");
     // All 40 from the winner: its own run, again into a fresh folder, gives the same bytes.
@@ -308,7 +298,7 @@ fn a_sequence_stopped_half_way_leaves_nothing() {
         .spawn()
         .unwrap();
     let started = std::time::Instant::now();
-    while listing(&dir).iter().filter(|n| n.ends_with(".tmp")).count() < 5 {
+    while common::names_in(&dir).iter().filter(|n| n.ends_with(".tmp")).count() < 5 {
         assert!(started.elapsed().as_secs() < 120, "the recording never started");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
@@ -320,14 +310,18 @@ fn a_sequence_stopped_half_way_leaves_nothing() {
     let status = child.wait().unwrap();
     use std::os::unix::process::ExitStatusExt;
     assert!(status.signal().is_some(), "ended by the signal: {status:?}");
-    assert!(listing(&dir).is_empty(), "left behind: {:?}", listing(&dir));
+    assert!(
+        common::names_in(&dir).is_empty(),
+        "left behind: {:?}",
+        common::names_in(&dir)
+    );
     let out = run(
         "wave",
         &dir,
         &["--record", "f-%05d.png", "--frames", "3", "--size", "64x64"],
     );
     assert!(out.status.success(), "{}", stderr(&out));
-    assert_eq!(listing(&dir), ["f-00000.png", "f-00001.png", "f-00002.png"]);
+    assert_eq!(common::names_in(&dir), ["f-00000.png", "f-00001.png", "f-00002.png"]);
 }
 
 /// Issue 33: a recording killed with SIGKILL (no handler can run) left its 3 MB temporary file
@@ -341,20 +335,20 @@ fn a_killed_recordings_temporary_file_is_swept_by_the_next_run() {
         .spawn()
         .unwrap();
     let started = std::time::Instant::now();
-    while !listing(&dir).iter().any(|n| n.ends_with(".tmp")) {
+    while !common::names_in(&dir).iter().any(|n| n.ends_with(".tmp")) {
         assert!(started.elapsed().as_secs() < 120, "the recording never started");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     child.kill().unwrap();
     child.wait().unwrap();
-    let left = listing(&dir);
+    let left = common::names_in(&dir);
     assert!(
         left.iter().any(|n| n.starts_with(".sl-") && n.ends_with(".tmp")),
         "{left:?}"
     );
     let out = run("phong", &dir, &["--screenshot", "shot.png", "--size", "32x32"]);
     assert!(out.status.success(), "{}", stderr(&out));
-    assert_eq!(listing(&dir), ["shot.png"]);
+    assert_eq!(common::names_in(&dir), ["shot.png"]);
 }
 
 /// Issue 33: every frame's time is checked before the first is drawn: `--from` outside the
@@ -404,5 +398,5 @@ fn recording_flags_are_checked_before_anything_is_drawn() {
         "{}",
         stderr(&out)
     );
-    assert!(listing(&dir).is_empty(), "{:?}", listing(&dir));
+    assert!(common::names_in(&dir).is_empty(), "{:?}", common::names_in(&dir));
 }

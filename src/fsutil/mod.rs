@@ -223,6 +223,17 @@ impl ScratchDir {
     }
 }
 
+/// The names in `dir`, sorted: what a test sees to know that no temporary file was left.
+#[cfg(test)]
+pub(crate) fn sorted_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
 #[cfg(test)]
 impl std::ops::Deref for ScratchDir {
     type Target = Path;
@@ -248,15 +259,6 @@ mod tests {
         ScratchDir::new(&format!("fsutil-{name}"))
     }
 
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
-
     #[test]
     fn png_path_needs_the_png_extension() {
         let dir = test_dir("png_ext");
@@ -271,7 +273,7 @@ mod tests {
         for name in ["x.png", "x.PNG", "x.Png"] {
             check_png_path(&dir.join(name)).unwrap();
         }
-        assert!(entries(&dir).is_empty(), "checking touched the directory");
+        assert!(sorted_names(&dir).is_empty(), "checking touched the directory");
     }
 
     #[test]
@@ -304,7 +306,7 @@ mod tests {
         fs::write(&path, b"old").unwrap();
         write_atomic(&path, |w| w.write_all(b"new contents")).unwrap();
         assert_eq!(fs::read(&path).unwrap(), b"new contents");
-        assert_eq!(entries(&dir), ["out.csv"]);
+        assert_eq!(sorted_names(&dir), ["out.csv"]);
         // A bare file name writes into the current directory's form of the path too.
         let fresh = dir.join("fresh.txt");
         write_atomic(&fresh, |w| w.write_all(b"1")).unwrap();
@@ -323,11 +325,11 @@ mod tests {
         .unwrap_err();
         assert!(err.to_string().contains("encoder failed half way"), "{err}");
         assert_eq!(fs::read(&path).unwrap(), b"precious");
-        assert_eq!(entries(&dir), ["out.png"], "a temporary file was left behind");
+        assert_eq!(sorted_names(&dir), ["out.png"], "a temporary file was left behind");
         // Nothing there before: nothing there after.
         let new = dir.join("new.png");
         write_atomic(&new, |_| Err(io::Error::other("no"))).unwrap_err();
-        assert_eq!(entries(&dir), ["out.png"]);
+        assert_eq!(sorted_names(&dir), ["out.png"]);
     }
 
     #[cfg(unix)]
@@ -354,9 +356,9 @@ mod tests {
         // 255 bytes, the longest name ext4 and most file systems take.
         let name = format!("{}.png", "a".repeat(251));
         write_atomic(&dir.join(&name), |w| w.write_all(b"1")).unwrap();
-        assert_eq!(entries(&dir), std::slice::from_ref(&name));
+        assert_eq!(sorted_names(&dir), std::slice::from_ref(&name));
         check_writable(&dir.join(&name)).unwrap();
-        assert_eq!(entries(&dir), [name], "the writability probe left a file");
+        assert_eq!(sorted_names(&dir), [name], "the writability probe left a file");
     }
 
     #[cfg(unix)]
@@ -375,7 +377,7 @@ mod tests {
             );
         }
         assert_eq!(fs::read(dir.join("real/shot.png")).unwrap(), b"picture");
-        assert_eq!(entries(&dir.join("real")), ["shot.png"]);
+        assert_eq!(sorted_names(&dir.join("real")), ["shot.png"]);
         // A link loop is an error, not a hang, and writes nothing.
         std::os::unix::fs::symlink("loop_b", dir.join("loop_a")).unwrap();
         std::os::unix::fs::symlink("loop_a", dir.join("loop_b")).unwrap();
@@ -501,7 +503,7 @@ mod tests {
                 .spawn()
                 .unwrap();
             let start = std::time::Instant::now();
-            while entries(&dir).is_empty() {
+            while sorted_names(&dir).is_empty() {
                 assert!(start.elapsed().as_secs() < 60, "the child never started writing");
                 std::thread::sleep(std::time::Duration::from_millis(10));
             }
@@ -522,7 +524,7 @@ mod tests {
                 std::thread::sleep(std::time::Duration::from_millis(10));
             };
             assert_eq!(status.signal(), Some(signal), "{status:?}");
-            assert!(entries(&dir).is_empty(), "left behind: {:?}", entries(&dir));
+            assert!(sorted_names(&dir).is_empty(), "left behind: {:?}", sorted_names(&dir));
         }
     }
 

@@ -715,16 +715,7 @@ fn rename_no_replace(from: &Path, to: &Path) -> io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fsutil::ScratchDir;
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
+    use crate::fsutil::{sorted_names, ScratchDir};
 
     #[cfg(unix)]
     fn mkfifo(path: &Path) {
@@ -769,7 +760,7 @@ mod tests {
         }
         assert_eq!(reader.join().unwrap(), b"through the pipe");
         assert!(is_fifo(&fifo));
-        assert_eq!(entries(&dir), ["out.wgsl"], "a temporary file was left");
+        assert_eq!(sorted_names(&dir), ["out.wgsl"], "a temporary file was left");
         // A PNG stream needs no .png name; a batch (files only) refuses it.
         crate::fsutil::check_png_path(&fifo).unwrap();
         let err = Batch::new(true).write(&fifo, |_| Ok(())).unwrap_err().to_string();
@@ -804,7 +795,7 @@ mod tests {
         assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
         write_atomic(Path::new("/dev/null"), |w| w.write_all(b"gone")).unwrap();
         assert!(fs::metadata("/dev/null").unwrap().file_type().is_char_device());
-        assert_eq!(entries(&dir), ["full.png"]);
+        assert_eq!(sorted_names(&dir), ["full.png"]);
     }
 
     /// `/proc/self/fd/N` (what `/dev/stdout` is) writes into the descriptor itself: into a pipe
@@ -870,10 +861,13 @@ mod tests {
         fs::write(&names[4], b"theirs").unwrap();
         let err = a.commit().unwrap_err().to_string();
         assert!(err.contains("f-4.png: exists; this output never overwrites"), "{err}");
-        let visible: Vec<String> = entries(&dir).into_iter().filter(|n| !n.starts_with(".sl-")).collect();
+        let visible: Vec<String> = sorted_names(&dir)
+            .into_iter()
+            .filter(|n| !n.starts_with(".sl-"))
+            .collect();
         assert_eq!(visible, ["f-4.png"], "the failed batch left files");
         assert_eq!(
-            entries(&dir).len(),
+            sorted_names(&dir).len(),
             6,
             "the failed batch left temporary files (b has 5)"
         );
@@ -896,7 +890,7 @@ mod tests {
         d.commit().unwrap();
         assert_eq!(fs::read(&names[0]).unwrap(), b"d");
         assert_eq!(fs::read(&names[1]).unwrap(), b"b");
-        assert_eq!(entries(&dir).len(), 5, "{:?}", entries(&dir));
+        assert_eq!(sorted_names(&dir).len(), 5, "{:?}", sorted_names(&dir));
     }
 
     /// A temporary file left by a process that is gone (killed with SIGKILL) is removed by the
@@ -916,7 +910,7 @@ mod tests {
         }
         assert!(!process_exists(dead));
         write_atomic(&dir.join("x.txt"), |w| w.write_all(b"1")).unwrap();
-        assert_eq!(entries(&dir), [".sl-1-3.tmp", ".sl-notes.tmp", "x.txt"]);
+        assert_eq!(sorted_names(&dir), [".sl-1-3.tmp", ".sl-notes.tmp", "x.txt"]);
         assert_eq!(temp_owner(".sl-123-4.tmp"), Some(123));
         assert_eq!(temp_owner(".sl-123.tmp"), None);
     }

@@ -335,3 +335,13 @@ pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
     };
     (output, cpu)
 }
+
+/// The names in `dir`, sorted (to see that no temporary file was left behind).
+pub fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
