@@ -206,19 +206,23 @@ fn an_interrupted_recording_leaves_no_file() {
         assert!(started.elapsed().as_secs() < 60, "the recording never started");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    // Ctrl-C is SIGINT. A shell that starts a job in the background without job control
-    // makes it ignore SIGINT, children inherit that, and the recorder leaves an ignored signal
-    // alone by design (as under `nohup`): under such a parent, SIGTERM, which the same handler
-    // serves, stands in for it.
+    let status = interrupt(&mut child);
+    assert!(!status.success());
+    assert_eq!(common::names_in(&dir), ["long.gif"], "the temporary file is gone");
+    assert_eq!(fs::read(dir.join("long.gif")).unwrap(), b"an older recording");
+}
+
+/// Ctrl-C for `child`, and how it ended. Ctrl-C is SIGINT. A shell that starts a job in the
+/// background without job control makes it ignore SIGINT, children inherit that, and the
+/// recorder leaves an ignored signal alone by design (as under `nohup`): under such a parent,
+/// SIGTERM, which the same handler serves, stands in for it.
+fn interrupt(child: &mut std::process::Child) -> std::process::ExitStatus {
     let signal = if sigint_ignored() { "-TERM" } else { "-INT" };
     Command::new("kill")
         .args([signal, &child.id().to_string()])
         .status()
         .unwrap();
-    let status = child.wait().unwrap();
-    assert!(!status.success());
-    assert_eq!(common::names_in(&dir), ["long.gif"], "the temporary file is gone");
-    assert_eq!(fs::read(dir.join("long.gif")).unwrap(), b"an older recording");
+    child.wait().unwrap()
 }
 
 /// Whether this process ignores SIGINT (inherited from a background job's shell).
@@ -302,12 +306,7 @@ fn a_sequence_stopped_half_way_leaves_nothing() {
         assert!(started.elapsed().as_secs() < 120, "the recording never started");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    let signal = if sigint_ignored() { "-TERM" } else { "-INT" };
-    Command::new("kill")
-        .args([signal, &child.id().to_string()])
-        .status()
-        .unwrap();
-    let status = child.wait().unwrap();
+    let status = interrupt(&mut child);
     use std::os::unix::process::ExitStatusExt;
     assert!(status.signal().is_some(), "ended by the signal: {status:?}");
     assert!(
