@@ -490,24 +490,23 @@ impl<'m> Run<'m> {
                     active[i] = active[i] && b.broke[i] && !self.frame().returned[i] && !self.killed[i];
                 }
             }
-            S::Break => {
+            S::Break | S::Continue => {
+                let breaks = matches!(statement, S::Break);
                 let Some(b) = self.breakables.last_mut() else {
-                    return fail(span, "`break` outside a loop or switch");
+                    return fail(
+                        span,
+                        if breaks {
+                            "`break` outside a loop or switch"
+                        } else {
+                            "`continue` outside a loop"
+                        },
+                    );
                 };
+                // The active lanes leave the block, marked as broken out or continuing.
+                let marks = if breaks { &mut b.broke } else { &mut b.continued };
                 for i in 0..self.lanes {
                     if active[i] {
-                        b.broke[i] = true;
-                        active[i] = false;
-                    }
-                }
-            }
-            S::Continue => {
-                let Some(b) = self.breakables.last_mut() else {
-                    return fail(span, "`continue` outside a loop");
-                };
-                for i in 0..self.lanes {
-                    if active[i] {
-                        b.continued[i] = true;
+                        marks[i] = true;
                         active[i] = false;
                     }
                 }

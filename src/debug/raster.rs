@@ -89,6 +89,29 @@ pub struct Cover {
     pub setup: Setup,
 }
 
+impl Cover {
+    /// The cover of a triangle whose depth at the pixel passes depth clipping (the near and
+    /// far planes), with the quad's depths clamped to 0..1 (which then changes nothing at the
+    /// pixel itself); `None` when clipped.
+    fn depth_clipped(
+        pixels: [(u32, u32); 4],
+        lane: usize,
+        front: bool,
+        depth: [f32; 4],
+        inv_w: [f32; 4],
+        setup: Setup,
+    ) -> Option<Cover> {
+        (0.0..=1.0).contains(&depth[lane]).then(|| Cover {
+            pixels,
+            lane,
+            front,
+            depth: depth.map(|d| d.clamp(0.0, 1.0)),
+            inv_w,
+            setup,
+        })
+    }
+}
+
 /// One attribute's plane: its value at the framebuffer origin's pixel centre and its slopes.
 fn plane(xy: &[[f32; 2]; 3], a: [f32; 3]) -> (f32, f32, f32) {
     let [[x0, y0], [x1, y1], [x2, y2]] = *xy;
@@ -203,18 +226,8 @@ pub fn triangle(
     let zp = plane(&xy, z);
     let wp = plane(&xy, oow);
     let depth = pixels.map(|(x, y)| eval(zp, x, y));
-    // Depth clipping: the near and far planes (the clamp to 0..1 then changes nothing).
-    if !(0.0..=1.0).contains(&depth[lane]) {
-        return None;
-    }
-    Some(Cover {
-        pixels,
-        lane,
-        front,
-        depth: depth.map(|d| d.clamp(0.0, 1.0)),
-        inv_w: pixels.map(|(x, y)| eval(wp, x, y)),
-        setup: Setup::Planes { xy, order, oow, z },
-    })
+    let inv_w = pixels.map(|(x, y)| eval(wp, x, y));
+    Cover::depth_clipped(pixels, lane, front, depth, inv_w, Setup::Planes { xy, order, oow, z })
 }
 
 /// Coverage of a triangle that crosses the eye's plane (w ≤ 0) or lies far outside the
@@ -271,17 +284,14 @@ fn homogeneous(
         let ls: f64 = l.iter().sum();
         linear[i] = l.map(|v| v / ls);
     }
-    if !(0.0..=1.0).contains(&depth[lane]) {
-        return None;
-    }
-    Some(Cover {
+    Cover::depth_clipped(
         pixels,
         lane,
         front,
-        depth: depth.map(|d| d.clamp(0.0, 1.0)),
+        depth,
         inv_w,
-        setup: Setup::Weights { linear, perspective },
-    })
+        Setup::Weights { linear, perspective },
+    )
 }
 
 /// Whether a point at `clip` (size 1) covers pixel (x, y): one pixel square around the
