@@ -404,103 +404,61 @@ impl Inspection {
 
     /// The report for programs: one JSON object with `pixel` (the stored RGBA bytes),
     /// `covered`, and `trace` (steps with `stage`, `file`, `line`, `name`, `value`), and the
-    /// covering draw, corners and inputs.
+    /// covering draw, corners, inputs, the listing by line and the caveats. Numbers JSON
+    /// cannot hold (NaN, infinities) are `null`.
     pub fn json(&self) -> String {
+        use serde_json::{json, Value};
         let r = &self.replayed;
-        let mut o = String::from("{");
-        let _ = write!(
-            o,
-            "\"lab\":{},\"x\":{},\"y\":{},\"width\":{},\"height\":{},\"pixel\":[{},{},{},{}],\"covered\":{},\"color\":{},\"clear\":{}",
-            jstr(&self.lab),
-            self.x,
-            self.y,
-            self.width,
-            self.height,
-            r.pixel[0],
-            r.pixel[1],
-            r.pixel[2],
-            r.pixel[3],
-            self.covered(),
-            jnums(&r.color.map(f64::from)),
-            jnums(&r.clear)
-        );
-        if let Some(f) = &r.fragment {
-            let named = |v: &[Named]| -> String {
-                let items: Vec<String> = v
-                    .iter()
-                    .map(|n| format!("{}:{}", jstr(&n.name), jvalue(&n.value)))
-                    .collect();
-                format!("{{{}}}", items.join(","))
-            };
-            let corners: Vec<String> = f
-                .corners
+        let value = |v: &[f64]| -> Value {
+            match v {
+                [x] => json!(x),
+                _ => json!(v),
+            }
+        };
+        let named =
+            |v: &[Named]| -> Value { Value::Object(v.iter().map(|n| (n.name.clone(), value(&n.value))).collect()) };
+        let listing = |stage: Stage| -> Value {
+            self.rows(stage)
                 .iter()
-                .map(|c| {
-                    format!(
-                        "{{\"index\":{},\"inputs\":{},\"outputs\":{}}}",
-                        c.index,
-                        named(&c.inputs),
-                        named(&c.outputs)
-                    )
-                })
-                .collect();
-            let _ = write!(
-                o,
-                ",\"draw\":{},\"label\":{},\"primitive\":{},\"points\":{},\"vertex_shader\":{},\"fragment_shader\":{},\"depth\":{},\"front_facing\":{},\"covering\":{},\"corners\":[{}],\"inputs\":{},\"steps_dropped\":{}",
-                f.draw,
-                jstr(&f.label),
-                f.primitive,
-                f.points,
-                jstr(&f.vertex.path),
-                jstr(&f.fragment.path),
-                jnum(f64::from(f.depth)),
-                f.front_facing,
-                r.covering,
-                corners.join(","),
-                named(&f.inputs),
-                f.steps_dropped
-            );
-        }
-        let steps: Vec<String> = self
+                .map(|r| json!({"file": r.file, "line": r.line, "text": r.text, "values": r.values}))
+                .collect()
+        };
+        let trace: Value = self
             .steps
             .iter()
             .map(|s| {
-                let corner = s.corner.map(|c| format!(",\"corner\":{c}")).unwrap_or_default();
-                format!(
-                    "{{\"stage\":\"{}\"{corner},\"file\":{},\"line\":{},\"name\":{},\"value\":{}}}",
-                    s.stage.name(),
-                    jstr(&s.file),
-                    s.line,
-                    jstr(&s.name),
-                    jvalue(&s.value)
-                )
+                let mut step = json!({
+                    "stage": s.stage.name(), "file": s.file, "line": s.line, "name": s.name, "value": value(&s.value)
+                });
+                if let Some(c) = s.corner {
+                    step["corner"] = json!(c);
+                }
+                step
             })
             .collect();
-        let listing = |stage: Stage| -> String {
-            let rows: Vec<String> = self
-                .rows(stage)
+        let mut o = json!({
+            "lab": self.lab, "x": self.x, "y": self.y, "width": self.width, "height": self.height,
+            "pixel": r.pixel, "covered": self.covered(), "color": r.color, "clear": r.clear,
+            "listing": {"vertex": listing(Stage::Vertex), "fragment": listing(Stage::Fragment)},
+            "caveats": self.caveats, "trace": trace,
+        });
+        if let Some(f) = &r.fragment {
+            let corners: Value = f
+                .corners
                 .iter()
-                .map(|r| {
-                    format!(
-                        "{{\"file\":{},\"line\":{},\"text\":{},\"values\":{}}}",
-                        jstr(&r.file),
-                        r.line,
-                        jstr(&r.text),
-                        jstr(&r.values)
-                    )
-                })
+                .map(|c| json!({"index": c.index, "inputs": named(&c.inputs), "outputs": named(&c.outputs)}))
                 .collect();
-            format!("[{}]", rows.join(","))
-        };
-        let _ = write!(
-            o,
-            ",\"listing\":{{\"vertex\":{},\"fragment\":{}}},\"caveats\":[{}],\"trace\":[{}]}}",
-            listing(Stage::Vertex),
-            listing(Stage::Fragment),
-            self.caveats.iter().map(|c| jstr(c)).collect::<Vec<_>>().join(","),
-            steps.join(",")
-        );
-        o
+            let covering = json!({
+                "draw": f.draw, "label": f.label, "primitive": f.primitive, "points": f.points,
+                "vertex_shader": f.vertex.path, "fragment_shader": f.fragment.path, "depth": f.depth,
+                "front_facing": f.front_facing, "covering": r.covering, "corners": corners,
+                "inputs": named(&f.inputs), "steps_dropped": f.steps_dropped,
+            });
+            if let (Some(o), Value::Object(more)) = (o.as_object_mut(), covering) {
+                o.extend(more);
+            }
+        }
+        o.to_string()
     }
 }
 
@@ -522,50 +480,6 @@ fn vector(v: &[f64]) -> String {
     match v {
         [x] => num(*x),
         _ => format!("({})", v.iter().map(|x| num(*x)).collect::<Vec<_>>().join(", ")),
-    }
-}
-
-/// A JSON string.
-fn jstr(s: &str) -> String {
-    let mut o = String::with_capacity(s.len() + 2);
-    o.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => o.push_str("\\\""),
-            '\\' => o.push_str("\\\\"),
-            '\n' => o.push_str("\\n"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(o, "\\u{:04x}", c as u32);
-            }
-            c => o.push(c),
-        }
-    }
-    o.push('"');
-    o
-}
-
-/// A JSON number; NaN and infinities (which JSON cannot hold) are `null`.
-fn jnum(v: f64) -> String {
-    if v.is_finite() {
-        let s = format!("{v}");
-        if s == "-0" {
-            "0".into()
-        } else {
-            s
-        }
-    } else {
-        "null".into()
-    }
-}
-
-fn jnums(v: &[f64]) -> String {
-    format!("[{}]", v.iter().map(|x| jnum(*x)).collect::<Vec<_>>().join(","))
-}
-
-fn jvalue(v: &[f64]) -> String {
-    match v {
-        [x] => jnum(*x),
-        _ => jnums(v),
     }
 }
 
