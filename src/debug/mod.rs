@@ -483,6 +483,36 @@ fn vector(v: &[f64]) -> String {
     }
 }
 
+/// Records one frame of `lab` at `width` × `height` offscreen (in `format`, the one its
+/// pipelines were built for) with its draws written down, without running it, and starts
+/// reading their buffers back: the target and the frame (to submit for its picture) come with
+/// the read-back.
+fn record_logged(
+    gpu: &crate::gpu::Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+) -> Result<(crate::offscreen::Offscreen, wgpu::CommandBuffer, Pending)> {
+    let target = crate::offscreen::Offscreen::with_format(gpu, width, height, format);
+    let log = crate::render::DrawLog::new();
+    let frame = crate::lab::draw::record(gpu, lab, &target, Some(&log))?;
+    let pending = Pending::start(gpu, &log);
+    Ok((target, frame, pending))
+}
+
+/// Starts a capture of `lab`'s frame at `size` in the screen's `format` (the window's and the
+/// page's inspector): recorded again offscreen with its draws written down, never run, its
+/// buffers read back while the shell goes on ([`Pending::ready`], then [`Pending::finish`]).
+/// The same state draws the same frame, so this is the frame on screen.
+pub fn capture_start(
+    gpu: &crate::gpu::Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+) -> Result<Pending> {
+    record_logged(gpu, lab, size, format).map(|(_, _, pending)| pending)
+}
+
 /// Records one frame of `lab` at `width` × `height` with its draws written down and brings
 /// them to the CPU, without running the frame on the GPU (so that a shader that never ends
 /// can still be debugged); with `picture`, then runs it and reads back what the GPU drew (as
@@ -495,10 +525,8 @@ pub fn capture_lab(
     height: u32,
     picture: bool,
 ) -> Result<(Option<image::RgbaImage>, Captured)> {
-    let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
-    let log = crate::render::DrawLog::new();
-    let frame = crate::lab::draw::record(gpu, lab, &target, Some(&log))?;
-    let captured = Pending::start(gpu, &log).wait(gpu)?;
+    let (target, frame, pending) = record_logged(gpu, lab, (width, height), crate::offscreen::COLOR_FORMAT)?;
+    let captured = pending.wait(gpu)?;
     if !picture {
         return Ok((None, captured));
     }

@@ -400,13 +400,9 @@ impl WebApp {
             if let Some(open) = self.open.as_mut() {
                 if let Some(pixel) = open.inspection_due() {
                     open.inspection_taken();
-                    let (w, h) = (self.config.width, self.config.height);
-                    let target = Offscreen::with_format(&self.gpu, w, h, self.config.format);
-                    let log = crate::render::DrawLog::new();
-                    match crate::lab::draw::record(&self.gpu, open.lab_mut(), &target, Some(&log)) {
-                        // The frame itself need not run: its buffers are copied after the
-                        // uniform writes it queued.
-                        Ok(_) => self.inspecting = Some((crate::debug::Pending::start(&self.gpu, &log), pixel)),
+                    let size = (self.config.width, self.config.height);
+                    match crate::debug::capture_start(&self.gpu, open.lab_mut(), size, self.config.format) {
+                        Ok(pending) => self.inspecting = Some((pending, pixel)),
                         Err(e) => self.inspection = format!("{{\"error\":{}}}", json(&e.to_string())),
                     }
                 }

@@ -1,19 +1,18 @@
-//! The window's pixel inspector (F2, then a click): the frame on screen is drawn with its
-//! draws written down, their buffers are read back while the next frames are drawn, and the
-//! pixel is replayed on a worker thread, so inspecting never stalls the frame loop. A change
-//! to the lab (a parameter, a key, a saved shader, an animated lab's clock) inspects again.
+//! The window's pixel inspector (F2, then a click): the frame just shown is recorded again
+//! with its draws written down ([`crate::debug::capture_start`], as the page does), their
+//! buffers are read back while the next frames are drawn, and the pixel is replayed on a
+//! worker thread, so inspecting never stalls the frame loop. A change to the lab (a
+//! parameter, a key, a saved shader, an animated lab's clock) inspects again.
 
 use std::sync::mpsc;
 
 use crate::debug::{Inspection, Pending};
 use crate::gpu::Gpu;
-use crate::render::DrawLog;
+use crate::lab::Lab;
 
 /// The inspector's work in flight and its last result.
 #[derive(Default)]
 pub struct Inspector {
-    /// The draws of the frame being captured (between recording and submission).
-    log: Option<DrawLog>,
     /// The buffers being read back, and the pixel.
     pending: Option<(Pending, (u32, u32))>,
     /// The replay running on a worker thread.
@@ -27,19 +26,24 @@ pub struct Inspector {
 impl Inspector {
     /// Whether a new capture can start (none is in flight).
     pub fn idle(&self) -> bool {
-        self.log.is_none() && self.pending.is_none() && self.worker.is_none()
+        self.pending.is_none() && self.worker.is_none()
     }
 
-    /// A log for the frame about to be recorded.
-    pub fn begin(&mut self) -> &DrawLog {
+    /// Starts inspecting `pixel` of `lab`'s frame at `size` in the screen's `format`.
+    pub fn start(
+        &mut self,
+        gpu: &Gpu,
+        lab: &mut dyn Lab,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        pixel: (u32, u32),
+    ) {
         self.busy = true;
-        self.log.insert(DrawLog::new())
-    }
-
-    /// The frame was submitted: reads the buffers of its draws back for `pixel`.
-    pub fn submitted(&mut self, gpu: &Gpu, pixel: (u32, u32)) {
-        if let Some(log) = self.log.take() {
-            self.pending = Some((Pending::start(gpu, &log), pixel));
+        match crate::debug::capture_start(gpu, lab, size, format) {
+            Ok(pending) => self.pending = Some((pending, pixel)),
+            Err(e) => {
+                self.done(Err(e.to_string()));
+            }
         }
     }
 
@@ -88,13 +92,6 @@ impl Inspector {
         self.busy = false;
         self.shown = Some(result);
         true
-    }
-
-    /// Drops a capture whose frame was recorded but never submitted.
-    pub fn abandon(&mut self) {
-        if self.log.take().is_some() && self.pending.is_none() && self.worker.is_none() {
-            self.busy = false;
-        }
     }
 
     /// Forgets the result (inspect mode turned off).

@@ -729,8 +729,6 @@ impl WindowState {
         if self.paused() {
             return Ok(());
         }
-        // A capture whose frame never reached the screen is dropped (it starts again).
-        self.inspector.abandon();
         self.pacing.started = Instant::now();
         // Pace from the previous deadline (no drift), but never plan a burst to catch up.
         let now = Instant::now();
@@ -753,17 +751,15 @@ impl WindowState {
         let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("window.frame"),
         });
-        let (w, h) = target.size;
-        // The frame on screen is the inspection's capture when the lab changed since the last.
-        let inspect = self.session.inspection_due().filter(|_| self.inspector.idle());
-        if inspect.is_some() {
-            self.session.inspection_taken();
-        }
-        let frame = Frame::new(&self.gpu, &mut encoder, &target.view, &target.depth, w, h);
-        let error = self.session.render(&mut match inspect {
-            Some(_) => frame.logged(self.inspector.begin()),
-            None => frame,
-        });
+        let ((w, h), format) = (target.size, target.format);
+        let error = self.session.render(&mut Frame::new(
+            &self.gpu,
+            &mut encoder,
+            &target.view,
+            &target.depth,
+            w,
+            h,
+        ));
         if let Some(e) = error {
             // A lab may rebuild a program while drawing (a shading model chosen by key); a
             // broken shader file leaves the previous one in place, and the error is shown once.
@@ -773,8 +769,11 @@ impl WindowState {
         let view = target.view.clone();
         self.draw_panel(&mut encoder, &view, target.format, target.size);
         let shown = self.screen.present(&self.gpu, target, encoder)?;
-        if let Some(pixel) = inspect {
-            self.inspector.submitted(&self.gpu, pixel);
+        // The lab changed since the last inspection: the frame just shown is captured.
+        if let Some(pixel) = self.session.inspection_due().filter(|_| self.inspector.idle()) {
+            self.session.inspection_taken();
+            self.inspector
+                .start(&self.gpu, self.session.lab_mut(), (w, h), format, pixel);
         }
         match shown {
             Shown::Yes => {}
