@@ -579,8 +579,9 @@ pub struct ViewOrdered<V: VertexType> {
     plain: GpuMesh<V>,
     ordered: Option<GpuMesh<V>>,
     positions: Vec<[f32; 3]>,
-    /// Mesh order's triangles (for an unindexed mesh, every vertex in turn).
-    indices: Vec<u32>,
+    /// Mesh order's triangles (for an unindexed mesh, every vertex in turn); for an indexed
+    /// mesh, the plain mesh's own copy.
+    indices: Arc<Vec<u32>>,
     /// The view (bits of the matrix, winding) `ordered` holds the order for.
     ordered_for: Option<([u32; 16], bool)>,
     /// A large mesh's view seen last frame, not sorted for yet.
@@ -597,11 +598,16 @@ impl<V: VertexType> ViewOrdered<V> {
     /// positions (what the order is computed from), one per vertex.
     pub fn new(gpu: &Gpu, label: &str, vertices: &[V], indices: Option<Vec<u32>>, positions: Vec<[f32; 3]>) -> Self {
         let plain = GpuMesh::new(gpu, label, vertices, indices.as_deref());
+        // An indexed mesh's order is the plain mesh's own copy of its indices.
+        let indices = match indices {
+            Some(_) => plain.index_data().cloned().unwrap_or_default(),
+            None => Arc::new((0..vertices.len() as u32).collect()),
+        };
         ViewOrdered {
             label: format!("{label}.facing_first"),
             plain,
             ordered: None,
-            indices: indices.unwrap_or_else(|| (0..vertices.len() as u32).collect()),
+            indices,
             positions,
             ordered_for: None,
             pending: None,
