@@ -726,6 +726,18 @@ fn shaders_with(tag: &str, edit: impl Fn(&str) -> String) -> PathBuf {
     dir
 }
 
+/// `shaderlab debug phong --pixel 320,180 --shaders DIR`.
+fn debug_phong_centre(dir: &Path) -> std::process::Output {
+    shaderlab(&[
+        "debug",
+        "phong",
+        "--pixel",
+        "320,180",
+        "--shaders",
+        dir.to_str().expect("utf-8"),
+    ])
+}
+
 #[test]
 fn operations_it_cannot_run_loops_without_end_and_broken_shaders_are_errors_at_their_line() {
     let cases: [(&str, &str, &str); 3] = [
@@ -748,14 +760,7 @@ fn operations_it_cannot_run_loops_without_end_and_broken_shaders_are_errors_at_t
     for (tag, insert, want) in cases {
         let dir = shaders_with(tag, |t| t.replacen("    frag_color = ", insert, 1));
         let start = std::time::Instant::now();
-        let out = shaderlab(&[
-            "debug",
-            "phong",
-            "--pixel",
-            "320,180",
-            "--shaders",
-            dir.to_str().expect("utf-8"),
-        ]);
+        let out = debug_phong_centre(&dir);
         let err = text(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{tag}: {err}");
         assert!(err.contains(want), "{tag}: {err}");
@@ -777,14 +782,7 @@ fn operations_it_cannot_run_loops_without_end_and_broken_shaders_are_errors_at_t
     let dir = shaders_with("broken", |t| {
         t.replacen("    frag_color = ", "    frag_color = nope + ", 1)
     });
-    let out = shaderlab(&[
-        "debug",
-        "phong",
-        "--pixel",
-        "320,180",
-        "--shaders",
-        dir.to_str().expect("utf-8"),
-    ]);
+    let out = debug_phong_centre(&dir);
     let err = text(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("phong.frag:21:") && err.contains("nope"), "{err}");
