@@ -19,14 +19,17 @@ pub struct Inspector {
     worker: Option<mpsc::Receiver<Result<Inspection, String>>>,
     /// The last inspection (or why it failed), for the panel.
     pub shown: Option<Result<Inspection, String>>,
-    /// Whether a capture or replay is under way.
-    pub busy: bool,
 }
 
 impl Inspector {
     /// Whether a new capture can start (none is in flight).
     pub fn idle(&self) -> bool {
         self.pending.is_none() && self.worker.is_none()
+    }
+
+    /// Whether a capture or replay is under way.
+    pub fn busy(&self) -> bool {
+        !self.idle()
     }
 
     /// Starts inspecting `pixel` of `lab`'s frame at `size` in the screen's `format`.
@@ -38,7 +41,6 @@ impl Inspector {
         format: wgpu::TextureFormat,
         pixel: (u32, u32),
     ) {
-        self.busy = true;
         match crate::debug::capture_start(gpu, lab, size, format) {
             Ok(pending) => self.pending = Some((pending, pixel)),
             Err(e) => {
@@ -89,7 +91,6 @@ impl Inspector {
     }
 
     fn done(&mut self, result: Result<Inspection, String>) -> bool {
-        self.busy = false;
         self.shown = Some(result);
         true
     }

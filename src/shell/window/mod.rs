@@ -628,7 +628,7 @@ impl WindowState {
         let inspect = self.session.inspecting().then(|| super::panel::InspectView {
             pixel: self.session.inspected(),
             result: self.inspector.shown.as_ref(),
-            busy: self.inspector.busy,
+            busy: self.inspector.busy(),
         });
         let (changed, request) = self.panel.draw(
             &self.gpu,
@@ -995,7 +995,7 @@ impl ApplicationHandler<Wake> for App {
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         let Some(state) = self.state.as_mut() else { return };
-        if state.inspector.busy && state.inspector.poll(&state.gpu, state.session.name()) {
+        if state.inspector.busy() && state.inspector.poll(&state.gpu, state.session.name()) {
             // A new inspection to show.
             state.session.changed();
             if let (Some(log), Some(shown)) = (state.test_log.as_mut(), &state.inspector.shown) {
@@ -1042,7 +1042,7 @@ impl ApplicationHandler<Wake> for App {
             // Input still wakes the loop at once; only drawing waits for its turn.
             event_loop.set_control_flow(ControlFlow::WaitUntil(state.pacing.next));
         }
-        if state.inspector.busy {
+        if state.inspector.busy() {
             // An inspection in flight is looked at every few milliseconds until it is done.
             let soon = Instant::now() + Duration::from_millis(8);
             match event_loop.control_flow() {
