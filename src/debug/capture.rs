@@ -8,8 +8,7 @@ use std::sync::{Arc, Mutex};
 use super::error::ReplayError;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::render::{BindingInfo, DrawLog, Load, RenderState, Resource, SamplerDesc, Texels};
-use crate::shader::CompiledShader;
+use crate::render::{DrawLog, DrawSetup, Load, Resource, SamplerDesc, Texels};
 
 /// A texture binding as the debugger reads it.
 #[derive(Clone, Debug)]
@@ -24,33 +23,14 @@ pub struct TextureBinding {
     pub cube: bool,
 }
 
-/// One draw with its data on the CPU.
+/// One draw with its data on the CPU: its setup (read through, as `draw.state`) and the
+/// bytes of what it read.
 #[derive(Clone)]
 pub struct Draw {
-    /// Which pass of the frame.
-    pub pass: usize,
-    /// The program's label.
-    pub label: String,
-    /// The vertex shader.
-    pub vertex: Arc<CompiledShader>,
-    /// The fragment shader.
-    pub fragment: Arc<CompiledShader>,
-    /// The shaders' bindings.
-    pub bindings: Vec<BindingInfo>,
-    /// The fixed-function state.
-    pub state: RenderState,
-    /// This draw's culling.
-    pub cull: Option<wgpu::Face>,
+    /// Shaders, state, layout, range, as recorded.
+    pub setup: DrawSetup,
     /// The vertex buffer's bytes.
     pub vertices: Arc<Vec<u8>>,
-    /// Bytes per vertex.
-    pub stride: u64,
-    /// Attributes by shader location.
-    pub attributes: Vec<wgpu::VertexAttribute>,
-    /// The indices, if indexed.
-    pub indices: Option<Arc<Vec<u32>>>,
-    /// The vertices (or indices) drawn.
-    pub range: std::ops::Range<u32>,
     /// Uniform blocks: binding and bytes.
     pub uniforms: Vec<(u32, Arc<Vec<u8>>)>,
     /// Textures.
@@ -60,6 +40,14 @@ pub struct Draw {
     /// The clip-space positions of its vertices, computed by the first replay that needs them
     /// (every pixel of a frame shares them).
     pub(crate) positions: Arc<std::sync::OnceLock<Positions>>,
+}
+
+impl std::ops::Deref for Draw {
+    type Target = DrawSetup;
+
+    fn deref(&self) -> &DrawSetup {
+        &self.setup
+    }
 }
 
 /// A draw's shaded vertices: their ids, sorted, and their clip-space positions (or why the
@@ -197,7 +185,7 @@ impl Pending {
             let mut uniforms = Vec::new();
             let mut textures = Vec::new();
             let mut samplers = Vec::new();
-            for binding in &call.bindings {
+            for binding in &call.setup.bindings {
                 let Some(bind) = call.resources.iter().find(|r| r.name == binding.name) else {
                     continue;
                 };
@@ -219,20 +207,9 @@ impl Pending {
                     Resource::Sampler(s) => samplers.push((binding.binding, s.desc)),
                 }
             }
-            let indices = call.indices.clone();
             draws.push(Draw {
-                pass: call.pass,
-                label: call.label.clone(),
-                vertex: call.vertex.clone(),
-                fragment: call.fragment.clone(),
-                bindings: call.bindings.clone(),
-                state: call.state,
-                cull: call.cull,
+                setup: call.setup.clone(),
                 vertices: find(&call.vertices),
-                stride: call.stride,
-                attributes: call.attributes.clone(),
-                indices,
-                range: call.range.clone(),
                 uniforms,
                 textures,
                 samplers,

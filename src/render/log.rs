@@ -25,9 +25,11 @@ pub struct Texels {
     pub levels: Vec<Vec<u8>>,
 }
 
-/// One draw as recorded.
+/// What a draw is apart from the GPU objects it reads: its shaders, fixed-function state,
+/// vertex layout and range. The recorded [`DrawCall`] and the debugger's CPU copy of it share
+/// it.
 #[derive(Clone)]
-pub struct DrawCall {
+pub struct DrawSetup {
     /// Which pass of the frame (an index into [`DrawLog::passes`]).
     pub pass: usize,
     /// The program's label.
@@ -38,22 +40,29 @@ pub struct DrawCall {
     pub fragment: Arc<CompiledShader>,
     /// The bindings the shaders declare.
     pub bindings: Vec<BindingInfo>,
-    /// What is bound to them.
-    pub resources: Vec<Bind>,
     /// The fixed-function state.
     pub state: RenderState,
     /// This draw's culling (a program may draw twice, culling each winding in turn).
     pub cull: Option<wgpu::Face>,
-    /// The vertex buffer.
-    pub vertices: wgpu::Buffer,
     /// Bytes per vertex.
     pub stride: u64,
     /// The vertex attributes, by shader location.
     pub attributes: Vec<wgpu::VertexAttribute>,
     /// The indices, if indexed (kept on the CPU: WebGL2 cannot copy an index buffer).
-    pub indices: Option<std::sync::Arc<Vec<u32>>>,
+    pub indices: Option<Arc<Vec<u32>>>,
     /// The vertices (or indices) drawn.
     pub range: Range<u32>,
+}
+
+/// One draw as recorded: its setup and the GPU objects it reads.
+#[derive(Clone)]
+pub struct DrawCall {
+    /// Shaders, state, layout, range.
+    pub setup: DrawSetup,
+    /// What is bound to the shaders' bindings.
+    pub resources: Vec<Bind>,
+    /// The vertex buffer.
+    pub vertices: wgpu::Buffer,
 }
 
 /// The draws of one frame, in order, and its passes (each pass's load operation and target
@@ -76,7 +85,7 @@ impl DrawLog {
 
     /// Writes down a draw of the current pass.
     pub(crate) fn draw(&self, mut call: DrawCall) {
-        call.pass = self.passes.borrow().len().saturating_sub(1);
+        call.setup.pass = self.passes.borrow().len().saturating_sub(1);
         self.draws.borrow_mut().push(call);
     }
 

@@ -967,19 +967,21 @@ impl<V: VertexType> Program<V> {
         for (k, pipeline) in self.built.pipelines.iter().enumerate() {
             if let Some(log) = pass.log {
                 log.draw(super::DrawCall {
-                    pass: 0,
-                    label: self.label.clone(),
-                    vertex: self.built.vertex.clone(),
-                    fragment: self.built.fragment.clone(),
-                    bindings: self.built.bindings.clone(),
+                    setup: super::DrawSetup {
+                        pass: 0,
+                        label: self.label.clone(),
+                        vertex: self.built.vertex.clone(),
+                        fragment: self.built.fragment.clone(),
+                        bindings: self.built.bindings.clone(),
+                        state: self.state,
+                        cull: culls.get(k).copied().flatten(),
+                        stride: std::mem::size_of::<V>() as u64,
+                        attributes: self.built.stages.attributes.clone(),
+                        indices: mesh.index_data().cloned(),
+                        range: range.clone(),
+                    },
                     resources: self.resources.clone(),
-                    state: self.state,
-                    cull: culls.get(k).copied().flatten(),
                     vertices: mesh.vertex_buffer().clone(),
-                    stride: std::mem::size_of::<V>() as u64,
-                    attributes: self.built.stages.attributes.clone(),
-                    indices: mesh.index_data().cloned(),
-                    range: range.clone(),
                 });
             }
             pass.set_pipeline(pipeline);
