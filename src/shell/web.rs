@@ -62,24 +62,14 @@ const LEGACY_DEFAULT: [&str; 2] = ["legacy/default.vert", "legacy/default.frag"]
 /// are per kind and smaller; this one only keeps a wrong pick (a video) out of memory.
 const MAX_FILE_BYTES: usize = 64 << 20;
 
-/// JSON text for a string.
-fn json(s: &str) -> String {
-    serde_json::Value::from(s).to_string()
+/// An error as the page's JSON answers carry it: `{"error": "..."}`.
+fn json_error(e: impl std::fmt::Display) -> String {
+    serde_json::json!({ "error": e.to_string() }).to_string()
 }
 
-/// JSON text for a list of strings.
+/// A list of strings as JSON.
 fn json_list<'a>(items: impl IntoIterator<Item = &'a str>) -> String {
-    let items: Vec<String> = items.into_iter().map(json).collect();
-    format!("[{}]", items.join(","))
-}
-
-/// A finite number as JSON (JSON has no infinities; the specs' open bounds are ±1e30 or so).
-fn json_number(v: f64) -> String {
-    if v.is_finite() {
-        format!("{v}")
-    } else {
-        "null".into()
-    }
+    serde_json::Value::from_iter(items).to_string()
 }
 
 fn js_error(e: impl std::fmt::Display) -> JsValue {
@@ -90,23 +80,17 @@ fn js_error(e: impl std::fmt::Display) -> JsValue {
 /// `height`, `keys` (the help text of its keys).
 #[wasm_bindgen]
 pub fn labs() -> String {
-    let items: Vec<String> = crate::labs::ALL
+    let items: Vec<serde_json::Value> = crate::labs::ALL
         .iter()
         .map(|e| {
             let i = e.info;
-            format!(
-                "{{\"name\":{},\"title\":{},\"label\":{},\"lecture\":{},\"width\":{},\"height\":{},\"keys\":{}}}",
-                json(i.name),
-                json(i.original_title),
-                json(i.label),
-                json(i.lecture),
-                i.size.0,
-                i.size.1,
-                json(&i.keys.help())
-            )
+            serde_json::json!({
+                "name": i.name, "title": i.original_title, "label": i.label, "lecture": i.lecture,
+                "width": i.size.0, "height": i.size.1, "keys": i.keys.help(),
+            })
         })
         .collect();
-    format!("[{}]", items.join(","))
+    serde_json::Value::from(items).to_string()
 }
 
 /// The course's GLSL 1.10 files built into the page (`lab1.vert` … `lab5.frag`), as JSON.
@@ -403,7 +387,7 @@ impl WebApp {
                     let size = (self.config.width, self.config.height);
                     match crate::debug::capture_start(&self.gpu, open.lab_mut(), size, self.config.format) {
                         Ok(pending) => self.inspecting = Some((pending, pixel)),
-                        Err(e) => self.inspection = format!("{{\"error\":{}}}", json(&e.to_string())),
+                        Err(e) => self.inspection = json_error(e),
                     }
                 }
             }
@@ -416,7 +400,7 @@ impl WebApp {
                 .and_then(|captured| crate::debug::Inspection::new(&name, &captured, x, y))
             {
                 Ok(i) => i.json(),
-                Err(e) => format!("{{\"error\":{}}}", json(&e.to_string())),
+                Err(e) => json_error(e),
             };
         }
         self.inspection.clone()
@@ -470,7 +454,7 @@ impl WebApp {
             return "[]".into();
         };
         let p = open.lab().params();
-        let items: Vec<String> = widgets(p.specs())
+        let items: Vec<serde_json::Value> = widgets(p.specs())
             .iter()
             .map(|w| {
                 let s = &w.spec;
@@ -482,29 +466,22 @@ impl WebApp {
                     Control::Choice(_) => "choice",
                     Control::Colour => "colour",
                 };
-                let (kind, options) = match s.kind {
-                    Kind::Real => ("real", "[]".to_owned()),
-                    Kind::Int => ("int", "[]".to_owned()),
-                    Kind::Bool => ("bool", "[]".to_owned()),
-                    Kind::Choice(names) => ("choice", json_list(names.iter().copied())),
+                let (kind, options): (&str, &[&str]) = match s.kind {
+                    Kind::Real => ("real", &[]),
+                    Kind::Int => ("int", &[]),
+                    Kind::Bool => ("bool", &[]),
+                    Kind::Choice(names) => ("choice", names),
                 };
-                let values: Vec<String> = p.get(s.name).unwrap_or(&[]).iter().map(|v| json_number(*v)).collect();
-                format!(
-                    "{{\"name\":{},\"group\":{},\"control\":{},\"kind\":{},\"options\":{options},\"min\":{},\"max\":{},\"help\":{},\"value\":{},\"values\":[{}],\"default\":{}}}",
-                    json(s.name),
-                    json(w.group.title()),
-                    json(control),
-                    json(kind),
-                    json_number(s.min),
-                    json_number(s.max),
-                    json(s.help),
-                    json(&p.text(s.name)),
-                    values.join(","),
-                    json(&s.default_text())
-                )
+                // JSON has no infinities: an open bound (±1e30 or so, or infinite) is null.
+                serde_json::json!({
+                    "name": s.name, "group": w.group.title(), "control": control, "kind": kind,
+                    "options": options, "min": s.min, "max": s.max, "help": s.help,
+                    "value": p.text(s.name), "values": p.get(s.name).unwrap_or(&[]),
+                    "default": s.default_text(),
+                })
             })
             .collect();
-        format!("[{}]", items.join(","))
+        serde_json::Value::from(items).to_string()
     }
 
     /// Sets a parameter from text, as `--set name=value`; returns the refusal ("" when set).
