@@ -118,3 +118,52 @@ fn obj_location(path: &std::path::Path, line: &Option<usize>) -> String {
 
 /// Shorthand for results with [`Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Runs `work` and turns a panic inside it into `Err` with the panic's message (its location
+/// appended), printing nothing: for calls into dependencies (naga's back ends, wgpu) whose bugs
+/// would otherwise end the program. Panics outside `contain` reach the panic hook as before.
+pub fn contain<T>(work: impl FnOnce() -> T) -> std::result::Result<T, String> {
+    use std::cell::{Cell, RefCell};
+    thread_local! {
+        static CONTAINING: Cell<u32> = const { Cell::new(0) };
+        static WHERE: RefCell<Option<String>> = const { RefCell::new(None) };
+    }
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if CONTAINING.with(Cell::get) > 0 {
+                let place = info.location().map(|l| format!("{}:{}", l.file(), l.line()));
+                WHERE.with(|w| *w.borrow_mut() = place);
+            } else {
+                previous(info);
+            }
+        }));
+    });
+    CONTAINING.with(|c| c.set(c.get() + 1));
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work));
+    CONTAINING.with(|c| c.set(c.get() - 1));
+    outcome.map_err(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic with no message".into());
+        match WHERE.with(|w| w.borrow_mut().take()) {
+            Some(place) => format!("{message} (at {place})"),
+            None => message,
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn contain_turns_a_panic_into_its_message() {
+        assert_eq!(super::contain(|| 7), Ok(7));
+        let err = super::contain(|| -> u32 { panic!("naga's writer: {}", 42) }).unwrap_err();
+        assert!(err.starts_with("naga's writer: 42 (at src/error.rs:"), "{err}");
+        let err = super::contain(|| std::panic::panic_any(5u8)).unwrap_err();
+        assert!(err.starts_with("a panic with no message (at "), "{err}");
+    }
+}

@@ -55,7 +55,24 @@ pub struct Gpu {
     /// frame that never ends (a shader looping for ever), [`Error::Hang`]; `None` waits for
     /// ever (the library's default; the command line sets [`WATCHDOG`]).
     pub watchdog: Option<std::time::Duration>,
+    /// The first error wgpu reported outside any error scope (out of memory in a buffer made
+    /// by a mesh, a validation error in a submitted frame), kept for [`Gpu::wait`] and
+    /// [`Gpu::checked`] to return: wgpu's own default handler panics. A window replaces the
+    /// handler with its own (`shell::surface::on_trouble`).
+    uncaptured: std::sync::Arc<std::sync::Mutex<Option<wgpu::Error>>>,
+    /// Whether building a pipeline is bounded ([`Gpu::compiling`]): past [`Gpu::watchdog`],
+    /// or past the memory the process can take, it ends the process with a message saying
+    /// which. Set by the command line, whose run can do nothing else while the driver compiles;
+    /// a window compiles off its frame loop instead.
+    pub bounded_compiles: bool,
 }
+
+/// How often [`Gpu::compiling`] looks at the process's memory while the driver compiles.
+const COMPILE_CHECK: std::time::Duration = std::time::Duration::from_millis(25);
+
+/// What [`Gpu::compiling`] leaves free of the memory the process could take when it began:
+/// a driver's compiler that runs out of memory crashes without a word, so the run ends first.
+const COMPILE_MEMORY_MARGIN: u64 = 256 << 20;
 
 /// The command line's default watchdog ([`Gpu::watchdog`], `--timeout`): a frame of the labs
 /// takes milliseconds, the largest models a few seconds on lavapipe.
@@ -179,15 +196,7 @@ impl Gpu {
         #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
         if host_memory {
             if let Some((device, queue)) = host_memory::open_device(&adapter, &desc) {
-                return Ok(Gpu {
-                    instance,
-                    adapter,
-                    device,
-                    queue,
-                    timestamps,
-                    host_memory: true,
-                    watchdog: None,
-                });
+                return Ok(Gpu::assemble(instance, adapter, device, queue, timestamps, true));
             }
         }
         let _ = host_memory;
@@ -195,15 +204,105 @@ impl Gpu {
             .request_device(&desc)
             .await
             .map_err(|e| Error::Device(e.to_string()))?;
-        Ok(Gpu {
+        Ok(Gpu::assemble(instance, adapter, device, queue, timestamps, false))
+    }
+
+    fn assemble(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        timestamps: bool,
+        host_memory: bool,
+    ) -> Self {
+        let uncaptured = std::sync::Arc::new(std::sync::Mutex::new(None));
+        let keep = uncaptured.clone();
+        device.on_uncaptured_error(std::sync::Arc::new(move |e| {
+            if let Ok(mut first) = keep.lock() {
+                first.get_or_insert(e);
+            }
+        }));
+        Gpu {
             instance,
             adapter,
             device,
             queue,
             timestamps,
-            host_memory: false,
+            host_memory,
             watchdog: None,
-        })
+            uncaptured,
+            bounded_compiles: false,
+        }
+    }
+
+    /// Runs `work` (building `what`'s pipelines: the driver compiles its shaders then) under the
+    /// bounds of [`Gpu::bounded_compiles`]. A driver's compiler cannot be stopped: past
+    /// [`Gpu::watchdog`], or when the process comes within [`COMPILE_MEMORY_MARGIN`] of the
+    /// memory it could take ([`available_memory`]: the machine's, or the
+    /// address-space limit's), a watching thread says so and ends the process
+    /// ([`crate::fsutil::signals::exit_now`], which removes what it was writing).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn compiling<T>(&self, what: &str, work: impl FnOnce() -> T) -> T {
+        if !self.bounded_compiles {
+            return work();
+        }
+        let (done, finished) = std::sync::mpsc::channel::<()>();
+        let (what, limit) = (what.to_owned(), self.watchdog);
+        let budget =
+            available_memory().map(|free| (resident_bytes().unwrap_or(0) + free).saturating_sub(COMPILE_MEMORY_MARGIN));
+        let spawned = std::thread::Builder::new()
+            .name("shaderlab-compile-watch".into())
+            .spawn(move || {
+                let start = std::time::Instant::now();
+                loop {
+                    match finished.recv_timeout(COMPILE_CHECK) {
+                        Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+                        _ => return,
+                    }
+                    let why = if let Some(limit) = limit.filter(|l| start.elapsed() > *l) {
+                        format!(
+                            "the GPU's driver was still compiling {what}'s shaders after {} s (the watchdog, \
+                             --timeout): they are too large for it (a large local array, a long chain of function \
+                             calls); make them smaller, or give --timeout 0 to wait",
+                            limit.as_secs_f64()
+                        )
+                    } else if let (Some(budget), Some(used)) =
+                        (budget, resident_bytes().filter(|u| budget.is_some_and(|b| *u > b)))
+                    {
+                        format!(
+                            "the GPU's driver took {} of memory compiling {what}'s shaders, all but {} of what this \
+                             process may use ({} with the machine's free memory and `ulimit -v`): they are too \
+                             large for it (a large local array, a long chain of function calls); make them smaller",
+                            crate::fsutil::human_bytes(used),
+                            crate::fsutil::human_bytes(COMPILE_MEMORY_MARGIN),
+                            crate::fsutil::human_bytes(budget + COMPILE_MEMORY_MARGIN),
+                        )
+                    } else {
+                        continue;
+                    };
+                    eprintln!("shaderlab: error: {why}");
+                    crate::fsutil::signals::exit_now(1);
+                }
+            });
+        let value = work();
+        drop(done);
+        if let Ok(watch) = spawned {
+            let _ = watch.join();
+        }
+        value
+    }
+
+    /// [`Gpu::compiling`] in the browser: no thread to watch with, and the browser bounds it.
+    #[cfg(target_arch = "wasm32")]
+    pub fn compiling<T>(&self, _what: &str, work: impl FnOnce() -> T) -> T {
+        work()
+    }
+
+    /// The first error wgpu reported outside an error scope since the last call, as an
+    /// [`Error`] about `context`.
+    pub fn take_uncaptured(&self, context: &str) -> Option<Error> {
+        let error = self.uncaptured.lock().ok()?.take()?;
+        Some(wgpu_error(context, &error))
     }
 
     /// One line naming the adapter and backend, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu)`.
@@ -221,19 +320,34 @@ impl Gpu {
             // uncaptured-error handler instead of this Result.
             return Ok(f());
         }
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let value = f();
-        #[cfg(not(target_arch = "wasm32"))]
-        let error = pollster::block_on(scope.pop());
-        // WebGL2 runs through wgpu-core, which answers a scope at once: the first poll has it.
-        #[cfg(target_arch = "wasm32")]
-        let error = poll_once(scope.pop()).flatten();
-        match error {
-            Some(err) => Err(Error::Wgpu {
+        // Scopes are a stack: popped in the reverse order of pushing.
+        let scopes = [
+            wgpu::ErrorFilter::OutOfMemory,
+            wgpu::ErrorFilter::Internal,
+            wgpu::ErrorFilter::Validation,
+        ]
+        .map(|filter| self.device.push_error_scope(filter));
+        // A panic inside wgpu or naga (a bug in either) is contained and said like an error.
+        let value = crate::error::contain(f);
+        let mut first = None;
+        for scope in scopes.into_iter().rev() {
+            #[cfg(not(target_arch = "wasm32"))]
+            let error = pollster::block_on(scope.pop());
+            // WebGL2 runs through wgpu-core, which answers a scope at once: the first poll has it.
+            #[cfg(target_arch = "wasm32")]
+            let error = poll_once(scope.pop()).flatten();
+            first = first.or(error);
+        }
+        match (value, first) {
+            (Err(panic), _) => Err(Error::Wgpu {
                 context: context.to_owned(),
-                message: err.to_string(),
+                message: format!("wgpu failed inside itself (a bug in wgpu or naga, not in the shader): {panic}"),
             }),
-            None => Ok(value),
+            (Ok(_), Some(err)) => Err(wgpu_error(context, &err)),
+            (Ok(value), None) => match self.take_uncaptured(context) {
+                Some(e) => Err(e),
+                None => Ok(value),
+            },
         }
     }
 
@@ -245,7 +359,11 @@ impl Gpu {
             timeout: self.watchdog,
         };
         self.poll_then_wait(|status| status.is_queue_empty(), wait)
-            .map_err(|e| self.wait_error(e))
+            .map_err(|e| self.wait_error(e))?;
+        match self.take_uncaptured("drawing") {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
     }
 
     /// The error of a wait for the GPU: a timeout is [`Error::Hang`] (and marks the device as
@@ -297,6 +415,84 @@ impl Gpu {
         #[cfg(target_arch = "wasm32")]
         let _ = &done;
         self.device.poll(wait).map(|_| ())
+    }
+}
+
+/// The process's memory now as its bound counts it: mapped (`VmSize`) under an address-space
+/// limit, resident (`VmRSS`) otherwise.
+#[cfg(not(target_arch = "wasm32"))]
+fn resident_bytes() -> Option<u64> {
+    match address_space_limit() {
+        Some(_) => proc_kib("/proc/self/status", "VmSize:"),
+        None => proc_kib("/proc/self/status", "VmRSS:"),
+    }
+}
+
+/// The memory this process can still take, if known: the machine's (Linux's `MemAvailable`),
+/// or less where the process's address space is limited (`ulimit -v`, `prlimit --as`, as
+/// containers and shared machines set), what is left under that limit.
+/// `SHADERLAB_TEST_AVAILABLE_MEMORY=BYTES` stands in for the machine's, so that tests can show
+/// the check without filling the machine.
+pub fn available_memory() -> Option<u64> {
+    let machine = match std::env::var("SHADERLAB_TEST_AVAILABLE_MEMORY")
+        .ok()
+        .and_then(|b| b.parse().ok())
+    {
+        Some(bytes) => Some(bytes),
+        None => proc_kib("/proc/meminfo", "MemAvailable:"),
+    };
+    match (machine, address_space_left()) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// A `NAME: N kB` line of a /proc file, in bytes.
+fn proc_kib(file: &str, name: &str) -> Option<u64> {
+    let text = std::fs::read_to_string(file).ok()?;
+    let line = text.lines().find(|l| l.starts_with(name))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// What is left of the process's address-space limit after what it has mapped now
+/// (`VmSize`); none without a limit.
+fn address_space_left() -> Option<u64> {
+    let limit = address_space_limit()?;
+    Some(limit.saturating_sub(proc_kib("/proc/self/status", "VmSize:")?))
+}
+
+/// The process's address-space limit (`RLIMIT_AS`: `ulimit -v`, `prlimit --as`), if it has one.
+fn address_space_limit() -> Option<u64> {
+    #[cfg(target_os = "linux")]
+    {
+        let mut limit = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: getrlimit fills the struct it is given.
+        if unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut limit) } != 0 || limit.rlim_cur == libc::RLIM_INFINITY {
+            return None;
+        }
+        Some(limit.rlim_cur as u64)
+    }
+    #[cfg(not(target_os = "linux"))]
+    None
+}
+
+/// wgpu's error as [`Error::Wgpu`]; running out of memory says where the memory is and what
+/// limits it.
+fn wgpu_error(context: &str, error: &wgpu::Error) -> Error {
+    let message = match error {
+        wgpu::Error::OutOfMemory { .. } => "the GPU ran out of memory (on a CPU adapter such as lavapipe the GPU's \
+             memory is the machine's, within the process's limit, `ulimit -v`): draw less, a smaller model, a \
+             lower --tess or a smaller --size"
+            .to_string(),
+        e => e.to_string(),
+    };
+    Error::Wgpu {
+        context: context.to_owned(),
+        message,
     }
 }
 

@@ -743,3 +743,142 @@ fn bindings_and_vertex_inputs_are_checked_by_name() {
         "{err}"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// naga's bugs: mended where a rewrite avoids them, contained where not
+
+/// A fragment shader for position_rgb whose `out`/`inout` arguments are a vector's component,
+/// an array's element and a matrix's column: naga 30's SPIR-V writer panics on each as naga's
+/// GLSL front end passes them. The colour it draws is (c.x, 0.25, 0.5).
+const OUT_ARGUMENTS: &str = "#version 450
+layout(location = 0) in vec4 color;
+layout(location = 0) out vec4 frag_color;
+void h(out float x) { x = 0.25; }
+void g(inout float x) { x = x * 0.5; }
+void k(out vec4 v) { v = vec4(0.0, 1.0, 0.0, 1.0); }
+void main() {
+    vec4 c = color;
+    float arr[3] = float[3](0.1, 0.9, 0.3);
+    mat4 m = mat4(1.0);
+    h(c.y);
+    g(arr[1]);
+    k(m[1]);
+    frag_color = vec4(c.x, c.y + arr[1] - 0.45, m[1].y * 0.5, 1.0);
+}
+";
+
+#[test]
+fn out_arguments_into_parts_of_variables_draw() {
+    let copy = ShaderCopy::new("out-arguments");
+    std::fs::write(copy.path("position_rgb.frag"), OUT_ARGUMENTS).unwrap();
+    let mut lab = common::lab_from(labs::POSITION_RGB, &copy.source());
+    let image = lab.rgb(640, 360);
+    // The teapot's centre: green from h's 0.25 (arr[1] halved cancels the 0.45), blue from
+    // k's column, and the corner stays the clear colour.
+    let centre = image.get_pixel(320, 180).0;
+    assert_eq!((centre[1], centre[2]), (64, 128), "centre {centre:?}");
+    assert_eq!(image.get_pixel(2, 2).0, [0, 0, 0]);
+    // The WGSL naga writes for it is valid WGSL (WGSL has no pointer to a component).
+    let shader = shaderlab::shader::compile_file(&copy.path("position_rgb.frag")).expect("compiles");
+    let wgsl = shader.to_wgsl().expect("WGSL");
+    let module = naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}\n{wgsl}", e.emit_to_string(&wgsl)));
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{e:?}\n{wgsl}"));
+    std::fs::remove_dir_all(&copy.dir).ok();
+}
+
+#[test]
+fn out_arguments_into_parts_of_variables_draw_from_the_command_line_and_legacy() {
+    let copy = ShaderCopy::new("out-arguments-cli");
+    std::fs::write(copy.path("position_rgb.frag"), OUT_ARGUMENTS).unwrap();
+    let png = copy.path("out.png");
+    let out = run_example(
+        "position_rgb",
+        &[
+            "--shaders",
+            copy.dir.to_str().unwrap(),
+            "--screenshot",
+            png.to_str().unwrap(),
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("panicked"), "{}", stderr(&out));
+    let image = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(&image.get_pixel(320, 180).0[1..], &[64, 128]);
+    // The same calls in a course's GLSL 1.10 pair.
+    let vert = copy.path("course.vert");
+    let frag = copy.path("course.frag");
+    std::fs::write(&vert, "varying vec4 color;\nvoid main() {\n    color = normalize(gl_Vertex.zyxw) + vec4(0.5, 0.5, 0.5, 1.0);\n    gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;\n}\n").unwrap();
+    let body = OUT_ARGUMENTS
+        .replace(
+            "#version 450\nlayout(location = 0) in vec4 color;\nlayout(location = 0) out vec4 frag_color;\n",
+            "varying vec4 color;\n",
+        )
+        .replace(
+            "float arr[3] = float[3](0.1, 0.9, 0.3);",
+            "float arr[3]; arr[0] = 0.1; arr[1] = 0.9; arr[2] = 0.3;",
+        )
+        .replace("frag_color =", "gl_FragColor =");
+    std::fs::write(&frag, body).unwrap();
+    let png = copy.path("legacy.png");
+    let out = run_example(
+        "legacy",
+        &[
+            vert.to_str().unwrap(),
+            frag.to_str().unwrap(),
+            "--screenshot",
+            png.to_str().unwrap(),
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let image = image::open(&png).unwrap().to_rgb8();
+    let covered = image
+        .pixels()
+        .filter(|p| p.0 != [0, 0, 0] && p.0 != image.get_pixel(0, 0).0)
+        .count();
+    assert!(covered > 1000, "the object is drawn: {covered} pixels");
+    assert!(
+        image.pixels().any(|p| p.0[1] == 64 && p.0[2] == 128),
+        "the calls' values reach the picture"
+    );
+    std::fs::remove_dir_all(&copy.dir).ok();
+}
+
+#[test]
+fn a_panic_inside_wgpu_or_naga_is_an_error() {
+    // naga's bug itself, without the rewrite that avoids it: the pipeline is refused with a
+    // message, and the program goes on.
+    let copy = ShaderCopy::new("naga-panic");
+    std::fs::write(copy.path("position_rgb.frag"), OUT_ARGUMENTS).unwrap();
+    let vertex = shaderlab::shader::compile_file(&copy.path("position_rgb.vert")).expect("vertex");
+    let mut fragment = shaderlab::shader::compile_file(&copy.path("position_rgb.frag")).expect("fragment");
+    let raw = naga::front::glsl::Frontend::default()
+        .parse(
+            &naga::front::glsl::Options::from(naga::ShaderStage::Fragment),
+            OUT_ARGUMENTS,
+        )
+        .expect("parses");
+    fragment.info = naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+        .validate(&raw)
+        .expect("naga's validator takes it");
+    fragment.module = raw;
+    let err = Program::<shaderlab::mesh::Vertex>::from_shaders(
+        gpu(),
+        "naga-panic",
+        vertex,
+        fragment,
+        RenderState::default(),
+        COLOR_FORMAT,
+    )
+    .err()
+    .expect("naga's writer fails");
+    assert!(
+        matches!(&err, Error::Wgpu { message, .. } if message.contains("bug in wgpu or naga") && message.contains("not cached")),
+        "{err}"
+    );
+    // The device still draws.
+    let mut lab = common::lab(labs::POSITION_RGB);
+    assert!(coverage(&lab.rgb(64, 36), [0, 0, 0]) > 0.05);
+    std::fs::remove_dir_all(&copy.dir).ok();
+}

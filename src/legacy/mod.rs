@@ -37,8 +37,6 @@ mod translate;
 
 use std::ops::Range;
 
-use naga::valid::{Capabilities, ValidationFlags, Validator};
-
 pub use builtins::SamplerDim;
 pub use map::{LegacySource, Output};
 pub use translate::{
@@ -55,7 +53,7 @@ impl Translated {
     pub fn compile(&self) -> Result<CompiledShader> {
         let text = &self.output.text;
         let mut frontend = naga::front::glsl::Frontend::default();
-        let module = frontend
+        let mut module = frontend
             .parse(&naga::front::glsl::Options::from(self.stage), text)
             .map_err(|errors| {
                 let mut found: Vec<(Range<usize>, String)> = errors
@@ -66,19 +64,10 @@ impl Translated {
                 crate::shader::error_directive_first(&mut found, |(_, m)| m);
                 self.combine(&found)
             })?;
-        let info = Validator::new(ValidationFlags::all(), Capabilities::all())
-            .validate(&module)
-            .map_err(|err| {
-                let mut message = err.as_inner().to_string();
-                let mut source: &dyn std::error::Error = err.as_inner();
-                while let Some(next) = source.source() {
-                    message.push_str(": ");
-                    message.push_str(&next.to_string());
-                    source = next;
-                }
-                let span = err.spans().last().and_then(|(s, _)| s.to_range()).unwrap_or(0..0);
-                self.combine(&[(span, message)])
-            })?;
+        let info = crate::shader::finish_module(&mut module, self.stage).map_err(|unfinished| {
+            let (span, message) = unfinished.located();
+            self.combine(&[(span.to_range().unwrap_or(0..0), message)])
+        })?;
         // One line index per file: `line_col` for every line would scan the text each time,
         // quadratic in the file's length.
         let (this, other) = (

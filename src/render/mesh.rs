@@ -62,7 +62,7 @@ pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) ->
         )));
     }
     if gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
-        if let Some(available) = available_memory() {
+        if let Some(available) = crate::gpu::available_memory() {
             if total_bytes > available {
                 return Err(crate::Error::Limit(format!(
                     "{what} needs about {} of memory to draw (on this CPU adapter the GPU's memory is the machine's); {} is available",
@@ -73,22 +73,6 @@ pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) ->
         }
     }
     Ok(())
-}
-
-/// The memory the machine can give now (Linux's `MemAvailable`), if known.
-/// `SHADERLAB_TEST_AVAILABLE_MEMORY=BYTES` stands in for it, so that tests can show the check
-/// without filling the machine.
-fn available_memory() -> Option<u64> {
-    if let Some(bytes) = std::env::var("SHADERLAB_TEST_AVAILABLE_MEMORY")
-        .ok()
-        .and_then(|b| b.parse().ok())
-    {
-        return Some(bytes);
-    }
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kib.checked_mul(1024)
 }
 
 /// Triangles above which a mesh is large: an automatic choice (`auto`) never draws more, and a

@@ -666,24 +666,26 @@ impl<V: VertexType> Program<V> {
     ) -> Result<(wgpu::BindGroupLayout, CompiledShaders, PipelineCache)> {
         let device = &gpu.device;
         let entries: Vec<_> = bindings.iter().map(layout_entry).collect();
-        gpu.checked(label, || {
-            let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some(&format!("{label}.bind_group_layout")),
-                entries: &entries,
-            });
-            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(&format!("{label}.pipeline_layout")),
-                bind_group_layouts: &[Some(&bind_group_layout)],
-                immediate_size: 0,
-            });
-            let stages = CompiledShaders {
-                layout,
-                attributes,
-                vs,
-                fs,
-            };
-            let pipelines = Self::make_pipelines(gpu, label, &stages, state, format, &[]);
-            (bind_group_layout, stages, pipelines)
+        gpu.compiling(label, || {
+            gpu.checked(label, || {
+                let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some(&format!("{label}.bind_group_layout")),
+                    entries: &entries,
+                });
+                let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some(&format!("{label}.pipeline_layout")),
+                    bind_group_layouts: &[Some(&bind_group_layout)],
+                    immediate_size: 0,
+                });
+                let stages = CompiledShaders {
+                    layout,
+                    attributes,
+                    vs,
+                    fs,
+                };
+                let pipelines = Self::make_pipelines(gpu, label, &stages, state, format, &[]);
+                (bind_group_layout, stages, pipelines)
+            })
         })
     }
 
@@ -774,8 +776,10 @@ impl<V: VertexType> Program<V> {
         }
         let state = self.state.culling(faces);
         let built = &mut self.built;
-        let new = gpu.checked(&self.label, || {
-            Self::make_pipelines(gpu, &self.label, &built.stages, state, self.format, &built.cache)
+        let new = gpu.compiling(&self.label, || {
+            gpu.checked(&self.label, || {
+                Self::make_pipelines(gpu, &self.label, &built.stages, state, self.format, &built.cache)
+            })
         })?;
         built.cache.extend(new);
         built.pipelines = Self::in_order(&built.cache, state);

@@ -18,6 +18,7 @@ use crate::error::{Error, Result};
 
 pub mod guard;
 mod layout;
+mod mend;
 
 pub use layout::*;
 
@@ -613,7 +614,7 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
         shader_error(path, stage, &source, &[(span, e.message)])
     })?;
     let mut frontend = naga::front::glsl::Frontend::default();
-    let module = frontend
+    let mut module = frontend
         .parse(&naga::front::glsl::Options::from(stage), &source.text)
         .map_err(|errors| {
             let mut spans: Vec<(naga::Span, String)> = errors
@@ -624,21 +625,10 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
             error_directive_first(&mut spans, |(_, m)| m);
             shader_error(path, stage, &source, &spans)
         })?;
-    let info = Validator::new(ValidationFlags::all(), Capabilities::all())
-        .validate(&module)
-        .map_err(|err| {
-            let mut message = err.as_inner().to_string();
-            let mut source_err: &dyn std::error::Error = err.as_inner();
-            while let Some(next) = source_err.source() {
-                message.push_str(": ");
-                message.push_str(&next.to_string());
-                source_err = next;
-            }
-            // naga lists the outermost span first (the whole function) and the offending
-            // expression last: point at the innermost one.
-            let span = err.spans().last().map(|(s, _)| *s).unwrap_or_default();
-            shader_error(path, stage, &source, &[(span, message)])
-        })?;
+    let info = finish_module(&mut module, stage).map_err(|unfinished| {
+        let (span, message) = unfinished.located();
+        shader_error(path, stage, &source, &[(span, message)])
+    })?;
     Ok(CompiledShader {
         path: path.to_owned(),
         stage,
@@ -647,6 +637,79 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
         info,
         translated: false,
     })
+}
+
+/// Why [`finish_module`] refused a module.
+pub(crate) enum Unfinished {
+    /// naga's validator refused it.
+    Invalid(naga::WithSpan<naga::valid::ValidationError>),
+    /// A back end of naga panicked on it (a bug in naga): the panic's message.
+    BackEnd(String),
+}
+
+impl Unfinished {
+    /// Where to point (the innermost span naga names; none for a back end's panic) and what to say.
+    pub(crate) fn located(&self) -> (naga::Span, String) {
+        match self {
+            Unfinished::Invalid(err) => {
+                let mut message = err.as_inner().to_string();
+                let mut source: &dyn std::error::Error = err.as_inner();
+                while let Some(next) = source.source() {
+                    message.push_str(": ");
+                    message.push_str(&next.to_string());
+                    source = next;
+                }
+                // naga lists the outermost span first (the whole function) and the offending
+                // expression last: point at the innermost one.
+                let span = err.spans().last().map(|(s, _)| *s).unwrap_or_default();
+                (span, message)
+            }
+            Unfinished::BackEnd(panic) => (
+                naga::Span::default(),
+                format!(
+                    "naga cannot translate this shader for the GPU: its SPIR-V writer failed ({panic}); \
+                     this is a bug in naga, not in the shader: rewriting the line it trips on (often a \
+                     call) differently avoids it"
+                ),
+            ),
+        }
+    }
+}
+
+/// Makes a parsed module ready for every back end: [`mend`]'s rewrites around naga's bugs, then
+/// validation, then (natively, where wgpu translates to SPIR-V) a trial translation with its
+/// panics contained, so that a bug in naga's writer is a message here and not a crash when
+/// wgpu builds the pipeline.
+pub(crate) fn finish_module(
+    module: &mut naga::Module,
+    stage: ShaderStage,
+) -> std::result::Result<ModuleInfo, Unfinished> {
+    mend::spill_partial_pointers(module);
+    let info = Validator::new(ValidationFlags::all(), Capabilities::all())
+        .validate(module)
+        .map_err(Unfinished::Invalid)?;
+    try_spirv(module, &info, stage)?;
+    Ok(info)
+}
+
+/// Translates `module` to SPIR-V once, natively, with the writer's panics contained. An error
+/// (not a panic) is the writer's refusal of something the device may still take with other
+/// options: wgpu's own translation reports it with the pipeline.
+fn try_spirv(module: &naga::Module, info: &ModuleInfo, stage: ShaderStage) -> std::result::Result<(), Unfinished> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let pipeline = naga::back::spv::PipelineOptions {
+            shader_stage: stage,
+            entry_point: "main".into(),
+        };
+        let options = naga::back::spv::Options::default();
+        let _refusal_or_words =
+            crate::error::contain(|| naga::back::spv::write_vec(module, info, &options, Some(&pipeline)))
+                .map_err(Unfinished::BackEnd)?;
+    }
+    #[cfg(target_arch = "wasm32")]
+    let _ = (module, info, stage);
+    Ok(())
 }
 
 /// naga reports a missing `;` at the next token, often on the next line; point at the end of
@@ -1101,6 +1164,34 @@ mod loader_tests {
         // A short line is shown whole, without marks.
         let d = format_diagnostic("x.frag", 2, 5, "here", "int x = 1;", 1);
         assert!(d.ends_with("   2 | int x = 1;\n      |     ^"), "{d}");
+    }
+
+    #[test]
+    fn a_panic_of_naga_s_writer_is_a_message_and_the_rewrite_avoids_it() {
+        // naga 30's SPIR-V writer panics on an `out` argument that is a vector's component, as
+        // its GLSL front end passes it.
+        let text = "#version 450\nlayout(location = 0) out vec4 o;\nvoid h(out float x) { x = 0.5; }\n\
+                    void main() { vec4 c = vec4(0.0); h(c.y); o = c; }\n";
+        let parse = || {
+            naga::front::glsl::Frontend::default()
+                .parse(&naga::front::glsl::Options::from(ShaderStage::Fragment), text)
+                .expect("parses")
+        };
+        let validate = |module: &naga::Module| {
+            Validator::new(ValidationFlags::all(), Capabilities::all())
+                .validate(module)
+                .expect("valid")
+        };
+        let raw = parse();
+        match try_spirv(&raw, &validate(&raw), ShaderStage::Fragment) {
+            Err(Unfinished::BackEnd(panic)) => assert!(panic.contains("not cached"), "{panic}"),
+            _ => panic!("naga's writer no longer panics here: the rewrite may be unneeded"),
+        }
+        let (_, message) = Unfinished::BackEnd("x".into()).located();
+        assert!(message.contains("bug in naga"), "{message}");
+        let mut mended = parse();
+        assert_eq!(mend::spill_partial_pointers(&mut mended), 1);
+        assert!(finish_module(&mut mended, ShaderStage::Fragment).is_ok());
     }
 
     #[test]

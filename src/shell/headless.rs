@@ -41,6 +41,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     };
     let mut gpu = Gpu::headless()?;
     gpu.watchdog = args.watchdog();
+    gpu.bounded_compiles = true;
     let source = args.shader_source()?;
     let cx = BuildContext {
         gpu: &gpu,
