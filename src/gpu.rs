@@ -338,17 +338,18 @@ impl Gpu {
             let error = poll_once(scope.pop()).flatten();
             first = first.or(error);
         }
-        match (value, first) {
-            (Err(panic), _) => Err(Error::Wgpu {
-                context: context.to_owned(),
-                message: format!("wgpu failed inside itself (a bug in wgpu or naga, not in the shader): {panic}"),
-            }),
-            (Ok(_), Some(err)) => Err(wgpu_error(context, &err)),
-            (Ok(value), None) => match self.take_uncaptured(context) {
-                Some(e) => Err(e),
-                None => Ok(value),
-            },
+        // wgpu's error first: a panic after it (wgpu's own helpers panic on a buffer that
+        // could not be made) is its consequence.
+        if let Some(err) = first {
+            return Err(wgpu_error(context, &err));
         }
+        if let Some(err) = self.take_uncaptured(context) {
+            return Err(err);
+        }
+        value.map_err(|panic| Error::Wgpu {
+            context: context.to_owned(),
+            message: format!("wgpu failed inside itself (a bug in wgpu or naga, not in the shader): {panic}"),
+        })
     }
 
     /// Blocks until the GPU has finished all submitted work ([`Gpu::poll_then_wait`]), at most
@@ -372,10 +373,16 @@ impl Gpu {
         match (e, self.watchdog) {
             (wgpu::PollError::Timeout, Some(limit)) => {
                 HUNG.store(true, std::sync::atomic::Ordering::SeqCst);
+                let why = if crate::shader::loops_compiled() {
+                    "most likely a shader never ends (a `while` or `for` whose condition stays true), or is too \
+                     large for the driver to compile or run in time (a large local array)"
+                } else {
+                    "no shader has a loop, so one is too large for the driver to compile or run in time (a \
+                     large local array, a long chain of function calls), or the frame is too large"
+                };
                 Error::Hang(format!(
-                    "the GPU did not finish a frame within {} s: most likely a shader never ends (a `while` or \
-                     `for` whose condition stays true); fix the shader, or give `--timeout SECONDS` (0: no limit) if the \
-                     frame is only slow",
+                    "the GPU did not finish a frame within {} s: {why}; fix the shader, or give `--timeout SECONDS` \
+                     (0: no limit) if the frame is only slow",
                     limit.as_secs_f64()
                 ))
             }

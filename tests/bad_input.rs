@@ -1246,3 +1246,77 @@ fn a_shader_that_never_ends_meets_the_watchdog() {
         run.stderr
     );
 }
+
+/// A copy of the shaders in `dir/shaders` with position_rgb.frag replaced by `frag`.
+fn position_rgb_with(dir: &Path, frag: &str) -> String {
+    let shaders = dir.join("shaders");
+    common::copy_shaders(&shaders);
+    std::fs::write(shaders.join("position_rgb.frag"), frag).unwrap();
+    shaders.to_str().unwrap().to_owned()
+}
+
+/// Issue 39: a shader with no loop that the driver compiles for minutes (a large local array)
+/// meets the watchdog while the pipeline is built, and the message says so; a frame that does
+/// not finish with no loop in any shader is not called "a shader that never ends".
+#[test]
+fn a_shader_too_large_to_compile_meets_the_watchdog() {
+    let dir = test_dir("compile_watchdog");
+    let shaders = position_rgb_with(
+        &dir,
+        "#version 450\nlayout(location = 0) in vec4 color;\nlayout(location = 0) out vec4 frag_color;\n\
+         void main() {\n    float a[100000];\n    int k = int(color.x * 100.0);\n    a[k] = color.y;\n    \
+         frag_color = vec4(a[k], color.yz, 1.0);\n}\n",
+    );
+    let run = run_in(
+        &dir,
+        "position_rgb",
+        &["--shaders", &shaders, "--timeout", "1", "--screenshot", "out.png"],
+        &[],
+    );
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("the GPU's driver was still compiling position_rgb's shaders after 1 s (the watchdog"),
+        "{}",
+        run.stderr
+    );
+    assert!(!run.stderr.contains("never ends"), "{}", run.stderr);
+    assert!(!dir.join("out.png").exists());
+}
+
+/// Issue 39: a shader whose compilation takes more memory than the process may have (a chain of
+/// 2,000 functions: gigabytes in the driver's compiler, which then crashes without a word) ends
+/// with a message before the limit, here `prlimit --as` as a container sets it.
+#[test]
+fn a_shader_too_large_to_compile_meets_the_memory_bound() {
+    let dir = test_dir("compile_memory");
+    let mut frag = String::from(
+        "#version 450\nlayout(location = 0) in vec4 color;\nlayout(location = 0) out vec4 frag_color;\n\
+         float f0(float x) { return x * 0.5 + 0.1; }\n",
+    );
+    for i in 1..2000 {
+        frag.push_str(&format!(
+            "float f{i}(float x) {{ return f{}(x) * 0.999 + 0.001; }}\n",
+            i - 1
+        ));
+    }
+    frag.push_str("void main() { frag_color = vec4(f1999(color.x), color.yz, 1.0); }\n");
+    let shaders = position_rgb_with(&dir, &frag);
+    let out = Command::new("prlimit")
+        .arg("--as=1500000000")
+        .arg(example("position_rgb"))
+        .args(["--shaders", &shaders, "--timeout", "0", "--screenshot", "out.png"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", dir.join("xdg"))
+        .output()
+        .expect("run prlimit");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("of memory compiling position_rgb's shaders") && stderr.contains("`ulimit -v`"),
+        "{stderr}"
+    );
+    assert!(!dir.join("out.png").exists());
+}

@@ -689,7 +689,32 @@ pub(crate) fn finish_module(
         .validate(module)
         .map_err(Unfinished::Invalid)?;
     try_spirv(module, &info, stage)?;
+    if has_loop(module) {
+        LOOPS.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
     Ok(info)
+}
+
+/// Set once a shader with a loop has been compiled in this process.
+static LOOPS: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Whether any shader compiled in this process has a loop (`for`, `while`, `do`): a frame that
+/// never ends without one is a shader too large for the driver, not one that never ends.
+pub fn loops_compiled() -> bool {
+    LOOPS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+fn has_loop(module: &naga::Module) -> bool {
+    fn block(b: &naga::Block) -> bool {
+        b.iter().any(|s| match s {
+            naga::Statement::Loop { .. } => true,
+            naga::Statement::Block(b) => block(b),
+            naga::Statement::If { accept, reject, .. } => block(accept) || block(reject),
+            naga::Statement::Switch { cases, .. } => cases.iter().any(|c| block(&c.body)),
+            _ => false,
+        })
+    }
+    module.functions.iter().any(|(_, f)| block(&f.body)) || module.entry_points.iter().any(|e| block(&e.function.body))
 }
 
 /// Translates `module` to SPIR-V once, natively, with the writer's panics contained. An error
