@@ -280,3 +280,67 @@ fn messages_say_what_is_wrong_in_the_users_terms() {
         stderr(&out)
     );
 }
+
+/// Issue 39: `shaderlab debug --help` said "which lab?" and exited 2; the debug command's
+/// errors named `--debug` where the user typed `--pixel`; `+5,+6` was taken as a pixel.
+#[test]
+fn the_debug_command_has_help_and_names_the_flag_typed() {
+    let dir = scratch("debug_command");
+    for help in ["--help", "-h"] {
+        let out = run(&dir, &["debug", help]);
+        assert!(out.status.success(), "{help}: {}", stderr(&out));
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            text.contains("Usage: shaderlab debug NAME --pixel X,Y [--json]"),
+            "{text}"
+        );
+        assert!(text.contains("phong"), "the labs are listed: {text}");
+    }
+    for verb in ["run", "record"] {
+        let out = run(&dir, &[verb, "--help"]);
+        assert!(out.status.success(), "{verb}: {}", stderr(&out));
+        assert!(String::from_utf8_lossy(&out.stdout).contains(&format!("Usage: shaderlab {verb} NAME")));
+    }
+    let out = run(&dir, &["debug", "phong", "--help"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("--pixel <X,Y>") && !text.contains("--debug"), "{text}");
+
+    let cases: &[(&[&str], &str)] = &[
+        (&["debug", "phong", "--pixel", "5"], "'--pixel <X,Y>'"),
+        (&["debug", "phong", "--pixel", "+5,+6"], "`+5,+6`: expected X,Y"),
+        (&["debug", "phong", "--pixel", "5,-6"], "`5,-6`: expected X,Y"),
+        (&["debug", "phong", "--pixel=+5,6"], "`+5,6`: expected X,Y"),
+        (
+            &["debug", "phong", "--pixel", "1,1", "--pixel", "2,2"],
+            "'--pixel <X,Y>'",
+        ),
+        (
+            &["debug", "phong", "--pixel", "3,3", "--record", "x.gif", "--frames", "2"],
+            "'--pixel <X,Y>'",
+        ),
+        (
+            &["debug", "phong", "--pixel", "700,5"],
+            "--pixel 700,5: the pixel is outside the 640x360 picture",
+        ),
+        (&["run", "phong", "--debug", "+5,+6"], "`+5,+6`: expected X,Y"),
+        (
+            &["run", "phong", "--debug", "700,5"],
+            "--debug 700,5: the pixel is outside the 640x360 picture",
+        ),
+    ];
+    for (args, phrase) in cases {
+        let out = run(&dir, args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(phrase), "{args:?}: wanted `{phrase}` in:\n{err}");
+        if args[0] == "debug" {
+            assert!(!err.contains("--debug"), "{args:?} names a flag not typed: {err}");
+        }
+    }
+    let out = run(
+        &dir,
+        &["debug", "phong", "--pixel", "05,6", "--json", "--size", "16x16"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+}

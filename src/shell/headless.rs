@@ -82,7 +82,8 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     if let Some((x, y)) = args.debug {
         if x >= width || y >= height {
             return Err(Error::Param(format!(
-                "--debug {x},{y}: the pixel is outside the {width}x{height} picture (x 0..{}, y 0..{})",
+                "{} {x},{y}: the pixel is outside the {width}x{height} picture (x 0..{}, y 0..{})",
+                args.pixel_flag.flag(),
                 width - 1,
                 height - 1
             ))
