@@ -50,6 +50,14 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         lab: "",
     };
     let mut lab = (entry.new)(&cx)?;
+    // The lab has read its shaders and every file they include: inputs too, which no output
+    // may replace. Checked again now, before any frame is drawn.
+    if let Some(path) = &args.screenshot {
+        crate::fsutil::check_output_path(path)?;
+    }
+    if let Some(recording) = &recording {
+        recording.output.check(recording.frames)?;
+    }
     *lab.params_mut() = params;
     let (width, height) = args.size(entry);
     if let Some(frames) = args.bench {
