@@ -142,7 +142,9 @@ fn run(args: &Args) -> anyhow::Result<()> {
             wgsl.push(translate(file)?);
         }
         // All translated, then all moved in: a broken shader leaves OUTDIR as it was (and a
-        // missing one missing).
+        // missing one missing). A signal meanwhile is held until the files and a folder made
+        // here are removed again (the guards are dropped in the reverse order of their making).
+        let _deferred = crate::fsutil::signals::defer();
         let new_dir = NewDir::create(out_dir).map_err(lib)?;
         let mut batch = Batch::new(true);
         for (text, out) in wgsl.iter().zip(&outputs) {
@@ -150,6 +152,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
                 .write(out, |w| w.write_all(text.as_bytes()))
                 .map_err(output_error)?;
         }
+        crate::fsutil::signals::check().map_err(lib)?;
         batch.commit().map_err(lib)?;
         new_dir.keep();
         for (file, out) in files.iter().zip(&outputs) {
