@@ -33,7 +33,7 @@
 //! frame time, and where `grid=auto` lands.
 //!
 //! Every file is written whole (a temporary file renamed into place): an interrupted or failed run
-//! leaves the previous ones as they were.
+//! leaves the previous ones as they were, and a folder it would have made is not made.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -42,7 +42,7 @@ use chart::Outputs;
 use clap::{CommandFactory, FromArgMatches, Parser};
 use plotters::prelude::*;
 use shaderlab::exact::{image_error, silhouette_error, ExactScene, Shape, Specular};
-use shaderlab::fsutil::{check_output_path, check_writable, Dest};
+use shaderlab::fsutil::{check_output_path, check_writable, Dest, NewDir};
 use shaderlab::metrics::mask;
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, say, screenshot};
@@ -142,23 +142,22 @@ fn run(args: &Args) -> anyhow::Result<()> {
         .into_iter()
         .filter(|s| args.study == "all" || args.study == *s)
         .collect();
-    // Before the sweeps, not after them: the folder (made if missing) takes files, and no
-    // output name is a directory or a FIFO.
-    std::fs::create_dir_all(&args.out).map_err(|source| shaderlab::Error::Io {
-        path: args.out.clone(),
-        source,
-    })?;
-    let index = args.out.join("index.md");
-    check_writable(&index)?;
-    for name in &chosen {
-        for ext in ["csv", "svg", "md"] {
-            let path = args.out.join(format!("{name}.{ext}"));
-            check_output_path(&path)?;
-            if !matches!(Dest::of(&path)?, Dest::File(_)) {
-                anyhow::bail!(
-                    "{}: not a regular file (a FIFO or device); the studies write files",
-                    path.display()
-                );
+    // Before the sweeps, not after them: the folder can be made (it is made only when the
+    // files are moved in, so a failed run leaves no new empty folder) and takes files, and no
+    // output name in it is a directory, a FIFO or one of the run's inputs.
+    NewDir::check(&args.out)?;
+    if args.out.is_dir() {
+        check_writable(&args.out.join("index.md"))?;
+        for name in &chosen {
+            for ext in ["csv", "svg", "md"] {
+                let path = args.out.join(format!("{name}.{ext}"));
+                check_output_path(&path)?;
+                if !matches!(Dest::of(&path)?, Dest::File(_)) {
+                    anyhow::bail!(
+                        "{}: not a regular file (a FIFO or device); the studies write files",
+                        path.display()
+                    );
+                }
             }
         }
     }

@@ -27,6 +27,37 @@ Usage:
 
 Each lab is also an example: cargo run --release --example NAME -- [FLAGS…]";
 
+/// `shaderlab VERB --help`: what the verb does, its usage, and where the lab's flags are listed.
+fn verb_help(verb: &str) -> String {
+    let (what, usage, flags) = match verb {
+        "run" => (
+            "run a lab in a window, or offscreen with --screenshot, --bench, --record or --debug",
+            "shaderlab run NAME [FLAGS…]",
+            "",
+        ),
+        "record" => (
+            "record a lab's frames offscreen at a fixed time step into OUT: NAME.gif, NAME.mp4,\n\
+             NAME.webm (through ffmpeg), a PNG sequence (frames-%04d.png) or a directory",
+            "shaderlab record NAME OUT --frames N [--fps F] [--from T] [FLAGS…]",
+            "",
+        ),
+        _ => (
+            "why pixel X,Y of a lab's picture has its colour: the triangle that covers it, the vertex\n\
+             shader at its corners, the interpolated inputs, the fragment shader line by line with\n\
+             every value, and the stored colour (no window)",
+            "shaderlab debug NAME --pixel X,Y [--json] [FLAGS…]",
+            "\n  --pixel X,Y  the pixel: column and row from the top left, as in --screenshot's PNG\n  \
+             --json       print one JSON object (pixel, covered, trace, ...) instead of the text",
+        ),
+    };
+    let names: Vec<&str> = labs::ALL.iter().map(|e| e.info.name).collect();
+    format!(
+        "shaderlab {verb}: {what}\n\nUsage: {usage}\n\n  NAME         a lab: {}{flags}\n  \
+         FLAGS…       the lab's own flags (--set, --size, --shaders, ...): shaderlab {verb} NAME --help lists them\n",
+        names.join(", ")
+    )
+}
+
 /// Writes `text` to stdout: status 0, or 1 with one line when stdout is closed or full
 /// (`shaderlab list | head -c 1`, `> /dev/full`).
 fn print(text: &str) -> ExitCode {
@@ -62,6 +93,11 @@ fn main() -> ExitCode {
             }
             lines.push(String::new());
             print(&lines.join("\n"))
+        }
+        Some(verb @ ("run" | "record" | "debug"))
+            if matches!(words.get(2).map(String::as_str), Some("--help" | "-h")) =>
+        {
+            print(&verb_help(verb))
         }
         Some(verb @ ("run" | "record" | "legacy" | "debug")) => {
             let (name, rest) = if verb == "legacy" {
@@ -99,31 +135,14 @@ fn main() -> ExitCode {
                     }
                 }
                 args.extend(argv.drain(4..));
-            } else if verb == "debug" {
-                // `--pixel X,Y` is the lab's `--debug X,Y`.
-                let rest: Vec<OsString> = argv.drain(rest.min(argv.len())..).collect();
-                let mut pixel = false;
-                for a in rest {
-                    if a == "--pixel" {
-                        args.push("--debug".into());
-                        pixel = true;
-                    } else if let Some(v) = a.to_str().and_then(|s| s.strip_prefix("--pixel=")) {
-                        args.push(format!("--debug={v}").into());
-                        pixel = true;
-                    } else {
-                        args.push(a);
-                    }
-                }
-                if !pixel {
-                    eprintln!(
-                        "shaderlab debug: which pixel? Usage: shaderlab debug NAME --pixel X,Y [--json] [FLAGS…]"
-                    );
-                    return ExitCode::from(2);
-                }
             } else {
                 args.extend(argv.drain(rest.min(argv.len())..));
             }
-            shaderlab::shell::main_from(entry, args)
+            if verb == "debug" {
+                shaderlab::shell::debug_main_from(entry, args)
+            } else {
+                shaderlab::shell::main_from(entry, args)
+            }
         }
         Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),
         Some("bench") => shaderlab::shell::tool_exit("shaderlab bench", bench::run(argv.drain(1..))),

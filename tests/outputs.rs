@@ -280,3 +280,258 @@ fn messages_say_what_is_wrong_in_the_users_terms() {
         stderr(&out)
     );
 }
+
+/// A tiny OBJ: one triangle.
+const TRIANGLE_OBJ: &str = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+
+/// Issue 39: an output that is, or leads to, one of the run's own inputs is refused, whichever
+/// output writes it and whatever path leads there (the same name, a symbolic link, a hard link,
+/// a file an input `#include`s), with status 2 and a message naming the input, and the input
+/// keeps its bytes. `--screenshot` used to write over the `--texture` picture and, through a
+/// link, the `--model` OBJ; `record` over the texture; `glsl2wgsl -o` over an included file.
+#[test]
+fn no_output_replaces_one_of_the_runs_inputs() {
+    let dir = scratch("inputs");
+    let picture = |name: &str| {
+        image::RgbImage::from_pixel(8, 8, image::Rgb([200, 40, 40]))
+            .save_with_format(dir.join(name), image::ImageFormat::Png)
+            .unwrap();
+    };
+    picture("tex.png");
+    // A PNG under a .gif name: a picture is known by its content, so it is a texture and a
+    // name `record` writes a GIF to.
+    picture("tex.gif");
+    fs::hard_link(dir.join("tex.png"), dir.join("hard.png")).unwrap();
+    fs::write(dir.join("model.obj"), TRIANGLE_OBJ).unwrap();
+    std::os::unix::fs::symlink("model.obj", dir.join("model-link.png")).unwrap();
+    common::copy_shaders(&dir.join("shaders"));
+    std::os::unix::fs::symlink("shaders/phong.frag", dir.join("shader-link.png")).unwrap();
+    fs::write(
+        dir.join("main.frag"),
+        "#version 450\n#include \"tint.glsl\"\nlayout(location = 0) out vec4 colour;\nvoid main() { colour = tint(); }\n",
+    )
+    .unwrap();
+    fs::write(
+        dir.join("tint.glsl"),
+        "vec4 tint() { return vec4(1.0, 0.5, 0.25, 1.0); }\n",
+    )
+    .unwrap();
+    let legacy = concat!(env!("CARGO_MANIFEST_DIR"), "/src/labs/legacy");
+    for name in ["default.vert", "default.frag"] {
+        fs::copy(format!("{legacy}/{name}"), dir.join(name)).unwrap();
+    }
+    std::os::unix::fs::symlink("default.vert", dir.join("vert-link.png")).unwrap();
+
+    let small = ["--size", "32x32"];
+    let cases: &[(&[&str], &str, &str)] = &[
+        (
+            &[
+                "run",
+                "suzanne_texture",
+                "--texture",
+                "tex.png",
+                "--screenshot",
+                "tex.png",
+            ],
+            "tex.png",
+            "tex.png: would replace tex.png, one of the pictures this run reads",
+        ),
+        (
+            &[
+                "run",
+                "suzanne_texture",
+                "--texture",
+                "tex.png",
+                "--screenshot",
+                "hard.png",
+            ],
+            "hard.png",
+            "hard.png: would replace tex.png, one of the pictures this run reads",
+        ),
+        (
+            &[
+                "run",
+                "suzanne_phong",
+                "--model",
+                "model.obj",
+                "--screenshot",
+                "model-link.png",
+            ],
+            "model.obj",
+            "model-link.png: would replace model.obj, one of the OBJ models this run reads",
+        ),
+        (
+            &[
+                "record",
+                "suzanne_texture",
+                "tex.gif",
+                "--texture",
+                "tex.gif",
+                "--frames",
+                "2",
+            ],
+            "tex.gif",
+            "tex.gif: would replace tex.gif, one of the pictures this run reads",
+        ),
+        (
+            &["glsl2wgsl", "main.frag", "-o", "tint.glsl"],
+            "tint.glsl",
+            "/tint.glsl, one of the shader files this run reads",
+        ),
+        (
+            &[
+                "run",
+                "phong",
+                "--shaders",
+                "shaders",
+                "--screenshot",
+                "shader-link.png",
+            ],
+            "shaders/phong.frag",
+            "/shaders/phong.frag, one of the shader files this run reads",
+        ),
+        (
+            &[
+                "legacy",
+                "default.vert",
+                "default.frag",
+                "--screenshot",
+                "vert-link.png",
+            ],
+            "default.vert",
+            "vert-link.png: would replace default.vert, one of the shader files this run reads",
+        ),
+    ];
+    for (args, input, phrase) in cases {
+        let args: Vec<&str> = if args[0] == "glsl2wgsl" {
+            args.to_vec()
+        } else {
+            args.iter().chain(&small).copied().collect()
+        };
+        let before = fs::read(dir.join(input)).unwrap();
+        let originals: Vec<Vec<u8>> = ["tex.png", "model.obj", "tint.glsl", "default.vert"]
+            .iter()
+            .map(|n| fs::read(dir.join(n)).unwrap())
+            .collect();
+        let out = run(&dir, &args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(phrase), "{args:?}: wanted `{phrase}` in:\n{err}");
+        assert!(err.contains("an output never replaces an input"), "{args:?}: {err}");
+        assert_eq!(fs::read(dir.join(input)).unwrap(), before, "{args:?} changed {input}");
+        for (n, bytes) in ["tex.png", "model.obj", "tint.glsl", "default.vert"]
+            .iter()
+            .zip(&originals)
+        {
+            assert_eq!(&fs::read(dir.join(n)).unwrap(), bytes, "{args:?} changed {n}");
+        }
+        assert!(
+            !fs::read_dir(&dir)
+                .unwrap()
+                .any(|e| e.unwrap().file_name().to_string_lossy().starts_with(".sl-")),
+            "{args:?} left a temporary file"
+        );
+    }
+    // The same runs with an output of their own write it.
+    for args in [
+        &[
+            "run",
+            "suzanne_texture",
+            "--texture",
+            "tex.png",
+            "--screenshot",
+            "shot.png",
+            "--size",
+            "32x32",
+        ][..],
+        &["glsl2wgsl", "main.frag", "-o", "main.wgsl"],
+    ] {
+        let out = run(&dir, args);
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    }
+    assert!(fs::read_to_string(dir.join("main.wgsl")).unwrap().contains("fn tint"));
+}
+
+/// Issue 39: `shaderlab debug --help` said "which lab?" and exited 2; the debug command's
+/// errors named `--debug` where the user typed `--pixel`; `+5,+6` was taken as a pixel.
+#[test]
+fn the_debug_command_has_help_and_names_the_flag_typed() {
+    let dir = scratch("debug_command");
+    for help in ["--help", "-h"] {
+        let out = run(&dir, &["debug", help]);
+        assert!(out.status.success(), "{help}: {}", stderr(&out));
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            text.contains("Usage: shaderlab debug NAME --pixel X,Y [--json]"),
+            "{text}"
+        );
+        assert!(text.contains("phong"), "the labs are listed: {text}");
+    }
+    for verb in ["run", "record"] {
+        let out = run(&dir, &[verb, "--help"]);
+        assert!(out.status.success(), "{verb}: {}", stderr(&out));
+        assert!(String::from_utf8_lossy(&out.stdout).contains(&format!("Usage: shaderlab {verb} NAME")));
+    }
+    let out = run(&dir, &["debug", "phong", "--help"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("--pixel <X,Y>") && !text.contains("--debug"), "{text}");
+
+    let cases: &[(&[&str], &str)] = &[
+        (&["debug", "phong", "--pixel", "5"], "'--pixel <X,Y>'"),
+        (&["debug", "phong", "--pixel", "+5,+6"], "`+5,+6`: expected X,Y"),
+        (&["debug", "phong", "--pixel", "5,-6"], "`5,-6`: expected X,Y"),
+        (&["debug", "phong", "--pixel=+5,6"], "`+5,6`: expected X,Y"),
+        (
+            &["debug", "phong", "--pixel", "1,1", "--pixel", "2,2"],
+            "'--pixel <X,Y>'",
+        ),
+        (
+            &["debug", "phong", "--pixel", "3,3", "--record", "x.gif", "--frames", "2"],
+            "'--pixel <X,Y>'",
+        ),
+        (
+            &["debug", "phong", "--pixel", "700,5"],
+            "--pixel 700,5: the pixel is outside the 640x360 picture",
+        ),
+        (&["run", "phong", "--debug", "+5,+6"], "`+5,+6`: expected X,Y"),
+        (
+            &["run", "phong", "--debug", "700,5"],
+            "--debug 700,5: the pixel is outside the 640x360 picture",
+        ),
+    ];
+    for (args, phrase) in cases {
+        let out = run(&dir, args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(phrase), "{args:?}: wanted `{phrase}` in:\n{err}");
+        if args[0] == "debug" {
+            assert!(!err.contains("--debug"), "{args:?} names a flag not typed: {err}");
+        }
+    }
+    let out = run(
+        &dir,
+        &["debug", "phong", "--pixel", "05,6", "--json", "--size", "16x16"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+/// Issue 39: a run that fails leaves no folder it made: `glsl2wgsl --all` into a folder that
+/// did not exist, with a shader that does not compile, used to leave the folder, empty (as
+/// `tradeoff` did on a full disk).
+#[test]
+fn a_failed_run_leaves_no_new_folder() {
+    let dir = scratch("new_folder");
+    let src = dir.join("src");
+    fs::create_dir(&src).unwrap();
+    fs::copy(FRAG, src.join("a.frag")).unwrap();
+    fs::write(src.join("b.frag"), "#version 450\nvoid main() { this is not glsl }\n").unwrap();
+    let out = run(&dir, &["glsl2wgsl", "--all", "src", "out/wgsl"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("b.frag:2"), "{}", stderr(&out));
+    assert!(!dir.join("out").exists(), "a failed run left a folder");
+    fs::remove_file(src.join("b.frag")).unwrap();
+    let out = run(&dir, &["glsl2wgsl", "--all", "src", "out/wgsl"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(dir.join("out/wgsl/a.frag.wgsl").is_file());
+}

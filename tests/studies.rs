@@ -160,3 +160,42 @@ fn an_interrupted_or_impossible_tradeoff_run_changes_nothing() {
     );
     assert!(!err.contains("Caused by") && !err.contains("backtrace"), "{err}");
 }
+
+/// Issue 39: `tradeoff` on a full disk left a new, empty output folder behind; a failed run now
+/// leaves what was there before (the folder is made only when the files are moved in, and
+/// removed again if that fails). The disk is made full for the one process by a file size
+/// limit (`RLIMIT_FSIZE`: a write past 4 KiB fails, as on a full disk, with `SIGXFSZ`
+/// ignored), which needs no root and no mount.
+#[test]
+fn a_tradeoff_run_that_cannot_write_leaves_no_new_folder() {
+    use std::os::unix::process::CommandExt;
+    use std::process::Command;
+    let dir = common::output_dir().join("studies_full_disk");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut command = Command::new(common::example("tradeoff"));
+    command
+        .args(["--study", "bezier", "--quick", "--frames", "1", "--out"])
+        .arg(dir.join("new/sub"))
+        .env("MESA_SHADER_CACHE_DISABLE", "true");
+    // SAFETY: only async-signal-safe calls (signal, setrlimit) between fork and exec.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            let limit = libc::rlimit {
+                rlim_cur: 4096,
+                rlim_max: 4096,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let out = command.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("bezier.svg: File too large"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    assert!(left.is_empty(), "a failed run left {left:?}");
+}

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use shaderlab::fsutil::{signals, Batch};
+use shaderlab::fsutil::{signals, Batch, NewDir};
 
 /// Every file a run writes, held in memory until all its studies are done, then moved into
 /// place together ([`Outputs::commit`]): a run that fails or is stopped half-way leaves every
@@ -42,16 +42,19 @@ impl Outputs {
             .map(|(_, t)| t.as_str())
     }
 
-    /// Writes every file beside its name and moves them all in; returns their paths. A signal
-    /// that came before the move leaves the folder untouched.
+    /// Makes the folder if it is missing, writes every file beside its name and moves them
+    /// all in; returns their paths. A failure (a full disk) or a signal that came before the
+    /// move leaves the folder untouched, and a folder made here is removed again.
     pub fn commit(self) -> anyhow::Result<Vec<PathBuf>> {
         let _deferred = signals::defer();
+        let dir = NewDir::create(&self.dir)?;
         let mut batch = Batch::new(true);
         for (path, text) in &self.files {
             batch.write(path, |w| w.write_all(text.as_bytes()))?;
         }
         signals::check()?;
         batch.commit()?;
+        dir.keep();
         Ok(self.files.into_iter().map(|(p, _)| p).collect())
     }
 }

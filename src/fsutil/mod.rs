@@ -3,7 +3,8 @@
 //! temporary file renamed into place once complete and on disk; a FIFO, a device or the
 //! process's own descriptor as a stream; anything else refused); several files that belong
 //! together appear together ([`Batch`]); a signal removes what was half-written ([`signals`]);
-//! user files are read only when regular and within a size cap ([`read_user_file`]).
+//! user files are read only when regular and within a size cap ([`read_user_file`]); no output
+//! replaces one of the run's inputs ([`inputs`]).
 //!
 //! ```no_run
 //! use std::io::Write;
@@ -14,6 +15,7 @@
 //! # Ok::<(), shaderlab::Error>(())
 //! ```
 
+pub mod inputs;
 mod output;
 pub mod signals;
 
@@ -41,10 +43,13 @@ fn io_error(path: &Path, kind: io::ErrorKind, message: String) -> Error {
 }
 
 /// Checks that `path` can name an output (touching nothing): not a directory, socket or block
-/// device ([`Dest::of`]); a file in a directory that exists; a FIFO or device this user may
-/// write; a descriptor open for writing.
+/// device ([`Dest::of`]); not one of the run's inputs, through any path or link ([`inputs`]);
+/// a file in a directory that exists; a FIFO or device this user may write; a descriptor open
+/// for writing.
 pub fn check_output_path(path: &Path) -> Result<()> {
-    match Dest::of(path)? {
+    let dest = Dest::of(path)?;
+    inputs::check(path, &dest)?;
+    match dest {
         Dest::Stream(stream) => stream.check(path),
         Dest::File(target) => {
             for name in [path, target.as_path()] {
@@ -108,6 +113,107 @@ pub fn check_writable(path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// A folder an output makes for its files (`tradeoff --out DIR`, `glsl2wgsl --all DIR OUTDIR`),
+/// made as late as possible and unmade if the output fails: every level that
+/// [`NewDir::create`] made is removed again when the guard is dropped without
+/// [`NewDir::keep`] (innermost first, and only while empty, so a file someone else put there
+/// meanwhile keeps its folder). A run that fails leaves no new empty folder behind.
+#[must_use = "the folder is removed again when the guard is dropped without keep()"]
+pub struct NewDir {
+    /// The levels this guard made, innermost first.
+    made: Vec<std::path::PathBuf>,
+}
+
+impl NewDir {
+    /// Checks, making nothing, that [`NewDir::create`] can make `dir` (or that it is a
+    /// directory already) and that files can be written there: the nearest level that exists
+    /// must be a directory in which a file can be made.
+    pub fn check(dir: &Path) -> Result<()> {
+        let mut existing = dir;
+        loop {
+            match fs::metadata(existing) {
+                Ok(meta) if meta.is_dir() => break,
+                Ok(_) => {
+                    return Err(Error::Io {
+                        path: existing.to_owned(),
+                        source: not_a_directory(),
+                    })
+                }
+                Err(e) if e.kind() == io::ErrorKind::NotFound => match existing.parent() {
+                    Some(parent) if !parent.as_os_str().is_empty() => existing = parent,
+                    _ => {
+                        existing = Path::new(".");
+                        break;
+                    }
+                },
+                Err(source) => {
+                    return Err(Error::Io {
+                        path: existing.to_owned(),
+                        source,
+                    })
+                }
+            }
+        }
+        let (temp, file) = output::create_temp(&existing.join("probe"))?;
+        drop(file);
+        let _ = fs::remove_file(temp);
+        Ok(())
+    }
+
+    /// Makes `dir` and any missing level above it (as `create_dir_all`); a level made before
+    /// a failure is removed again.
+    pub fn create(dir: &Path) -> Result<NewDir> {
+        let mut guard = NewDir { made: Vec::new() };
+        let mut missing = Vec::new();
+        let mut level = dir;
+        while fs::symlink_metadata(level).is_err() {
+            missing.push(level.to_owned());
+            match level.parent() {
+                Some(parent) if !parent.as_os_str().is_empty() => level = parent,
+                _ => break,
+            }
+        }
+        for level in missing.into_iter().rev() {
+            match fs::create_dir(&level) {
+                Ok(()) => guard.made.insert(0, level),
+                // Made by someone else meanwhile: theirs, not removed.
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists && level.is_dir() => {}
+                Err(source) => return Err(Error::Io { path: level, source }),
+            }
+        }
+        if !dir.is_dir() {
+            return Err(Error::Io {
+                path: dir.to_owned(),
+                source: not_a_directory(),
+            });
+        }
+        Ok(guard)
+    }
+
+    /// The output succeeded: the folder stays.
+    pub fn keep(mut self) {
+        self.made.clear();
+    }
+}
+
+/// The system's own "Not a directory", as `create_dir_all` would say it.
+fn not_a_directory() -> io::Error {
+    #[cfg(unix)]
+    return io::Error::from_raw_os_error(libc::ENOTDIR);
+    #[cfg(not(unix))]
+    io::Error::from(io::ErrorKind::NotADirectory)
+}
+
+impl Drop for NewDir {
+    fn drop(&mut self) {
+        for level in &self.made {
+            if fs::remove_dir(level).is_err() {
+                break;
+            }
+        }
+    }
+}
+
 /// A human size: `1 MiB`, `64 MiB`, `1.5 GiB`, `300 bytes`.
 pub fn human_bytes(n: u64) -> String {
     const UNITS: [&str; 4] = ["KiB", "MiB", "GiB", "TiB"];
@@ -136,7 +242,8 @@ pub fn human_bytes(n: u64) -> String {
 /// `cap + 1` bytes are read, in case the size lies, as for files in `/proc`). `what` names the
 /// kind in messages (`shader files`, `OBJ models`, `pictures`). A missing or unreadable file
 /// is [`Error::Io`] with the system's error kind (e.g. `NotFound`), anything else
-/// [`Error::Io`] with a message naming the size and the cap.
+/// [`Error::Io`] with a message naming the size and the cap. The file becomes one of the run's
+/// [`inputs`], which no output may replace.
 pub fn read_user_file(path: &Path, cap: u64, what: &str) -> Result<Vec<u8>> {
     use std::io::Read;
     let io = |source: io::Error| Error::Io {
@@ -170,6 +277,7 @@ pub fn read_user_file(path: &Path, cap: u64, what: &str) -> Result<Vec<u8>> {
     if meta.len() > cap {
         return Err(too_big(meta.len(), ""));
     }
+    inputs::note(path, what);
     let file = File::open(path).map_err(io)?;
     let mut bytes = Vec::with_capacity(meta.len() as usize);
     file.take(cap + 1).read_to_end(&mut bytes).map_err(io)?;
@@ -177,24 +285,6 @@ pub fn read_user_file(path: &Path, cap: u64, what: &str) -> Result<Vec<u8>> {
         return Err(too_big(bytes.len() as u64, "at least "));
     }
     Ok(bytes)
-}
-
-/// Whether `a` and `b` name the same existing file (through any path, link or hard link).
-pub fn same_file(a: &Path, b: &Path) -> bool {
-    let (Ok(ca), Ok(cb)) = (fs::canonicalize(a), fs::canonicalize(b)) else {
-        return false;
-    };
-    if ca == cb {
-        return true;
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        if let (Ok(ma), Ok(mb)) = (fs::metadata(&ca), fs::metadata(&cb)) {
-            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
-        }
-    }
-    false
 }
 
 /// A fresh directory under the system's temp directory for one unit test, removed when the
@@ -528,21 +618,57 @@ mod tests {
         }
     }
 
+    /// A folder an output made is removed again when the output fails (every level it made,
+    /// not one that was there before or that holds someone else's file), and kept when it
+    /// succeeds; the check before makes nothing and says why a folder cannot be made.
     #[test]
-    fn same_file_sees_through_other_paths() {
-        let dir = test_dir("same");
-        let a = dir.join("a.frag");
-        fs::write(&a, b"x").unwrap();
-        fs::create_dir(dir.join("sub")).unwrap();
-        assert!(same_file(&a, &dir.join("sub/../a.frag")));
-        assert!(same_file(&a, &dir.join("./a.frag")));
-        #[cfg(unix)]
+    fn a_failed_output_leaves_no_new_folder() {
+        let dir = test_dir("newdir");
+        let out = dir.join("a/b/c");
+        NewDir::check(&out).unwrap();
+        assert!(sorted_names(&dir).is_empty(), "the check made something");
         {
-            fs::hard_link(&a, dir.join("hard.frag")).unwrap();
-            assert!(same_file(&a, &dir.join("hard.frag")));
+            let _made = NewDir::create(&out).unwrap();
+            assert!(out.is_dir());
+            // The output fails here: its batch is dropped, then the folder.
         }
-        assert!(!same_file(&a, &dir.join("b.frag")));
-        fs::write(dir.join("b.frag"), b"x").unwrap();
-        assert!(!same_file(&a, &dir.join("b.frag")));
+        assert!(sorted_names(&dir).is_empty(), "left behind: {:?}", sorted_names(&dir));
+        // A batch that fails half-way inside a new folder: nothing is left at all.
+        {
+            let _made = NewDir::create(&out).unwrap();
+            let mut batch = Batch::new(true);
+            batch.write(&out.join("x.csv"), |w| w.write_all(b"1")).unwrap();
+            batch
+                .write(&out.join("y.svg"), |_| Err(io::Error::other("No space left on device")))
+                .unwrap_err();
+        }
+        assert!(sorted_names(&dir).is_empty(), "left behind: {:?}", sorted_names(&dir));
+        // Someone else's file keeps its folder (and the folders above it).
+        {
+            let _made = NewDir::create(&out).unwrap();
+            fs::write(out.join("theirs.txt"), b"x").unwrap();
+        }
+        assert!(out.join("theirs.txt").is_file());
+        fs::remove_dir_all(dir.join("a")).unwrap();
+        // A level that was there before stays.
+        fs::create_dir(dir.join("a")).unwrap();
+        drop(NewDir::create(&out).unwrap());
+        assert_eq!(sorted_names(&dir.join("a")), Vec::<String>::new());
+        assert!(dir.join("a").is_dir());
+        // Kept on success.
+        NewDir::create(&out).unwrap().keep();
+        assert!(out.is_dir());
+        // Under a file: said, nothing made.
+        fs::write(dir.join("file"), b"x").unwrap();
+        for err in [
+            NewDir::check(&dir.join("file/sub")).unwrap_err(),
+            NewDir::create(&dir.join("file/sub/deeper")).err().unwrap(),
+        ] {
+            assert!(
+                err.to_string().contains("/file") && err.to_string().contains("Not a directory"),
+                "{err}"
+            );
+        }
+        assert!(!dir.join("file/sub").exists());
     }
 }

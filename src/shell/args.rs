@@ -95,6 +95,40 @@ pub struct Args {
     /// With --debug: print one JSON object (pixel, covered, trace, ...) instead of the text.
     #[arg(long, requires = "debug")]
     pub json: bool,
+    /// The flag the pixel was given with, for messages.
+    #[arg(skip)]
+    pub pixel_flag: PixelFlag,
+}
+
+/// How a command line names the pixel to explain: a lab's `--debug X,Y`, or `shaderlab debug`'s
+/// `--pixel X,Y`. Messages about the pixel name the flag the user typed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PixelFlag {
+    /// `--debug X,Y` (a lab's command line, `shaderlab run`).
+    #[default]
+    Debug,
+    /// `--pixel X,Y` (`shaderlab debug NAME`).
+    Pixel,
+}
+
+impl PixelFlag {
+    /// The flag as typed: `--debug` or `--pixel`.
+    pub fn flag(self) -> &'static str {
+        match self {
+            PixelFlag::Debug => "--debug",
+            PixelFlag::Pixel => "--pixel",
+        }
+    }
+
+    /// The lab's command line with the pixel's flag named so.
+    fn apply(self, command: clap::Command) -> clap::Command {
+        match self {
+            PixelFlag::Debug => command,
+            PixelFlag::Pixel => command.mut_arg("debug", |a| a.long("pixel")).mut_arg("json", |a| {
+                a.help("With --pixel: print one JSON object (pixel, covered, trace, ...) instead of the text.")
+            }),
+        }
+    }
 }
 
 /// One `--texture`: a picture for the lab's texture, or for the texture called `name`.
@@ -176,13 +210,23 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+/// `X,Y`: two whole numbers of digits only. A sign is refused (`+5,+6` reads like an offset
+/// from somewhere, and `u32`'s own parser would take it).
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("`{s}`: expected X,Y (column and row from the top left, e.g. 320,180)");
+    let bad = || {
+        format!(
+            "`{s}`: expected X,Y, two whole numbers without a sign (column and row from the top left, e.g. 320,180)"
+        )
+    };
+    let number = |t: &str| {
+        let t = t.trim();
+        if t.is_empty() || !t.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(bad());
+        }
+        t.parse::<u32>().map_err(|_| bad())
+    };
     let (x, y) = s.split_once(',').ok_or_else(bad)?;
-    Ok((
-        x.trim().parse::<u32>().map_err(|_| bad())?,
-        y.trim().parse::<u32>().map_err(|_| bad())?,
-    ))
+    Ok((number(x)?, number(y)?))
 }
 
 fn parse_set(s: &str) -> Result<(String, String), String> {
@@ -200,6 +244,17 @@ impl Args {
 
     /// Parses `argv` (program name first) for `entry`, as [`Args::parse_for`] does.
     pub fn parse_from_for(entry: &LabEntry, argv: Vec<std::ffi::OsString>) -> Self {
+        Self::parse_with(entry, argv, PixelFlag::Debug)
+    }
+
+    /// Parses `shaderlab debug NAME`'s `argv` (program name first) for `entry`: the lab's flags,
+    /// with the pixel given as `--pixel X,Y` instead of `--debug X,Y` (and named so in help and
+    /// in every message).
+    pub fn parse_debug_command(entry: &LabEntry, argv: Vec<std::ffi::OsString>) -> Self {
+        Self::parse_with(entry, argv, PixelFlag::Pixel)
+    }
+
+    fn parse_with(entry: &LabEntry, argv: Vec<std::ffi::OsString>, pixel_flag: PixelFlag) -> Self {
         let info = entry.info;
         let mut params = (entry.params)();
         let (w, h) = info.size;
@@ -207,7 +262,8 @@ impl Args {
         if file_args.is_some() {
             // List the parameters the files on the command line declare (those of the lab's
             // built-in files without any); a file that does not load is reported after parsing.
-            let prescan = Args::command()
+            let prescan = pixel_flag
+                .apply(Args::command())
                 .disable_help_flag(true)
                 .disable_version_flag(true)
                 .ignore_errors(true);
@@ -238,8 +294,9 @@ impl Args {
                 Some(f) => a.value_names(f.names.iter().copied()).num_args(0..=f.names.len()),
                 None => a.hide(true),
             });
-        let matches = super::parse_command_line(command, argv);
-        Args::from_arg_matches(&matches).unwrap_or_else(|e| super::exit_on_clap_error(info.name, e))
+        let matches = super::parse_command_line(pixel_flag.apply(command), argv);
+        let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| super::exit_on_clap_error(info.name, e));
+        Args { pixel_flag, ..args }
     }
 
     /// The watchdog `--timeout` asks for ([`crate::gpu::Gpu::watchdog`]).

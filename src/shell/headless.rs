@@ -51,6 +51,14 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         lab: "",
     };
     let mut lab = (entry.new)(&cx)?;
+    // The lab has read its shaders and every file they include: inputs too, which no output
+    // may replace. Checked again now, before any frame is drawn.
+    if let Some(path) = &args.screenshot {
+        crate::fsutil::check_output_path(path)?;
+    }
+    if let Some(recording) = &recording {
+        recording.output.check(recording.frames)?;
+    }
     *lab.params_mut() = params;
     let (width, height) = args.size(entry);
     if let Some(frames) = args.bench {
@@ -83,7 +91,8 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     if let Some((x, y)) = args.debug {
         if x >= width || y >= height {
             return Err(Error::Param(format!(
-                "--debug {x},{y}: the pixel is outside the {width}x{height} picture (x 0..{}, y 0..{})",
+                "{} {x},{y}: the pixel is outside the {width}x{height} picture (x 0..{}, y 0..{})",
+                args.pixel_flag.flag(),
                 width - 1,
                 height - 1
             ))

@@ -43,7 +43,7 @@ use std::process::ExitCode;
 #[cfg(not(target_arch = "wasm32"))]
 pub use crate::lab::draw::{render_into, screenshot};
 #[cfg(not(target_arch = "wasm32"))]
-pub use args::Args;
+pub use args::{Args, PixelFlag};
 #[cfg(not(target_arch = "wasm32"))]
 pub use headless::{bench, progress_bar, BenchResult};
 
@@ -149,8 +149,29 @@ pub fn main_named(name: &str) -> ExitCode {
 #[cfg(not(target_arch = "wasm32"))]
 pub fn main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> ExitCode {
     ensure_runtime_dir();
-    let name = entry.info.name;
     let args = Args::parse_from_for(entry, argv);
+    main_parsed(entry, args)
+}
+
+/// `shaderlab debug NAME --pixel X,Y …` (program name first): the lab's command line with the
+/// pixel as `--pixel` ([`Args::parse_debug_command`]); status 2 when no pixel is given.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn debug_main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) -> ExitCode {
+    ensure_runtime_dir();
+    let args = Args::parse_debug_command(entry, argv);
+    if args.debug.is_none() {
+        let _ = writeln!(
+            std::io::stderr(),
+            "shaderlab debug: which pixel? Usage: shaderlab debug NAME --pixel X,Y [--json] [FLAGS…]"
+        );
+        return ExitCode::from(2);
+    }
+    main_parsed(entry, args)
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn main_parsed(entry: &'static LabEntry, args: Args) -> ExitCode {
+    let name = entry.info.name;
     if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() || args.debug.is_some() {
         skip_display_device_select();
     }

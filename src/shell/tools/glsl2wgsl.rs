@@ -12,15 +12,16 @@
 //!
 //! Shader errors print as `path:line:column: message` with the line and a caret, and exit 1.
 //! Output files are written whole (a temporary file renamed into place; `--all` moves all of
-//! them in at the end, so a failure leaves OUTDIR as it was), and never over the input: `-o`
-//! naming the input file, through any path, is refused with exit status 2. `-o` onto a FIFO or a
-//! device (`/dev/stdout`, `/dev/null`) writes into it and never replaces it. A closed or full
-//! stdout is one line and status 1.
+//! them in at the end, so a failure leaves OUTDIR as it was, and an OUTDIR that did not exist
+//! does not either), and never over an input: `-o` naming the input file or a file it
+//! `#include`s, through any path or link, is refused with exit status 2
+//! ([`crate::fsutil::inputs`]). `-o` onto a FIFO or a device (`/dev/stdout`, `/dev/null`)
+//! writes into it and never replaces it. A closed or full stdout is one line and status 1.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use crate::fsutil::{check_output_path, same_file, write_atomic, Batch};
+use crate::fsutil::{check_output_path, inputs, write_atomic, Batch, NewDir};
 use crate::shader::compile_file;
 use anyhow::{bail, Context};
 use clap::{CommandFactory, FromArgMatches, Parser};
@@ -72,21 +73,19 @@ impl std::fmt::Display for Usage {
 
 impl std::error::Error for Usage {}
 
-/// Refuses an output that is the input itself, or a directory, or in a missing directory.
-fn check_output(input: &Path, output: &Path) -> anyhow::Result<()> {
-    if same_file(input, output) {
-        return Err(Usage(format!(
-            "{} is the input file {}; refusing to overwrite the GLSL source with WGSL (choose another -o, e.g. {}.wgsl)",
-            output.display(),
-            input.display(),
-            input.file_name().unwrap_or_default().to_string_lossy()
-        ))
-        .into());
-    }
-    check_output_path(output).map_err(|e| match e {
+/// Refuses an output that is one of the inputs (noted before, [`inputs::note`]), a
+/// directory, or in a missing directory.
+fn check_output(output: &Path) -> anyhow::Result<()> {
+    check_output_path(output).map_err(output_error)
+}
+
+/// An output's error: a usage error (status 2) for a name that cannot take the output (an
+/// input, a directory), else the library's message.
+fn output_error(e: crate::Error) -> anyhow::Error {
+    match e {
         crate::Error::Param(message) => Usage(message).into(),
         e => lib(e),
-    })
+    }
 }
 
 /// A library error as one message (its Display already names the cause).
@@ -100,7 +99,7 @@ fn translate(path: &Path) -> anyhow::Result<String> {
 }
 
 fn write(path: &Path, text: &str) -> anyhow::Result<()> {
-    write_atomic(path, |w| w.write_all(text.as_bytes())).map_err(lib)
+    write_atomic(path, |w| w.write_all(text.as_bytes())).map_err(output_error)
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
@@ -109,7 +108,6 @@ fn run(args: &Args) -> anyhow::Result<()> {
         return Ok(());
     }
     if let Some([dir, out_dir]) = args.all.as_deref() {
-        std::fs::create_dir_all(out_dir).with_context(|| format!("cannot create {}", out_dir.display()))?;
         let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
             .with_context(|| format!("cannot read directory {}", dir.display()))?
             .filter_map(|e| e.ok().map(|e| e.path()))
@@ -128,18 +126,35 @@ fn run(args: &Args) -> anyhow::Result<()> {
                 ))
             })
             .collect();
-        for out in &outputs {
-            for file in &files {
-                check_output(file, out)?;
+        for file in &files {
+            inputs::note(file, "shader files");
+        }
+        // OUTDIR is made only once everything is translated; the names in one that exists are
+        // checked now.
+        NewDir::check(out_dir).map_err(lib)?;
+        if out_dir.is_dir() {
+            for out in &outputs {
+                check_output(out)?;
             }
         }
-        // All translated, then all moved in: a broken shader leaves OUTDIR as it was.
-        let mut batch = Batch::new(true);
-        for (file, out) in files.iter().zip(&outputs) {
-            let wgsl = translate(file)?;
-            batch.write(out, |w| w.write_all(wgsl.as_bytes())).map_err(lib)?;
+        let mut wgsl = Vec::with_capacity(files.len());
+        for file in &files {
+            wgsl.push(translate(file)?);
         }
+        // All translated, then all moved in: a broken shader leaves OUTDIR as it was (and a
+        // missing one missing). A signal meanwhile is held until the files and a folder made
+        // here are removed again (the guards are dropped in the reverse order of their making).
+        let _deferred = crate::fsutil::signals::defer();
+        let new_dir = NewDir::create(out_dir).map_err(lib)?;
+        let mut batch = Batch::new(true);
+        for (text, out) in wgsl.iter().zip(&outputs) {
+            batch
+                .write(out, |w| w.write_all(text.as_bytes()))
+                .map_err(output_error)?;
+        }
+        crate::fsutil::signals::check().map_err(lib)?;
         batch.commit().map_err(lib)?;
+        new_dir.keep();
         for (file, out) in files.iter().zip(&outputs) {
             eprintln!("{} -> {}", file.display(), out.display());
         }
@@ -147,7 +162,8 @@ fn run(args: &Args) -> anyhow::Result<()> {
     }
     let file = args.file.as_deref().context("no input file")?;
     if let Some(out) = &args.output {
-        check_output(file, out)?;
+        inputs::note(file, "shader files");
+        check_output(out)?;
     }
     let wgsl = translate(file)?;
     match &args.output {
