@@ -238,7 +238,7 @@ impl Gpu {
     /// Runs `work` (building `what`'s pipelines: the driver compiles its shaders then) under the
     /// bounds of [`Gpu::bounded_compiles`]. A driver's compiler cannot be stopped: past
     /// [`Gpu::watchdog`], or when the process comes within [`COMPILE_MEMORY_MARGIN`] of the
-    /// memory it could take ([`available_memory`]: the machine's, or the
+    /// memory it could take ([`crate::memory::available`]: the machine's, or the
     /// address-space limit's), a watching thread says so and ends the process
     /// ([`crate::fsutil::signals::exit_now`], which removes what it was writing).
     #[cfg(not(target_arch = "wasm32"))]
@@ -248,8 +248,8 @@ impl Gpu {
         }
         let (done, finished) = std::sync::mpsc::channel::<()>();
         let (what, limit) = (what.to_owned(), self.watchdog);
-        let budget =
-            available_memory().map(|free| (resident_bytes().unwrap_or(0) + free).saturating_sub(COMPILE_MEMORY_MARGIN));
+        let budget = crate::memory::available()
+            .map(|free| (crate::memory::in_use().unwrap_or(0) + free).saturating_sub(COMPILE_MEMORY_MARGIN));
         let spawned = std::thread::Builder::new()
             .name("shaderlab-compile-watch".into())
             .spawn(move || {
@@ -266,9 +266,10 @@ impl Gpu {
                              calls); make them smaller, or give --timeout 0 to wait",
                             limit.as_secs_f64()
                         )
-                    } else if let (Some(budget), Some(used)) =
-                        (budget, resident_bytes().filter(|u| budget.is_some_and(|b| *u > b)))
-                    {
+                    } else if let (Some(budget), Some(used)) = (
+                        budget,
+                        crate::memory::in_use().filter(|u| budget.is_some_and(|b| *u > b)),
+                    ) {
                         format!(
                             "the GPU's driver took {} of memory compiling {what}'s shaders, all but {} of what this \
                              process may use ({} with the machine's free memory and `ulimit -v`): they are too \
@@ -423,68 +424,6 @@ impl Gpu {
         let _ = &done;
         self.device.poll(wait).map(|_| ())
     }
-}
-
-/// The process's memory now as its bound counts it: mapped (`VmSize`) under an address-space
-/// limit, resident (`VmRSS`) otherwise.
-#[cfg(not(target_arch = "wasm32"))]
-fn resident_bytes() -> Option<u64> {
-    match address_space_limit() {
-        Some(_) => proc_kib("/proc/self/status", "VmSize:"),
-        None => proc_kib("/proc/self/status", "VmRSS:"),
-    }
-}
-
-/// The memory this process can still take, if known: the machine's (Linux's `MemAvailable`),
-/// or less where the process's address space is limited (`ulimit -v`, `prlimit --as`, as
-/// containers and shared machines set), what is left under that limit.
-/// `SHADERLAB_TEST_AVAILABLE_MEMORY=BYTES` stands in for the machine's, so that tests can show
-/// the check without filling the machine.
-pub fn available_memory() -> Option<u64> {
-    let machine = match std::env::var("SHADERLAB_TEST_AVAILABLE_MEMORY")
-        .ok()
-        .and_then(|b| b.parse().ok())
-    {
-        Some(bytes) => Some(bytes),
-        None => proc_kib("/proc/meminfo", "MemAvailable:"),
-    };
-    match (machine, address_space_left()) {
-        (Some(a), Some(b)) => Some(a.min(b)),
-        (a, b) => a.or(b),
-    }
-}
-
-/// A `NAME: N kB` line of a /proc file, in bytes.
-fn proc_kib(file: &str, name: &str) -> Option<u64> {
-    let text = std::fs::read_to_string(file).ok()?;
-    let line = text.lines().find(|l| l.starts_with(name))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kib.checked_mul(1024)
-}
-
-/// What is left of the process's address-space limit after what it has mapped now
-/// (`VmSize`); none without a limit.
-fn address_space_left() -> Option<u64> {
-    let limit = address_space_limit()?;
-    Some(limit.saturating_sub(proc_kib("/proc/self/status", "VmSize:")?))
-}
-
-/// The process's address-space limit (`RLIMIT_AS`: `ulimit -v`, `prlimit --as`), if it has one.
-fn address_space_limit() -> Option<u64> {
-    #[cfg(target_os = "linux")]
-    {
-        let mut limit = libc::rlimit {
-            rlim_cur: 0,
-            rlim_max: 0,
-        };
-        // SAFETY: getrlimit fills the struct it is given.
-        if unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut limit) } != 0 || limit.rlim_cur == libc::RLIM_INFINITY {
-            return None;
-        }
-        Some(limit.rlim_cur as u64)
-    }
-    #[cfg(not(target_os = "linux"))]
-    None
 }
 
 /// wgpu's error as [`Error::Wgpu`]; running out of memory says where the memory is and what

@@ -18,7 +18,8 @@
 //! - Foundations: [`shader`] (GLSL loading, diagnostics, reflection), [`offscreen`] and [`gpu`]
 //!   (targets and the device), [`camera`] (GLU matrices), [`geometry`] ([`mesh`], [`tess`]:
 //!   GLUT's solids, OBJ models, pictures), [`params`] (named, ranged values), [`user_files`],
-//!   [`fsutil`] (files in and out, never lost), [`error`].
+//!   [`fsutil`] (files in and out, never lost), [`memory`] (what the process may still take),
+//!   [`error`].
 //! - The speed/accuracy yardsticks of the tests and studies, which nothing above uses: [`exact`],
 //!   [`metrics`], [`noise`].
 //!
@@ -48,6 +49,7 @@ pub mod gpu;
 pub mod lab;
 pub mod labs;
 pub mod legacy;
+pub mod memory;
 pub mod offscreen;
 pub mod params;
 pub mod render;

@@ -1180,13 +1180,13 @@ fn a_model_too_large_for_the_machine_is_one_line() {
         &dir,
         "suzanne_phong",
         &args,
-        &[("SHADERLAB_TEST_AVAILABLE_MEMORY", "1000000")],
+        &[("SHADERLAB_TEST_AVAILABLE_MEMORY", "10000000")],
     );
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     assert!(
         run.stderr
-            .contains("grid.obj (20000 triangles) needs about 14.3 MiB of memory to draw")
-            && run.stderr.contains("976.6 KiB is available"),
+            .contains("grid.obj (20000 triangles), drawn on this CPU adapter (whose GPU memory is the machine's), needs about 14.3 MiB of memory")
+            && run.stderr.contains("may take 9.5 MiB now"),
         "{}",
         run.stderr
     );
@@ -1303,21 +1303,116 @@ fn a_shader_too_large_to_compile_meets_the_memory_bound() {
     }
     frag.push_str("void main() { frag_color = vec4(f1999(color.x), color.yz, 1.0); }\n");
     let shaders = position_rgb_with(&dir, &frag);
+    let run = run_limited(
+        &dir,
+        1_500_000_000,
+        "position_rgb",
+        &["--shaders", &shaders, "--timeout", "0", "--screenshot", "out.png"],
+    );
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("of memory compiling position_rgb's shaders") && run.stderr.contains("`ulimit -v`"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.join("out.png").exists());
+}
+
+/// Runs `example args` in `dir` as [`run_in`] does, under an address-space limit of `bytes`
+/// (`prlimit --as`, as a container or a shared machine sets one).
+fn run_limited(dir: &Path, bytes: u64, example_name: &str, args: &[&str]) -> Run {
     let out = Command::new("prlimit")
-        .arg("--as=1500000000")
-        .arg(example("position_rgb"))
-        .args(["--shaders", &shaders, "--timeout", "0", "--screenshot", "out.png"])
-        .current_dir(&dir)
+        .arg(format!("--as={bytes}"))
+        .arg(example(example_name))
+        .args(args)
+        .current_dir(dir)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
+        .env_remove("RUST_BACKTRACE")
         .env("XDG_RUNTIME_DIR", dir.join("xdg"))
         .output()
         .expect("run prlimit");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(
-        stderr.contains("of memory compiling position_rgb's shaders") && stderr.contains("`ulimit -v`"),
-        "{stderr}"
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// Issue 39: under a memory limit, what does not fit is one clear message (exit status 1),
+/// never wgpu's panicking handler or an abort on a failed allocation: a mesh the GPU runs out of
+/// memory for, a model and a picture too large for what the process may take.
+#[test]
+fn out_of_memory_under_a_limit_is_a_message() {
+    let dir = test_dir("out_of_memory");
+    let said = |run: &Run, phrase: &str| {
+        assert_eq!(run.code, Some(1), "{}", run.stderr);
+        assert!(run.stderr.contains(phrase), "{}", run.stderr);
+        assert!(
+            !run.stderr.contains("panicked") && !run.stderr.contains("memory allocation of"),
+            "{}",
+            run.stderr
+        );
+        assert!(!dir.join("out.png").exists());
+    };
+    // 16.7 M triangles: the GPU's buffer cannot be made.
+    let run = run_limited(
+        &dir,
+        1_500_000_000,
+        "displacement",
+        &["--tess", "512", "--screenshot", "out.png"],
     );
-    assert!(!dir.join("out.png").exists());
+    said(&run, "the GPU ran out of memory");
+    // An 8192×8192 picture (a small file: one colour).
+    let png = dir.join("big.png");
+    image::RgbImage::from_pixel(8192, 8192, image::Rgb([255, 128, 0]))
+        .save(&png)
+        .unwrap();
+    let run = run_limited(
+        &dir,
+        1_200_000_000,
+        "suzanne_texture",
+        &["--texture", "big.png", "--screenshot", "out.png"],
+    );
+    said(&run, "big.png (8192×8192 pixels) needs about");
+    // A model of 2 M triangles, refused before it is read under a tight limit, and before it is
+    // uploaded under a looser one.
+    let mut obj = String::new();
+    let n = 1000;
+    for j in 0..=n {
+        for i in 0..=n {
+            obj.push_str(&format!(
+                "v {} {} 0\n",
+                i as f32 / n as f32 - 0.5,
+                j as f32 / n as f32 - 0.5
+            ));
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i + 1;
+            obj.push_str(&format!(
+                "f {a} {} {}\nf {a} {} {}\n",
+                a + 1,
+                a + n + 2,
+                a + n + 2,
+                a + n + 1
+            ));
+        }
+    }
+    std::fs::write(dir.join("grid.obj"), obj).unwrap();
+    let run = run_limited(
+        &dir,
+        800_000_000,
+        "suzanne_phong",
+        &["--model", "grid.obj", "--screenshot", "out.png"],
+    );
+    said(&run, "reading grid.obj needs about");
+    let run = run_limited(
+        &dir,
+        2_000_000_000,
+        "suzanne_phong",
+        &["--model", "grid.obj", "--screenshot", "out.png"],
+    );
+    said(&run, "grid.obj (2000000 triangles), drawn on this CPU adapter");
 }

@@ -210,6 +210,11 @@ pub fn mip_chain(level0: &Image) -> Vec<Image> {
     chain
 }
 
+/// How many RGBA8 copies of a picture are alive at once on its way to the GPU, at the most: the
+/// decoder's, the RGBA copy, a flipped copy, the mipmaps, the upload and the driver's texture
+/// (an 8192×8192 picture peaked at 6.1 times its 256 MiB on lavapipe).
+const PICTURE_COPIES: u64 = 7;
+
 /// The largest picture file read (64 MiB); a full 8192×8192 RGBA PNG without any compression
 /// is 256 MiB, but real pictures of that size compress far below this.
 pub const MAX_IMAGE_FILE_BYTES: u64 = 64 << 20;
@@ -382,6 +387,10 @@ pub fn decode_image(path: &Path, bytes: &[u8]) -> Result<Image> {
     let (width, height) = decoder.dimensions();
     // The decoder's own reading of the header decides (also where the quick look above could not).
     check_size(path, name, (i64::from(width), i64::from(height)))?;
+    crate::memory::check(
+        &format!("{} ({width}×{height} pixels)", path.display()),
+        u64::from(width) * u64::from(height) * 4 * PICTURE_COPIES,
+    )?;
     let decoded =
         image::DynamicImage::from_decoder(decoder).map_err(|e| decode_error(path, name, Some((width, height)), e))?;
     let rgba = decoded.to_rgba8();

@@ -66,11 +66,22 @@ pub const SUZANNE_OBJ: &str = include_str!("../../assets/suzanne.obj");
 /// The largest OBJ file read (256 MiB, some 5 million triangles); the course's Suzanne is 60 KiB.
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 
+/// The memory an OBJ file takes to read and parse, per byte of the file, at the most (its text,
+/// the positions and the corners, with the spare room of growing lists: a 66 MB file of 2 M
+/// triangles peaked at 11 times its size resident, more mapped).
+const OBJ_MEMORY_PER_BYTE: u64 = 16;
+
 /// Reads and parses an OBJ file: a regular file of at most [`MAX_OBJ_BYTES`]
 /// ([`crate::fsutil::read_user_file`]), in UTF-8. Errors name the file: [`Error::Io`] if it
 /// cannot be read (missing, unreadable, not a regular file, too large, not UTF-8),
 /// [`Error::Obj`] for its content.
 pub fn load_obj(path: &Path) -> Result<ObjModel> {
+    if let Ok(meta) = std::fs::metadata(path) {
+        crate::memory::check(
+            &format!("reading {}", path.display()),
+            meta.len().min(MAX_OBJ_BYTES) * OBJ_MEMORY_PER_BYTE,
+        )?;
+    }
     let bytes = crate::fsutil::read_user_file(path, MAX_OBJ_BYTES, "OBJ models")?;
     let text = String::from_utf8(bytes).map_err(|e| Error::Io {
         path: path.to_path_buf(),

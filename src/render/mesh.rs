@@ -62,15 +62,10 @@ pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) ->
         )));
     }
     if gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
-        if let Some(available) = crate::gpu::available_memory() {
-            if total_bytes > available {
-                return Err(crate::Error::Limit(format!(
-                    "{what} needs about {} of memory to draw (on this CPU adapter the GPU's memory is the machine's); {} is available",
-                    human_bytes(total_bytes),
-                    human_bytes(available)
-                )));
-            }
-        }
+        crate::memory::check(
+            &format!("{what}, drawn on this CPU adapter (whose GPU memory is the machine's),"),
+            total_bytes,
+        )?;
     }
     Ok(())
 }
