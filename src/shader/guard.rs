@@ -447,7 +447,8 @@ struct Function<'a> {
     name: &'a str,
     site: (usize, usize),
     size: u64,
-    calls: Vec<&'a str>,
+    /// The names it calls, each with the place of the call.
+    calls: Vec<(&'a str, (usize, usize))>,
 }
 
 /// Functions defined at the outermost level, their sizes and the names they call.
@@ -473,7 +474,7 @@ impl<'a> CallGraph<'a> {
                 f.size += 1;
                 if tok.text == "(" {
                     if let Some(callee) = self.last_ident {
-                        f.calls.push(callee.text);
+                        f.calls.push((callee.text, callee.site));
                     }
                 }
             }
@@ -505,8 +506,59 @@ impl<'a> CallGraph<'a> {
         self.last_ident = (tok.kind == Kind::Ident).then_some(*tok);
     }
 
-    /// Each function's size with its calls inlined (overloads counted together; a recursive
-    /// call, which GLSL forbids, counted once), without recursion.
+    /// The first call, in the text's order, whose callee leads back to its caller, with the
+    /// cycle named as `legacy`'s translation names it (`recursion (f → g → f)`).
+    fn first_cycle(&self, by_name: &HashMap<&str, Vec<usize>>) -> Exceeded {
+        for f in &self.functions {
+            for (callee, site) in &f.calls {
+                // Breadth-first from the callee back to the caller, keeping each name's parent.
+                let mut parent: HashMap<&str, &str> = HashMap::new();
+                let mut queue = std::collections::VecDeque::from([*callee]);
+                let mut seen = std::collections::HashSet::from([*callee]);
+                while let Some(at) = queue.pop_front() {
+                    if at == f.name {
+                        let mut cycle = vec![at];
+                        let mut back = at;
+                        while let Some(p) = parent.get(back) {
+                            cycle.push(p);
+                            back = p;
+                        }
+                        cycle.push(f.name);
+                        cycle.reverse();
+                        let message = if *callee == f.name {
+                            format!("`{callee}` calls itself: GLSL does not allow recursion; rewrite it as a loop")
+                        } else {
+                            format!(
+                                "recursion ({}): GLSL does not allow a function to call itself, directly or \
+                                 through others; rewrite it as a loop",
+                                cycle.join(" → ")
+                            )
+                        };
+                        return Exceeded {
+                            range: site.0..site.1,
+                            message,
+                        };
+                    }
+                    for &k in by_name.get(at).into_iter().flatten() {
+                        for (next, _) in &self.functions[k].calls {
+                            if by_name.contains_key(next) && seen.insert(next) {
+                                parent.insert(next, at);
+                                queue.push_back(next);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Exceeded {
+            range: 0..0,
+            message: "recursion: GLSL does not allow a function to call itself; rewrite it as a loop".into(),
+        }
+    }
+
+    /// Each function's size with its calls inlined (overloads counted together), without
+    /// recursion; a function that calls itself, directly or through others, which GLSL forbids
+    /// (and naga reports in words of its own IR), is refused at the call that closes the cycle.
     fn check(&self) -> Result<(), Exceeded> {
         if let Some(site) = self.too_many_global {
             return Err(Exceeded {
@@ -537,9 +589,18 @@ impl<'a> CallGraph<'a> {
                 let callees = self.functions[i]
                     .calls
                     .iter()
-                    .flat_map(|c| by_name.get(c).into_iter().flatten());
+                    .flat_map(|(c, _)| by_name.get(c).into_iter().flatten());
                 if state[i] == NEW {
                     state[i] = OPEN;
+                    // A call of a function open now (on the path from the root to `i`)
+                    // closes a cycle.
+                    let calls = &self.functions[i].calls;
+                    if calls
+                        .iter()
+                        .any(|(c, _)| by_name.get(c).into_iter().flatten().any(|&j| state[j] == OPEN))
+                    {
+                        return Err(self.first_cycle(&by_name));
+                    }
                     stack.extend(callees.filter(|&&j| state[j] == NEW));
                     continue;
                 }
@@ -579,6 +640,25 @@ mod tests {
             open.repeat(n),
             close.repeat(n)
         )
+    }
+
+    #[test]
+    fn recursion_is_refused_at_the_call_that_closes_it() {
+        let text = "float b(float x);\nfloat a(float x) { return x > 1.0 ? b(x - 1.0) : x; }\n\
+                    float b(float x) { return a(x * 0.5); }\nvoid main() { float y = a(2.0); }\n";
+        let err = check(text).unwrap_err();
+        // The first call that closes the cycle, in the text's order: `a`'s call of `b`.
+        assert_eq!(&text[err.range.clone()], "b", "{err:?}");
+        assert_eq!(text[..err.range.start].lines().count(), 2, "{err:?}");
+        assert!(
+            err.message.starts_with("recursion (a → b → a): GLSL does not allow"),
+            "{}",
+            err.message
+        );
+        let err = check("float f(float x) { return f(x); }\nvoid main() { float y = f(1.0); }\n").unwrap_err();
+        assert!(err.message.starts_with("`f` calls itself"), "{}", err.message);
+        // Calling the same function twice, or two functions the same one, is no cycle.
+        assert_eq!(check("float g(float x) { return x; }\nfloat f(float x) { return g(x) + g(x); }\nfloat h(float x) { return g(x) * f(x); }\nvoid main() { float y = h(1.0); }\n"), Ok(()));
     }
 
     #[test]
