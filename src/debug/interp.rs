@@ -222,7 +222,11 @@ impl<'m> Run<'m> {
         let buffers = module
             .global_variables
             .iter()
-            .map(|(h, var)| (var.space == naga::AddressSpace::Uniform).then(|| host.buffer(h)).flatten())
+            .map(|(h, var)| {
+                (var.space == naga::AddressSpace::Uniform)
+                    .then(|| host.buffer(h))
+                    .flatten()
+            })
             .collect();
         Ok(Run {
             module,
@@ -579,7 +583,7 @@ impl<'m> Run<'m> {
                         self.undefined(
                             span,
                             format!(
-                                "llvmpipe ends every loop after {LOOP_PASSES} passes in all (its loop limiter); this one was ended there, as on the GPU"
+                                "llvmpipe ends every loop once the shader's loops have made {LOOP_PASSES} passes in all (its loop limiter), and this one was ended there (a loop of a few iterations the driver unrolls makes no passes on the GPU but counts here)"
                             ),
                         );
                     }
@@ -773,7 +777,12 @@ impl<'m> Run<'m> {
                 let lanes: Vec<Vec<Comp>> = each.iter().map(|&at| read(at)).collect::<Res<_>>()?;
                 let first = lanes.first().cloned().unwrap_or_default();
                 Ok((0..first.len())
-                    .map(|k| Comp::new(first[k].kind, Bits::Each(lanes.iter().map(|l| l[k].bits.at(0)).collect())))
+                    .map(|k| {
+                        Comp::new(
+                            first[k].kind,
+                            Bits::Each(lanes.iter().map(|l| l[k].bits.at(0)).collect()),
+                        )
+                    })
                     .collect())
             }
         }
@@ -901,10 +910,11 @@ impl<'m> Run<'m> {
                             message: "an access through a pointer of unknown type".into(),
                             span,
                         })?;
-                        let (mut at, len, _) = value::part(module, &pointee, *index as usize).ok_or_else(|| Failure {
-                            message: "an access the debugger cannot follow".into(),
-                            span,
-                        })?;
+                        let (mut at, len, _) =
+                            value::part(module, &pointee, *index as usize).ok_or_else(|| Failure {
+                                message: "an access the debugger cannot follow".into(),
+                                span,
+                            })?;
                         if let Root::Buffer(_) = ptr.root {
                             at = value::byte_part(module, &pointee, *index)
                                 .ok_or_else(|| Failure {
@@ -1186,7 +1196,10 @@ impl<'m> Run<'m> {
                             })
                         });
                         if outside {
-                            self.undefined(span, format!("GLSL leaves {name}(x) undefined for NaN and for x beyond {name}'s range"));
+                            self.undefined(
+                                span,
+                                format!("GLSL leaves {name}(x) undefined for NaN and for x beyond {name}'s range"),
+                            );
                         }
                     }
                 }
@@ -1314,6 +1327,12 @@ impl<'m> Run<'m> {
                             None => 0,
                         };
                         let size = self.host.size(img, level).map_err(|m| Failure { message: m, span })?;
+                        if size == [0, 0] {
+                            self.undefined(
+                                span,
+                                "GLSL leaves textureSize of a level the texture does not have undefined",
+                            );
+                        }
                         let kind = match self.ty(h) {
                             TypeInner::Vector { scalar, .. } => Kind::of(*scalar).unwrap_or(Kind::U32),
                             _ => Kind::U32,

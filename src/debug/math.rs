@@ -283,7 +283,13 @@ pub fn math(
         M::Asinh => each(&|x| sign(x) * ln(x.abs() + (x * x + 1.0).sqrt())),
         M::Acosh => each(&|x| ln(x + (x * x - 1.0).sqrt())),
         // At 1 lavapipe gives NaN where the formula gives ∞ (measured; GLSL leaves it undefined).
-        M::Atanh => each(&|x| if x == 1.0 { f32::NAN } else { ln((x + 1.0) / (1.0 - x)) * 0.5 }),
+        M::Atanh => each(&|x| {
+            if x == 1.0 {
+                f32::NAN
+            } else {
+                ln((x + 1.0) / (1.0 - x)) * 0.5
+            }
+        }),
         M::Atan2 => {
             let b = need(b)?;
             (0..a.len()).map(|k| f2(&a[k], at(&b, k), atan2)).collect()

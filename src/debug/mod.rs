@@ -249,7 +249,10 @@ impl Inspection {
         }
         let mut caveats = caveats(&captured.adapter, anisotropic);
         if let Some(f) = &replayed.fragment {
-            let stages = [(&f.vertex, &f.undefined.0, "vertex"), (&f.fragment, &f.undefined.1, "fragment")];
+            let stages = [
+                (&f.vertex, &f.undefined.0, "vertex"),
+                (&f.fragment, &f.undefined.1, "fragment"),
+            ];
             for (shader, notes, stage) in stages {
                 for (span, what) in notes {
                     let at = locate(shader, *span)

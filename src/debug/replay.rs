@@ -164,7 +164,11 @@ impl Host for DrawHost<'_> {
     }
     fn buffer(&self, global: Handle<naga::GlobalVariable>) -> Option<std::sync::Arc<Vec<u8>>> {
         let b = self.binding(global)?;
-        self.draw.uniforms.iter().find(|(k, _)| *k == b).map(|(_, bytes)| bytes.clone())
+        self.draw
+            .uniforms
+            .iter()
+            .find(|(k, _)| *k == b)
+            .map(|(_, bytes)| bytes.clone())
     }
 }
 

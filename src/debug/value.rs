@@ -307,9 +307,7 @@ pub fn byte_part(module: &Module, inner: &TypeInner, index: u32) -> Option<(u32,
                 scalar: *scalar,
             },
         )),
-        TypeInner::Array { base, stride, .. } => {
-            Some((index.wrapping_mul(*stride), module.types[*base].inner.clone()))
-        }
+        TypeInner::Array { base, stride, .. } => Some((index.wrapping_mul(*stride), module.types[*base].inner.clone())),
         TypeInner::Struct { members, .. } => members
             .get(index as usize)
             .map(|m| (m.offset, module.types[m.ty].inner.clone())),
