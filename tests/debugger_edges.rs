@@ -99,7 +99,7 @@ fn bits_cases(cases: &[(&str, &str)], pixels: &[(u32, u32)], low_only: bool) -> 
     }
     assert!(
         all.is_empty(),
-        "{} of {} cases differ:\n{}",
+        "{} pixels differ in {} cases:\n{}",
         all.len(),
         cases.len(),
         all.join("\n")
@@ -131,7 +131,12 @@ fn out_of_range_indices_read_what_the_gpu_reads() {
     for body in cases {
         let main = format!("void main() {{\n    int zero = int(floor(gl_FragCoord.x / 100000.0));\n    {body}\n    frag_color.a = 1.0;\n}}\n");
         let lab = edited("uniform_arrays", "uniform_arrays.frag", &main, &[]);
-        all.extend(differences(body, lab, &CENTRE, 0).0);
+        let (d, caveats) = differences(body, lab, &CENTRE, 0);
+        all.extend(d);
+        assert!(
+            caveats.iter().any(|c| c.contains("index out of range undefined")),
+            "{body}: {caveats:?}"
+        );
     }
     assert!(all.is_empty(), "{}", all.join("\n"));
 }

@@ -10,9 +10,10 @@
 //! Lanes follow the GPU's SIMD model: expressions are computed for every lane (a lane switched
 //! off by a branch keeps computing, as a helper invocation does, so its neighbours' derivatives
 //! exist), while stores, returns, `discard` and the trace honour each lane's own control flow
-//! (an active mask per statement). A step budget bounds the work, so `while (true)` is an error
-//! at its line instead of a hang. An operation the interpreter does not implement is an error
-//! naming it, never a silently wrong value.
+//! (an active mask per statement). Loops end where llvmpipe's loop limiter ends them
+//! ([`LOOP_PASSES`]), and a step budget bounds the rest of the work, so a loop too heavy to
+//! follow is an error at its line instead of a hang. An operation the interpreter does not
+//! implement is an error naming it, never a silently wrong value.
 
 // Lanes are indexed across several masks and values at once.
 #![allow(clippy::needless_range_loop)]
@@ -22,6 +23,7 @@ use std::rc::Rc;
 use naga::{BinaryOperator as B, Expression as E, Handle, Module, Span, Statement as S, TypeInner};
 
 use super::error::Failure;
+use super::math::nan_clamp;
 use super::value::{self, Bits, Comp, Kind, Offset, Ptr, Root, Val};
 
 /// What a lookup's level of detail is, per lane.
@@ -957,6 +959,18 @@ impl<'m> Run<'m> {
                 // (`BoundsCheckPolicy::Restrict`): `min(index, n − 1)` compared as unsigned, so
                 // a negative index reads the last element.
                 let clamp = |bits: u32, n: usize| -> usize { (bits as usize).min(n.saturating_sub(1)) };
+                let n = match b.as_ref() {
+                    Val::Ptr(_) => pointee(module, base_ty).as_ref().and_then(value::elements),
+                    _ => value::elements(base_ty),
+                };
+                if let Some(n) = n {
+                    if (0..idx.bits.len()).any(|l| idx.bits.at(l) as usize >= n) {
+                        self.undefined(
+                            span,
+                            "GLSL leaves an index out of range undefined (a variable's is restricted to its last element, a uniform block's reads the buffer's bytes there or zero past its end)",
+                        );
+                    }
+                }
                 match b.as_ref() {
                     Val::Ptr(ptr) if matches!(ptr.root, Root::Buffer(_)) => {
                         // Into a uniform buffer naga leaves the index as it is and the driver's
@@ -1458,8 +1472,8 @@ fn cast(c: &Comp, kind: naga::ScalarKind, convert: bool, span: Span) -> Res<Comp
     // min(max(x, lo), hi) in which a NaN x gives lo.
     let bits = c.bits.map(|b| match (from, to) {
         (a, b2) if a == b2 => b,
-        (Kind::F32, Kind::I32) => (f32::from_bits(b).max(-2_147_483_648.0).min(2_147_483_520.0) as i32) as u32,
-        (Kind::F32, Kind::U32) => f32::from_bits(b).max(0.0).min(4_294_967_040.0) as u32,
+        (Kind::F32, Kind::I32) => (nan_clamp(f32::from_bits(b), -2_147_483_648.0, 2_147_483_520.0) as i32) as u32,
+        (Kind::F32, Kind::U32) => nan_clamp(f32::from_bits(b), 0.0, 4_294_967_040.0) as u32,
         (Kind::F32, Kind::Bool) => u32::from(f32::from_bits(b) != 0.0),
         (Kind::I32, Kind::F32) => (b as i32 as f32).to_bits(),
         (Kind::U32, Kind::F32) => (b as f32).to_bits(),

@@ -70,6 +70,13 @@ fn any2(a: &[Comp], b: &[Comp], test: impl Fn(f32, f32) -> bool) -> bool {
     })
 }
 
+/// `min(max(x, lo), hi)` as Mesa lowers `clamp`: a NaN x gives lo (where `f32::clamp` keeps
+/// NaN), a NaN bound gives x.
+#[allow(clippy::manual_clamp)]
+pub fn nan_clamp(x: f32, lo: f32, hi: f32) -> f32 {
+    x.max(lo).min(hi)
+}
+
 /// `fsign`: 1, −1, or 0 for zero (and NaN).
 fn sign(x: f32) -> f32 {
     if x > 0.0 {
@@ -245,7 +252,7 @@ pub fn math(
             (0..a.len())
                 .map(|k| match kind {
                     // min(max(x, lo), hi), as Mesa lowers it: a NaN x gives lo.
-                    Kind::F32 => f3(&a[k], at(&lo, k), at(&hi, k), |x, l, h| x.max(l).min(h)),
+                    Kind::F32 => f3(&a[k], at(&lo, k), at(&hi, k), nan_clamp),
                     Kind::I32 => Comp::new(
                         kind,
                         a[k].bits.zip3(&at(&lo, k).bits, &at(&hi, k).bits, |x, l, h| {
@@ -260,7 +267,7 @@ pub fn math(
                 })
                 .collect()
         }
-        M::Saturate => each(&|x| x.max(0.0).min(1.0)),
+        M::Saturate => each(&|x| nan_clamp(x, 0.0, 1.0)),
         M::Cos => each(&f32::cos),
         // Mesa's formulas: ½(eˣ ± e⁻ˣ), tanh over x clamped to ±10, asinh and acosh through
         // log(|x| + √(x² ± 1)) (so asinh(1e30) overflows to ∞), atanh as ½·log((1 + x)/(1 − x)).
@@ -270,7 +277,7 @@ pub fn math(
         M::Tan => each(&f32::tan),
         M::Tanh => each(&|x| {
             if 0.0 < x.abs() {
-                let c = x.max(-10.0).min(10.0);
+                let c = nan_clamp(x, -10.0, 10.0);
                 let (p, n) = (c.exp(), (-c).exp());
                 (p - n) / (p + n)
             } else {
@@ -354,7 +361,7 @@ pub fn math(
                 .map(|k| {
                     // Mesa's order: t·(t·(3 − 2t)), t saturated (a NaN t gives 0).
                     f3(at(a, k), at(&b, k), at(&x, k), |e0, e1, x| {
-                        let t = ((x - e0) / (e1 - e0)).max(0.0).min(1.0);
+                        let t = nan_clamp((x - e0) / (e1 - e0), 0.0, 1.0);
                         t * (t * (3.0 - 2.0 * t))
                     })
                 })

@@ -250,8 +250,8 @@ impl Inspection {
         let mut caveats = caveats(&captured.adapter, anisotropic);
         if let Some(f) = &replayed.fragment {
             let stages = [
-                (&f.vertex, &f.undefined.0, "vertex"),
-                (&f.fragment, &f.undefined.1, "fragment"),
+                (&f.vertex, &f.vertex_undefined, "vertex"),
+                (&f.fragment, &f.fragment_undefined, "fragment"),
             ];
             for (shader, notes, stage) in stages {
                 for (span, what) in notes {

@@ -197,11 +197,20 @@ fn clipmask(p: [f32; 4]) -> u32 {
     (0..6).filter(|&i| dot4(p, PLANES[i]) < 0.0).fold(0, |m, i| m | 1 << i)
 }
 
+/// A triangle after clipping.
+struct Clipped {
+    /// The polygon's vertices: indices into `pos`.
+    poly: Vec<usize>,
+    /// Clip positions: the triangle's three, then the vertices made.
+    pos: Vec<[f32; 4]>,
+    /// How each vertex past the third was made.
+    made: Vec<Made>,
+}
+
 /// A triangle clipped as llvmpipe's `do_clip_tri` clips it (Sutherland–Hodgman, plane by
-/// plane in bit order, each new vertex interpolated from the one outside): the polygon's
-/// vertices (indices into the clip positions, the triangle's three first) and the vertices
-/// made. `None` where a distance is not finite (the clipper drops the triangle).
-fn clip(clip: [[f32; 4]; 3], mask: u32) -> Option<(Vec<usize>, Vec<[f32; 4]>, Vec<Made>)> {
+/// plane in bit order, each new vertex interpolated from the one outside). `None` where a
+/// distance is not finite (the clipper drops the triangle).
+fn clip(clip: [[f32; 4]; 3], mask: u32) -> Option<Clipped> {
     let mut pos: Vec<[f32; 4]> = clip.to_vec();
     let mut made = Vec::new();
     let mut poly = vec![0, 1, 2];
@@ -226,7 +235,8 @@ fn clip(clip: [[f32; 4]; 3], mask: u32) -> Option<(Vec<usize>, Vec<[f32; 4]>, Ve
                 out.push(prev);
                 dp < 0.0
             } else {
-                !(dp < 0.0)
+                // Not below 0 (a distance is finite here).
+                dp >= 0.0
             };
             if different {
                 let denom = dp - dp_prev;
@@ -267,7 +277,7 @@ fn clip(clip: [[f32; 4]; 3], mask: u32) -> Option<(Vec<usize>, Vec<[f32; 4]>, Ve
         }
         poly = out;
     }
-    Some((poly, pos, made))
+    Some(Clipped { poly, pos, made })
 }
 
 /// Whether the triangle `clip` (clip-space positions) covers pixel (x, y), and how it
@@ -292,7 +302,7 @@ pub fn triangle(
         let window = clip_pos.map(|p| vp.to_window(p));
         return setup(&window, [0, 1, 2], Vec::new(), x, y, front_face, cull);
     }
-    let (poly, pos, made) = clip(clip_pos, any)?;
+    let Clipped { poly, pos, made } = clip(clip_pos, any)?;
     if poly.len() < 3 {
         return None;
     }

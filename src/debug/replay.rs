@@ -84,9 +84,11 @@ pub struct Fragment {
     pub fragment_steps: Vec<Step>,
     /// Steps left out past the trace's limit.
     pub steps_dropped: usize,
-    /// Where the corners' and the pixel's runs met what GLSL leaves undefined (or the GPU's
-    /// loop limiter), and what: the vertex shader's, then the fragment shader's.
-    pub undefined: (Vec<(naga::Span, String)>, Vec<(naga::Span, String)>),
+    /// Where the corners' run of the vertex shader met what GLSL leaves undefined (or the
+    /// GPU's loop limiter), and what.
+    pub vertex_undefined: Vec<(naga::Span, String)>,
+    /// The same for the pixel's run of the fragment shader.
+    pub fragment_undefined: Vec<(naga::Span, String)>,
     /// The draw's shaders.
     pub vertex: std::sync::Arc<CompiledShader>,
     /// The fragment shader.
@@ -647,7 +649,8 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
             vertex_steps: vrun.steps,
             fragment_steps: std::mem::take(&mut run.steps),
             steps_dropped: vrun.dropped + run.steps_dropped,
-            undefined: (vrun.undefined, std::mem::take(&mut run.undefined)),
+            vertex_undefined: vrun.undefined,
+            fragment_undefined: std::mem::take(&mut run.undefined),
             vertex: draw.vertex.clone(),
             fragment: fshader.clone(),
         },
