@@ -335,3 +335,43 @@ fn nan_and_the_infinities_stay_apart_in_the_json() {
     assert_eq!(value("b"), "Infinity");
     assert_eq!(value("c"), "-Infinity");
 }
+
+#[test]
+fn glsl_naga_does_not_implement_is_named_as_such() {
+    let dir = common::output_dir().join("debug_edges_naga_lacks");
+    for (name, line) in [
+        ("frexp", "int e; float r = frexp(0.5, e);"),
+        ("uaddCarry", "uint c; float r = float(uaddCarry(1u, 2u, c));"),
+        (
+            "matrixCompMult",
+            "float r = matrixCompMult(mat2(1.0), mat2(2.0))[0][0];",
+        ),
+        (
+            "textureQueryLod",
+            "float r = textureQueryLod(sampler2D(tex, tex_sampler), texcoord).x;",
+        ),
+        ("gl_HelperInvocation", "float r = gl_HelperInvocation ? 1.0 : 0.0;"),
+    ] {
+        let _ = std::fs::remove_dir_all(&dir);
+        common::copy_shaders(&dir);
+        let path = dir.join("suzanne_texture.frag");
+        let text = std::fs::read_to_string(&path).expect("suzanne_texture.frag");
+        let at = text.find("void main()").expect("main");
+        std::fs::write(
+            &path,
+            format!("{}void main() {{\n    {line}\n    fColor = vec4(r);\n}}\n", &text[..at]),
+        )
+        .expect("write");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+            .args(["debug", "texparams", "--pixel", "320,240", "--shaders"])
+            .arg(&dir)
+            .output()
+            .expect("shaderlab runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+        assert!(
+            err.contains(&format!("`{name}` is GLSL, but naga 30")) && err.contains("suzanne_texture.frag:10"),
+            "{name}: {err}"
+        );
+    }
+}
