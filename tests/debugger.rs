@@ -740,24 +740,42 @@ fn debug_phong_centre(dir: &Path) -> std::process::Output {
 
 #[test]
 fn operations_it_cannot_run_loops_without_end_and_broken_shaders_are_errors_at_their_line() {
+    const HEAVY: &str = "k = k + sin(k) * cos(k) + sin(k + 1.0) * cos(k + 2.0) + sin(k + 3.0) * cos(k + 4.0) \
+        + sin(k + 5.0) * cos(k + 6.0) + sin(k + 7.0) * cos(k + 8.0) + sin(k + 9.0) * cos(k + 10.0) \
+        + sin(k + 11.0) * cos(k + 12.0) + sin(k + 13.0) * cos(k + 14.0) + sin(k + 15.0) * cos(k + 16.0);";
+    // A loop llvmpipe ends (65,535 passes) is followed to its end, and said.
+    let dir = shaders_with("ended", |t| {
+        t.replacen(
+            "    frag_color = ",
+            "    float k = 0.0;\n    while (true) { k += 1.0; }\n    frag_color = k * ",
+            1,
+        )
+    });
+    let out = debug_phong_centre(&dir);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("65535 passes"), "{}", text(&out.stdout));
     let cases: [(&str, &str, &str); 3] = [
         (
             "unsupported",
             "    float whole = bitfieldInsert(3, 1, 0, 1) > 0 ? 1.0 : 0.0;\n    frag_color = ",
             "the debugger does not run `bitfieldInsert`",
         ),
+        // llvmpipe ends loops after 65,535 passes in all; one that does much work in each
+        // pass is still more than the debugger follows.
         (
             "endless",
-            "    float k = 0.0;\n    while (true) { k += 1.0; }\n    frag_color = k * ",
+            &format!("    float k = gl_FragCoord.x;\n    while (true) {{ {HEAVY} }}\n    frag_color = k * "),
             "stopped after 10000000 evaluations",
         ),
         (
             "long",
-            "    float k = 0.0;\n    for (int i = 0; i < 1000000000; i++) { k += 1.0; }\n    frag_color = k * ",
+            &format!(
+                "    float k = gl_FragCoord.x;\n    for (int i = 0; i < 1000000000; i++) {{ {HEAVY} }}\n    frag_color = k * "
+            ),
             "stopped after 10000000 evaluations",
         ),
     ];
-    for (tag, insert, want) in cases {
+    for (tag, insert, want) in &cases {
         let dir = shaders_with(tag, |t| t.replacen("    frag_color = ", insert, 1));
         let start = std::time::Instant::now();
         let out = debug_phong_centre(&dir);

@@ -10,9 +10,10 @@
 //! Lanes follow the GPU's SIMD model: expressions are computed for every lane (a lane switched
 //! off by a branch keeps computing, as a helper invocation does, so its neighbours' derivatives
 //! exist), while stores, returns, `discard` and the trace honour each lane's own control flow
-//! (an active mask per statement). A step budget bounds the work, so `while (true)` is an error
-//! at its line instead of a hang. An operation the interpreter does not implement is an error
-//! naming it, never a silently wrong value.
+//! (an active mask per statement). Loops end where llvmpipe's loop limiter ends them
+//! ([`LOOP_PASSES`]), and a step budget bounds the rest of the work, so a loop too heavy to
+//! follow is an error at its line instead of a hang. An operation the interpreter does not
+//! implement is an error naming it, never a silently wrong value.
 
 // Lanes are indexed across several masks and values at once.
 #![allow(clippy::needless_range_loop)]
@@ -22,6 +23,7 @@ use std::rc::Rc;
 use naga::{BinaryOperator as B, Expression as E, Handle, Module, Span, Statement as S, TypeInner};
 
 use super::error::Failure;
+use super::math::nan_clamp;
 use super::value::{self, Bits, Comp, Kind, Offset, Ptr, Root, Val};
 
 /// What a lookup's level of detail is, per lane.
@@ -55,6 +57,12 @@ pub trait Host {
     fn fetch(&self, image: Handle<naga::GlobalVariable>, coord: [i32; 3], level: i32) -> Result<[f32; 4], String>;
     /// The size of level `level` of `image` (`textureSize`).
     fn size(&self, image: Handle<naga::GlobalVariable>, level: i32) -> Result<[u32; 2], String>;
+    /// The bytes of the uniform buffer bound to `global`, which a uniform block is then read
+    /// from as the GPU addresses it; `None` reads the block from the run's `uniforms`.
+    fn buffer(&self, global: Handle<naga::GlobalVariable>) -> Option<std::sync::Arc<Vec<u8>>> {
+        let _ = global;
+        None
+    }
 }
 
 /// What a step of the trace is.
@@ -110,6 +118,11 @@ pub const PER_LANE_BUDGET: u64 = 2_000;
 /// The most steps a trace keeps (a loop of a million iterations keeps its first ones).
 pub const MAX_STEPS: usize = 20_000;
 
+/// The loop passes llvmpipe runs in one shader invocation, all loops together, before it ends
+/// each loop at its next pass's end (`LP_MAX_TGSI_LOOP_ITERATIONS`, a counter set once per
+/// invocation and decremented at the end of every pass of every loop).
+pub const LOOP_PASSES: i64 = 65_535;
+
 /// A function being run: its locals and the values of its expressions.
 struct Frame<'m> {
     function: &'m naga::Function,
@@ -139,6 +152,8 @@ pub struct Run<'m> {
     quad: bool,
     host: &'m dyn Host,
     globals: Vec<Option<Vec<Comp>>>,
+    /// The bound bytes of each uniform block the host has them for.
+    buffers: Vec<Option<std::sync::Arc<Vec<u8>>>>,
     frames: Vec<Frame<'m>>,
     breakables: Vec<Breakable>,
     /// Lanes that executed `discard`.
@@ -154,6 +169,16 @@ pub struct Run<'m> {
     pub steps: Vec<Step>,
     /// Steps left out once [`MAX_STEPS`] were kept.
     pub steps_dropped: usize,
+    /// Loop passes each lane has left before llvmpipe's limiter ends its loops
+    /// ([`LOOP_PASSES`]): shared by a quad (llvmpipe counts passes of the SIMD group, which
+    /// runs both sides of every branch, a loop no lane enters for one pass), one per lane
+    /// otherwise (each vertex taken as a group of its own).
+    limiter: Vec<i64>,
+    /// The loops each function holds, nested ones and those of the functions it calls.
+    loops_in: std::cell::RefCell<Vec<Option<i64>>>,
+    /// Where the run met a value GLSL leaves undefined, or a loop the GPU's limiter ended, and
+    /// what it gave there (once each).
+    pub undefined: Vec<(Span, String)>,
 }
 
 fn lanes_of(mask: &[bool]) -> bool {
@@ -196,6 +221,15 @@ impl<'m> Run<'m> {
             };
             globals.push(value);
         }
+        let buffers = module
+            .global_variables
+            .iter()
+            .map(|(h, var)| {
+                (var.space == naga::AddressSpace::Uniform)
+                    .then(|| host.buffer(h))
+                    .flatten()
+            })
+            .collect();
         Ok(Run {
             module,
             info,
@@ -203,6 +237,7 @@ impl<'m> Run<'m> {
             quad,
             host,
             globals,
+            buffers,
             frames: Vec::new(),
             breakables: Vec::new(),
             killed: vec![false; lanes],
@@ -213,6 +248,9 @@ impl<'m> Run<'m> {
             traced,
             steps: Vec::new(),
             steps_dropped: 0,
+            limiter: vec![LOOP_PASSES; lanes],
+            loops_in: std::cell::RefCell::new(vec![None; module.functions.len()]),
+            undefined: Vec::new(),
         })
     }
 
@@ -299,6 +337,50 @@ impl<'m> Run<'m> {
         Ok(())
     }
 
+    /// Notes that the statement at `span` met what GLSL leaves undefined (or the GPU ends).
+    fn undefined(&mut self, span: Span, what: impl Into<String>) {
+        let what = what.into();
+        let span = if span == Span::UNDEFINED { self.at } else { span };
+        if self.undefined.len() < 32 && !self.undefined.iter().any(|(s, w)| *s == span && *w == what) {
+            self.undefined.push((span, what));
+        }
+    }
+
+    /// How many loops `block` holds, nested ones and those of the functions it calls: the
+    /// passes llvmpipe runs through it when no lane of the group takes it (one each).
+    fn loops(&self, block: &'m naga::Block) -> i64 {
+        block.iter().map(|s| self.loops_of(s)).sum()
+    }
+
+    fn loops_of(&self, statement: &'m naga::Statement) -> i64 {
+        match statement {
+            S::Block(b) => self.loops(b),
+            S::If { accept, reject, .. } => self.loops(accept) + self.loops(reject),
+            S::Switch { cases, .. } => cases.iter().map(|c| self.loops(&c.body)).sum(),
+            S::Loop { body, continuing, .. } => 1 + self.loops(body) + self.loops(continuing),
+            S::Call { function, .. } => {
+                if let Some(n) = self.loops_in.borrow()[function.index()] {
+                    return n;
+                }
+                // GLSL has no recursion; a cycle counts as nothing rather than looping here.
+                self.loops_in.borrow_mut()[function.index()] = Some(0);
+                let n = self.loops(&self.module.functions[*function].body);
+                self.loops_in.borrow_mut()[function.index()] = Some(n);
+                n
+            }
+            _ => 0,
+        }
+    }
+
+    /// Lanes `who` spend `passes` of llvmpipe's loop limiter (every lane, in a quad).
+    fn spend(&mut self, passes: i64, who: &[bool]) {
+        for i in 0..self.lanes {
+            if self.quad || who[i] {
+                self.limiter[i] -= passes;
+            }
+        }
+    }
+
     fn step(&mut self, span: Span, kind: StepKind, comps: &[Comp], mask: &[bool]) {
         if self.traced.is_empty() || !self.traced.iter().any(|&l| mask[l]) {
             return;
@@ -327,6 +409,11 @@ impl<'m> Run<'m> {
         let statements: Vec<(&naga::Statement, &Span)> = block.span_iter().collect();
         for (k, &(statement, span)) in statements.iter().enumerate() {
             if !lanes_of(active) {
+                // The GPU runs the rest with no lane active: each loop in it for one pass.
+                let rest: i64 = statements[k..].iter().map(|(s, _)| self.loops_of(s)).sum();
+                if rest > 0 {
+                    self.spend(rest, &vec![true; self.lanes]);
+                }
                 break;
             }
             // An `Emit` computes what the next statement uses: its line is that statement's.
@@ -364,12 +451,8 @@ impl<'m> Run<'m> {
                 let mut yes: Vec<bool> = (0..self.lanes).map(|i| active[i] && c.bits.at(i) != 0).collect();
                 let mut no: Vec<bool> = (0..self.lanes).map(|i| active[i] && c.bits.at(i) == 0).collect();
                 self.step(span, StepKind::Branch, &cond, active);
-                if lanes_of(&yes) {
-                    self.block(accept, &mut yes)?;
-                }
-                if lanes_of(&no) {
-                    self.block(reject, &mut no)?;
-                }
+                self.block(accept, &mut yes)?;
+                self.block(reject, &mut no)?;
                 for i in 0..self.lanes {
                     active[i] = yes[i] || no[i];
                 }
@@ -442,11 +525,18 @@ impl<'m> Run<'m> {
                     continued: vec![false; self.lanes],
                     is_loop: true,
                 });
+                // A lane of its own group that does not enter runs the loop for one pass.
+                if !self.quad {
+                    let outside: Vec<bool> = active.iter().map(|a| !a).collect();
+                    let n = self.loops_of(statement);
+                    self.spend(n, &outside);
+                }
                 let mut iteration = 0u64;
                 let result = loop {
                     if !lanes_of(&running) {
                         break Ok(());
                     }
+                    let in_pass = running.clone();
                     let it = [Comp::new(Kind::U32, Bits::One(iteration as u32))];
                     self.step(span, StepKind::Iteration, &it, &running);
                     if let Err(e) = self.charge(1, span) {
@@ -480,6 +570,24 @@ impl<'m> Run<'m> {
                             }
                             Err(e) => break Err(e),
                         }
+                    }
+                    // llvmpipe's limiter: a pass spent, the loop ended for a group out of them.
+                    self.spend(1, &in_pass);
+                    let stopped: Vec<bool> = (0..self.lanes).map(|i| here[i] && self.limiter[i] <= 0).collect();
+                    if lanes_of(&stopped) {
+                        let b = self.breakables.last_mut().expect("pushed above");
+                        for i in 0..self.lanes {
+                            if stopped[i] {
+                                here[i] = false;
+                                b.broke[i] = true;
+                            }
+                        }
+                        self.undefined(
+                            span,
+                            format!(
+                                "llvmpipe ends every loop once the shader's loops have made {LOOP_PASSES} passes in all (its loop limiter), and this one was ended there (a loop of a few iterations the driver unrolls makes no passes on the GPU but counts here)"
+                            ),
+                        );
                     }
                     running = here;
                     iteration += 1;
@@ -584,6 +692,7 @@ impl<'m> Run<'m> {
                 Some(s) => s,
                 None => return fail(span, "a store to a texture or sampler"),
             },
+            Root::Buffer(_) => return fail(span, "a store to a uniform"),
         };
         if v.len() != ptr.len {
             return fail(span, "a store of the wrong size");
@@ -617,13 +726,20 @@ impl<'m> Run<'m> {
         Ok(())
     }
 
-    fn load(&self, ptr: &Ptr, span: Span) -> Res<Vec<Comp>> {
+    /// The value `ptr` points to, of type `ty`.
+    fn load(&self, ptr: &Ptr, ty: Option<&TypeInner>, span: Span) -> Res<Vec<Comp>> {
         let storage = match ptr.root {
             Root::Local(depth, h) => &self.frames[depth].locals[h.index()],
             Root::Global(h) => match &self.globals[h.index()] {
                 Some(s) => s,
                 None => return fail(span, "a load from a texture or sampler"),
             },
+            Root::Buffer(h) => {
+                let (Some(bytes), Some(ty)) = (&self.buffers[h.index()], ty) else {
+                    return fail(span, "a load from a uniform the debugger cannot read");
+                };
+                return self.load_bytes(bytes, ty, &ptr.offset, span);
+            }
         };
         match &ptr.offset {
             Offset::Fixed(o) => storage
@@ -644,6 +760,33 @@ impl<'m> Run<'m> {
                     Ok(Comp::new(kind, Bits::Each(bits)))
                 })
                 .collect(),
+        }
+    }
+
+    /// A value of type `ty` read from a uniform buffer's `bytes` at each lane's byte offset.
+    fn load_bytes(&self, bytes: &[u8], ty: &TypeInner, offset: &Offset, span: Span) -> Res<Vec<Comp>> {
+        let read = |at: usize| -> Res<Vec<Comp>> {
+            let mut out = Vec::new();
+            value::read_bytes(self.module, ty, bytes, at as u32, &mut out).ok_or_else(|| Failure {
+                message: "a uniform of a type the debugger does not hold".into(),
+                span,
+            })?;
+            Ok(out)
+        };
+        match offset {
+            Offset::Fixed(at) => read(*at),
+            Offset::Each(each) => {
+                let lanes: Vec<Vec<Comp>> = each.iter().map(|&at| read(at)).collect::<Res<_>>()?;
+                let first = lanes.first().cloned().unwrap_or_default();
+                Ok((0..first.len())
+                    .map(|k| {
+                        Comp::new(
+                            first[k].kind,
+                            Bits::Each(lanes.iter().map(|l| l[k].bits.at(0)).collect()),
+                        )
+                    })
+                    .collect())
+            }
         }
     }
 
@@ -729,7 +872,11 @@ impl<'m> Run<'m> {
                     TypeInner::Image { .. } => Val::Image(*g),
                     TypeInner::Sampler { .. } => Val::Sampler(*g),
                     inner => Val::Ptr(Ptr {
-                        root: Root::Global(*g),
+                        root: if self.buffers[g.index()].is_some() {
+                            Root::Buffer(*g)
+                        } else {
+                            Root::Global(*g)
+                        },
                         offset: Offset::Fixed(0),
                         len: value::count(module, inner),
                         name: var.name.clone().unwrap_or_else(|| format!("global{}", g.index())),
@@ -748,7 +895,10 @@ impl<'m> Run<'m> {
             E::Load { pointer } => {
                 let p = self.get(*pointer)?;
                 match p.as_ref() {
-                    Val::Ptr(ptr) => Val::Data(self.load(ptr, span)?),
+                    Val::Ptr(ptr) => {
+                        let ty = pointee(module, self.ty(*pointer));
+                        Val::Data(self.load(ptr, ty.as_ref(), span)?)
+                    }
                     // Loading a texture or sampler handle yields itself.
                     other => other.clone(),
                 }
@@ -762,10 +912,19 @@ impl<'m> Run<'m> {
                             message: "an access through a pointer of unknown type".into(),
                             span,
                         })?;
-                        let (at, len, _) = value::part(module, &pointee, *index as usize).ok_or_else(|| Failure {
-                            message: "an access the debugger cannot follow".into(),
-                            span,
-                        })?;
+                        let (mut at, len, _) =
+                            value::part(module, &pointee, *index as usize).ok_or_else(|| Failure {
+                                message: "an access the debugger cannot follow".into(),
+                                span,
+                            })?;
+                        if let Root::Buffer(_) = ptr.root {
+                            at = value::byte_part(module, &pointee, *index)
+                                .ok_or_else(|| Failure {
+                                    message: "an access the debugger cannot follow".into(),
+                                    span,
+                                })?
+                                .0 as usize;
+                        }
                         let members = match &pointee {
                             TypeInner::Struct { members, .. } => Some(members.as_slice()),
                             _ => None,
@@ -773,8 +932,8 @@ impl<'m> Run<'m> {
                         Val::Ptr(Ptr {
                             root: ptr.root,
                             offset: match &ptr.offset {
-                                Offset::Fixed(o) => Offset::Fixed(o + at),
-                                Offset::Each(v) => Offset::Each(v.iter().map(|o| o + at).collect()),
+                                Offset::Fixed(o) => Offset::Fixed(advance(ptr.root, *o, at)),
+                                Offset::Each(v) => Offset::Each(v.iter().map(|&o| advance(ptr.root, o, at)).collect()),
                             },
                             len,
                             name: format!("{}{}", ptr.name, value::part_name(&pointee, *index as usize, members)),
@@ -796,15 +955,63 @@ impl<'m> Run<'m> {
                 let base_ty = self.ty(*base);
                 let idx = &idx[0];
                 let signed = idx.kind == Kind::I32;
-                let clamp = |bits: u32, n: usize| -> usize {
-                    let i = if signed {
-                        (bits as i32).max(0) as usize
-                    } else {
-                        bits as usize
-                    };
-                    i.min(n.saturating_sub(1))
+                // wgpu's Vulkan backend has naga restrict an index into a variable or a value
+                // (`BoundsCheckPolicy::Restrict`): `min(index, n − 1)` compared as unsigned, so
+                // a negative index reads the last element.
+                let clamp = |bits: u32, n: usize| -> usize { (bits as usize).min(n.saturating_sub(1)) };
+                let n = match b.as_ref() {
+                    Val::Ptr(_) => pointee(module, base_ty).as_ref().and_then(value::elements),
+                    _ => value::elements(base_ty),
                 };
+                if let Some(n) = n {
+                    if (0..idx.bits.len()).any(|l| idx.bits.at(l) as usize >= n) {
+                        self.undefined(
+                            span,
+                            "GLSL leaves an index out of range undefined (a variable's is restricted to its last element, a uniform block's reads the buffer's bytes there or zero past its end)",
+                        );
+                    }
+                }
                 match b.as_ref() {
+                    Val::Ptr(ptr) if matches!(ptr.root, Root::Buffer(_)) => {
+                        // Into a uniform buffer naga leaves the index as it is and the driver's
+                        // robust buffer access reads zero past the buffer's end (wgpu's
+                        // `buffer` policy is `Unchecked` where `robustBufferAccess2` is
+                        // supported, as on lavapipe): the address wraps at 32 bits.
+                        let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
+                            message: "an access through a pointer of unknown type".into(),
+                            span,
+                        })?;
+                        let (stride, elem) = value::byte_part(module, &pointee, 1).ok_or_else(|| Failure {
+                            message: "a dynamic index into something that is not an array, matrix or vector".into(),
+                            span,
+                        })?;
+                        let at = |o: usize, i: u32| (o as u32).wrapping_add(i.wrapping_mul(stride)) as usize;
+                        let offset = match (&ptr.offset, &idx.bits) {
+                            (Offset::Fixed(o), Bits::One(i)) => Offset::Fixed(at(*o, *i)),
+                            (offset, bits) => Offset::Each(
+                                (0..self.lanes)
+                                    .map(|lane| {
+                                        let o = match offset {
+                                            Offset::Fixed(o) => *o,
+                                            Offset::Each(v) => v[lane],
+                                        };
+                                        at(o, bits.at(lane))
+                                    })
+                                    .collect(),
+                            ),
+                        };
+                        let name = match &idx.bits {
+                            Bits::One(i) if signed => format!("{}[{}]", ptr.name, *i as i32),
+                            Bits::One(i) => format!("{}[{i}]", ptr.name),
+                            Bits::Each(_) => format!("{}[i]", ptr.name),
+                        };
+                        Val::Ptr(Ptr {
+                            root: ptr.root,
+                            offset,
+                            len: value::count(module, &elem),
+                            name,
+                        })
+                    }
                     Val::Ptr(ptr) => {
                         let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
                             message: "an access through a pointer of unknown type".into(),
@@ -899,6 +1106,14 @@ impl<'m> Run<'m> {
                 let a = self.data(*left)?;
                 let b = self.data(*right)?;
                 let (ta, tb) = (self.ty(*left), self.ty(*right));
+                let by_zero = matches!(op, B::Divide | B::Modulo)
+                    && b.iter().any(|c| {
+                        let mask = if c.kind == Kind::F32 { 0x7fff_ffff } else { u32::MAX };
+                        (0..c.bits.len()).any(|l| c.bits.at(l) & mask == 0)
+                    });
+                if by_zero {
+                    self.undefined(span, "GLSL leaves a division by zero undefined (mod(x, 0) is one)");
+                }
                 Val::Data(binary(*op, &a, ta, &b, tb, span)?)
             }
             E::Select {
@@ -923,9 +1138,11 @@ impl<'m> Run<'m> {
                         .collect(),
                 )
             }
-            E::Derivative { axis, ctrl, expr } => {
+            E::Derivative { axis, ctrl: _, expr } => {
+                // llvmpipe computes `dFdx`, `dFdxFine` and `dFdxCoarse` alike: each pixel's
+                // own row and column (GLSL lets a coarse derivative be the fine one).
                 let v = self.data(*expr)?;
-                Val::Data(v.iter().map(|c| self.derivative(c, *axis, *ctrl)).collect())
+                Val::Data(v.iter().map(|c| self.derivative(c, *axis, false)).collect())
             }
             E::Relational { fun, argument } => {
                 let v = self.data(*argument)?;
@@ -966,15 +1183,41 @@ impl<'m> Run<'m> {
                 let b = arg1.map(|h| self.data(h)).transpose()?;
                 let c = arg2.map(|h| self.data(h)).transpose()?;
                 let ty = self.ty(*arg);
-                Val::Data(super::math::math(*fun, &a, b.as_deref(), c.as_deref(), ty, span)?)
+                let mut undefined = Vec::new();
+                let v = super::math::math(*fun, &a, b.as_deref(), c.as_deref(), ty, span, &mut undefined)?;
+                for what in undefined {
+                    self.undefined(span, format!("GLSL leaves {what} undefined"));
+                }
+                Val::Data(v)
             }
             E::As { expr, kind, convert } => {
                 let v = self.data(*expr)?;
-                Val::Data(
-                    v.iter()
-                        .map(|c| cast(c, *kind, convert.is_some(), span))
-                        .collect::<Res<_>>()?,
-                )
+                let out: Vec<Comp> = v
+                    .iter()
+                    .map(|c| cast(c, *kind, convert.is_some(), span))
+                    .collect::<Res<_>>()?;
+                if convert.is_some() && v.iter().any(|c| c.kind == Kind::F32) {
+                    let to = match kind {
+                        naga::ScalarKind::Sint => Some(("int", -2_147_483_648.0f64, 2_147_483_648.0)),
+                        naga::ScalarKind::Uint => Some(("uint", -1.0, 4_294_967_296.0)),
+                        _ => None,
+                    };
+                    if let Some((name, below, above)) = to {
+                        let outside = v.iter().any(|c| {
+                            (0..c.bits.len()).any(|l| {
+                                let x = f64::from(c.f(l));
+                                x.is_nan() || x <= below || x >= above
+                            })
+                        });
+                        if outside {
+                            self.undefined(
+                                span,
+                                format!("GLSL leaves {name}(x) undefined for NaN and for x beyond {name}'s range"),
+                            );
+                        }
+                    }
+                }
+                Val::Data(out)
             }
             E::CallResult(_) => return fail(span, "a call's result used before the call"),
             E::ImageSample {
@@ -1020,12 +1263,12 @@ impl<'m> Run<'m> {
                         if !self.quad {
                             vec![Lod::Level(0.0); self.lanes]
                         } else {
-                            use naga::{DerivativeAxis as Ax, DerivativeControl as Ctl};
-                            let d = |axis, ctrl| -> Vec<Comp> {
-                                coord.iter().map(|c| self.derivative(c, axis, ctrl)).collect()
+                            use naga::DerivativeAxis as Ax;
+                            let d = |axis, quad| -> Vec<Comp> {
+                                coord.iter().map(|c| self.derivative(c, axis, quad)).collect()
                             };
-                            let (cx, cy) = (d(Ax::X, Ctl::Coarse), d(Ax::Y, Ctl::Coarse));
-                            let (fx, fy) = (d(Ax::X, Ctl::Fine), d(Ax::Y, Ctl::Fine));
+                            let (cx, cy) = (d(Ax::X, true), d(Ax::Y, true));
+                            let (fx, fy) = (d(Ax::X, false), d(Ax::Y, false));
                             (0..self.lanes)
                                 .map(|i| Lod::Implicit {
                                     coarse: (vec3(&cx, i), vec3(&cy, i)),
@@ -1098,6 +1341,12 @@ impl<'m> Run<'m> {
                             None => 0,
                         };
                         let size = self.host.size(img, level).map_err(|m| Failure { message: m, span })?;
+                        if size == [0, 0] {
+                            self.undefined(
+                                span,
+                                "GLSL leaves textureSize of a level the texture does not have undefined",
+                            );
+                        }
                         let kind = match self.ty(h) {
                             TypeInner::Vector { scalar, .. } => Kind::of(*scalar).unwrap_or(Kind::U32),
                             _ => Kind::U32,
@@ -1111,7 +1360,9 @@ impl<'m> Run<'m> {
         })
     }
 
-    fn derivative(&self, c: &Comp, axis: naga::DerivativeAxis, ctrl: naga::DerivativeControl) -> Comp {
+    /// d/dx or d/dy of `c` across the quad: at each pixel from its own row and column, or
+    /// with `quad` from the quad's top-left pixel's (the one a texture's level of detail uses).
+    fn derivative(&self, c: &Comp, axis: naga::DerivativeAxis, quad: bool) -> Comp {
         use naga::DerivativeAxis as A;
         if !self.quad || c.kind != Kind::F32 {
             return Comp::new(Kind::F32, Bits::One(0f32.to_bits()));
@@ -1120,10 +1371,8 @@ impl<'m> Run<'m> {
             return Comp::new(Kind::F32, Bits::One(0f32.to_bits()));
         }
         let v = |i: usize| c.f(i);
-        let coarse = matches!(ctrl, naga::DerivativeControl::Coarse)
-            || COARSE_BY_DEFAULT && ctrl == naga::DerivativeControl::None;
-        let dx = |i: usize| if coarse { v(1) - v(0) } else { v(i | 1) - v(i & !1) };
-        let dy = |i: usize| if coarse { v(2) - v(0) } else { v(i | 2) - v(i & !2) };
+        let dx = |i: usize| if quad { v(1) - v(0) } else { v(i | 1) - v(i & !1) };
+        let dy = |i: usize| if quad { v(2) - v(0) } else { v(i | 2) - v(i & !2) };
         let out: Vec<f32> = (0..4)
             .map(|i| match axis {
                 A::X => dx(i),
@@ -1135,9 +1384,13 @@ impl<'m> Run<'m> {
     }
 }
 
-/// Whether `dFdx`/`dFdy` without a `Fine`/`Coarse` suffix take the quad's first row and
-/// column (coarse) rather than each pixel's own (fine).
-const COARSE_BY_DEFAULT: bool = false;
+/// Offset `o` of a pointer into `root` moved on by `at` (bytes into a buffer wrap at 32 bits).
+fn advance(root: Root, o: usize, at: usize) -> usize {
+    match root {
+        Root::Buffer(_) => (o as u32).wrapping_add(at as u32) as usize,
+        _ => o + at,
+    }
+}
 
 fn vec3(comps: &[Comp], lane: usize) -> [f32; 3] {
     [0, 1, 2].map(|k| comps.get(k).map_or(0.0, |c| c.f(lane)))
@@ -1215,10 +1468,12 @@ fn cast(c: &Comp, kind: naga::ScalarKind, convert: bool, span: Span) -> Res<Comp
         return Ok(Comp::new(to, c.bits.clone()));
     }
     let from = c.kind;
+    // naga clamps a float to the integers it can hold before converting (WGSL's rule), as
+    // min(max(x, lo), hi) in which a NaN x gives lo.
     let bits = c.bits.map(|b| match (from, to) {
         (a, b2) if a == b2 => b,
-        (Kind::F32, Kind::I32) => (f32::from_bits(b) as i32) as u32,
-        (Kind::F32, Kind::U32) => f32::from_bits(b) as u32,
+        (Kind::F32, Kind::I32) => (nan_clamp(f32::from_bits(b), -2_147_483_648.0, 2_147_483_520.0) as i32) as u32,
+        (Kind::F32, Kind::U32) => nan_clamp(f32::from_bits(b), 0.0, 4_294_967_040.0) as u32,
         (Kind::F32, Kind::Bool) => u32::from(f32::from_bits(b) != 0.0),
         (Kind::I32, Kind::F32) => (b as i32 as f32).to_bits(),
         (Kind::U32, Kind::F32) => (b as f32).to_bits(),

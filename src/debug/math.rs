@@ -1,5 +1,9 @@
 //! GLSL's built-in functions (naga's `MathFunction`s) on the interpreter's values, in `f32`
-//! as a GPU computes them: one operation at a time, sums left to right.
+//! as a GPU computes them: one operation at a time, sums left to right. Where GLSL leaves a
+//! value undefined (NaN through `max`, `atan(0, 0)`, `pow` of a negative number, ...) the
+//! result is the one lavapipe gives — Mesa's SPIR-V translation (its `atan`, `asin`, `asinh`
+//! formulas), `fmin`/`fmax` returning the operand that is not NaN — and the caller is told
+//! which function met such a value.
 
 use naga::{MathFunction as M, Span, TypeInner};
 
@@ -48,8 +52,127 @@ fn dot(a: &[Comp], b: &[Comp]) -> Comp {
     acc
 }
 
-/// Runs `fun` on `a` (of type `ty`) and the further arguments.
-pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &TypeInner, span: Span) -> Res<Vec<Comp>> {
+/// Whether `test` holds for some lane of a component of `v`.
+fn any(v: &[Comp], test: impl Fn(f32) -> bool) -> bool {
+    v.iter().any(|c| match &c.bits {
+        Bits::One(b) => test(f32::from_bits(*b)),
+        Bits::Each(e) => e.iter().any(|b| test(f32::from_bits(*b))),
+    })
+}
+
+/// Whether `test` holds for some lane of some pair of components of `a` and `b`.
+fn any2(a: &[Comp], b: &[Comp], test: impl Fn(f32, f32) -> bool) -> bool {
+    let n = a.len().max(b.len());
+    (0..n).any(|k| {
+        let (x, y) = (at(a, k), at(b, k));
+        let lanes = x.bits.len().max(y.bits.len());
+        (0..lanes).any(|l| test(x.f(l), y.f(l)))
+    })
+}
+
+/// `min(max(x, lo), hi)` as Mesa lowers `clamp`: a NaN x gives lo (where `f32::clamp` keeps
+/// NaN), a NaN bound gives x.
+#[allow(clippy::manual_clamp)]
+pub fn nan_clamp(x: f32, lo: f32, hi: f32) -> f32 {
+    x.max(lo).min(hi)
+}
+
+/// `fsign`: 1, −1, or 0 for zero (and NaN).
+fn sign(x: f32) -> f32 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// The natural logarithm as llvmpipe computes it: the positive quiet NaN below 0 and for NaN.
+fn ln(x: f32) -> f32 {
+    if x < 0.0 || x.is_nan() {
+        f32::NAN
+    } else {
+        x.ln()
+    }
+}
+
+/// Mesa's `atan` (22.3, `build_atan`): the range reduced to [0, 1], an odd polynomial of
+/// degree 11 summed term by term, the reduction undone and the sign put back.
+pub fn atan(y: f32) -> f32 {
+    let a = y.abs();
+    let x = a.min(1.0) / a.max(1.0);
+    let x2 = x * x;
+    let x3 = x2 * x;
+    let x5 = x3 * x2;
+    let x7 = x5 * x2;
+    let x9 = x7 * x2;
+    let x11 = x9 * x2;
+    let terms = [
+        x * 0.999_979_3,
+        x3 * -0.332_675_64,
+        x5 * 0.193_892_5,
+        x7 * -0.117_350_32,
+        x9 * 0.053_681_38,
+        x11 * -0.012_132_321,
+    ];
+    let mut sum = terms[0];
+    for t in &terms[1..] {
+        sum += t;
+    }
+    let past_one = if 1.0 < a { 1.0f32 } else { 0.0 };
+    let sum = past_one * (sum * -2.0 + std::f32::consts::FRAC_PI_2) + sum;
+    sum * sign(y)
+}
+
+/// Mesa's `atan2` (`nir_atan2`): on the left half-plane the coordinates turn by π/2, and
+/// |x| = |y| counts as tan = 1 (so `atan(0, 0)` is 3π/4, `atan(∞, ∞)` π/4).
+pub fn atan2(y: f32, x: f32) -> f32 {
+    let flip = 0.0 >= x;
+    let (s, t) = if flip { (x.abs(), y) } else { (y, x.abs()) };
+    let scale = if t.abs() >= 1e18 { 0.25f32 } else { 1.0 };
+    let rcp = 1.0 / (t * scale);
+    let tan = if x.abs() == y.abs() {
+        1.0
+    } else {
+        (s * scale).abs() * rcp.abs()
+    };
+    let arc = (if flip { 1.0f32 } else { 0.0 }) * std::f32::consts::FRAC_PI_2 + atan(tan);
+    if y.min(rcp) < 0.0 {
+        -arc
+    } else {
+        arc
+    }
+}
+
+/// Mesa's `asin` (`build_asin`): π/2 − √(1 − |x|)·(a polynomial), signed, with a rational
+/// approximation below |x| = ½ when `piecewise` (`asin`; `acos` is π/2 − the other).
+fn asin_of(x: f32, p0: f32, p1: f32, piecewise: bool) -> f32 {
+    use std::f32::consts::{FRAC_PI_2, FRAC_PI_4};
+    let a = x.abs();
+    let p = a * p1 + p0;
+    let tail = a * (a * p + (FRAC_PI_4 - 1.0)) + FRAC_PI_2;
+    let far = sign(x) * (FRAC_PI_2 - (1.0 - a).sqrt() * tail);
+    if piecewise && a < 0.5 {
+        let x2 = x * x;
+        let p = x2 * (x2 * (x2 * -8.656_363e-3 + -4.274_342_2e-2) + 1.666_658_7e-1);
+        let q = x2 * -7.066_296_3e-1 + 1.0;
+        return x * (p / q) + x;
+    }
+    far
+}
+
+/// Runs `fun` on `a` (of type `ty`) and the further arguments; what GLSL leaves undefined
+/// on the values met is added to `undefined` (a sentence naming the function).
+pub fn math(
+    fun: M,
+    a: &[Comp],
+    b: Option<&[Comp]>,
+    c: Option<&[Comp]>,
+    ty: &TypeInner,
+    span: Span,
+    undefined: &mut Vec<String>,
+) -> Res<Vec<Comp>> {
     let need = |x: Option<&[Comp]>| -> Res<Vec<Comp>> {
         x.map(<[Comp]>::to_vec).ok_or_else(|| Failure {
             message: format!("{} without its arguments", math_name(fun)),
@@ -59,6 +182,33 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
     let kind = a[0].kind;
     let float = kind == Kind::F32;
     let each = |g: &dyn Fn(f32) -> f32| -> Vec<Comp> { a.iter().map(|c| f(c, g)).collect() };
+    if float {
+        let name = math_name(fun);
+        let nan = |v: Option<&[Comp]>| v.is_some_and(|v| any(v, f32::is_nan));
+        let why = match fun {
+            M::Min | M::Max | M::Clamp if nan(Some(a)) || nan(b) || nan(c) => Some("of NaN".to_owned()),
+            M::Clamp if b.zip(c).is_some_and(|(l, h)| any2(l, h, |l, h| l > h)) => {
+                Some("with its minimum above its maximum".to_owned())
+            }
+            M::Atan2 if b.is_some_and(|x| any2(a, x, |y, x| y == 0.0 && x == 0.0)) => Some("at (0, 0)".to_owned()),
+            M::Pow if b.is_some_and(|y| any2(a, y, |x, y| x < 0.0 || (x == 0.0 && y <= 0.0))) => {
+                Some("of a negative number, or of 0 to a power ≤ 0".to_owned())
+            }
+            M::Log | M::Log2 if any(a, |x| x <= 0.0) => Some("of a number ≤ 0".to_owned()),
+            M::Sqrt if any(a, |x| x < 0.0) => Some("of a negative number".to_owned()),
+            M::InverseSqrt if any(a, |x| x <= 0.0) => Some("of a number ≤ 0".to_owned()),
+            M::Asin | M::Acos if any(a, |x| x.abs() > 1.0) => Some("of a number beyond ±1".to_owned()),
+            M::Acosh if any(a, |x| x < 1.0) => Some("of a number below 1".to_owned()),
+            M::Atanh if any(a, |x| x.abs() >= 1.0) => Some("of a number beyond (−1, 1)".to_owned()),
+            M::SmoothStep if b.is_some_and(|e1| any2(a, e1, |e0, e1| e0 >= e1)) => {
+                Some("with edge0 ≥ edge1".to_owned())
+            }
+            _ => None,
+        };
+        if let Some(why) = why {
+            undefined.push(format!("{name} {why}"));
+        }
+    }
     Ok(match fun {
         M::Abs if float => each(&f32::abs),
         M::Abs => a
@@ -83,20 +233,8 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
                 .map(|k| {
                     let (x, y) = (&a[k], at(&b, k));
                     match kind {
-                        // GLSL: min(x, y) = y < x ? y : x.
-                        Kind::F32 => f2(x, y, |x, y| {
-                            if max {
-                                if x < y {
-                                    y
-                                } else {
-                                    x
-                                }
-                            } else if y < x {
-                                y
-                            } else {
-                                x
-                            }
-                        }),
+                        // llvmpipe's `fmin`/`fmax` give the operand that is not NaN.
+                        Kind::F32 => f2(x, y, |x, y| if max { x.max(y) } else { x.min(y) }),
                         Kind::I32 => Comp::new(
                             kind,
                             x.bits.zip(&y.bits, |p, q| {
@@ -113,14 +251,8 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             let (lo, hi) = (need(b)?, need(c)?);
             (0..a.len())
                 .map(|k| match kind {
-                    Kind::F32 => f3(&a[k], at(&lo, k), at(&hi, k), |x, l, h| {
-                        let m = if x < l { l } else { x };
-                        if h < m {
-                            h
-                        } else {
-                            m
-                        }
-                    }),
+                    // min(max(x, lo), hi), as Mesa lowers it: a NaN x gives lo.
+                    Kind::F32 => f3(&a[k], at(&lo, k), at(&hi, k), nan_clamp),
                     Kind::I32 => Comp::new(
                         kind,
                         a[k].bits.zip3(&at(&lo, k).bits, &at(&hi, k).bits, |x, l, h| {
@@ -135,22 +267,39 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
                 })
                 .collect()
         }
-        M::Saturate => each(&|x| x.clamp(0.0, 1.0)),
+        M::Saturate => each(&|x| nan_clamp(x, 0.0, 1.0)),
         M::Cos => each(&f32::cos),
-        M::Cosh => each(&f32::cosh),
+        // Mesa's formulas: ½(eˣ ± e⁻ˣ), tanh over x clamped to ±10, asinh and acosh through
+        // log(|x| + √(x² ± 1)) (so asinh(1e30) overflows to ∞), atanh as ½·log((1 + x)/(1 − x)).
+        M::Cosh => each(&|x| (x.exp() + (-x).exp()) * 0.5),
         M::Sin => each(&f32::sin),
-        M::Sinh => each(&f32::sinh),
+        M::Sinh => each(&|x| (x.exp() - (-x).exp()) * 0.5),
         M::Tan => each(&f32::tan),
-        M::Tanh => each(&f32::tanh),
-        M::Acos => each(&f32::acos),
-        M::Asin => each(&f32::asin),
-        M::Atan => each(&f32::atan),
-        M::Asinh => each(&f32::asinh),
-        M::Acosh => each(&f32::acosh),
-        M::Atanh => each(&f32::atanh),
+        M::Tanh => each(&|x| {
+            if 0.0 < x.abs() {
+                let c = nan_clamp(x, -10.0, 10.0);
+                let (p, n) = (c.exp(), (-c).exp());
+                (p - n) / (p + n)
+            } else {
+                x
+            }
+        }),
+        M::Acos => each(&|x| std::f32::consts::FRAC_PI_2 - asin_of(x, 0.081_324_63, -0.023_633_18, false)),
+        M::Asin => each(&|x| asin_of(x, 0.086_566_724, -0.031_029_55, true)),
+        M::Atan => each(&atan),
+        M::Asinh => each(&|x| sign(x) * ln(x.abs() + (x * x + 1.0).sqrt())),
+        M::Acosh => each(&|x| ln(x + (x * x - 1.0).sqrt())),
+        // At 1 lavapipe gives NaN where the formula gives ∞ (measured; GLSL leaves it undefined).
+        M::Atanh => each(&|x| {
+            if x == 1.0 {
+                f32::NAN
+            } else {
+                ln((x + 1.0) / (1.0 - x)) * 0.5
+            }
+        }),
         M::Atan2 => {
             let b = need(b)?;
-            (0..a.len()).map(|k| f2(&a[k], at(&b, k), f32::atan2)).collect()
+            (0..a.len()).map(|k| f2(&a[k], at(&b, k), atan2)).collect()
         }
         M::Radians => each(&|x| x * (std::f32::consts::PI / 180.0)),
         M::Degrees => each(&|x| x * (180.0 / std::f32::consts::PI)),
@@ -162,11 +311,25 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
         M::Trunc => each(&f32::trunc),
         M::Exp => each(&f32::exp),
         M::Exp2 => each(&f32::exp2),
-        M::Log => each(&f32::ln),
-        M::Log2 => each(&f32::log2),
+        // llvmpipe's log gives the positive quiet NaN below 0 (and for NaN).
+        M::Log => each(&ln),
+        M::Log2 => each(&|x| if x < 0.0 || x.is_nan() { f32::NAN } else { x.log2() }),
         M::Pow => {
+            // llvmpipe: 0 for x = 0, else 2^(y·log2 x) (NaN for x < 0).
             let b = need(b)?;
-            (0..a.len()).map(|k| f2(&a[k], at(&b, k), f32::powf)).collect()
+            (0..a.len())
+                .map(|k| {
+                    f2(&a[k], at(&b, k), |x, y| {
+                        if x == 0.0 {
+                            0.0
+                        } else if x < 0.0 {
+                            f32::NAN
+                        } else {
+                            x.powf(y)
+                        }
+                    })
+                })
+                .collect()
         }
         M::Sqrt => each(&f32::sqrt),
         M::InverseSqrt => each(&|x| 1.0 / x.sqrt()),
@@ -196,9 +359,10 @@ pub fn math(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>, ty: &Typ
             let n = a.len().max(b.len()).max(x.len());
             (0..n)
                 .map(|k| {
+                    // Mesa's order: t·(t·(3 − 2t)), t saturated (a NaN t gives 0).
                     f3(at(a, k), at(&b, k), at(&x, k), |e0, e1, x| {
-                        let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-                        t * t * (3.0 - 2.0 * t)
+                        let t = nan_clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+                        t * (t * (3.0 - 2.0 * t))
                     })
                 })
                 .collect()
@@ -596,6 +760,8 @@ pub fn math_name(fun: M) -> String {
         M::InverseSqrt => "inversesqrt",
         M::Outer => "outerProduct",
         M::Fma => "fma",
+        M::SmoothStep => "smoothstep",
+        M::Atan2 => "atan(y, x)",
         _ => "",
     };
     if !glsl.is_empty() {

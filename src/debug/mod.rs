@@ -247,7 +247,21 @@ impl Inspection {
                 .get(f.draw)
                 .is_some_and(|d| d.samplers.iter().any(|(_, s)| s.anisotropy > 1));
         }
-        let caveats = caveats(&captured.adapter, anisotropic);
+        let mut caveats = caveats(&captured.adapter, anisotropic);
+        if let Some(f) = &replayed.fragment {
+            let stages = [
+                (&f.vertex, &f.vertex_undefined, "vertex"),
+                (&f.fragment, &f.fragment_undefined, "fragment"),
+            ];
+            for (shader, notes, stage) in stages {
+                for (span, what) in notes {
+                    let at = locate(shader, *span)
+                        .map(|(file, line)| format!("{file}:{line}"))
+                        .unwrap_or_else(|| format!("the {stage} shader"));
+                    caveats.push(format!("{at}: {what}; the replay gives what lavapipe gives"));
+                }
+            }
+        }
         Ok(Inspection {
             lab: lab.to_owned(),
             x,
@@ -405,16 +419,17 @@ impl Inspection {
     /// The report for programs: one JSON object with `pixel` (the stored RGBA bytes),
     /// `covered`, and `trace` (steps with `stage`, `file`, `line`, `name`, `value`), and the
     /// covering draw, corners, inputs, the listing by line and the caveats. Numbers JSON
-    /// cannot hold (NaN, infinities) are `null`.
+    /// cannot hold are the strings `"NaN"`, `"Infinity"` and `"-Infinity"`.
     pub fn json(&self) -> String {
         use serde_json::{json, Value};
         let r = &self.replayed;
         let value = |v: &[f64]| -> Value {
             match v {
-                [x] => json!(x),
-                _ => json!(v),
+                [x] => json_number(*x),
+                _ => v.iter().map(|x| json_number(*x)).collect(),
             }
         };
+        let floats = |v: &[f32]| -> Value { v.iter().map(|x| json_number(f64::from(*x))).collect() };
         let named =
             |v: &[Named]| -> Value { Value::Object(v.iter().map(|n| (n.name.clone(), value(&n.value))).collect()) };
         let listing = |stage: Stage| -> Value {
@@ -438,7 +453,7 @@ impl Inspection {
             .collect();
         let mut o = json!({
             "lab": self.lab, "x": self.x, "y": self.y, "width": self.width, "height": self.height,
-            "pixel": r.pixel, "covered": self.covered(), "color": r.color, "clear": r.clear,
+            "pixel": r.pixel, "covered": self.covered(), "color": floats(&r.color), "clear": value(&r.clear),
             "listing": {"vertex": listing(Stage::Vertex), "fragment": listing(Stage::Fragment)},
             "caveats": self.caveats, "trace": trace,
         });
@@ -450,7 +465,8 @@ impl Inspection {
                 .collect();
             let covering = json!({
                 "draw": f.draw, "label": f.label, "primitive": f.primitive, "points": f.points,
-                "vertex_shader": f.vertex.path, "fragment_shader": f.fragment.path, "depth": f.depth,
+                "vertex_shader": f.vertex.path, "fragment_shader": f.fragment.path,
+                "depth": json_number(f64::from(f.depth)),
                 "front_facing": f.front_facing, "covering": r.covering, "corners": corners,
                 "inputs": named(&f.inputs), "steps_dropped": f.steps_dropped,
             });
@@ -459,6 +475,18 @@ impl Inspection {
             }
         }
         o.to_string()
+    }
+}
+
+/// A number in JSON: itself where JSON holds it, else `"NaN"`, `"Infinity"` or `"-Infinity"`
+/// (so that the three stay apart; JSON has no such numbers).
+pub fn json_number(v: f64) -> serde_json::Value {
+    if v.is_nan() {
+        "NaN".into()
+    } else if v.is_infinite() {
+        (if v > 0.0 { "Infinity" } else { "-Infinity" }).into()
+    } else {
+        serde_json::json!(v)
     }
 }
 

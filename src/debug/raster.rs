@@ -4,7 +4,9 @@
 //! depth clipping, and attribute planes set up from the unsnapped positions and evaluated per
 //! pixel (perspective-correct through the plane of 1/w) for the four pixels of a 2×2 quad, so
 //! the neighbours a derivative reads are interpolated — or extrapolated — as on the GPU.
-//! Triangles that cross the eye's plane are covered in 2D homogeneous coordinates instead.
+//! A triangle that leaves the clip volume is first clipped as llvmpipe's draw module clips it
+//! (no guard band: against x, y and z, in `f32`, in the same order), and its pieces covered:
+//! with coordinates as large as 1e9 the clipper's rounding decides what is drawn.
 
 /// Sub-pixel bits of fixed-point positions (llvmpipe's `FIXED_ORDER`).
 pub const SUBPIXEL_BITS: u32 = 8;
@@ -44,29 +46,37 @@ pub enum Interp {
     Flat,
 }
 
+/// A vertex the clipper makes on an edge: `out + t·(in − out)` of two vertices before it
+/// (the primitive's three, then those made earlier), as `draw_pipe_clip.c` interpolates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Made {
+    /// The vertex outside the plane (or the one the interpolation starts from).
+    pub out: usize,
+    /// The other one.
+    pub inside: usize,
+    /// The weight of `inside` in clip space (for perspective-correct values and position).
+    pub t: f32,
+    /// The weight in screen space (for `noperspective` values).
+    pub t_linear: f32,
+}
+
 /// A primitive's interpolation at the four pixels of a quad.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Setup {
     /// Plane equations over the window (llvmpipe's): the three vertices' window x, y in the
-    /// rasteriser's order, that order (indices into the primitive's vertices), and each
-    /// vertex's 1/w; the quad's pixel indices.
+    /// rasteriser's order, that order (indices into the primitive's vertices, then the
+    /// vertices the clipper made), and each vertex's 1/w; the quad's pixel indices.
     Planes {
         /// Window x and y of the vertices, in setup order.
         xy: [[f32; 2]; 3],
-        /// The primitive's vertex of each setup vertex.
+        /// The vertex of each setup vertex.
         order: [usize; 3],
         /// 1/w of each setup vertex.
         oow: [f32; 3],
         /// Window z of each setup vertex.
         z: [f32; 3],
-    },
-    /// Weights computed per pixel: screen-space and perspective-correct, per quad pixel, for
-    /// the primitive's vertices (triangles crossing the eye's plane).
-    Weights {
-        /// Screen-space weights.
-        linear: [[f64; 3]; 4],
-        /// Perspective-correct weights.
-        perspective: [[f64; 3]; 4],
+        /// The vertices the clipper made, in order (empty for a triangle not clipped).
+        made: Vec<Made>,
     },
     /// A point: every value is the vertex's.
     Point,
@@ -87,29 +97,6 @@ pub struct Cover {
     pub inv_w: [f32; 4],
     /// How the primitive's values reach the quad.
     pub setup: Setup,
-}
-
-impl Cover {
-    /// The cover of a triangle whose depth at the pixel passes depth clipping (the near and
-    /// far planes), with the quad's depths clamped to 0..1 (which then changes nothing at the
-    /// pixel itself); `None` when clipped.
-    fn depth_clipped(
-        pixels: [(u32, u32); 4],
-        lane: usize,
-        front: bool,
-        depth: [f32; 4],
-        inv_w: [f32; 4],
-        setup: Setup,
-    ) -> Option<Cover> {
-        (0.0..=1.0).contains(&depth[lane]).then(|| Cover {
-            pixels,
-            lane,
-            front,
-            depth: depth.map(|d| d.clamp(0.0, 1.0)),
-            inv_w,
-            setup,
-        })
-    }
 }
 
 /// One attribute's plane: its value at the framebuffer origin's pixel centre and its slopes.
@@ -134,23 +121,36 @@ impl Cover {
     pub fn interpolate(&self, v: [f32; 3], mode: Interp) -> [f32; 4] {
         match (&self.setup, mode) {
             (Setup::Point, _) | (_, Interp::Flat) => [v[0]; 4],
-            (Setup::Planes { xy, order, oow, .. }, Interp::Perspective) => {
-                let a = [0, 1, 2].map(|k| v[order[k]] * oow[k]);
+            (
+                Setup::Planes {
+                    xy, order, oow, made, ..
+                },
+                Interp::Perspective,
+            ) => {
+                let all = clipped_values(v, made, false);
+                let a = [0, 1, 2].map(|k| all[order[k]] * oow[k]);
                 let p = plane(xy, a);
                 let w = plane(xy, *oow);
                 self.pixels.map(|(x, y)| eval(p, x, y) * (1.0f32 / eval(w, x, y)))
             }
-            (Setup::Planes { xy, order, .. }, Interp::Linear) => {
-                let p = plane(xy, [0, 1, 2].map(|k| v[order[k]]));
+            (Setup::Planes { xy, order, made, .. }, Interp::Linear) => {
+                let all = clipped_values(v, made, true);
+                let p = plane(xy, [0, 1, 2].map(|k| all[order[k]]));
                 self.pixels.map(|(x, y)| eval(p, x, y))
-            }
-            (Setup::Weights { linear, perspective }, mode) => {
-                let w = if mode == Interp::Linear { linear } else { perspective };
-                let f = |k: usize| f64::from(v[k]);
-                [0, 1, 2, 3].map(|i| (w[i][0] * f(0) + w[i][1] * f(1) + w[i][2] * f(2)) as f32)
             }
         }
     }
+}
+
+/// A value at the primitive's vertices `v`, then at the vertices the clipper made.
+fn clipped_values(v: [f32; 3], made: &[Made], linear: bool) -> Vec<f32> {
+    let mut all = v.to_vec();
+    for m in made {
+        let t = if linear { m.t_linear } else { m.t };
+        let (out, inside) = (all[m.out], all[m.inside]);
+        all.push(out + t * (inside - out));
+    }
+    all
 }
 
 fn quad(x: u32, y: u32) -> ([(u32, u32); 4], usize) {
@@ -176,24 +176,174 @@ fn snap(v: f32) -> i64 {
     ((v - 0.5) * (1u32 << SUBPIXEL_BITS) as f32).round_ties_even() as i64
 }
 
+/// The clip planes of Vulkan's volume in llvmpipe's order (`draw->plane[0..6]`, z from 0):
+/// a vertex is outside plane `i` where `dot(position, plane) < 0`.
+const PLANES: [[f32; 4]; 6] = [
+    [-1.0, 0.0, 0.0, 1.0],
+    [1.0, 0.0, 0.0, 1.0],
+    [0.0, -1.0, 0.0, 1.0],
+    [0.0, 1.0, 0.0, 1.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [0.0, 0.0, -1.0, 1.0],
+];
+
+/// `a · b` in `f32`, left to right, as the clipper's `dot4`.
+fn dot4(a: [f32; 4], b: [f32; 4]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
+}
+
+/// The planes `p` lies outside, one bit each.
+fn clipmask(p: [f32; 4]) -> u32 {
+    (0..6).filter(|&i| dot4(p, PLANES[i]) < 0.0).fold(0, |m, i| m | 1 << i)
+}
+
+/// A triangle after clipping.
+struct Clipped {
+    /// The polygon's vertices: indices into `pos`.
+    poly: Vec<usize>,
+    /// Clip positions: the triangle's three, then the vertices made.
+    pos: Vec<[f32; 4]>,
+    /// How each vertex past the third was made.
+    made: Vec<Made>,
+}
+
+/// A triangle clipped as llvmpipe's `do_clip_tri` clips it (Sutherland–Hodgman, plane by
+/// plane in bit order, each new vertex interpolated from the one outside). `None` where a
+/// distance is not finite (the clipper drops the triangle).
+fn clip(clip: [[f32; 4]; 3], mask: u32) -> Option<Clipped> {
+    let mut pos: Vec<[f32; 4]> = clip.to_vec();
+    let mut made = Vec::new();
+    let mut poly = vec![0, 1, 2];
+    let mut mask = mask;
+    while mask != 0 && poly.len() >= 3 {
+        let plane = PLANES[mask.trailing_zeros() as usize];
+        mask &= mask - 1;
+        let n = poly.len();
+        let mut out = Vec::with_capacity(n + 1);
+        let mut prev = poly[0];
+        let mut dp_prev = dot4(pos[prev], plane);
+        if !dp_prev.is_finite() {
+            return None;
+        }
+        for i in 1..=n {
+            let vert = poly[i % n];
+            let dp = dot4(pos[vert], plane);
+            if !dp.is_finite() {
+                return None;
+            }
+            let different = if dp_prev >= 0.0 {
+                out.push(prev);
+                dp < 0.0
+            } else {
+                // Not below 0 (a distance is finite here).
+                dp >= 0.0
+            };
+            if different {
+                let denom = dp - dp_prev;
+                // Interpolated from the vertex outside, or from the nearer one.
+                let (t, from, to) = if dp < 0.0 {
+                    if -dp < dp_prev {
+                        (dp / denom, vert, prev)
+                    } else {
+                        (-dp_prev / denom, prev, vert)
+                    }
+                } else if -dp_prev < dp {
+                    (-dp_prev / denom, prev, vert)
+                } else {
+                    (dp / denom, vert, prev)
+                };
+                let (o, inn) = (pos[from], pos[to]);
+                let p = [0, 1, 2, 3].map(|k| o[k] + t * (inn[k] - o[k]));
+                // The screen-space weight, from x (or y where x does not change).
+                let mut t_linear = t;
+                for k in 0..2 {
+                    if inn[k] != o[k] {
+                        let (ic, oc, dc) = (inn[k] / inn[3], o[k] / o[3], p[k] / p[3]);
+                        t_linear = (dc - oc) / (ic - oc);
+                        break;
+                    }
+                }
+                made.push(Made {
+                    out: from,
+                    inside: to,
+                    t,
+                    t_linear,
+                });
+                pos.push(p);
+                out.push(pos.len() - 1);
+            }
+            prev = vert;
+            dp_prev = dp;
+        }
+        poly = out;
+    }
+    Some(Clipped { poly, pos, made })
+}
+
 /// Whether the triangle `clip` (clip-space positions) covers pixel (x, y), and how it
 /// interpolates there if so.
 pub fn triangle(
-    clip: [[f32; 4]; 3],
+    clip_pos: [[f32; 4]; 3],
     vp: Viewport,
     x: u32,
     y: u32,
     front_face: wgpu::FrontFace,
     cull: Option<wgpu::Face>,
 ) -> Option<Cover> {
-    let needs_homogeneous = clip
-        .iter()
-        .any(|p| p[3].is_nan() || p[3] <= 0.0 || p.iter().any(|c| !c.is_finite()));
-    let window = clip.map(|p| vp.to_window(p));
-    let huge = window.iter().any(|w| w[0].abs() > 1e7 || w[1].abs() > 1e7);
-    if needs_homogeneous || huge {
-        return homogeneous(clip, vp, x, y, front_face, cull);
+    let masks = clip_pos.map(clipmask);
+    if masks[0] & masks[1] & masks[2] != 0 {
+        return None;
     }
+    let any = masks[0] | masks[1] | masks[2];
+    if any == 0 {
+        if clip_pos.iter().any(|p| p.iter().any(|c| !c.is_finite())) {
+            return None;
+        }
+        let window = clip_pos.map(|p| vp.to_window(p));
+        return setup(&window, [0, 1, 2], Vec::new(), x, y, front_face, cull);
+    }
+    let Clipped { poly, pos, made } = clip(clip_pos, any)?;
+    if poly.len() < 3 {
+        return None;
+    }
+    // Window positions: the primitive's vertices as the vertex pipeline computes them, the
+    // clipper's as its `interp` does (divide, then scale and translate, unfused).
+    let (hw, hh) = (vp.width as f32 * 0.5, vp.height as f32 * 0.5);
+    let window: Vec<[f32; 4]> = pos
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            if i < 3 {
+                vp.to_window(p)
+            } else {
+                let oow = 1.0f32 / p[3];
+                [p[0] * oow * hw + hw, p[1] * oow * -hh + hh, p[2] * oow, oow]
+            }
+        })
+        .collect();
+    // The polygon as a fan from its first vertex (the provoking one, first).
+    for i in 2..poly.len() {
+        let tri = [poly[0], poly[i - 1], poly[i]];
+        let corners = tri.map(|k| window[k]);
+        if let Some(cover) = setup(&corners, tri, made.clone(), x, y, front_face, cull) {
+            return Some(cover);
+        }
+    }
+    None
+}
+
+/// Coverage of pixel (x, y) by a triangle of window positions `window` (whose vertices are
+/// `ids` of the primitive's and the clipper's), and its planes there; depth is clamped to
+/// 0..1 as llvmpipe clamps it after clipping.
+fn setup(
+    window: &[[f32; 4]; 3],
+    ids: [usize; 3],
+    made: Vec<Made>,
+    x: u32,
+    y: u32,
+    front_face: wgpu::FrontFace,
+    cull: Option<wgpu::Face>,
+) -> Option<Cover> {
     let fixed = window.map(|w| [snap(w[0]), snap(w[1])]);
     let [f0, f1, f2] = fixed;
     let area = (f0[0] - f1[0]) * (f2[1] - f0[1]) - (f2[0] - f0[0]) * (f0[1] - f1[1]);
@@ -225,73 +375,22 @@ pub fn triangle(
     let oow = order.map(|k| window[k][3]);
     let zp = plane(&xy, z);
     let wp = plane(&xy, oow);
-    let depth = pixels.map(|(x, y)| eval(zp, x, y));
+    let depth = pixels.map(|(x, y)| eval(zp, x, y).clamp(0.0, 1.0));
     let inv_w = pixels.map(|(x, y)| eval(wp, x, y));
-    Cover::depth_clipped(pixels, lane, front, depth, inv_w, Setup::Planes { xy, order, oow, z })
-}
-
-/// Coverage of a triangle that crosses the eye's plane (w ≤ 0) or lies far outside the
-/// viewport, without clipping it into pieces: in 2D homogeneous coordinates (Olano and
-/// Greer), the pixel's weights `k = M⁻¹ (X, Y, 1)` are all non-negative exactly where it lies
-/// inside the clipped triangle.
-fn homogeneous(
-    clip: [[f32; 4]; 3],
-    vp: Viewport,
-    x: u32,
-    y: u32,
-    front_face: wgpu::FrontFace,
-    cull: Option<wgpu::Face>,
-) -> Option<Cover> {
-    let m = clip.map(|p| [f64::from(p[0]), f64::from(p[1]), f64::from(p[3])]);
-    let det3 = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
-        a[0] * (b[1] * c[2] - b[2] * c[1]) - b[0] * (a[1] * c[2] - a[2] * c[1]) + c[0] * (a[1] * b[2] - a[2] * b[1])
-    };
-    let det = det3(m[0], m[1], m[2]);
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let front = facing(det > 0.0, front_face, cull)?;
-    let (pixels, lane) = quad(x, y);
-    let z = clip.map(|p| f64::from(p[2]));
-    let w = clip.map(|p| f64::from(p[3]));
-    let weights = |px: u32, py: u32| -> [f64; 3] {
-        let p = [
-            (f64::from(px) + 0.5) / f64::from(vp.width) * 2.0 - 1.0,
-            1.0 - (f64::from(py) + 0.5) / f64::from(vp.height) * 2.0,
-            1.0,
-        ];
-        [
-            det3(p, m[1], m[2]) / det,
-            det3(m[0], p, m[2]) / det,
-            det3(m[0], m[1], p) / det,
-        ]
-    };
-    let k = weights(x, y);
-    if k.iter().any(|&v| v < 0.0) || k.iter().sum::<f64>() <= 0.0 {
-        return None;
-    }
-    let mut linear = [[0.0; 3]; 4];
-    let mut perspective = [[0.0; 3]; 4];
-    let mut depth = [0.0f32; 4];
-    let mut inv_w = [0.0f32; 4];
-    for (i, &(px, py)) in pixels.iter().enumerate() {
-        let k = weights(px, py);
-        let sum: f64 = k.iter().sum();
-        perspective[i] = [k[0] / sum, k[1] / sum, k[2] / sum];
-        depth[i] = (k[0] * z[0] + k[1] * z[1] + k[2] * z[2]) as f32;
-        inv_w[i] = sum as f32;
-        let l = [0, 1, 2].map(|j| perspective[i][j] / w[j]);
-        let ls: f64 = l.iter().sum();
-        linear[i] = l.map(|v| v / ls);
-    }
-    Cover::depth_clipped(
+    Some(Cover {
         pixels,
         lane,
         front,
         depth,
         inv_w,
-        Setup::Weights { linear, perspective },
-    )
+        setup: Setup::Planes {
+            xy,
+            order: order.map(|k| ids[k]),
+            oow,
+            z,
+            made,
+        },
+    })
 }
 
 /// Whether a point at `clip` (size 1) covers pixel (x, y): one pixel square around the

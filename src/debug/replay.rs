@@ -84,6 +84,11 @@ pub struct Fragment {
     pub fragment_steps: Vec<Step>,
     /// Steps left out past the trace's limit.
     pub steps_dropped: usize,
+    /// Where the corners' run of the vertex shader met what GLSL leaves undefined (or the
+    /// GPU's loop limiter), and what.
+    pub vertex_undefined: Vec<(naga::Span, String)>,
+    /// The same for the pixel's run of the fragment shader.
+    pub fragment_undefined: Vec<(naga::Span, String)>,
     /// The draw's shaders.
     pub vertex: std::sync::Arc<CompiledShader>,
     /// The fragment shader.
@@ -158,6 +163,14 @@ impl Host for DrawHost<'_> {
     }
     fn size(&self, image: Handle<naga::GlobalVariable>, level: i32) -> Result<[u32; 2], String> {
         Ok(self.view(image)?.size(level))
+    }
+    fn buffer(&self, global: Handle<naga::GlobalVariable>) -> Option<std::sync::Arc<Vec<u8>>> {
+        let b = self.binding(global)?;
+        self.draw
+            .uniforms
+            .iter()
+            .find(|(k, _)| *k == b)
+            .map(|(_, bytes)| bytes.clone())
     }
 }
 
@@ -334,6 +347,7 @@ struct VertexRun {
     outputs: Vec<Vec<Comp>>,
     steps: Vec<Step>,
     dropped: usize,
+    undefined: Vec<(naga::Span, String)>,
 }
 
 fn run_vertices(draw: &Draw, ids: &[u32], traced: bool) -> Res<VertexRun> {
@@ -385,6 +399,7 @@ fn run_vertices(draw: &Draw, ids: &[u32], traced: bool) -> Res<VertexRun> {
         outputs,
         steps: std::mem::take(&mut run.steps),
         dropped: run.steps_dropped,
+        undefined: std::mem::take(&mut run.undefined),
     })
 }
 
@@ -634,6 +649,8 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
             vertex_steps: vrun.steps,
             fragment_steps: std::mem::take(&mut run.steps),
             steps_dropped: vrun.dropped + run.steps_dropped,
+            vertex_undefined: vrun.undefined,
+            fragment_undefined: std::mem::take(&mut run.undefined),
             vertex: draw.vertex.clone(),
             fragment: fshader.clone(),
         },

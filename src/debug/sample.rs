@@ -47,10 +47,13 @@ impl View {
         }
     }
 
-    /// The size of level `level` of the view (`textureSize`).
+    /// The size of level `level` of the view (`textureSize`); zero for a level the view does
+    /// not have, as llvmpipe answers (GLSL leaves it undefined).
     pub fn size(&self, level: i32) -> [u32; 2] {
-        let l = self.base + (level.max(0) as u32).min(self.count.saturating_sub(1));
-        let (w, h) = self.level_size(l);
+        if level < 0 || level as u32 >= self.count {
+            return [0, 0];
+        }
+        let (w, h) = self.level_size(self.base + level as u32);
         [w, h]
     }
 

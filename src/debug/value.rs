@@ -180,9 +180,12 @@ pub enum Root {
     Local(usize, Handle<naga::LocalVariable>),
     /// A global.
     Global(Handle<naga::GlobalVariable>),
+    /// A uniform block, read from the bound buffer's bytes: its pointers' offsets are in bytes,
+    /// as the GPU addresses it (an index past an array's end reads what lies there).
+    Buffer(Handle<naga::GlobalVariable>),
 }
 
-/// Where in its variable a pointer starts, in components.
+/// Where in its variable a pointer starts, in components (in bytes for a [`Root::Buffer`]).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Offset {
     /// The same in every lane.
@@ -292,6 +295,36 @@ pub fn part(module: &Module, inner: &TypeInner, index: usize) -> Option<(usize, 
     }
 }
 
+/// Where element or member `index` of `inner` starts in a uniform block's bytes (naga's
+/// std140 layout, as [`read_bytes`] reads it), and its type.
+pub fn byte_part(module: &Module, inner: &TypeInner, index: u32) -> Option<(u32, TypeInner)> {
+    match inner {
+        TypeInner::Vector { scalar, .. } => Some((index.wrapping_mul(4), TypeInner::Scalar(*scalar))),
+        TypeInner::Matrix { rows, scalar, .. } => Some((
+            index.wrapping_mul(column_stride(*rows)),
+            TypeInner::Vector {
+                size: *rows,
+                scalar: *scalar,
+            },
+        )),
+        TypeInner::Array { base, stride, .. } => Some((index.wrapping_mul(*stride), module.types[*base].inner.clone())),
+        TypeInner::Struct { members, .. } => members
+            .get(index as usize)
+            .map(|m| (m.offset, module.types[m.ty].inner.clone())),
+        _ => None,
+    }
+}
+
+/// The bytes between a matrix's columns in a uniform block: a column is aligned as a vector
+/// of `rows`, 8 bytes for two, 16 for three or four.
+fn column_stride(rows: naga::VectorSize) -> u32 {
+    if rows as usize == 2 {
+        8
+    } else {
+        16
+    }
+}
+
 /// How many elements a dynamically indexed `inner` has (for clamping the index, as wgpu's
 /// bounds-check policy does).
 pub fn elements(inner: &TypeInner) -> Option<usize> {
@@ -319,11 +352,13 @@ pub fn part_name(inner: &TypeInner, index: usize, members: Option<&[naga::Struct
 }
 
 /// Reads a value of type `inner` laid out as naga laid it out (a uniform block's std140
-/// offsets and strides) from `bytes` at `offset`; bytes past the end read as zero.
-pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: usize, out: &mut Vec<Comp>) -> Option<()> {
-    let word = |at: usize| -> u32 {
+/// offsets and strides) from `bytes` at byte `offset`. Addresses wrap at 32 bits and a word
+/// past the end reads as zero, as the GPU's robust buffer access reads a uniform buffer.
+pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: u32, out: &mut Vec<Comp>) -> Option<()> {
+    let word = |at: u32| -> u32 {
+        let at = at as usize;
         bytes
-            .get(at..at + 4)
+            .get(at..at.saturating_add(4))
             .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
     };
     match inner {
@@ -337,8 +372,8 @@ pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: usiz
         }
         TypeInner::Vector { size, scalar } => {
             let kind = Kind::of(*scalar)?;
-            for i in 0..*size as usize {
-                let mut v = word(offset + 4 * i);
+            for i in 0..*size as u32 {
+                let mut v = word(offset.wrapping_add(4 * i));
                 if kind == Kind::Bool {
                     v = u32::from(v != 0);
                 }
@@ -347,11 +382,11 @@ pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: usiz
         }
         TypeInner::Matrix { columns, rows, scalar } => {
             let kind = Kind::of(*scalar)?;
-            // A column is aligned as a vector of `rows`: 8 bytes for two, 16 for three or four.
-            let stride = if *rows as usize == 2 { 8 } else { 16 };
-            for c in 0..*columns as usize {
-                for r in 0..*rows as usize {
-                    out.push(Comp::new(kind, Bits::One(word(offset + c * stride + 4 * r))));
+            let stride = column_stride(*rows);
+            for c in 0..*columns as u32 {
+                for r in 0..*rows as u32 {
+                    let at = offset.wrapping_add(c * stride).wrapping_add(4 * r);
+                    out.push(Comp::new(kind, Bits::One(word(at))));
                 }
             }
         }
@@ -359,12 +394,12 @@ pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: usiz
             let naga::ArraySize::Constant(n) = size else {
                 return None;
             };
-            for i in 0..n.get() as usize {
+            for i in 0..n.get() {
                 read_bytes(
                     module,
                     &module.types[*base].inner,
                     bytes,
-                    offset + i * *stride as usize,
+                    offset.wrapping_add(i.wrapping_mul(*stride)),
                     out,
                 )?;
             }
@@ -375,7 +410,7 @@ pub fn read_bytes(module: &Module, inner: &TypeInner, bytes: &[u8], offset: usiz
                     module,
                     &module.types[m.ty].inner,
                     bytes,
-                    offset + m.offset as usize,
+                    offset.wrapping_add(m.offset),
                     out,
                 )?;
             }

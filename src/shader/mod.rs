@@ -544,6 +544,18 @@ pub fn plain_message(message: &str, line: &str) -> String {
     if let Some(name) = message
         .strip_prefix("Unknown function '")
         .and_then(|r| r.strip_suffix('\''))
+        .or_else(|| message.strip_prefix("Unknown variable: "))
+        .filter(|name| NAGA_LACKS.contains(name))
+    {
+        return format!(
+            "`{name}` is GLSL, but naga 30 (the compiler that turns shaderlab's GLSL into the GPU's shaders) \
+             does not implement it, so no command can run this shader: write it with the built-ins naga has \
+             (docs/debugger.md lists those it lacks)"
+        );
+    }
+    if let Some(name) = message
+        .strip_prefix("Unknown function '")
+        .and_then(|r| r.strip_suffix('\''))
     {
         return format!(
             "unknown function `{name}` for these arguments: no built-in and no function defined above this call takes them \
@@ -565,6 +577,30 @@ pub fn plain_message(message: &str, line: &str) -> String {
     }
     message.to_owned()
 }
+
+/// GLSL built-ins naga 30's GLSL front end does not implement: it calls them unknown.
+const NAGA_LACKS: [&str; 20] = [
+    "frexp",
+    "modf",
+    "uaddCarry",
+    "usubBorrow",
+    "umulExtended",
+    "imulExtended",
+    "matrixCompMult",
+    "textureQueryLod",
+    "textureSamples",
+    "textureGather",
+    "textureGatherOffset",
+    "interpolateAtCentroid",
+    "interpolateAtSample",
+    "interpolateAtOffset",
+    "packDouble2x32",
+    "unpackDouble2x32",
+    "anyInvocation",
+    "allInvocations",
+    "gl_HelperInvocation",
+    "gl_SampleMaskIn",
+];
 
 /// Keeps only the `#error` of a list of naga's messages when there is one: naga goes on
 /// parsing the directive's text as code ("Expected end of file, found Identifier").
@@ -1230,6 +1266,8 @@ mod loader_tests {
                 "only a variable",
             ),
             ("Unknown function 'f'", "", "unknown function `f`"),
+            ("Unknown function 'frexp'", "", "`frexp` is GLSL, but naga 30"),
+            ("Unknown variable: gl_HelperInvocation", "", "`gl_HelperInvocation` is GLSL, but naga 30"),
             (
                 "Function [0] 'main' is invalid: Expression [8] is invalid: Accessing index 7 is out of [5] bounds",
                 "",
