@@ -805,7 +805,14 @@ fn out_arguments_into_parts_of_variables_draw_from_the_command_line_and_legacy()
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(!stderr(&out).contains("panicked"), "{}", stderr(&out));
     let image = image::open(&png).unwrap().to_rgb8();
-    assert_eq!(&image.get_pixel(320, 180).0[1..], &[64, 128]);
+    let centre = image.get_pixel(320, 180).0;
+    assert_eq!(&centre[1..], &[64, 128]);
+    // The debugger replays the same module and stores the same byte.
+    let out = run_example("position_rgb", &["--shaders", copy.dir.to_str().unwrap(), "--debug", "320,180"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let stored = format!("stored rgba({}, 64, 128, 255)", centre[0]);
+    assert!(text.contains(&stored), "{stored} in\n{text}");
     // The same calls in a course's GLSL 1.10 pair.
     let vert = copy.path("course.vert");
     let frag = copy.path("course.frag");

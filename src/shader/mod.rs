@@ -678,7 +678,7 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
 /// Why [`finish_module`] refused a module.
 pub(crate) enum Unfinished {
     /// naga's validator refused it.
-    Invalid(naga::WithSpan<naga::valid::ValidationError>),
+    Invalid(Box<naga::WithSpan<naga::valid::ValidationError>>),
     /// A back end of naga panicked on it (a bug in naga): the panic's message.
     BackEnd(String),
 }
@@ -723,7 +723,7 @@ pub(crate) fn finish_module(
     mend::spill_partial_pointers(module);
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
         .validate(module)
-        .map_err(Unfinished::Invalid)?;
+        .map_err(|e| Unfinished::Invalid(Box::new(e)))?;
     try_spirv(module, &info, stage)?;
     if has_loop(module) {
         LOOPS.store(true, std::sync::atomic::Ordering::Relaxed);
