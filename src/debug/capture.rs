@@ -130,7 +130,10 @@ impl Pending {
         let (jobs, shared) = positions_start(gpu, &draws);
         let mapped = Arc::new(AtomicUsize::new(0));
         let failed = Arc::new(Mutex::new(None));
-        let stagings = buffers.iter().map(|(_, s, _)| s).chain(jobs.iter().map(|j| &j.staging));
+        let stagings = buffers
+            .iter()
+            .map(|(_, s, _)| s)
+            .chain(jobs.iter().flat_map(|j| &j.staging));
         for staging in stagings {
             let (m, f) = (mapped.clone(), failed.clone());
             staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
@@ -157,7 +160,8 @@ impl Pending {
 
     /// Whether every buffer is mapped (or failed).
     pub fn ready(&self) -> bool {
-        self.mapped.load(Ordering::SeqCst) >= self.buffers.len() + self.jobs.len()
+        let positions: usize = self.jobs.iter().map(|j| j.staging.len()).sum();
+        self.mapped.load(Ordering::SeqCst) >= self.buffers.len() + positions
     }
 
     /// Blocks until the buffers are mapped, then [`Pending::finish`].
@@ -238,14 +242,22 @@ impl Pending {
         }
         for (k, job) in self.jobs.iter().enumerate() {
             let read = {
-                let view = job.staging.slice(..).get_mapped_range().map_err(|e| Error::Wgpu {
-                    context: "reading the frame's positions back for the debugger".into(),
-                    message: e.to_string(),
-                })?;
-                super::positions::read(job, &view)
+                let views = job
+                    .staging
+                    .iter()
+                    .map(|b| b.slice(..).get_mapped_range())
+                    .collect::<std::result::Result<Vec<_>, _>>()
+                    .map_err(|e| Error::Wgpu {
+                        context: "reading the frame's positions back for the debugger".into(),
+                        message: e.to_string(),
+                    })?;
+                let bytes: Vec<&[u8]> = views.iter().map(|v| &v[..]).collect();
+                super::positions::read(job, &bytes)
             };
-            job.staging.unmap();
-            job.staging.destroy();
+            for staging in &job.staging {
+                staging.unmap();
+                staging.destroy();
+            }
             let _ = draws[job.draw].positions.set(Ok(Arc::new(read)));
             for &(draw, shares) in &self.shared {
                 if shares == k {

@@ -30,9 +30,9 @@ fn main(@location(0) @interpolate(flat) clip: vec4<u32>) -> @location(0) vec4<u3
 ";
 
 /// `module`'s vertex entry point rewritten to draw vertex `first + i` as a point on texel
-/// `i` (row-major, [`WIDTH`] a row, `rows` rows) carrying the bits of its `gl_Position` at
-/// location 0; `None` where the module has no such entry point or the rewrite does not
-/// validate.
+/// `i mod (rows · WIDTH)` (row-major, [`WIDTH`] a row, `rows` rows: a mesh too big for one
+/// target is drawn in several passes) carrying the bits of its `gl_Position` at location 0;
+/// `None` where the module has no such entry point or the rewrite does not validate.
 pub fn module(original: &Module, first: u32, rows: u32) -> Option<Module> {
     let mut module = original.clone();
     let ep = module
@@ -210,6 +210,7 @@ impl Rewrite {
         let arg = exprs.append(Expression::FunctionArgument(self.index_arg.0), s);
         let first = exprs.append(Expression::Literal(Literal::U32(self.first)), s);
         let width = exprs.append(Expression::Literal(Literal::U32(WIDTH)), s);
+        let per_pass = exprs.append(Expression::Literal(Literal::U32(self.rows * WIDTH)), s);
         let half = exprs.append(Expression::Literal(Literal::F32(0.5)), s);
         let sx = exprs.append(Expression::Literal(Literal::F32(2.0 / WIDTH as f32)), s);
         let sy = exprs.append(Expression::Literal(Literal::F32(2.0 / self.rows as f32)), s);
@@ -230,6 +231,7 @@ impl Rewrite {
             });
         }
         let i = add(bin(BinaryOperator::Subtract, vertex, first));
+        let i = add(bin(BinaryOperator::Modulo, i, per_pass));
         let column = add(bin(BinaryOperator::Modulo, i, width));
         let row = add(bin(BinaryOperator::Divide, i, width));
         let to_float = |e| Expression::As {
@@ -270,17 +272,19 @@ impl Rewrite {
     }
 }
 
-/// A draw's positions being computed and read back: the staging buffer, the first vertex and
-/// how many.
+/// A draw's positions being computed and read back: the staging buffers (one per pass), the
+/// first vertex and how many.
 pub struct Job {
     /// Which draw of the log.
     pub draw: usize,
-    /// The read-back.
-    pub staging: wgpu::Buffer,
+    /// The read-back, a pass's target in each.
+    pub staging: Vec<wgpu::Buffer>,
     /// The first vertex.
     pub first: u32,
     /// The vertices.
     pub count: u32,
+    /// The vertices of a pass.
+    pub per_pass: u32,
 }
 
 /// The vertex range of `call` (smallest and largest index drawn), if it is one the GPU
@@ -295,7 +299,11 @@ pub(crate) fn span(call: &DrawCall) -> Option<(u32, u32)> {
         None if setup.range.is_empty() => return None,
         None => (setup.range.start, setup.range.end - 1),
     };
-    (hi - lo + 1 >= GPU_FROM).then_some((lo, hi))
+    // Indices that skip most of their range (or reach the largest index) are shaded one by
+    // one by the interpreter instead.
+    let count = u64::from(hi) - u64::from(lo) + 1;
+    let drawn = u64::from(setup.range.end - setup.range.start);
+    (count >= u64::from(GPU_FROM) && count <= drawn && hi < u32::MAX).then_some((lo, hi))
 }
 
 /// Starts computing the positions of draw `index` (`call`) on the GPU, when it is big enough
@@ -303,10 +311,13 @@ pub(crate) fn span(call: &DrawCall) -> Option<(u32, u32)> {
 pub fn start(gpu: &Gpu, index: usize, call: &DrawCall) -> Option<Job> {
     let (lo, hi) = span(call)?;
     let count = hi - lo + 1;
-    let rows = count.div_ceil(WIDTH);
-    if rows > gpu.device.limits().max_texture_dimension_2d {
-        return None;
-    }
+    let limits = gpu.device.limits();
+    let most = limits
+        .max_texture_dimension_2d
+        .min((limits.max_buffer_size / (u64::from(WIDTH) * 16)).min(u64::from(u32::MAX)) as u32);
+    let rows = count.div_ceil(WIDTH).min(most);
+    let per_pass = rows * WIDTH;
+    let passes = count.div_ceil(per_pass);
     let vertex = module(&call.setup.vertex.module, lo, rows)?;
     let label = format!("shaderlab.debug.positions.{}", call.setup.label);
     let device = &gpu.device;
@@ -374,63 +385,69 @@ pub fn start(gpu: &Gpu, index: usize, call: &DrawCall) -> Option<Job> {
             label: Some(&format!("{label}.view")),
             ..Default::default()
         });
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(&format!("{label}.staging")),
-            size: u64::from(WIDTH) * 16 * u64::from(rows),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&format!("{label}.encoder")),
         });
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(&format!("{label}.pass")),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
+        let mut stagings = Vec::new();
+        for k in 0..passes {
+            let from = lo + k * per_pass;
+            let to = from.saturating_add(per_pass).min(hi + 1);
+            {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(&format!("{label}.pass")),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&pipeline);
+                if let Some(group) = &call.bind_group {
+                    pass.set_bind_group(0, group, &[]);
+                }
+                if !call.setup.attributes.is_empty() {
+                    pass.set_vertex_buffer(0, call.vertices.slice(..));
+                }
+                pass.draw(from..to, 0..1);
+            }
+            let staging = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("{label}.staging")),
+                size: u64::from(per_pass) * 16,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
             });
-            pass.set_pipeline(&pipeline);
-            if let Some(group) = &call.bind_group {
-                pass.set_bind_group(0, group, &[]);
-            }
-            if !call.setup.attributes.is_empty() {
-                pass.set_vertex_buffer(0, call.vertices.slice(..));
-            }
-            pass.draw(lo..hi + 1, 0..1);
-        }
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &target,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &staging,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(WIDTH * 16),
-                    rows_per_image: Some(rows),
+            encoder.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &target,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
                 },
-            },
-            wgpu::Extent3d {
-                width: WIDTH,
-                height: rows,
-                depth_or_array_layers: 1,
-            },
-        );
-        (encoder.finish(), staging, target)
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &staging,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(WIDTH * 16),
+                        rows_per_image: Some(rows),
+                    },
+                },
+                wgpu::Extent3d {
+                    width: WIDTH,
+                    height: rows,
+                    depth_or_array_layers: 1,
+                },
+            );
+            stagings.push(staging);
+        }
+        (encoder.finish(), stagings, target)
     });
     let (commands, staging, target) = encoded.ok()?;
     gpu.queue.submit([commands]);
@@ -441,17 +458,20 @@ pub fn start(gpu: &Gpu, index: usize, call: &DrawCall) -> Option<Job> {
         staging,
         first: lo,
         count,
+        per_pass,
     })
 }
 
-/// The positions read back into `staging` (mapped): vertex ids `first..first + count` and
-/// their clip-space positions.
-pub fn read(job: &Job, bytes: &[u8]) -> (Vec<u32>, Vec<[f32; 4]>) {
+/// The positions read back into `job`'s staging buffers (`passes`, their mapped bytes in
+/// order): vertex ids `first..first + count` and their clip-space positions.
+pub fn read(job: &Job, passes: &[&[u8]]) -> (Vec<u32>, Vec<[f32; 4]>) {
     let ids: Vec<u32> = (job.first..job.first + job.count).collect();
+    let per_pass = job.per_pass as usize;
     let clip = (0..job.count as usize)
         .map(|i| {
+            let bytes = passes.get(i / per_pass).copied().unwrap_or(&[]);
             [0, 1, 2, 3].map(|k| {
-                let at = i * 16 + 4 * k;
+                let at = (i % per_pass) * 16 + 4 * k;
                 bytes
                     .get(at..at + 4)
                     .map_or(0.0, |b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
