@@ -970,7 +970,7 @@ fn a_trace_of_a_big_array_in_a_long_loop_is_bounded_and_says_what_it_left_out() 
 
 #[test]
 fn a_big_frame_is_debugged_from_the_gpus_positions_for_about_the_memory_of_drawing_it() {
-    // 33,282 vertices: their positions come from the GPU with the capture, and the replay
+    // 524,288 vertices: their positions come from the GPU with the capture, and the replay
     // still stores what the GPU stored.
     let mut lab = build("displacement", &UserFiles::default(), &[("tess", "128")]);
     let (w, h) = lab.info().size;

@@ -318,55 +318,10 @@ pub fn start(gpu: &Gpu, index: usize, call: &DrawCall) -> Option<Job> {
     let rows = count.div_ceil(WIDTH).min(most);
     let per_pass = rows * WIDTH;
     let passes = count.div_ceil(per_pass);
-    let vertex = module(&call.setup.vertex.module, lo, rows)?;
+    let pipeline = pipeline(gpu, call, lo, rows)?;
     let label = format!("shaderlab.debug.positions.{}", call.setup.label);
     let device = &gpu.device;
     let encoded = gpu.checked(&label, || {
-        let vs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&format!("{label}.vertex")),
-            source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(vertex)),
-        });
-        let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&format!("{label}.fragment")),
-            source: wgpu::ShaderSource::Wgsl(FRAGMENT.into()),
-        });
-        let buffers = [Some(wgpu::VertexBufferLayout {
-            array_stride: call.setup.stride,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &call.setup.attributes,
-        })];
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&format!("{label}.pipeline")),
-            layout: Some(&call.layout),
-            vertex: wgpu::VertexState {
-                module: &vs,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                buffers: if call.setup.attributes.is_empty() {
-                    &[]
-                } else {
-                    &buffers
-                },
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &fs,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: wgpu::TextureFormat::Rgba32Uint,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::PointList,
-                ..Default::default()
-            },
-            depth_stencil: None,
-            multisample: Default::default(),
-            multiview_mask: None,
-            cache: None,
-        });
         let target = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(&format!("{label}.target")),
             size: wgpu::Extent3d {
@@ -479,4 +434,112 @@ pub fn read(job: &Job, passes: &[&[u8]]) -> (Vec<u32>, Vec<[f32; 4]>) {
         })
         .collect();
     (ids, clip)
+}
+
+/// The pipelines built for the positions pass, by what they are built from (this thread's:
+/// the window captures on its event loop, and an animated frame is captured again and again).
+struct Built {
+    device: wgpu::Device,
+    vertex: std::sync::Weak<crate::shader::CompiledShader>,
+    layout: wgpu::PipelineLayout,
+    stride: u64,
+    attributes: Vec<wgpu::VertexAttribute>,
+    first: u32,
+    rows: u32,
+    pipeline: wgpu::RenderPipeline,
+}
+
+/// The most pipelines [`pipeline`] keeps.
+const KEPT: usize = 4;
+
+thread_local! {
+    static BUILT: std::cell::RefCell<Vec<Built>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The positions pass's pipeline for `call` with its first vertex and target rows: built
+/// again only when one of those changed; `None` where the rewrite or the GPU refuses it.
+fn pipeline(gpu: &Gpu, call: &DrawCall, first: u32, rows: u32) -> Option<wgpu::RenderPipeline> {
+    let setup = &call.setup;
+    let same = |b: &Built| {
+        b.device == gpu.device
+            && b.vertex
+                .upgrade()
+                .is_some_and(|v| std::sync::Arc::ptr_eq(&v, &setup.vertex))
+            && b.layout == call.layout
+            && b.stride == setup.stride
+            && b.attributes == setup.attributes
+            && (b.first, b.rows) == (first, rows)
+    };
+    if let Some(p) = BUILT.with_borrow(|built| built.iter().find(|b| same(b)).map(|b| b.pipeline.clone())) {
+        return Some(p);
+    }
+    let vertex = module(&setup.vertex.module, first, rows)?;
+    let label = format!("shaderlab.debug.positions.{}", setup.label);
+    let device = &gpu.device;
+    let pipeline = gpu
+        .checked(&label, || {
+            let vs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&format!("{label}.vertex")),
+                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(vertex)),
+            });
+            let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&format!("{label}.fragment")),
+                source: wgpu::ShaderSource::Wgsl(FRAGMENT.into()),
+            });
+            let buffers = [Some(wgpu::VertexBufferLayout {
+                array_stride: call.setup.stride,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &call.setup.attributes,
+            })];
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&format!("{label}.pipeline")),
+                layout: Some(&call.layout),
+                vertex: wgpu::VertexState {
+                    module: &vs,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    buffers: if call.setup.attributes.is_empty() {
+                        &[]
+                    } else {
+                        &buffers
+                    },
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &fs,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: wgpu::TextureFormat::Rgba32Uint,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::PointList,
+                    ..Default::default()
+                },
+                depth_stencil: None,
+                multisample: Default::default(),
+                multiview_mask: None,
+                cache: None,
+            })
+        })
+        .ok()?;
+    BUILT.with_borrow_mut(|built| {
+        built.retain(|b| b.vertex.strong_count() > 0);
+        if built.len() >= KEPT {
+            built.remove(0);
+        }
+        built.push(Built {
+            device: gpu.device.clone(),
+            vertex: std::sync::Arc::downgrade(&setup.vertex),
+            layout: call.layout.clone(),
+            stride: setup.stride,
+            attributes: setup.attributes.clone(),
+            first,
+            rows,
+            pipeline: pipeline.clone(),
+        });
+    });
+    Some(pipeline)
 }
