@@ -876,3 +876,156 @@ fn an_inspection_says_what_it_cannot_promise_for_the_gpu_that_drew() {
         "an unnamed adapter is not assumed to be llvmpipe"
     );
 }
+
+// ----- what a trace keeps, and what a debug costs -----
+
+/// Runs `shaderlab ARGS` to its end and returns its output with its peak resident memory in
+/// bytes: the largest `VmHWM` its `/proc` status showed, read every few milliseconds while it
+/// ran (the kernel's `ru_maxrss` would count this test process's own memory, which the child
+/// shares until it executes). Mesa's shader cache is off, so that every run compiles its
+/// pipelines alike (a run that finds them cached takes less memory than one that compiles).
+fn shaderlab_peak(args: &[&str]) -> (std::process::Output, u64) {
+    use std::io::Read;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .args(args)
+        .env("MESA_SHADER_CACHE_DISABLE", "true")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("shaderlab starts");
+    let read = |mut pipe: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let _ = pipe.read_to_end(&mut bytes);
+            bytes
+        })
+    };
+    let stdout = read(Box::new(child.stdout.take().expect("stdout")));
+    let stderr = read(Box::new(child.stderr.take().expect("stderr")));
+    let status_file = format!("/proc/{}/status", child.id());
+    let start = std::time::Instant::now();
+    let mut peak = 0u64;
+    let status = loop {
+        if let Ok(status) = std::fs::read_to_string(&status_file) {
+            let hwm = status
+                .lines()
+                .find_map(|l| l.strip_prefix("VmHWM:"))
+                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok());
+            peak = peak.max(hwm.unwrap_or(0) * 1024);
+        }
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        if start.elapsed() > std::time::Duration::from_secs(300) {
+            let _ = child.kill();
+            panic!("shaderlab {args:?} ran for 5 minutes");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    };
+    let output = std::process::Output {
+        status,
+        stdout: stdout.join().expect("stdout read"),
+        stderr: stderr.join().expect("stderr read"),
+    };
+    (output, peak)
+}
+
+#[test]
+fn a_trace_of_a_big_array_in_a_long_loop_is_bounded_and_says_what_it_left_out() {
+    // 4,096 iterations, each storing into a 4,096-float array and copying it whole: kept whole,
+    // that was a 4,096-number value at each of 8,192 steps.
+    let dir = shaders_with("big_array", |t| {
+        t.replacen(
+            "    frag_color = ",
+            "    float a[4096];\n    float b[4096];\n    for (int i = 0; i < 4096; i++) { a[i] = float(i); b = a; }\n    frag_color = b[4095] * 0.0 + ",
+            1,
+        )
+    });
+    let shaders = dir.to_str().expect("utf-8");
+    let args = ["debug", "phong", "--pixel", "320,180", "--shaders", shaders, "--json"];
+    let (out, peak) = shaderlab_peak(&args);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    // Stated in docs/debugger.md: a trace's JSON stays under 8 MB; this one is far under.
+    assert!(out.stdout.len() < 4 << 20, "{} bytes of JSON", out.stdout.len());
+    assert!(peak < 400 << 20, "peak memory {} MB", peak >> 20);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let trace = v["trace"].as_array().expect("trace");
+    // The copy's steps show the array's first 16 elements and count the rest.
+    let copy = trace
+        .iter()
+        .find(|s| s["name"] == "b" && s["stage"] == "fragment")
+        .unwrap_or_else(|| panic!("a step assigns b: {}", &text(&out.stdout)[..2000]));
+    assert_eq!(copy["value"].as_array().expect("components").len(), 16, "{copy}");
+    assert_eq!(copy["more"], 4096 - 16, "{copy}");
+    // Steps left out are counted, in all and by line; the shader's last steps are kept.
+    let dropped = v["steps_dropped"].as_u64().expect("steps_dropped");
+    assert!(dropped > 4000, "{dropped} steps dropped");
+    let by_line: u64 = v["dropped"]
+        .as_array()
+        .expect("dropped by line")
+        .iter()
+        .map(|d| d["steps"].as_u64().expect("steps"))
+        .sum();
+    assert_eq!(by_line, dropped);
+    assert!(trace.iter().any(|s| s["name"] == "frag_color"), "the last step is kept");
+    let listing = v["listing"]["fragment"].as_array().expect("listing");
+    assert!(
+        listing
+            .iter()
+            .any(|r| r["values"].as_str().unwrap_or("").contains("steps not kept")),
+        "{listing:?}"
+    );
+    // The text says it too.
+    let out = shaderlab(&args[..6]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    assert!(report.len() < 1 << 20, "{} bytes of text", report.len());
+    assert!(
+        report.contains("… 4080 more)") && report.contains("steps not kept"),
+        "{report}"
+    );
+}
+
+#[test]
+fn a_big_frame_is_debugged_from_the_gpus_positions_for_about_the_memory_of_drawing_it() {
+    // 524,288 vertices: their positions come from the GPU with the capture, and the replay
+    // still stores what the GPU stored.
+    let mut lab = build("displacement", &UserFiles::default(), &[("tess", "128")]);
+    let (w, h) = lab.info().size;
+    let (_, captured) = capture_lab(gpu(), lab.as_mut(), w, h, false).expect("capture");
+    assert!(
+        captured.draws.iter().any(|d| d.positions_captured()),
+        "the big draw's positions come with the capture"
+    );
+    let lab = build("displacement", &UserFiles::default(), &[("tess", "128")]);
+    let (checked, misses, _) = agreement("displacement tess=128", lab, 0x7e55_0128);
+    assert!(checked >= SURFACE && misses.is_empty(), "{}", misses.join("\n"));
+    // A small draw keeps the interpreter (no pipeline built for it).
+    let mut lab = build("phong", &UserFiles::default(), &[("object", "sphere"), ("tess", "16")]);
+    let (_, captured) = capture_lab(gpu(), lab.as_mut(), w, h, false).expect("capture");
+    assert!(captured.draws.iter().all(|d| !d.positions_captured()));
+    // Debugging the frame takes about the memory drawing it takes (here 270–305 MB against
+    // 240); through the interpreter, 65,536 vertices' values held at once, it took 455 MB.
+    let (draw, draw_peak) = shaderlab_peak(&[
+        "run",
+        "displacement",
+        "--tess",
+        "128",
+        "--screenshot",
+        common::output_dir().join("big_frame.png").to_str().expect("utf-8"),
+    ]);
+    assert!(draw.status.success(), "{}", text(&draw.stderr));
+    let (debug, debug_peak) = shaderlab_peak(&["debug", "displacement", "--tess", "128", "--pixel", "320,180"]);
+    assert!(debug.status.success(), "{}", text(&debug.stderr));
+    eprintln!(
+        "peak memory: drawing {} MB, debugging {} MB",
+        draw_peak >> 20,
+        debug_peak >> 20
+    );
+    assert!(
+        debug_peak < draw_peak + (128 << 20),
+        "debugging took {} MB, drawing {} MB",
+        debug_peak >> 20,
+        draw_peak >> 20
+    );
+}

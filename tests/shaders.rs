@@ -808,7 +808,10 @@ fn out_arguments_into_parts_of_variables_draw_from_the_command_line_and_legacy()
     let centre = image.get_pixel(320, 180).0;
     assert_eq!(&centre[1..], &[64, 128]);
     // The debugger replays the same module and stores the same byte.
-    let out = run_example("position_rgb", &["--shaders", copy.dir.to_str().unwrap(), "--debug", "320,180"]);
+    let out = run_example(
+        "position_rgb",
+        &["--shaders", copy.dir.to_str().unwrap(), "--debug", "320,180"],
+    );
     assert!(out.status.success(), "{}", stderr(&out));
     let text = String::from_utf8_lossy(&out.stdout);
     let stored = format!("stored rgba({}, 64, 128, 255)", centre[0]);

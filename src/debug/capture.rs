@@ -42,6 +42,15 @@ pub struct Draw {
     pub(crate) positions: Arc<std::sync::OnceLock<Positions>>,
 }
 
+impl Draw {
+    /// Whether the clip-space positions of its vertices came with the capture (computed by
+    /// the GPU for a big draw, [`super::positions`]) rather than by the interpreter at the
+    /// first replay.
+    pub fn positions_captured(&self) -> bool {
+        self.positions.get().is_some()
+    }
+}
+
 impl std::ops::Deref for Draw {
     type Target = DrawSetup;
 
@@ -73,6 +82,11 @@ pub struct Pending {
     passes: Vec<(Load, u32, u32)>,
     /// Each distinct buffer, its staging copy and its size.
     buffers: Vec<(wgpu::Buffer, wgpu::Buffer, u64)>,
+    /// The big draws' positions computed by the GPU ([`super::positions`]), and the draws
+    /// that share one of them (the same vertex shader, vertices and bindings): the draw and
+    /// the index of the job it shares.
+    jobs: Vec<super::positions::Job>,
+    shared: Vec<(usize, usize)>,
     mapped: Arc<AtomicUsize>,
     /// Why a buffer could not be mapped, if one could not.
     failed: Arc<Mutex<Option<String>>>,
@@ -113,9 +127,14 @@ impl Pending {
             }
         }
         gpu.queue.submit([encoder.finish()]);
+        let (jobs, shared) = positions_start(gpu, &draws);
         let mapped = Arc::new(AtomicUsize::new(0));
         let failed = Arc::new(Mutex::new(None));
-        for (_, staging, _) in &buffers {
+        let stagings = buffers
+            .iter()
+            .map(|(_, s, _)| s)
+            .chain(jobs.iter().flat_map(|j| &j.staging));
+        for staging in stagings {
             let (m, f) = (mapped.clone(), failed.clone());
             staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
                 if let Err(e) = r {
@@ -132,6 +151,8 @@ impl Pending {
             adapter: format!("{}, {}", info.name, info.driver_info),
             passes: log.passes(),
             buffers,
+            jobs,
+            shared,
             mapped,
             failed,
         }
@@ -139,7 +160,8 @@ impl Pending {
 
     /// Whether every buffer is mapped (or failed).
     pub fn ready(&self) -> bool {
-        self.mapped.load(Ordering::SeqCst) >= self.buffers.len()
+        let positions: usize = self.jobs.iter().map(|j| j.staging.len()).sum();
+        self.mapped.load(Ordering::SeqCst) >= self.buffers.len() + positions
     }
 
     /// Blocks until the buffers are mapped, then [`Pending::finish`].
@@ -171,6 +193,8 @@ impl Pending {
                 view[..*size as usize].to_vec()
             };
             staging.unmap();
+            // Its memory goes now, before the next buffer's copy is made.
+            staging.destroy();
             bytes.push((buffer.clone(), Arc::new(data)));
         }
         let find = |b: &wgpu::Buffer| -> Arc<Vec<u8>> {
@@ -216,10 +240,61 @@ impl Pending {
                 positions: Arc::default(),
             });
         }
+        for (k, job) in self.jobs.iter().enumerate() {
+            let read = {
+                let views = job
+                    .staging
+                    .iter()
+                    .map(|b| b.slice(..).get_mapped_range())
+                    .collect::<std::result::Result<Vec<_>, _>>()
+                    .map_err(|e| Error::Wgpu {
+                        context: "reading the frame's positions back for the debugger".into(),
+                        message: e.to_string(),
+                    })?;
+                let bytes: Vec<&[u8]> = views.iter().map(|v| &v[..]).collect();
+                super::positions::read(job, &bytes)
+            };
+            for staging in &job.staging {
+                staging.unmap();
+                staging.destroy();
+            }
+            let _ = draws[job.draw].positions.set(Ok(Arc::new(read)));
+            for &(draw, shares) in &self.shared {
+                if shares == k {
+                    draws[draw].positions = draws[job.draw].positions.clone();
+                }
+            }
+        }
         Ok(Captured {
             passes: self.passes,
             adapter: self.adapter,
             draws,
         })
     }
+}
+
+/// Starts the GPU's positions for the big draws of `draws` ([`super::positions`]), one job per
+/// distinct vertex shader, vertex buffer, bind group and vertex range; the draws that share a
+/// job, with its index. None in the browser, whose WebGPU answers errors only later.
+fn positions_start(gpu: &Gpu, draws: &[crate::render::DrawCall]) -> (Vec<super::positions::Job>, Vec<(usize, usize)>) {
+    let mut jobs: Vec<super::positions::Job> = Vec::new();
+    let mut shared = Vec::new();
+    if cfg!(target_arch = "wasm32") {
+        return (jobs, shared);
+    }
+    for (k, d) in draws.iter().enumerate() {
+        let same = jobs.iter().position(|j| {
+            let e = &draws[j.draw];
+            Arc::ptr_eq(&e.setup.vertex, &d.setup.vertex)
+                && e.vertices == d.vertices
+                && e.bind_group == d.bind_group
+                && super::positions::span(e) == super::positions::span(d)
+        });
+        if let Some(j) = same {
+            shared.push((k, j));
+        } else if let Some(job) = super::positions::start(gpu, k, d) {
+            jobs.push(job);
+        }
+    }
+    (jobs, shared)
 }

@@ -92,8 +92,29 @@ pub struct Step {
     pub kind: StepKind,
     /// The kinds of the value's components.
     pub kinds: Vec<Kind>,
-    /// Per traced lane, the value's components (numbers; bools as 0/1).
+    /// Per traced lane, the value's components (numbers; bools as 0/1): at most
+    /// [`MAX_COMPONENTS`] of them.
     pub values: Vec<Option<Vec<f64>>>,
+    /// The value's components past those kept (an array's elements after its first ones).
+    pub more: usize,
+}
+
+/// What a run recorded for its traced lanes: the steps kept, in order, and the steps left out
+/// between the first [`HEAD_STEPS`] and the last [`TAIL_STEPS`], counted by statement.
+#[derive(Clone, Debug, Default)]
+pub struct Trace {
+    /// The steps kept: the first ones, then the last ones.
+    pub steps: Vec<Step>,
+    /// Steps left out, by the span of the statement that took them: how many (one per traced
+    /// lane that took it).
+    pub dropped: Vec<(Span, usize)>,
+}
+
+impl Trace {
+    /// How many steps were left out (one per traced lane).
+    pub fn dropped_total(&self) -> usize {
+        self.dropped.iter().map(|(_, n)| n).sum()
+    }
 }
 
 type Res<T> = std::result::Result<T, Failure>;
@@ -115,8 +136,18 @@ pub const TEMPORARY: &str = "(temporary)";
 /// The budget per lane of a run over many lanes (a generous vertex shader's evaluations).
 pub const PER_LANE_BUDGET: u64 = 2_000;
 
-/// The most steps a trace keeps (a loop of a million iterations keeps its first ones).
-pub const MAX_STEPS: usize = 20_000;
+/// The steps a trace keeps from its start, counted per traced lane (a vertex step at three
+/// corners counts three). With [`TAIL_STEPS`] this bounds what a trace holds and writes, however
+/// long the shader runs: a long loop keeps its first iterations and what the shader did last.
+pub const HEAD_STEPS: usize = 3_000;
+
+/// The steps a trace keeps from its end, counted as [`HEAD_STEPS`]; those between the two are
+/// counted by line, not kept.
+pub const TAIL_STEPS: usize = 1_000;
+
+/// The components of one value a step keeps: a `mat4` whole, an array's first 16 elements of
+/// `float` (the rest counted in [`Step::more`]).
+pub const MAX_COMPONENTS: usize = 16;
 
 /// The loop passes llvmpipe runs in one shader invocation, all loops together, before it ends
 /// each loop at its next pass's end (`LP_MAX_TGSI_LOOP_ITERATIONS`, a counter set once per
@@ -163,12 +194,8 @@ pub struct Run<'m> {
     /// Work done so far and the most allowed.
     work: u64,
     budget: u64,
-    /// The lanes whose steps are recorded, and the steps.
+    /// The lanes whose steps are recorded.
     traced: Vec<usize>,
-    /// The trace.
-    pub steps: Vec<Step>,
-    /// Steps left out once [`MAX_STEPS`] were kept.
-    pub steps_dropped: usize,
     /// Loop passes each lane has left before llvmpipe's limiter ends its loops
     /// ([`LOOP_PASSES`]): shared by a quad (llvmpipe counts passes of the SIMD group, which
     /// runs both sides of every branch, a loop no lane enters for one pass), one per lane
@@ -179,6 +206,14 @@ pub struct Run<'m> {
     /// Where the run met a value GLSL leaves undefined, or a loop the GPU's limiter ended, and
     /// what it gave there (once each).
     pub undefined: Vec<(Span, String)>,
+    /// The first steps (up to [`HEAD_STEPS`] lane-steps), then the last ones (up to
+    /// [`TAIL_STEPS`]), and the lane-steps each holds.
+    head: Vec<Step>,
+    tail: std::collections::VecDeque<Step>,
+    head_lanes: usize,
+    tail_lanes: usize,
+    /// Lane-steps left out between the two, by statement.
+    dropped: Vec<(Span, usize)>,
 }
 
 fn lanes_of(mask: &[bool]) -> bool {
@@ -246,11 +281,14 @@ impl<'m> Run<'m> {
             // A vertex shader over a whole mesh does work in proportion to its vertices.
             budget: DEFAULT_BUDGET.max(lanes as u64 * PER_LANE_BUDGET),
             traced,
-            steps: Vec::new(),
-            steps_dropped: 0,
             limiter: vec![LOOP_PASSES; lanes],
             loops_in: std::cell::RefCell::new(vec![None; module.functions.len()]),
             undefined: Vec::new(),
+            head: Vec::new(),
+            tail: std::collections::VecDeque::new(),
+            head_lanes: 0,
+            tail_lanes: 0,
+            dropped: Vec::new(),
         })
     }
 
@@ -382,25 +420,52 @@ impl<'m> Run<'m> {
     }
 
     fn step(&mut self, span: Span, kind: StepKind, comps: &[Comp], mask: &[bool]) {
-        if self.traced.is_empty() || !self.traced.iter().any(|&l| mask[l]) {
+        let lanes = self.traced.iter().filter(|&&l| mask[l]).count();
+        if lanes == 0 {
             return;
         }
-        if self.steps.len() >= MAX_STEPS {
-            self.steps_dropped += 1;
-            return;
-        }
+        let kept = &comps[..comps.len().min(MAX_COMPONENTS)];
         let values = self
             .traced
             .iter()
-            .map(|&l| mask[l].then(|| value::numbers(comps, l)))
+            .map(|&l| mask[l].then(|| value::numbers(kept, l)))
             .collect();
-        self.steps.push(Step {
+        let step = Step {
             span,
             function: self.frames.last().and_then(|f| f.function.name.clone()),
             kind,
-            kinds: comps.iter().map(|c| c.kind).collect(),
+            kinds: kept.iter().map(|c| c.kind).collect(),
             values,
-        });
+            more: comps.len() - kept.len(),
+        };
+        if self.tail.is_empty() && self.head_lanes + lanes <= HEAD_STEPS {
+            self.head_lanes += lanes;
+            self.head.push(step);
+            return;
+        }
+        self.tail_lanes += lanes;
+        self.tail.push_back(step);
+        while self.tail_lanes > TAIL_STEPS {
+            let Some(old) = self.tail.pop_front() else { break };
+            let n = old.values.iter().filter(|v| v.is_some()).count();
+            self.tail_lanes -= n;
+            match self.dropped.iter_mut().find(|(s, _)| *s == old.span) {
+                Some((_, count)) => *count += n,
+                None => self.dropped.push((old.span, n)),
+            }
+        }
+    }
+
+    /// The steps recorded so far (the run's trace is left empty).
+    pub fn take_trace(&mut self) -> Trace {
+        let mut steps = std::mem::take(&mut self.head);
+        steps.extend(self.tail.drain(..));
+        self.head_lanes = 0;
+        self.tail_lanes = 0;
+        Trace {
+            steps,
+            dropped: std::mem::take(&mut self.dropped),
+        }
     }
 
     // ----- statements -----

@@ -17,6 +17,7 @@ pub mod capture;
 pub mod error;
 pub mod interp;
 mod math;
+pub mod positions;
 pub mod raster;
 pub mod replay;
 pub mod sample;
@@ -62,10 +63,27 @@ pub struct TraceStep {
     /// What it did: the variable assigned (`L`, `color.rgb`), or `if`, `loop`, `call f`,
     /// `discard`.
     pub name: String,
-    /// Its value's components (bools as 0/1; the iteration for `loop`; 1/0 for `if`).
+    /// Its value's components (bools as 0/1; the iteration for `loop`; 1/0 for `if`): at most
+    /// [`interp::MAX_COMPONENTS`].
     pub value: Vec<f64>,
+    /// The value's components left out after those (an array's later elements).
+    pub more: usize,
     /// Whether the value is a bool.
     pub boolean: bool,
+}
+
+/// Steps of one line left out of the trace (past [`interp::HEAD_STEPS`], before the last
+/// [`interp::TAIL_STEPS`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dropped {
+    /// The stage.
+    pub stage: Stage,
+    /// The file.
+    pub file: String,
+    /// The 1-based line.
+    pub line: u32,
+    /// How many steps (one per corner at a vertex step).
+    pub steps: usize,
 }
 
 impl TraceStep {
@@ -74,7 +92,12 @@ impl TraceStep {
     pub fn describe(&self) -> String {
         let corner = self.corner.map(|c| format!("[{c}] ")).unwrap_or_default();
         let v = match (self.boolean, self.value.as_slice()) {
-            (true, [b]) => (if *b != 0.0 { "true" } else { "false" }).to_owned(),
+            (true, [b]) if self.more == 0 => (if *b != 0.0 { "true" } else { "false" }).to_owned(),
+            _ if self.more > 0 => format!(
+                "({}, … {} more)",
+                self.value.iter().map(|x| num(*x)).collect::<Vec<_>>().join(", "),
+                self.more
+            ),
             _ => vector(&self.value),
         };
         match self.name.as_str() {
@@ -121,8 +144,10 @@ pub struct Inspection {
     pub height: u32,
     /// The replay.
     pub replayed: Replayed,
-    /// Every step, vertex corners first, then the fragment.
+    /// Every step kept, vertex corners first, then the fragment.
     pub steps: Vec<TraceStep>,
+    /// The steps left out, by line.
+    pub dropped: Vec<Dropped>,
     /// What the replay cannot promise for the adapter that drew the frame ([`caveats`]).
     pub caveats: Vec<String>,
 }
@@ -191,8 +216,14 @@ pub fn user_name(shader: &CompiledShader, name: &str) -> String {
     }
 }
 
-fn steps_of(stage: Stage, shader: &CompiledShader, steps: &[interp::Step], out: &mut Vec<TraceStep>) {
-    for step in steps {
+fn steps_of(
+    stage: Stage,
+    shader: &CompiledShader,
+    trace: &interp::Trace,
+    out: &mut Vec<TraceStep>,
+    dropped: &mut Vec<Dropped>,
+) {
+    for step in &trace.steps {
         // The translator's own `main` (it calls the user's) is not the user's code.
         if shader.translated && step.function.as_deref() == Some("main") {
             continue;
@@ -217,8 +248,27 @@ fn steps_of(stage: Stage, shader: &CompiledShader, steps: &[interp::Step], out: 
                 line,
                 name: name.clone(),
                 value: v.clone(),
+                more: step.more,
                 boolean,
             });
+        }
+    }
+    for &(span, steps) in &trace.dropped {
+        // Steps no line holds are not shown when kept either.
+        let Some((file, line)) = locate(shader, span) else {
+            continue;
+        };
+        match dropped
+            .iter_mut()
+            .find(|d| d.stage == stage && d.file == file && d.line == line)
+        {
+            Some(d) => d.steps += steps,
+            None => dropped.push(Dropped {
+                stage,
+                file,
+                line,
+                steps,
+            }),
         }
     }
 }
@@ -238,10 +288,17 @@ impl Inspection {
             None => Error::Debug(e.message),
         })?;
         let mut steps = Vec::new();
+        let mut dropped = Vec::new();
         let mut anisotropic = false;
         if let Some(f) = &replayed.fragment {
-            steps_of(Stage::Vertex, &f.vertex, &f.vertex_steps, &mut steps);
-            steps_of(Stage::Fragment, &f.fragment, &f.fragment_steps, &mut steps);
+            steps_of(Stage::Vertex, &f.vertex, &f.vertex_steps, &mut steps, &mut dropped);
+            steps_of(
+                Stage::Fragment,
+                &f.fragment,
+                &f.fragment_steps,
+                &mut steps,
+                &mut dropped,
+            );
             anisotropic = captured
                 .draws
                 .get(f.draw)
@@ -270,8 +327,14 @@ impl Inspection {
             height,
             replayed,
             steps,
+            dropped,
             caveats,
         })
+    }
+
+    /// How many steps were left out of [`Inspection::steps`] (one per corner at a vertex step).
+    pub fn steps_dropped(&self) -> usize {
+        self.dropped.iter().map(|d| d.steps).sum()
     }
 
     /// Whether a primitive covers the pixel.
@@ -338,8 +401,14 @@ impl Inspection {
         }
         let _ = writeln!(out, "\nfragment shader {}:", f.fragment.path);
         self.listing(&mut out, Stage::Fragment, &f.fragment);
-        if f.steps_dropped > 0 {
-            let _ = writeln!(out, "  ({} more steps not kept)", f.steps_dropped);
+        let dropped = self.steps_dropped();
+        if dropped > 0 {
+            let _ = writeln!(
+                out,
+                "\n{dropped} steps not kept: a shader's trace keeps its first {} and its last {} (one per corner at a vertex step); each line above says how many it lost",
+                interp::HEAD_STEPS,
+                interp::TAIL_STEPS
+            );
         }
         let c = r.color;
         let _ = writeln!(
@@ -365,9 +434,14 @@ impl Inspection {
         };
         let shader = if stage == Stage::Vertex { &f.vertex } else { &f.fragment };
         let mut lines: Vec<(&str, u32)> = Vec::new();
-        for s in self.steps.iter().filter(|s| s.stage == stage) {
-            if !lines.contains(&(s.file.as_str(), s.line)) {
-                lines.push((s.file.as_str(), s.line));
+        let here = self
+            .steps
+            .iter()
+            .map(|s| (s.stage, s.file.as_str(), s.line))
+            .chain(self.dropped.iter().map(|d| (d.stage, d.file.as_str(), d.line)));
+        for (s, file, line) in here {
+            if s == stage && !lines.contains(&(file, line)) {
+                lines.push((file, line));
             }
         }
         let order: Vec<&str> = shader.source.files.iter().map(|(p, _)| p.as_str()).collect();
@@ -391,6 +465,18 @@ impl Inspection {
                         said.push_str("; ");
                     }
                     said.push_str(&s.describe());
+                }
+                let lost: usize = self
+                    .dropped
+                    .iter()
+                    .filter(|d| d.stage == stage && d.file == file && d.line == line)
+                    .map(|d| d.steps)
+                    .sum();
+                if lost > 0 {
+                    if !said.is_empty() {
+                        said.push_str("; ");
+                    }
+                    let _ = write!(said, "{lost} steps not kept");
                 }
                 Row {
                     file: file.to_owned(),
@@ -418,8 +504,9 @@ impl Inspection {
 
     /// The report for programs: one JSON object with `pixel` (the stored RGBA bytes),
     /// `covered`, and `trace` (steps with `stage`, `file`, `line`, `name`, `value`), and the
-    /// covering draw, corners, inputs, the listing by line and the caveats. Numbers JSON
-    /// cannot hold are the strings `"NaN"`, `"Infinity"` and `"-Infinity"`.
+    /// covering draw, corners, inputs, the listing by line and the caveats. A step's `more`
+    /// counts its value's components left out; `dropped` lists the steps left out, by line.
+    /// Numbers JSON cannot hold are the strings `"NaN"`, `"Infinity"` and `"-Infinity"`.
     pub fn json(&self) -> String {
         use serde_json::{json, Value};
         let r = &self.replayed;
@@ -448,6 +535,9 @@ impl Inspection {
                 if let Some(c) = s.corner {
                     step["corner"] = json!(c);
                 }
+                if s.more > 0 {
+                    step["more"] = json!(s.more);
+                }
                 step
             })
             .collect();
@@ -457,6 +547,13 @@ impl Inspection {
             "listing": {"vertex": listing(Stage::Vertex), "fragment": listing(Stage::Fragment)},
             "caveats": self.caveats, "trace": trace,
         });
+        if !self.dropped.is_empty() {
+            o["dropped"] = self
+                .dropped
+                .iter()
+                .map(|d| json!({"stage": d.stage.name(), "file": d.file, "line": d.line, "steps": d.steps}))
+                .collect();
+        }
         if let Some(f) = &r.fragment {
             let corners: Value = f
                 .corners
@@ -468,7 +565,7 @@ impl Inspection {
                 "vertex_shader": f.vertex.path, "fragment_shader": f.fragment.path,
                 "depth": json_number(f64::from(f.depth)),
                 "front_facing": f.front_facing, "covering": r.covering, "corners": corners,
-                "inputs": named(&f.inputs), "steps_dropped": f.steps_dropped,
+                "inputs": named(&f.inputs), "steps_dropped": self.steps_dropped(),
             });
             if let (Some(o), Value::Object(more)) = (o.as_object_mut(), covering) {
                 o.extend(more);

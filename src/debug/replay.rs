@@ -9,7 +9,7 @@ use naga::{Binding, BuiltIn, Handle, Module, TypeInner};
 use super::capture::{Captured, Draw};
 use super::error::Failure;
 use super::error::ReplayError;
-use super::interp::{Host, Lod, Run, Step};
+use super::interp::{Host, Lod, Run, Trace};
 use super::raster::{self, Cover, Interp, Viewport};
 use super::sample::{self, View};
 use super::value::{self, Bits, Comp, Kind};
@@ -33,7 +33,7 @@ fn in_shader(shader: &std::sync::Arc<CompiledShader>) -> impl Fn(Failure) -> Rep
 }
 
 /// The vertices shaded at once when positions are computed for a whole mesh (memory bound).
-const CHUNK: usize = 65_536;
+const CHUNK: usize = 4_096;
 
 /// A named value at one place of the interface (`v_normal` at location 1, `gl_Position`).
 #[derive(Clone, Debug)]
@@ -79,10 +79,10 @@ pub struct Fragment {
     /// The fragment shader's colour output (location 0), before conversion to 8 bits.
     pub color: [f32; 4],
     /// The vertex shader's steps, per corner (values per corner in each step).
-    pub vertex_steps: Vec<Step>,
+    pub vertex_steps: Trace,
     /// The fragment shader's steps (one traced lane).
-    pub fragment_steps: Vec<Step>,
-    /// Steps left out past the trace's limit.
+    pub fragment_steps: Trace,
+    /// Steps left out past the trace's limits (one per corner at a vertex step), both stages.
     pub steps_dropped: usize,
     /// Where the corners' run of the vertex shader met what GLSL leaves undefined (or the
     /// GPU's loop limiter), and what.
@@ -345,8 +345,7 @@ fn attribute(bytes: &[u8], stride: u64, offset: u64, format: wgpu::VertexFormat,
 struct VertexRun {
     inputs: Vec<Vec<Comp>>,
     outputs: Vec<Vec<Comp>>,
-    steps: Vec<Step>,
-    dropped: usize,
+    trace: Trace,
     undefined: Vec<(naga::Span, String)>,
 }
 
@@ -397,9 +396,8 @@ fn run_vertices(draw: &Draw, ids: &[u32], traced: bool) -> Res<VertexRun> {
     Ok(VertexRun {
         inputs,
         outputs,
-        steps: std::mem::take(&mut run.steps),
-        dropped: run.steps_dropped,
         undefined: std::mem::take(&mut run.undefined),
+        trace: run.take_trace(),
     })
 }
 
@@ -434,12 +432,15 @@ struct Candidate {
 }
 
 fn candidates(draw_index: usize, draw: &Draw, vp: Viewport, x: u32, y: u32) -> Res<Vec<Candidate>> {
-    let sequence: Vec<u32> = match &draw.indices {
+    let whole: Vec<u32>;
+    let sequence: &[u32] = match &draw.indices {
         Some(indices) => indices
             .get(draw.range.start as usize..draw.range.end as usize)
-            .ok_or_else(|| plain("a draw past the end of its index buffer"))?
-            .to_vec(),
-        None => draw.range.clone().collect(),
+            .ok_or_else(|| plain("a draw past the end of its index buffer"))?,
+        None => {
+            whole = draw.range.clone().collect();
+            &whole
+        }
     };
     let prims = raster::primitives(draw.state.topology, sequence.len())
         .ok_or_else(|| plain(format!("the debugger does not rasterise {:?}", draw.state.topology)))?;
@@ -447,7 +448,7 @@ fn candidates(draw_index: usize, draw: &Draw, vp: Viewport, x: u32, y: u32) -> R
         .positions
         .get_or_init(|| {
             // Shade each distinct vertex once.
-            let mut ids: Vec<u32> = sequence.clone();
+            let mut ids: Vec<u32> = sequence.to_vec();
             ids.sort_unstable();
             ids.dedup();
             let clip = positions(draw, &ids)?;
@@ -455,7 +456,16 @@ fn candidates(draw_index: usize, draw: &Draw, vp: Viewport, x: u32, y: u32) -> R
         })
         .clone()?;
     let (ids, clip) = (&shaded.0, &shaded.1);
-    let pos = |id: u32| clip[ids.binary_search(&id).expect("shaded above")];
+    // Ids without gaps (the GPU's positions, most meshes) index the positions directly.
+    let first = ids.first().copied().unwrap_or(0);
+    let dense = ids.last().is_some_and(|&last| (last - first) as usize + 1 == ids.len());
+    let pos = |id: u32| {
+        if dense {
+            clip[(id - first) as usize]
+        } else {
+            clip[ids.binary_search(&id).expect("shaded above")]
+        }
+    };
     let points = draw.state.topology == wgpu::PrimitiveTopology::PointList;
     let mut out = Vec::new();
     for (p, prim) in prims.iter().enumerate() {
@@ -632,6 +642,7 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
         })
         .collect();
     let kept = !run.killed[lane];
+    let fragment_steps = run.take_trace();
     Ok(Shaded {
         color,
         depth,
@@ -646,9 +657,9 @@ fn shade(captured: &Captured, c: &Candidate) -> Res<Shaded> {
             depth,
             front_facing: c.cover.front,
             color,
-            vertex_steps: vrun.steps,
-            fragment_steps: std::mem::take(&mut run.steps),
-            steps_dropped: vrun.dropped + run.steps_dropped,
+            steps_dropped: vrun.trace.dropped_total() + fragment_steps.dropped_total(),
+            vertex_steps: vrun.trace,
+            fragment_steps,
             vertex_undefined: vrun.undefined,
             fragment_undefined: std::mem::take(&mut run.undefined),
             vertex: draw.vertex.clone(),

@@ -63,6 +63,11 @@ pub struct DrawCall {
     pub resources: Vec<Bind>,
     /// The vertex buffer.
     pub vertices: wgpu::Buffer,
+    /// The pipeline's layout and the bind group drawn with (none where nothing is bound): the
+    /// debugger draws the vertex shader again with them for its positions.
+    pub layout: wgpu::PipelineLayout,
+    /// The bind group.
+    pub bind_group: Option<wgpu::BindGroup>,
 }
 
 /// The draws of one frame, in order, and its passes (each pass's load operation and target

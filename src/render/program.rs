@@ -986,6 +986,8 @@ impl<V: VertexType> Program<V> {
                     },
                     resources: self.resources.clone(),
                     vertices: mesh.vertex_buffer().clone(),
+                    layout: self.built.stages.layout.clone(),
+                    bind_group: self.bind_group.clone(),
                 });
             }
             pass.set_pipeline(pipeline);
