@@ -48,6 +48,8 @@ use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, say, screenshot};
 use shaderlab::{labs, Gpu, Object};
 
+shaderlab::say_when_exhausted!();
+
 /// The phong lab's shading models (its `shading` parameter).
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Shading {

@@ -10,6 +10,8 @@ use shaderlab::labs;
 
 use shaderlab::shell::tools::{bench, glsl2wgsl};
 
+shaderlab::say_when_exhausted!();
+
 const USAGE: &str = "shaderlab: the GLSL course labs on wgpu
 
 Usage:

@@ -79,3 +79,79 @@ pub fn check(what: &str, bytes: u64) -> crate::Result<()> {
         _ => Ok(()),
     }
 }
+
+/// The binaries' allocator (the system's), which says so and ends the run when an allocation
+/// fails, instead of Rust's abort (`memory allocation of N bytes failed`, a core dump, exit
+/// status 134): one line, the temporary files being written removed, exit status 1. The checks
+/// before large allocations ([`check`]) make it rare; it is the floor under them, for an
+/// allocation no estimate foresaw. `shaderlab::lab_example!` and the `shaderlab` command install
+/// it: a library leaves the choice of allocator to its program.
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+pub struct SayWhenExhausted;
+
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+impl SayWhenExhausted {
+    /// Writes the message with `write(2)` alone (nothing may be allocated now) and ends.
+    #[cold]
+    fn exhausted(size: usize) -> ! {
+        let mut digits = [0u8; 20];
+        let mut at = digits.len();
+        let mut n = size;
+        loop {
+            at -= 1;
+            digits[at] = b'0' + (n % 10) as u8;
+            n /= 10;
+            if n == 0 {
+                break;
+            }
+        }
+        let parts: [&[u8]; 3] = [
+            b"shaderlab: error: out of memory: an allocation of ",
+            &digits[at..],
+            b" bytes failed (the machine's memory, or this process's `ulimit -v`, is used up); \
+              draw less: a smaller model, picture, --tess or --size\n",
+        ];
+        for part in parts {
+            // SAFETY: writes initialised bytes to standard error.
+            let _ = unsafe { libc::write(2, part.as_ptr().cast(), part.len()) };
+        }
+        crate::fsutil::signals::exit_now(1)
+    }
+}
+
+// SAFETY: every call is the system allocator's; a null result ends the process instead of
+// returning.
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+unsafe impl std::alloc::GlobalAlloc for SayWhenExhausted {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        // SAFETY: the caller's layout, passed on.
+        let p = unsafe { std::alloc::System.alloc(layout) };
+        if p.is_null() {
+            Self::exhausted(layout.size());
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
+        // SAFETY: the caller's layout, passed on.
+        let p = unsafe { std::alloc::System.alloc_zeroed(layout) };
+        if p.is_null() {
+            Self::exhausted(layout.size());
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        // SAFETY: the caller's pointer and layout, from this allocator (the system's).
+        unsafe { std::alloc::System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
+        // SAFETY: the caller's pointer, layout and size, passed on.
+        let p = unsafe { std::alloc::System.realloc(ptr, layout, new_size) };
+        if p.is_null() {
+            Self::exhausted(new_size);
+        }
+        p
+    }
+}

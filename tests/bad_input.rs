@@ -1363,6 +1363,15 @@ fn out_of_memory_under_a_limit_is_a_message() {
         &["--tess", "512", "--screenshot", "out.png"],
     );
     said(&run, "the GPU ran out of memory");
+    // The debugger of 4 M triangles under less: an allocation of the program's own fails, which
+    // no estimate foresaw (it was Rust's abort, exit status 134).
+    let run = run_limited(
+        &dir,
+        800_000_000,
+        "displacement",
+        &["--tess", "256", "--debug", "320,180"],
+    );
+    said(&run, "out of memory");
     // An 8192×8192 picture (a small file: one colour).
     let png = dir.join("big.png");
     image::RgbImage::from_pixel(8192, 8192, image::Rgb([255, 128, 0]))

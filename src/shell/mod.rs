@@ -116,11 +116,24 @@ pub fn main(entry: &'static LabEntry) -> ExitCode {
     main_from(entry, std::env::args_os().collect())
 }
 
+/// Installs [`crate::memory::SayWhenExhausted`] as the program's allocator (where it exists):
+/// out of memory is then a message and exit status 1, not an abort.
+#[macro_export]
+macro_rules! say_when_exhausted {
+    () => {
+        #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+        #[global_allocator]
+        static ALLOCATOR: $crate::memory::SayWhenExhausted = $crate::memory::SayWhenExhausted;
+    };
+}
+
 /// The `main` of a lab's example (`examples/NAME.rs`): the lab is the one registered under the
 /// example's own name, so the example names it nowhere.
 #[macro_export]
 macro_rules! lab_example {
     () => {
+        $crate::say_when_exhausted!();
+
         fn main() -> std::process::ExitCode {
             $crate::shell::main_named(env!("CARGO_CRATE_NAME"))
         }
