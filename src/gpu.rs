@@ -59,7 +59,7 @@ pub struct Gpu {
     /// by a mesh, a validation error in a submitted frame), kept for [`Gpu::wait`] and
     /// [`Gpu::checked`] to return: wgpu's own default handler panics. A window replaces the
     /// handler with its own (`shell::surface::on_trouble`).
-    uncaptured: std::sync::Arc<std::sync::Mutex<Option<wgpu::Error>>>,
+    uncaptured: std::sync::Arc<std::sync::Mutex<Option<String>>>,
     /// Whether building a pipeline is bounded ([`Gpu::compiling`]): past [`Gpu::watchdog`],
     /// or past the memory the process can take, it ends the process with a message saying
     /// which. Set by the command line, whose run can do nothing else while the driver compiles;
@@ -218,8 +218,9 @@ impl Gpu {
         let uncaptured = std::sync::Arc::new(std::sync::Mutex::new(None));
         let keep = uncaptured.clone();
         device.on_uncaptured_error(std::sync::Arc::new(move |e| {
+            // Kept as its words: wgpu's error is not `Send` in the browser build.
             if let Ok(mut first) = keep.lock() {
-                first.get_or_insert(e);
+                first.get_or_insert_with(|| error_words(&e));
             }
         }));
         Gpu {
@@ -302,8 +303,11 @@ impl Gpu {
     /// The first error wgpu reported outside an error scope since the last call, as an
     /// [`Error`] about `context`.
     pub fn take_uncaptured(&self, context: &str) -> Option<Error> {
-        let error = self.uncaptured.lock().ok()?.take()?;
-        Some(wgpu_error(context, &error))
+        let message = self.uncaptured.lock().ok()?.take()?;
+        Some(Error::Wgpu {
+            context: context.to_owned(),
+            message,
+        })
     }
 
     /// One line naming the adapter and backend, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu)`.
@@ -426,19 +430,23 @@ impl Gpu {
     }
 }
 
-/// wgpu's error as [`Error::Wgpu`]; running out of memory says where the memory is and what
-/// limits it.
+/// wgpu's error as [`Error::Wgpu`].
 fn wgpu_error(context: &str, error: &wgpu::Error) -> Error {
-    let message = match error {
+    Error::Wgpu {
+        context: context.to_owned(),
+        message: error_words(error),
+    }
+}
+
+/// What to say of wgpu's error: running out of memory says where the memory is and what
+/// limits it.
+fn error_words(error: &wgpu::Error) -> String {
+    match error {
         wgpu::Error::OutOfMemory { .. } => "the GPU ran out of memory (on a CPU adapter such as lavapipe the GPU's \
              memory is the machine's, within the process's limit, `ulimit -v`): draw less, a smaller model, a \
              lower --tess or a smaller --size"
             .to_string(),
         e => e.to_string(),
-    };
-    Error::Wgpu {
-        context: context.to_owned(),
-        message,
     }
 }
 
