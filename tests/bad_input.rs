@@ -1155,25 +1155,7 @@ fn automatic_choices_keep_a_budget_and_extremes_say_their_cost() {
 #[test]
 fn a_model_too_large_for_the_machine_is_one_line() {
     let dir = test_dir("large_model");
-    let n = 100;
-    let mut obj = String::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            obj.push_str(&format!("v {} {} 0\n", f64::from(i) / 100.0, f64::from(j) / 100.0));
-        }
-    }
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i + 1;
-            obj.push_str(&format!(
-                "f {a} {} {}\nf {a} {} {}\n",
-                a + 1,
-                a + n + 2,
-                a + n + 2,
-                a + n + 1
-            ));
-        }
-    }
+    let obj = grid_obj(100);
     std::fs::write(dir.join("grid.obj"), obj).unwrap();
     let args = ["--model", "grid.obj", "--screenshot", "m.png"];
     let run = run_in(
@@ -1386,29 +1368,7 @@ fn out_of_memory_under_a_limit_is_a_message() {
     said(&run, "big.png (8192×8192 pixels) needs about");
     // A model of 2 M triangles, refused before it is read under a tight limit, and before it is
     // uploaded under a looser one.
-    let mut obj = String::new();
-    let n = 1000;
-    for j in 0..=n {
-        for i in 0..=n {
-            obj.push_str(&format!(
-                "v {} {} 0\n",
-                i as f32 / n as f32 - 0.5,
-                j as f32 / n as f32 - 0.5
-            ));
-        }
-    }
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i + 1;
-            obj.push_str(&format!(
-                "f {a} {} {}\nf {a} {} {}\n",
-                a + 1,
-                a + n + 2,
-                a + n + 2,
-                a + n + 1
-            ));
-        }
-    }
+    let obj = grid_obj(1000);
     std::fs::write(dir.join("grid.obj"), obj).unwrap();
     let run = run_limited(
         &dir,
@@ -1424,4 +1384,31 @@ fn out_of_memory_under_a_limit_is_a_message() {
         &["--model", "grid.obj", "--screenshot", "out.png"],
     );
     said(&run, "grid.obj (2000000 triangles), drawn on this CPU adapter");
+}
+
+/// An OBJ grid of `n`×`n` squares in the unit square, two triangles each.
+fn grid_obj(n: u32) -> String {
+    let mut obj = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            obj.push_str(&format!(
+                "v {} {} 0\n",
+                f64::from(i) / f64::from(n),
+                f64::from(j) / f64::from(n)
+            ));
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i + 1;
+            obj.push_str(&format!(
+                "f {a} {} {}\nf {a} {} {}\n",
+                a + 1,
+                a + n + 2,
+                a + n + 2,
+                a + n + 1
+            ));
+        }
+    }
+    obj
 }

@@ -292,6 +292,24 @@ impl<'m> Run<'m> {
         })
     }
 
+    /// The offsets of an element: `at(offset, index)` for one offset and index, else per lane.
+    fn indexed(&self, offset: &Offset, index: &Bits, at: impl Fn(usize, u32) -> usize) -> Offset {
+        match (offset, index) {
+            (Offset::Fixed(o), Bits::One(i)) => Offset::Fixed(at(*o, *i)),
+            (offset, bits) => Offset::Each(
+                (0..self.lanes)
+                    .map(|lane| {
+                        let o = match offset {
+                            Offset::Fixed(o) => *o,
+                            Offset::Each(v) => v[lane],
+                        };
+                        at(o, bits.at(lane))
+                    })
+                    .collect(),
+            ),
+        }
+    }
+
     /// With another budget of work.
     pub fn budget(mut self, budget: u64) -> Self {
         self.budget = budget;
@@ -1051,20 +1069,7 @@ impl<'m> Run<'m> {
                             span,
                         })?;
                         let at = |o: usize, i: u32| (o as u32).wrapping_add(i.wrapping_mul(stride)) as usize;
-                        let offset = match (&ptr.offset, &idx.bits) {
-                            (Offset::Fixed(o), Bits::One(i)) => Offset::Fixed(at(*o, *i)),
-                            (offset, bits) => Offset::Each(
-                                (0..self.lanes)
-                                    .map(|lane| {
-                                        let o = match offset {
-                                            Offset::Fixed(o) => *o,
-                                            Offset::Each(v) => v[lane],
-                                        };
-                                        at(o, bits.at(lane))
-                                    })
-                                    .collect(),
-                            ),
-                        };
+                        let offset = self.indexed(&ptr.offset, &idx.bits, at);
                         let name = match &idx.bits {
                             Bits::One(i) if signed => format!("{}[{}]", ptr.name, *i as i32),
                             Bits::One(i) => format!("{}[{i}]", ptr.name),
@@ -1090,20 +1095,7 @@ impl<'m> Run<'m> {
                             message: "an access the debugger cannot follow".into(),
                             span,
                         })?;
-                        let offset = match (&ptr.offset, &idx.bits) {
-                            (Offset::Fixed(o), Bits::One(i)) => Offset::Fixed(o + clamp(*i, n) * len),
-                            (offset, bits) => Offset::Each(
-                                (0..self.lanes)
-                                    .map(|lane| {
-                                        let o = match offset {
-                                            Offset::Fixed(o) => *o,
-                                            Offset::Each(v) => v[lane],
-                                        };
-                                        o + clamp(bits.at(lane), n) * len
-                                    })
-                                    .collect(),
-                            ),
-                        };
+                        let offset = self.indexed(&ptr.offset, &idx.bits, |o, i| o + clamp(i, n) * len);
                         let name = match &idx.bits {
                             Bits::One(i) => format!("{}[{}]", ptr.name, clamp(*i, n)),
                             Bits::Each(_) => format!("{}[i]", ptr.name),

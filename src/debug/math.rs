@@ -333,15 +333,7 @@ pub fn math(
         }
         M::Sqrt => each(&f32::sqrt),
         M::InverseSqrt => each(&|x| 1.0 / x.sqrt()),
-        M::Sign if float => each(&|x| {
-            if x > 0.0 {
-                1.0
-            } else if x < 0.0 {
-                -1.0
-            } else {
-                0.0
-            }
-        }),
+        M::Sign if float => each(&sign),
         M::Sign => a
             .iter()
             .map(|c| Comp::new(kind, c.bits.map(|x| (x as i32).signum() as u32)))
