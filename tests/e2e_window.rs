@@ -1494,6 +1494,145 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     assert!(p > 40.0, "after the fix the picture is the original again: {p:.1} dB");
 }
 
+/// phong.frag edited: `add` joins the end of `main`'s first line, and `term` is added to the
+/// colour it writes.
+fn phong_frag_with(original: &str, add: &str, term: &str) -> String {
+    let output = "frag_color = clamp(Ka * Iamb + Kd * Idiff + Ks * Ispec, 0.0, 1.0);";
+    assert!(original.contains(output), "phong.frag changed: update this test");
+    original
+        .replacen("void main() {", &format!("void main() {{\n{add}"), 1)
+        .replace(
+            output,
+            &format!("frag_color = clamp(Ka * Iamb + Kd * Idiff + Ks * Ispec + {term}, 0.0, 1.0);"),
+        )
+}
+
+/// Issue 39, item 2: a panic in the window is said as what it is, an internal error with the
+/// panic's message and place, never as a window closed by another program; and a live reload
+/// whose compile panics (naga 30's SPIR-V writer on an `out` argument that is a vector
+/// component, `h(c.y)`; or anything else inside the compile, `SHADERLAB_TEST_PANIC=reload`)
+/// keeps the window and its last good pipeline, with SHADER ERROR in the title and the message
+/// on stderr.
+#[test]
+fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipeline() {
+    let x = Xvfb::start("panics");
+    let (status, out) = run_to_end(&x, "phong", &[], &[("SHADERLAB_TEST_PANIC", "init")]);
+    println!("a panic at the start:\n{out}");
+    assert_eq!(status.code(), Some(1), "{out}");
+    assert!(
+        out.contains("phong: error: internal error: SHADERLAB_TEST_PANIC=init (at src/shell/window/mod.rs:"),
+        "{out}"
+    );
+    assert!(!out.contains("closed or destroyed by another program"), "{out}");
+
+    let shaders = x.dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let dir = shaders.to_str().expect("utf-8 path");
+    let mut lab = x.launch("phong", &["--shaders", dir, "--object", "sphere"], &[]);
+    lab.first_frame();
+    let before = lab.settled();
+    let out_component = phong_frag_with(&original, "    vec4 c = vec4(0.0);\n    h(c.y);", "c").replacen(
+        "void main() {",
+        "void h(out float x) { x = 1.0; }\n\nvoid main() {",
+        1,
+    );
+    std::fs::write(&frag, out_component).expect("write h(c.y)");
+    let title = lab.wait_title_contains("SHADER ERROR");
+    assert!(title.starts_with("Lab05-3"), "{title}");
+    poll(PATIENCE, || {
+        lab.stderr()
+            .contains("shader error (keeping the last good pipeline)")
+            .then_some(())
+    })
+    .unwrap_or_else(|| panic!("no shader error on stderr:\n{}", lab.stderr()));
+    lab.assert_alive();
+    let p = psnr(&before, &lab.settled()).expect("same size");
+    assert!(p > 40.0, "the last good pipeline keeps drawing: {p:.1} dB");
+    lab.assert_clean();
+    std::fs::write(&frag, &original).expect("fix");
+    lab.wait_title("a title without SHADER ERROR", |t| {
+        !t.contains("SHADER ERROR") && t.starts_with("Lab05-3")
+    });
+    lab.escape();
+
+    // Whatever panics inside a reload's compile: the same, with the panic's message and place.
+    let mut lab = x.launch("phong", &["--shaders", dir], &[("SHADERLAB_TEST_PANIC", "reload")]);
+    lab.first_frame();
+    lab.idle();
+    std::fs::write(&frag, format!("{original}\n")).expect("save");
+    lab.wait_title_contains("SHADER ERROR");
+    let said = "internal error: SHADERLAB_TEST_PANIC=reload (at src/shell/window/mod.rs:";
+    poll(PATIENCE, || lab.stderr().contains(said).then_some(()))
+        .unwrap_or_else(|| panic!("no `{said}` on stderr:\n{}", lab.stderr()));
+    lab.keys(&["2"]);
+    lab.wait_title_contains("| sphere");
+    lab.escape();
+}
+
+/// Issue 39, item 11: a live reload whose compile takes minutes (a 100,000-float array on
+/// lavapipe) never freezes the window. The compile runs off the frame loop: the last good
+/// pipeline keeps drawing, a key changes the lab (its title, a new frame), and Esc or SIGTERM
+/// end the process within seconds, without waiting for the compile inside the driver.
+#[test]
+fn a_reload_that_compiles_for_minutes_keeps_the_window_answering() {
+    let x = Xvfb::start("slow_compile");
+    let shaders = x.dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let slow = phong_frag_with(
+        &original,
+        "    float a[100000];\n    for (int i = 0; i < 100000; i++) a[i] = float(i) * 1e-6;",
+        "a[int(gl_FragCoord.x)]",
+    );
+    for ending in ["Escape", "TERM"] {
+        std::fs::write(&frag, &original).expect("restore phong.frag");
+        let mut lab = x.launch("phong", &["--shaders", shaders.to_str().expect("utf-8 path")], &[]);
+        lab.first_frame();
+        lab.idle();
+        std::fs::write(&frag, &slow).expect("save the slow shader");
+        poll(PATIENCE, || (lab.said("compile 1 started") > 0).then_some(()))
+            .unwrap_or_else(|| panic!("{ending}: the save was never compiled; stderr:\n{}", lab.stderr()));
+        let frames = lab.said("frame");
+        lab.keys(&["2"]);
+        lab.wait_title_contains("| sphere");
+        poll(PATIENCE, || (lab.said("frame") > frames).then_some(()))
+            .unwrap_or_else(|| panic!("{ending}: no frame after the key; stderr:\n{}", lab.stderr()));
+        assert_eq!(
+            lab.said("compile 1 ended"),
+            0,
+            "{ending}: the slow compile ended already, so this test proves nothing: make it slower"
+        );
+        let asked = Instant::now();
+        if ending == "Escape" {
+            lab.keys(&["Escape"]);
+        } else {
+            let status = Command::new("kill")
+                .args(["-TERM", &lab.pid().to_string()])
+                .status()
+                .expect("kill");
+            assert!(status.success());
+        }
+        let status = lab.wait_exit(PATIENCE);
+        assert_within(
+            asked.elapsed(),
+            Duration::from_secs(5),
+            &format!("{ending} while compiling"),
+        );
+        #[cfg(unix)]
+        {
+            use std::os::unix::process::ExitStatusExt;
+            match ending {
+                "Escape" => assert!(status.success(), "{status:?}; stderr:\n{}", lab.stderr()),
+                _ => assert_eq!(status.signal(), Some(15), "{status:?}; stderr:\n{}", lab.stderr()),
+            }
+        }
+        lab.assert_clean();
+    }
+}
+
 /// Issue 9, items 4 and 10: a window destroyed by another program (`xdotool windowclose`) ends
 /// the lab with one clear message and status 1, not a panic inside winit; a window resized past
 /// what the GPU can draw says so once and keeps drawing, without a flood of validation errors.
