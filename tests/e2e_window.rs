@@ -152,6 +152,11 @@ struct Xvfb {
 
 impl Xvfb {
     fn start(test: &str) -> Xvfb {
+        Xvfb::start_sized(test, "1024x768x24")
+    }
+
+    /// With a screen of `screen` (`WIDTHxHEIGHTxDEPTH`).
+    fn start_sized(test: &str, screen: &str) -> Xvfb {
         require_tools();
         let dir = test_dir(test);
         let mut child = Command::new("Xvfb")
@@ -162,7 +167,7 @@ impl Xvfb {
                 "1",
                 "-screen",
                 "0",
-                "1024x768x24",
+                screen,
                 "-nolisten",
                 "tcp",
                 "-noreset",
@@ -2336,5 +2341,90 @@ fn f2_inspects_the_clicked_pixel_and_follows_the_lab() {
     lab.keys(&["F2"]);
     assert_eq!(lab.settled(), hidden, "hidden again");
     assert!(!lab.stderr().contains("inspected error"), "{}", lab.stderr());
+    lab.escape();
+}
+
+/// Issue 39, item 15: the inspected pixel stays in sight and clickable beside the panels. At the
+/// default 640x360 a click on the picture's centre (the teapot) inspects it; a click on the
+/// inspector and then one on the picture inspects the picture's pixel, not the panel's; with F1
+/// open too the two panels stay apart and the centre shows between them and is clicked; at
+/// 1280x720 the pixel picked before stays in sight and clickable, and so does the picture
+/// after a click on the inspector. Each time the window shows the inspected colour at the pixel (no panel
+/// covers it). The windows are kept as `f1_f2_640x360.png` and `f1_f2_1280x720.png`.
+#[test]
+fn the_inspected_pixel_stays_visible_and_clickable_beside_the_panels() {
+    let x = Xvfb::start_sized("inspect_layout", "1600x900x24");
+    let mut lab = x.launch("phong", &[], &[]);
+    lab.first_frame();
+    assert_eq!(lab.settled().dimensions(), (640, 360));
+    let click = |(px, py): (u32, u32)| {
+        lab.x.xdotool(&[
+            "mousemove",
+            "--window",
+            &lab.window,
+            &px.to_string(),
+            &py.to_string(),
+            "click",
+            "1",
+        ]);
+    };
+    let inspections = || -> Vec<String> {
+        lab.stderr()
+            .lines()
+            .filter(|l| l.starts_with("shaderlab-test: inspected"))
+            .map(str::to_owned)
+            .collect()
+    };
+    // Clicks `pixel` and waits for its inspection; the window shows its colour there.
+    let inspect = |pixel: (u32, u32), what: &str| {
+        let before = inspections().len();
+        click(pixel);
+        let want = format!("inspected {},{} ", pixel.0, pixel.1);
+        let line = poll(PATIENCE, || {
+            inspections().into_iter().skip(before).find(|l| l.contains(&want))
+        })
+        .unwrap_or_else(|| {
+            panic!(
+                "{what}: no inspection of {pixel:?} after the click; inspections: {:?}",
+                inspections()
+            )
+        });
+        let rgba: Vec<i32> = line
+            .split_once("rgba(")
+            .and_then(|(_, r)| r.strip_suffix(')'))
+            .unwrap_or_else(|| panic!("{line}"))
+            .split(", ")
+            .map(|c| c.parse().expect("a byte"))
+            .collect();
+        let shown = lab.settled();
+        let at = shown.get_pixel(pixel.0, pixel.1).0;
+        assert!(
+            (0..3).all(|k| (rgba[k] - i32::from(at[k])).abs() <= 2),
+            "{what}: the window shows {at:?} at {pixel:?}, the inspection {rgba:?}: a panel covers the pixel"
+        );
+        shown
+    };
+    lab.keys(&["F2"]);
+    lab.idle();
+    inspect((330, 170), "640x360, F2");
+    // A click on the inspector (right of the pixel, by the nearer edge), then on the picture's
+    // centre.
+    click((600, 200));
+    lab.idle();
+    inspect((320, 180), "640x360, after a click on the inspector");
+    lab.keys(&["F1"]);
+    lab.idle();
+    let both = inspect((322, 182), "640x360, F1 and F2");
+    lab.save(&both, "f1_f2_640x360");
+    lab.resize(1280, 720).expect("resize");
+    poll(PATIENCE, || (lab.geometry().2 == 1280).then_some(())).expect("the window grows to 1280x720");
+    lab.idle();
+    // The pixel picked before stays in sight: a click near it, then on the inspector (left of
+    // it, by the nearer edge), then on the picture again.
+    let large = inspect((330, 300), "1280x720, F1 and F2");
+    lab.save(&large, "f1_f2_1280x720");
+    click((100, 200));
+    lab.idle();
+    inspect((700, 500), "1280x720, after a click on the inspector");
     lab.escape();
 }

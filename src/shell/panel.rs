@@ -325,6 +325,10 @@ pub const PANEL_MIN_WIDTH: f32 = 200.0;
 /// The inspector's width in logical pixels, at most.
 pub const INSPECTOR_WIDTH: f32 = 640.0;
 
+/// The largest share of the window's width the inspector takes: the rest of the picture stays
+/// in sight to pick the next pixel in.
+pub const INSPECTOR_SHARE: f32 = 0.45;
+
 /// The narrowest inspector beside the pixel; with less room it goes above or below the pixel.
 pub const INSPECTOR_MIN_WIDTH: f32 = 220.0;
 
@@ -365,10 +369,14 @@ pub struct Layout {
 /// Inspecting, the pixel and [`PIXEL_MARGIN`] around it stay free at every size, so that the
 /// pixel stays in sight and the picture around it can be clicked: F1's panel keeps its place
 /// on the right, narrowed to the room beside the pixel (on the left when that room is under
-/// [`PANEL_MIN_WIDTH`] and the left has more), and the inspector takes the room left on the side with more of it, up to
-/// [`INSPECTOR_WIDTH`]; with less than [`INSPECTOR_MIN_WIDTH`] there it goes above or below the
-/// pixel instead. The two never overlap. Before a pixel is picked, the window's centre is kept
-/// free, where the labs draw their object. Not inspecting, F1's panel is [`PANEL_WIDTH`] wide.
+/// [`PANEL_MIN_WIDTH`] and the left has more), and the inspector goes beside the pixel, up to
+/// [`INSPECTOR_WIDTH`] and [`INSPECTOR_SHARE`] of the window: on the pixel's outer side (the
+/// nearer edge of the window) where that leaves it [`INSPECTOR_MIN_WIDTH`], so that the middle
+/// of the picture stays in sight, else on the side with more room; with less than
+/// [`INSPECTOR_MIN_WIDTH`] there it goes above or below the pixel instead. The two never
+/// overlap ([`Layout::rects`]). Before a pixel is picked, the inspector is
+/// [`INSPECTOR_MIN_WIDTH`] wide on the left and the window's centre is kept free, where the
+/// labs draw their object. Not inspecting, F1's panel is [`PANEL_WIDTH`] wide.
 pub fn layout(size: (f32, f32), panel: bool, inspector: bool, pixel: Option<(f32, f32)>) -> Layout {
     let (width, height) = (size.0.max(0.0), size.1.max(0.0));
     if !inspector {
@@ -381,7 +389,7 @@ pub fn layout(size: (f32, f32), panel: bool, inspector: bool, pixel: Option<(f32
     let mut left = (x - PIXEL_MARGIN).max(0.0);
     let mut right = (width - x - 1.0 - PIXEL_MARGIN).max(0.0);
     let panel = panel.then(|| {
-        if right >= PANEL_MIN_WIDTH || right >= left {
+        if pixel.is_none() || right >= PANEL_MIN_WIDTH || right >= left {
             let w = PANEL_WIDTH.min(right);
             right -= w;
             Place::Right(w)
@@ -391,17 +399,26 @@ pub fn layout(size: (f32, f32), panel: bool, inspector: bool, pixel: Option<(f32
             Place::Left(w)
         }
     });
-    let beside = |room: f32| {
-        if left >= right {
-            Place::Left(room)
-        } else {
-            Place::Right(room)
-        }
+    // Beside the pixel on its outer side (towards the nearer edge of the window) when that is
+    // wide enough, so that the middle of the picture stays in sight; else where there is more.
+    let outer_left = x < width / 2.0;
+    let on_left = match (outer_left, left.max(right)) {
+        (true, _) if left >= INSPECTOR_MIN_WIDTH => true,
+        (false, _) if right >= INSPECTOR_MIN_WIDTH => false,
+        (_, most) => left == most,
     };
-    let room = left.max(right);
+    let (room, beside): (f32, fn(f32) -> Place) = if on_left {
+        (left, Place::Left)
+    } else {
+        (right, Place::Right)
+    };
     let (above, below) = ((y - PIXEL_MARGIN).max(0.0), (height - y - 1.0 - PIXEL_MARGIN).max(0.0));
-    let inspector = if room >= INSPECTOR_MIN_WIDTH || above.max(below) < INSPECTOR_MIN_HEIGHT {
-        beside(INSPECTOR_WIDTH.min(room))
+    let inspector = if pixel.is_none() {
+        // Nothing to show yet but how to pick: a narrow inspector, most of the picture free.
+        Place::Left(INSPECTOR_MIN_WIDTH.min(left))
+    } else if room >= INSPECTOR_MIN_WIDTH || above.max(below) < INSPECTOR_MIN_HEIGHT {
+        let most = INSPECTOR_WIDTH.min(width * INSPECTOR_SHARE).max(INSPECTOR_MIN_WIDTH);
+        beside(most.min(room))
     } else if below >= above {
         Place::Bottom(INSPECTOR_HEIGHT.min(below))
     } else {
@@ -418,22 +435,62 @@ pub fn layout(size: (f32, f32), panel: bool, inspector: bool, pixel: Option<(f32
     }
 }
 
-/// An egui panel at `place`, with an id of its own for each side (egui keeps a panel's state
-/// by id).
-fn panel_at(id: &str, place: Place) -> egui::Panel {
-    let (panel, size) = match place {
-        Place::Left(w) => (egui::Panel::left(format!("{id}.left")), w),
-        Place::Right(w) => (egui::Panel::right(format!("{id}.right")), w),
-        Place::Top(h) => (egui::Panel::top(format!("{id}.top")), h),
-        Place::Bottom(h) => (egui::Panel::bottom(format!("{id}.bottom")), h),
-    };
-    panel
-        .exact_size(size)
-        .resizable(false)
-        // egui draws the line with the parent's painter at the position the panel had while it
-        // slid in, and the window draws only a frame or two after a change: it stayed behind as
-        // a stray line across the widgets. The panel's own background marks its edge.
-        .show_separator_line(false)
+impl Layout {
+    /// The rectangles (logical pixels) of F1's panel and of the inspector in a window of
+    /// `size`: a side panel runs along its edge, the whole height, inside any panel placed
+    /// before it on that side (F1's goes first); a top or bottom one runs between the side
+    /// panels.
+    pub fn rects(&self, size: (f32, f32)) -> (Option<egui::Rect>, Option<egui::Rect>) {
+        let mut free = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(size.0, size.1));
+        let mut take = |place: Place| {
+            let mut r = free;
+            match place {
+                Place::Left(w) => {
+                    r.max.x = (r.min.x + w).min(free.max.x);
+                    free.min.x = r.max.x;
+                }
+                Place::Right(w) => {
+                    r.min.x = (r.max.x - w).max(free.min.x);
+                    free.max.x = r.min.x;
+                }
+                Place::Top(h) => {
+                    r.max.y = (r.min.y + h).min(free.max.y);
+                    free.min.y = r.max.y;
+                }
+                Place::Bottom(h) => {
+                    r.min.y = (r.max.y - h).max(free.min.y);
+                    free.max.y = r.min.y;
+                }
+            }
+            r
+        };
+        let panel = self.panel.map(&mut take);
+        (panel, self.inspector.map(take))
+    }
+}
+
+/// Shows `add_contents` in a panel that fills `rect` (logical pixels) and nothing beyond it:
+/// a row wider than the panel is cut at its edge, so that the panels' places are exactly
+/// those of [`Layout::rects`] (egui's own side panels grow with a wide row and then stack the
+/// next panel over it).
+fn panel_in<R>(ui: &mut egui::Ui, id: &str, rect: egui::Rect, add_contents: impl FnOnce(&mut egui::Ui) -> R) -> R {
+    let mut child = ui.new_child(
+        egui::UiBuilder::new()
+            .id_salt(id)
+            .max_rect(rect)
+            .layout(egui::Layout::top_down(egui::Align::Min)),
+    );
+    child.shrink_clip_rect(rect);
+    let frame = egui::Frame::side_top_panel(child.style());
+    child.painter().rect_filled(rect, 0.0, frame.fill);
+    let inner = (rect.size() - frame.total_margin().sum()).max(egui::Vec2::ZERO);
+    frame
+        .show(&mut child, |ui| {
+            ui.set_min_size(inner);
+            ui.set_max_width(inner.x);
+            add_contents(ui)
+        })
+        .inner
 }
 
 /// The inspector: the pixel's colour, what covers it, the fragment shader line by line with
@@ -773,15 +830,15 @@ impl Panel {
                 .and_then(|v| v.pixel)
                 .map(|(x, y)| (x as f32 / ppp, y as f32 / ppp)),
         );
+        let (panel_rect, inspector_rect) = places.rects((size.0 as f32 / ppp, size.1 as f32 / ppp));
         let output = self.ctx.run_ui(raw, |ui| {
-            if let Some(place) = places.panel {
-                let panel = panel_at("shaderlab.panel", place).show(ui, |ui| contents(ui, lab, status));
-                drawn.push(panel.response.rect);
-                result = panel.inner;
+            if let Some(rect) = panel_rect {
+                result = panel_in(ui, "shaderlab.panel", rect, |ui| contents(ui, lab, status));
+                drawn.push(rect);
             }
-            if let (Some(view), Some(place)) = (inspect, places.inspector) {
-                let panel = panel_at("shaderlab.inspector", place).show(ui, |ui| inspector(ui, view));
-                drawn.push(panel.response.rect);
+            if let (Some(view), Some(rect)) = (inspect, inspector_rect) {
+                panel_in(ui, "shaderlab.inspector", rect, |ui| inspector(ui, view));
+                drawn.push(rect);
                 if let Some((x, y)) = view.pixel {
                     // A frame around the inspected pixel.
                     let painter = ui.ctx().layer_painter(egui::LayerId::new(
@@ -888,39 +945,8 @@ mod tests {
         }
     }
 
-    /// The rectangles (x0, y0, x1, y1) the places take in a window `size`, stacked in order as
-    /// egui stacks panels: each takes its side of what the ones before it left.
-    fn rects(size: (f32, f32), places: &[Place]) -> Vec<[f32; 4]> {
-        let mut free = [0.0, 0.0, size.0, size.1];
-        places
-            .iter()
-            .map(|place| {
-                let mut r = free;
-                match *place {
-                    Place::Left(w) => {
-                        r[2] = r[0] + w.min(free[2] - free[0]);
-                        free[0] = r[2];
-                    }
-                    Place::Right(w) => {
-                        r[0] = r[2] - w.min(free[2] - free[0]);
-                        free[2] = r[0];
-                    }
-                    Place::Top(h) => {
-                        r[3] = r[1] + h.min(free[3] - free[1]);
-                        free[1] = r[3];
-                    }
-                    Place::Bottom(h) => {
-                        r[1] = r[3] - h.min(free[3] - free[1]);
-                        free[3] = r[1];
-                    }
-                }
-                r
-            })
-            .collect()
-    }
-
-    fn overlap(a: [f32; 4], b: [f32; 4]) -> bool {
-        a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+    fn overlap(a: egui::Rect, b: egui::Rect) -> bool {
+        a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
     }
 
     /// Issue 39, item 15: at every size, wherever the pixel, with F1's panel or not, the
@@ -955,23 +981,37 @@ mod tests {
                         assert_eq!(l.panel.is_some(), f1, "{what}");
                         assert!(l.inspector.is_some(), "{what}");
                     }
-                    let places: Vec<Place> = l.panel.into_iter().chain(l.inspector).collect();
-                    let rs = rects((w, h), &places);
+                    let (panel, inspector) = l.rects((w, h));
+                    let rs: Vec<egui::Rect> = panel.into_iter().chain(inspector).collect();
                     for r in &rs {
-                        assert!(r[0] >= 0.0 && r[1] >= 0.0 && r[2] <= w && r[3] <= h, "{what}");
+                        assert!(
+                            r.min.x >= 0.0 && r.min.y >= 0.0 && r.max.x <= w && r.max.y <= h,
+                            "{what}"
+                        );
                     }
-                    if let [a, b] = rs[..] {
+                    if let (Some(a), Some(b)) = (panel, inspector) {
                         assert!(!overlap(a, b), "{what}: the panels overlap");
                     }
                     let (x, y) = pixel.unwrap_or((w / 2.0, h / 2.0));
                     let m = PIXEL_MARGIN - 0.01;
-                    let kept = [x - m, y - m, x + 1.0 + m, y + 1.0 + m];
+                    let kept = egui::Rect::from_min_max(egui::pos2(x - m, y - m), egui::pos2(x + 1.0 + m, y + 1.0 + m));
                     for r in &rs {
                         assert!(!overlap(*r, kept), "{what}: a panel covers the pixel or its margin");
                     }
+                    if w >= 640.0 && h >= 360.0 && !f1 {
+                        let centre = egui::Rect::from_center_size(egui::pos2(w / 2.0, h / 2.0), egui::vec2(2.0, 2.0));
+                        assert!(
+                            rs.iter().all(|r| !overlap(*r, centre)),
+                            "{what}: the middle of the picture is hidden"
+                        );
+                    }
                     if w >= 640.0 && h >= 360.0 {
-                        let inspector = *rs.last().expect("the inspector");
-                        let (across, along) = (inspector[2] - inspector[0], inspector[3] - inspector[1]);
+                        let inspector = inspector.expect("the inspector");
+                        let (across, along) = (inspector.width(), inspector.height());
+                        assert!(
+                            along < h || across <= w * INSPECTOR_SHARE,
+                            "{what}: the inspector hides the picture"
+                        );
                         assert!(
                             (across >= INSPECTOR_MIN_WIDTH && along == h)
                                 || (along >= INSPECTOR_MIN_HEIGHT && across >= 120.0),
