@@ -26,7 +26,7 @@ impl Report {
     pub fn window_destroyed(&self) -> bool {
         let in_winit_x11 = self.location.as_ref().is_some_and(|(file, _, _)| {
             let file = file.replace('\\', "/");
-            file.contains("/winit-") && file.contains("/x11/")
+            file.contains("winit") && file.contains("/x11/")
         });
         // x11rb's error kinds for a window id the server no longer knows (BadWindow,
         // BadDrawable), as winit's unwrap prints them.
