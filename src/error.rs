@@ -85,6 +85,10 @@ pub enum Error {
     /// A window surface could not be created or configured.
     #[error("surface error: {0}")]
     Surface(String),
+    /// A fault inside the program or a library it uses (a panic, caught): what it said and
+    /// where.
+    #[error("internal error: {0}")]
+    Internal(String),
     /// A Wavefront OBJ file is malformed or unusable; shown as `file:line: message`
     /// (`file: message` when no single line is to blame).
     #[error("{}: {message}", obj_location(.path, .line))]

@@ -152,6 +152,11 @@ struct Xvfb {
 
 impl Xvfb {
     fn start(test: &str) -> Xvfb {
+        Xvfb::start_sized(test, "1024x768x24")
+    }
+
+    /// With a screen of `screen` (`WIDTHxHEIGHTxDEPTH`).
+    fn start_sized(test: &str, screen: &str) -> Xvfb {
         require_tools();
         let dir = test_dir(test);
         let mut child = Command::new("Xvfb")
@@ -162,7 +167,7 @@ impl Xvfb {
                 "1",
                 "-screen",
                 "0",
-                "1024x768x24",
+                screen,
                 "-nolisten",
                 "tcp",
                 "-noreset",
@@ -1494,6 +1499,145 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     assert!(p > 40.0, "after the fix the picture is the original again: {p:.1} dB");
 }
 
+/// phong.frag edited: `add` joins the end of `main`'s first line, and `term` is added to the
+/// colour it writes.
+fn phong_frag_with(original: &str, add: &str, term: &str) -> String {
+    let output = "frag_color = clamp(Ka * Iamb + Kd * Idiff + Ks * Ispec, 0.0, 1.0);";
+    assert!(original.contains(output), "phong.frag changed: update this test");
+    original
+        .replacen("void main() {", &format!("void main() {{\n{add}"), 1)
+        .replace(
+            output,
+            &format!("frag_color = clamp(Ka * Iamb + Kd * Idiff + Ks * Ispec + {term}, 0.0, 1.0);"),
+        )
+}
+
+/// Issue 39, item 2: a panic in the window is said as what it is, an internal error with the
+/// panic's message and place, never as a window closed by another program; and a live reload
+/// whose compile panics (naga 30's SPIR-V writer on an `out` argument that is a vector
+/// component, `h(c.y)`; or anything else inside the compile, `SHADERLAB_TEST_PANIC=reload`)
+/// keeps the window and its last good pipeline, with SHADER ERROR in the title and the message
+/// on stderr.
+#[test]
+fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipeline() {
+    let x = Xvfb::start("panics");
+    let (status, out) = run_to_end(&x, "phong", &[], &[("SHADERLAB_TEST_PANIC", "init")]);
+    println!("a panic at the start:\n{out}");
+    assert_eq!(status.code(), Some(1), "{out}");
+    assert!(
+        out.contains("phong: error: internal error: SHADERLAB_TEST_PANIC=init (at src/shell/window/mod.rs:"),
+        "{out}"
+    );
+    assert!(!out.contains("closed or destroyed by another program"), "{out}");
+
+    let shaders = x.dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let dir = shaders.to_str().expect("utf-8 path");
+    let mut lab = x.launch("phong", &["--shaders", dir, "--object", "sphere"], &[]);
+    lab.first_frame();
+    let before = lab.settled();
+    let out_component = phong_frag_with(&original, "    vec4 c = vec4(0.0);\n    h(c.y);", "c").replacen(
+        "void main() {",
+        "void h(out float x) { x = 1.0; }\n\nvoid main() {",
+        1,
+    );
+    std::fs::write(&frag, out_component).expect("write h(c.y)");
+    let title = lab.wait_title_contains("SHADER ERROR");
+    assert!(title.starts_with("Lab05-3"), "{title}");
+    poll(PATIENCE, || {
+        lab.stderr()
+            .contains("shader error (keeping the last good pipeline)")
+            .then_some(())
+    })
+    .unwrap_or_else(|| panic!("no shader error on stderr:\n{}", lab.stderr()));
+    lab.assert_alive();
+    let p = psnr(&before, &lab.settled()).expect("same size");
+    assert!(p > 40.0, "the last good pipeline keeps drawing: {p:.1} dB");
+    lab.assert_clean();
+    std::fs::write(&frag, &original).expect("fix");
+    lab.wait_title("a title without SHADER ERROR", |t| {
+        !t.contains("SHADER ERROR") && t.starts_with("Lab05-3")
+    });
+    lab.escape();
+
+    // Whatever panics inside a reload's compile: the same, with the panic's message and place.
+    let mut lab = x.launch("phong", &["--shaders", dir], &[("SHADERLAB_TEST_PANIC", "reload")]);
+    lab.first_frame();
+    lab.idle();
+    std::fs::write(&frag, format!("{original}\n")).expect("save");
+    lab.wait_title_contains("SHADER ERROR");
+    let said = "internal error: SHADERLAB_TEST_PANIC=reload (at src/shell/window/mod.rs:";
+    poll(PATIENCE, || lab.stderr().contains(said).then_some(()))
+        .unwrap_or_else(|| panic!("no `{said}` on stderr:\n{}", lab.stderr()));
+    lab.keys(&["2"]);
+    lab.wait_title_contains("| sphere");
+    lab.escape();
+}
+
+/// Issue 39, item 11: a live reload whose compile takes minutes (a 100,000-float array on
+/// lavapipe) never freezes the window. The compile runs off the frame loop: the last good
+/// pipeline keeps drawing, a key changes the lab (its title, a new frame), and Esc or SIGTERM
+/// end the process within seconds, without waiting for the compile inside the driver.
+#[test]
+fn a_reload_that_compiles_for_minutes_keeps_the_window_answering() {
+    let x = Xvfb::start("slow_compile");
+    let shaders = x.dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let slow = phong_frag_with(
+        &original,
+        "    float a[100000];\n    for (int i = 0; i < 100000; i++) a[i] = float(i) * 1e-6;",
+        "a[int(gl_FragCoord.x)]",
+    );
+    for ending in ["Escape", "TERM"] {
+        std::fs::write(&frag, &original).expect("restore phong.frag");
+        let mut lab = x.launch("phong", &["--shaders", shaders.to_str().expect("utf-8 path")], &[]);
+        lab.first_frame();
+        lab.idle();
+        std::fs::write(&frag, &slow).expect("save the slow shader");
+        poll(PATIENCE, || (lab.said("compile 1 started") > 0).then_some(()))
+            .unwrap_or_else(|| panic!("{ending}: the save was never compiled; stderr:\n{}", lab.stderr()));
+        let frames = lab.said("frame");
+        lab.keys(&["2"]);
+        lab.wait_title_contains("| sphere");
+        poll(PATIENCE, || (lab.said("frame") > frames).then_some(()))
+            .unwrap_or_else(|| panic!("{ending}: no frame after the key; stderr:\n{}", lab.stderr()));
+        assert_eq!(
+            lab.said("compile 1 ended"),
+            0,
+            "{ending}: the slow compile ended already, so this test proves nothing: make it slower"
+        );
+        let asked = Instant::now();
+        if ending == "Escape" {
+            lab.keys(&["Escape"]);
+        } else {
+            let status = Command::new("kill")
+                .args(["-TERM", &lab.pid().to_string()])
+                .status()
+                .expect("kill");
+            assert!(status.success());
+        }
+        let status = lab.wait_exit(PATIENCE);
+        assert_within(
+            asked.elapsed(),
+            Duration::from_secs(5),
+            &format!("{ending} while compiling"),
+        );
+        #[cfg(unix)]
+        {
+            use std::os::unix::process::ExitStatusExt;
+            match ending {
+                "Escape" => assert!(status.success(), "{status:?}; stderr:\n{}", lab.stderr()),
+                _ => assert_eq!(status.signal(), Some(15), "{status:?}; stderr:\n{}", lab.stderr()),
+            }
+        }
+        lab.assert_clean();
+    }
+}
+
 /// Issue 9, items 4 and 10: a window destroyed by another program (`xdotool windowclose`) ends
 /// the lab with one clear message and status 1, not a panic inside winit; a window resized past
 /// what the GPU can draw says so once and keeps drawing, without a flood of validation errors.
@@ -2197,5 +2341,90 @@ fn f2_inspects_the_clicked_pixel_and_follows_the_lab() {
     lab.keys(&["F2"]);
     assert_eq!(lab.settled(), hidden, "hidden again");
     assert!(!lab.stderr().contains("inspected error"), "{}", lab.stderr());
+    lab.escape();
+}
+
+/// Issue 39, item 15: the inspected pixel stays in sight and clickable beside the panels. At the
+/// default 640x360 a click on the picture's centre (the teapot) inspects it; a click on the
+/// inspector and then one on the picture inspects the picture's pixel, not the panel's; with F1
+/// open too the two panels stay apart and the centre shows between them and is clicked; at
+/// 1280x720 the pixel picked before stays in sight and clickable, and so does the picture
+/// after a click on the inspector. Each time the window shows the inspected colour at the pixel (no panel
+/// covers it). The windows are kept as `f1_f2_640x360.png` and `f1_f2_1280x720.png`.
+#[test]
+fn the_inspected_pixel_stays_visible_and_clickable_beside_the_panels() {
+    let x = Xvfb::start_sized("inspect_layout", "1600x900x24");
+    let mut lab = x.launch("phong", &[], &[]);
+    lab.first_frame();
+    assert_eq!(lab.settled().dimensions(), (640, 360));
+    let click = |(px, py): (u32, u32)| {
+        lab.x.xdotool(&[
+            "mousemove",
+            "--window",
+            &lab.window,
+            &px.to_string(),
+            &py.to_string(),
+            "click",
+            "1",
+        ]);
+    };
+    let inspections = || -> Vec<String> {
+        lab.stderr()
+            .lines()
+            .filter(|l| l.starts_with("shaderlab-test: inspected"))
+            .map(str::to_owned)
+            .collect()
+    };
+    // Clicks `pixel` and waits for its inspection; the window shows its colour there.
+    let inspect = |pixel: (u32, u32), what: &str| {
+        let before = inspections().len();
+        click(pixel);
+        let want = format!("inspected {},{} ", pixel.0, pixel.1);
+        let line = poll(PATIENCE, || {
+            inspections().into_iter().skip(before).find(|l| l.contains(&want))
+        })
+        .unwrap_or_else(|| {
+            panic!(
+                "{what}: no inspection of {pixel:?} after the click; inspections: {:?}",
+                inspections()
+            )
+        });
+        let rgba: Vec<i32> = line
+            .split_once("rgba(")
+            .and_then(|(_, r)| r.strip_suffix(')'))
+            .unwrap_or_else(|| panic!("{line}"))
+            .split(", ")
+            .map(|c| c.parse().expect("a byte"))
+            .collect();
+        let shown = lab.settled();
+        let at = shown.get_pixel(pixel.0, pixel.1).0;
+        assert!(
+            (0..3).all(|k| (rgba[k] - i32::from(at[k])).abs() <= 2),
+            "{what}: the window shows {at:?} at {pixel:?}, the inspection {rgba:?}: a panel covers the pixel"
+        );
+        shown
+    };
+    lab.keys(&["F2"]);
+    lab.idle();
+    inspect((330, 170), "640x360, F2");
+    // A click on the inspector (right of the pixel, by the nearer edge), then on the picture's
+    // centre.
+    click((600, 200));
+    lab.idle();
+    inspect((320, 180), "640x360, after a click on the inspector");
+    lab.keys(&["F1"]);
+    lab.idle();
+    let both = inspect((322, 182), "640x360, F1 and F2");
+    lab.save(&both, "f1_f2_640x360");
+    lab.resize(1280, 720).expect("resize");
+    poll(PATIENCE, || (lab.geometry().2 == 1280).then_some(())).expect("the window grows to 1280x720");
+    lab.idle();
+    // The pixel picked before stays in sight: a click near it, then on the inspector (left of
+    // it, by the nearer edge), then on the picture again.
+    let large = inspect((330, 300), "1280x720, F1 and F2");
+    lab.save(&large, "f1_f2_1280x720");
+    click((100, 200));
+    lab.idle();
+    inspect((700, 500), "1280x720, after a click on the inspector");
     lab.escape();
 }

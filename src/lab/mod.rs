@@ -115,8 +115,9 @@ pub enum Input {
 pub use crate::render::BuildContext;
 pub use crate::user_files::{UserFile, UserFiles, NO_FILES};
 
-/// One exercise, ready to draw.
-pub trait Lab {
+/// One exercise, ready to draw. A lab can move between threads (outside the browser): the
+/// window builds a new one from saved shaders on a worker thread while the old one draws.
+pub trait Lab: wgpu::WasmNotSend {
     /// Its name, title and size.
     fn info(&self) -> &'static LabInfo;
     /// Its parameters.

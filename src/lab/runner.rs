@@ -71,7 +71,7 @@ macro_rules! entry {
 
 /// What a recipe's scene does: draw for the parameters, hand out its programs, and take the
 /// input its rows do not (a stage's mouse and object keys).
-pub trait Scene {
+pub trait Scene: wgpu::WasmNotSend {
     /// Input no key row took; returns whether anything changed.
     fn input(&mut self, _p: &mut Params, _input: Input) -> bool {
         false
@@ -142,7 +142,7 @@ impl Lab for Runner {
 
 /// What a [`MaterialScene`] draws: the camera, the matrices and the mesh (the vertex stage's
 /// inputs), with their keys and mouse.
-pub trait Geometry: 'static {
+pub trait Geometry: wgpu::WasmNotSend + 'static {
     /// The vertices it draws.
     type Vertex: VertexType;
     /// Its keys and mouse; returns whether anything changed.

@@ -21,7 +21,7 @@ pub struct VertexAttr {
 
 /// A `#[repr(C)]` vertex whose fields feed named shader inputs. Implement it with
 /// [`vertex_type!`](crate::vertex_type).
-pub trait VertexType: bytemuck::Pod {
+pub trait VertexType: bytemuck::Pod + Send + Sync {
     /// The attributes, by GLSL name.
     const ATTRIBUTES: &'static [VertexAttr];
 }

@@ -519,7 +519,7 @@ pub struct Program<V: VertexType> {
     built: Built,
     resources: Vec<Bind>,
     bind_group: Option<wgpu::BindGroup>,
-    _vertex: PhantomData<V>,
+    _vertex: PhantomData<fn() -> V>,
 }
 
 fn layout_entry(b: &BindingInfo) -> wgpu::BindGroupLayoutEntry {

@@ -318,9 +318,180 @@ pub struct InspectView<'a> {
     pub busy: bool,
 }
 
-/// The inspector's width in logical pixels, at most (it takes at most 62 % of the window, on
-/// the side away from the inspected pixel, so that the pixel stays in sight).
+/// The narrowest F1's panel gets on the right beside an inspected pixel before it moves to the
+/// left, where the pixel leaves more room.
+pub const PANEL_MIN_WIDTH: f32 = 200.0;
+
+/// The inspector's width in logical pixels, at most.
 pub const INSPECTOR_WIDTH: f32 = 640.0;
+
+/// The largest share of the window's width the inspector takes: the rest of the picture stays
+/// in sight to pick the next pixel in.
+pub const INSPECTOR_SHARE: f32 = 0.45;
+
+/// The narrowest inspector beside the pixel; with less room it goes above or below the pixel.
+pub const INSPECTOR_MIN_WIDTH: f32 = 220.0;
+
+/// The inspector's height above or below the pixel, at most, and the least worth taking (with
+/// less room either way it goes beside the pixel however narrow).
+pub const INSPECTOR_HEIGHT: f32 = 360.0;
+const INSPECTOR_MIN_HEIGHT: f32 = 120.0;
+
+/// Logical pixels kept free around the inspected pixel on every side: its marker and a little
+/// of the picture around it, to click near it again.
+pub const PIXEL_MARGIN: f32 = 24.0;
+
+/// Where a panel goes: the side of the window it covers, and its size across (logical pixels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Place {
+    /// Along the left edge, this wide.
+    Left(f32),
+    /// Along the right edge, this wide.
+    Right(f32),
+    /// Along the top edge (between the side panels), this high.
+    Top(f32),
+    /// Along the bottom edge (between the side panels), this high.
+    Bottom(f32),
+}
+
+/// Where F1's panel and the inspector go.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layout {
+    /// F1's panel, when shown.
+    pub panel: Option<Place>,
+    /// The inspector, when shown.
+    pub inspector: Option<Place>,
+}
+
+/// Where the panels go in a window of `size` (logical pixels) with F1's panel and the inspector
+/// shown or not, and the inspected pixel (its top-left corner), if one is picked.
+///
+/// Inspecting, the pixel and [`PIXEL_MARGIN`] around it stay free at every size, so that the
+/// pixel stays in sight and the picture around it can be clicked: F1's panel keeps its place
+/// on the right, narrowed to the room beside the pixel (on the left when that room is under
+/// [`PANEL_MIN_WIDTH`] and the left has more), and the inspector goes beside the pixel, up to
+/// [`INSPECTOR_WIDTH`] and [`INSPECTOR_SHARE`] of the window: on the pixel's outer side (the
+/// nearer edge of the window) where that leaves it [`INSPECTOR_MIN_WIDTH`], so that the middle
+/// of the picture stays in sight, else on the side with more room; with less than
+/// [`INSPECTOR_MIN_WIDTH`] there it goes above or below the pixel instead. The two never
+/// overlap ([`Layout::rects`]). Before a pixel is picked, the inspector is
+/// [`INSPECTOR_MIN_WIDTH`] wide on the left and the window's centre is kept free, where the
+/// labs draw their object. Not inspecting, F1's panel is [`PANEL_WIDTH`] wide.
+pub fn layout(size: (f32, f32), panel: bool, inspector: bool, pixel: Option<(f32, f32)>) -> Layout {
+    let (width, height) = (size.0.max(0.0), size.1.max(0.0));
+    if !inspector {
+        return Layout {
+            panel: panel.then_some(Place::Right(PANEL_WIDTH.min(width))),
+            inspector: None,
+        };
+    }
+    let (x, y) = pixel.unwrap_or((width / 2.0, height / 2.0));
+    let mut left = (x - PIXEL_MARGIN).max(0.0);
+    let mut right = (width - x - 1.0 - PIXEL_MARGIN).max(0.0);
+    let panel = panel.then(|| {
+        if pixel.is_none() || right >= PANEL_MIN_WIDTH || right >= left {
+            let w = PANEL_WIDTH.min(right);
+            right -= w;
+            Place::Right(w)
+        } else {
+            let w = PANEL_WIDTH.min(left);
+            left -= w;
+            Place::Left(w)
+        }
+    });
+    // Beside the pixel on its outer side (towards the nearer edge of the window) when that is
+    // wide enough, so that the middle of the picture stays in sight; else where there is more.
+    let outer_left = x < width / 2.0;
+    let on_left = match (outer_left, left.max(right)) {
+        (true, _) if left >= INSPECTOR_MIN_WIDTH => true,
+        (false, _) if right >= INSPECTOR_MIN_WIDTH => false,
+        (_, most) => left == most,
+    };
+    let (room, beside): (f32, fn(f32) -> Place) = if on_left {
+        (left, Place::Left)
+    } else {
+        (right, Place::Right)
+    };
+    let (above, below) = ((y - PIXEL_MARGIN).max(0.0), (height - y - 1.0 - PIXEL_MARGIN).max(0.0));
+    let inspector = if pixel.is_none() {
+        // Nothing to show yet but how to pick: a narrow inspector, most of the picture free.
+        Place::Left(INSPECTOR_MIN_WIDTH.min(left))
+    } else if room >= INSPECTOR_MIN_WIDTH || above.max(below) < INSPECTOR_MIN_HEIGHT {
+        let most = INSPECTOR_WIDTH.min(width * INSPECTOR_SHARE).max(INSPECTOR_MIN_WIDTH);
+        beside(most.min(room))
+    } else if below >= above {
+        Place::Bottom(INSPECTOR_HEIGHT.min(below))
+    } else {
+        Place::Top(INSPECTOR_HEIGHT.min(above))
+    };
+    // A window too small to leave any room beside the pixel shows no panel there.
+    let some_room = |place: &Place| {
+        let (Place::Left(size) | Place::Right(size) | Place::Top(size) | Place::Bottom(size)) = *place;
+        size >= 1.0
+    };
+    Layout {
+        panel: panel.filter(some_room),
+        inspector: Some(inspector).filter(some_room),
+    }
+}
+
+impl Layout {
+    /// The rectangles (logical pixels) of F1's panel and of the inspector in a window of
+    /// `size`: a side panel runs along its edge, the whole height, inside any panel placed
+    /// before it on that side (F1's goes first); a top or bottom one runs between the side
+    /// panels.
+    pub fn rects(&self, size: (f32, f32)) -> (Option<egui::Rect>, Option<egui::Rect>) {
+        let mut free = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(size.0, size.1));
+        let mut take = |place: Place| {
+            let mut r = free;
+            match place {
+                Place::Left(w) => {
+                    r.max.x = (r.min.x + w).min(free.max.x);
+                    free.min.x = r.max.x;
+                }
+                Place::Right(w) => {
+                    r.min.x = (r.max.x - w).max(free.min.x);
+                    free.max.x = r.min.x;
+                }
+                Place::Top(h) => {
+                    r.max.y = (r.min.y + h).min(free.max.y);
+                    free.min.y = r.max.y;
+                }
+                Place::Bottom(h) => {
+                    r.min.y = (r.max.y - h).max(free.min.y);
+                    free.max.y = r.min.y;
+                }
+            }
+            r
+        };
+        let panel = self.panel.map(&mut take);
+        (panel, self.inspector.map(take))
+    }
+}
+
+/// Shows `add_contents` in a panel that fills `rect` (logical pixels) and nothing beyond it:
+/// a row wider than the panel is cut at its edge, so that the panels' places are exactly
+/// those of [`Layout::rects`] (egui's own side panels grow with a wide row and then stack the
+/// next panel over it).
+fn panel_in<R>(ui: &mut egui::Ui, id: &str, rect: egui::Rect, add_contents: impl FnOnce(&mut egui::Ui) -> R) -> R {
+    let mut child = ui.new_child(
+        egui::UiBuilder::new()
+            .id_salt(id)
+            .max_rect(rect)
+            .layout(egui::Layout::top_down(egui::Align::Min)),
+    );
+    child.shrink_clip_rect(rect);
+    let frame = egui::Frame::side_top_panel(child.style());
+    child.painter().rect_filled(rect, 0.0, frame.fill);
+    let inner = (rect.size() - frame.total_margin().sum()).max(egui::Vec2::ZERO);
+    frame
+        .show(&mut child, |ui| {
+            ui.set_min_size(inner);
+            ui.set_max_width(inner.x);
+            add_contents(ui)
+        })
+        .inner
+}
 
 /// The inspector: the pixel's colour, what covers it, the fragment shader line by line with
 /// each line's values to its right, the inputs at the pixel, the vertex shader at the
@@ -504,6 +675,20 @@ pub struct Panel {
     renderers: Vec<(wgpu::TextureFormat, egui_wgpu::Renderer)>,
     /// Whether egui asked for another frame soon (an animation, a blinking cursor).
     pub repaint: bool,
+    /// Where the panels were drawn last (logical pixels): the pointer over them is theirs.
+    drawn: Vec<egui::Rect>,
+    /// Where the pointer is (logical pixels), from the window's own events.
+    cursor: Option<egui::Pos2>,
+    /// Who the buttons held belong to, since a press: egui's widgets (a press on a panel) or
+    /// the lab (a press on the picture, whose drag goes on over the panels).
+    press: Option<Owner>,
+}
+
+/// Who a press belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Owner {
+    Panels,
+    Lab,
 }
 
 impl Panel {
@@ -525,6 +710,57 @@ impl Panel {
             input,
             renderers: Vec::new(),
             repaint: false,
+            drawn: Vec::new(),
+            cursor: None,
+            press: None,
+        }
+    }
+
+    /// Whether the pointer at `pos` is over something egui drew: a panel, or a popup (a
+    /// drop-down list, a colour picker) reaching over the picture. Judged by where the panels
+    /// were drawn and the event's own position, not by egui's idea of the pointer, which is a
+    /// frame old (a click right after the pointer moved off a panel belongs to the picture).
+    fn over_panels(&self, pos: egui::Pos2) -> bool {
+        self.drawn.iter().any(|r| r.contains(pos))
+            || self
+                .ctx
+                .layer_id_at(pos)
+                .is_some_and(|l| !matches!(l.order, egui::Order::Background | egui::Order::Tooltip))
+    }
+
+    /// Whether a pointer event belongs to the panels (see [`Panel::over_panels`]); follows the
+    /// pointer and who owns a press.
+    fn pointer_event(&mut self, window: &winit::window::Window, event: &winit::event::WindowEvent) -> bool {
+        use winit::event::{ElementState, WindowEvent};
+        let over = |panel: &Panel| panel.cursor.is_some_and(|pos| panel.over_panels(pos));
+        match event {
+            WindowEvent::CursorMoved { position, .. } => {
+                let ppp = egui_winit::pixels_per_point(&self.ctx, window);
+                self.cursor = Some(egui::pos2(position.x as f32 / ppp, position.y as f32 / ppp));
+                match self.press {
+                    Some(owner) => owner == Owner::Panels,
+                    None => over(self),
+                }
+            }
+            WindowEvent::CursorLeft { .. } => {
+                self.cursor = None;
+                self.press == Some(Owner::Panels)
+            }
+            WindowEvent::MouseInput {
+                state: ElementState::Pressed,
+                ..
+            } => {
+                let owner = *self
+                    .press
+                    .get_or_insert(if over(self) { Owner::Panels } else { Owner::Lab });
+                owner == Owner::Panels
+            }
+            WindowEvent::MouseInput {
+                state: ElementState::Released,
+                ..
+            } => self.press.take() == Some(Owner::Panels),
+            WindowEvent::MouseWheel { .. } => over(self),
+            _ => false,
         }
     }
 
@@ -532,6 +768,8 @@ impl Panel {
     /// (a click on the panel, a key typed into one of its fields), so the lab must not.
     pub fn event(&mut self, window: &winit::window::Window, event: &winit::event::WindowEvent) -> bool {
         if !self.shown && !self.inspecting {
+            self.drawn.clear();
+            self.press = None;
             return false;
         }
         // Esc while a popup (a colour picker, a drop-down list) is open closes the popup, as
@@ -551,11 +789,13 @@ impl Panel {
             event,
             winit::event::WindowEvent::MouseInput { .. }
                 | winit::event::WindowEvent::CursorMoved { .. }
+                | winit::event::WindowEvent::CursorLeft { .. }
                 | winit::event::WindowEvent::MouseWheel { .. }
         );
-        (keyboard && self.ctx.egui_wants_keyboard_input())
-            || (pointer && (self.ctx.is_pointer_over_egui() || self.ctx.egui_is_using_pointer()))
-            || (response.consumed && !keyboard && !pointer)
+        if pointer {
+            return self.pointer_event(window, event);
+        }
+        (keyboard && self.ctx.egui_wants_keyboard_input()) || (response.consumed && !keyboard)
     }
 
     /// Runs the panel for this frame and records its drawing into `target` (after the lab's
@@ -580,35 +820,25 @@ impl Panel {
         }
         let raw = self.input.take_egui_input(window);
         let mut result = (false, None);
-        let shown = self.shown;
+        let mut drawn = Vec::new();
+        let ppp = egui_winit::pixels_per_point(&self.ctx, window);
+        let places = layout(
+            (size.0 as f32 / ppp, size.1 as f32 / ppp),
+            self.shown,
+            inspect.is_some(),
+            inspect
+                .and_then(|v| v.pixel)
+                .map(|(x, y)| (x as f32 / ppp, y as f32 / ppp)),
+        );
+        let (panel_rect, inspector_rect) = places.rects((size.0 as f32 / ppp, size.1 as f32 / ppp));
         let output = self.ctx.run_ui(raw, |ui| {
-            if shown {
-                let panel = egui::Panel::right("shaderlab.panel")
-                    .exact_size(PANEL_WIDTH)
-                    .resizable(false)
-                    // egui draws the line with the parent's painter at the position the panel had
-                    // while it slid in, and the window draws only a frame or two after a change:
-                    // it stayed behind as a stray line across the widgets. The panel's own
-                    // background marks its edge.
-                    .show_separator_line(false)
-                    .show(ui, |ui| contents(ui, lab, status));
-                result = panel.inner;
+            if let Some(rect) = panel_rect {
+                result = panel_in(ui, "shaderlab.panel", rect, |ui| contents(ui, lab, status));
+                drawn.push(rect);
             }
-            if let Some(view) = inspect {
-                // Beside the pixel, not over it: on the side of the window it is not on.
-                let ppp = ui.ctx().pixels_per_point();
-                let left_half = view.pixel.is_some_and(|(x, _)| (x as f32) < size.0 as f32 * 0.5);
-                let panel = if left_half {
-                    egui::Panel::right("shaderlab.inspector")
-                } else {
-                    egui::Panel::left("shaderlab.inspector")
-                };
-                let width = (size.0 as f32 / ppp * 0.62).clamp(240.0, INSPECTOR_WIDTH);
-                panel
-                    .exact_size(width)
-                    .resizable(false)
-                    .show_separator_line(false)
-                    .show(ui, |ui| inspector(ui, view));
+            if let (Some(view), Some(rect)) = (inspect, inspector_rect) {
+                panel_in(ui, "shaderlab.inspector", rect, |ui| inspector(ui, view));
+                drawn.push(rect);
                 if let Some((x, y)) = view.pixel {
                     // A frame around the inspected pixel.
                     let painter = ui.ctx().layer_painter(egui::LayerId::new(
@@ -635,6 +865,7 @@ impl Panel {
                 }
             }
         });
+        self.drawn = drawn;
         // egui animates (a header opening) over frames it asks for; the window draws them.
         self.repaint = output
             .viewport_output
@@ -712,6 +943,93 @@ mod tests {
                 }
             }
         }
+    }
+
+    fn overlap(a: egui::Rect, b: egui::Rect) -> bool {
+        a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
+    }
+
+    /// Issue 39, item 15: at every size, wherever the pixel, with F1's panel or not, the
+    /// inspected pixel and its margin stay free, the panels stay apart and in the window, and
+    /// the inspector is wide (or high) enough to read wherever the window leaves room for it.
+    #[test]
+    fn the_inspected_pixel_stays_free_and_the_panels_never_overlap() {
+        let sizes = [
+            (120.0, 90.0),
+            (320.0, 180.0),
+            (400.0, 300.0),
+            (640.0, 360.0),
+            (800.0, 600.0),
+            (1280.0, 720.0),
+            (1920.0, 1080.0),
+            (3000.0, 300.0),
+            (300.0, 1000.0),
+        ];
+        for (w, h) in sizes {
+            let mut pixels: Vec<Option<(f32, f32)>> = vec![None];
+            for i in 0..=16 {
+                for j in 0..=8 {
+                    let (x, y) = ((w - 1.0) * i as f32 / 16.0, (h - 1.0) * j as f32 / 8.0);
+                    pixels.push(Some((x.floor(), y.floor())));
+                }
+            }
+            for f1 in [false, true] {
+                for pixel in &pixels {
+                    let l = layout((w, h), f1, true, *pixel);
+                    let what = format!("{w}x{h} F1 {f1} pixel {pixel:?}: {l:?}");
+                    if w >= 400.0 {
+                        assert_eq!(l.panel.is_some(), f1, "{what}");
+                        assert!(l.inspector.is_some(), "{what}");
+                    }
+                    let (panel, inspector) = l.rects((w, h));
+                    let rs: Vec<egui::Rect> = panel.into_iter().chain(inspector).collect();
+                    for r in &rs {
+                        assert!(
+                            r.min.x >= 0.0 && r.min.y >= 0.0 && r.max.x <= w && r.max.y <= h,
+                            "{what}"
+                        );
+                    }
+                    if let (Some(a), Some(b)) = (panel, inspector) {
+                        assert!(!overlap(a, b), "{what}: the panels overlap");
+                    }
+                    let (x, y) = pixel.unwrap_or((w / 2.0, h / 2.0));
+                    let m = PIXEL_MARGIN - 0.01;
+                    let kept = egui::Rect::from_min_max(egui::pos2(x - m, y - m), egui::pos2(x + 1.0 + m, y + 1.0 + m));
+                    for r in &rs {
+                        assert!(!overlap(*r, kept), "{what}: a panel covers the pixel or its margin");
+                    }
+                    if w >= 640.0 && h >= 360.0 && !f1 {
+                        let centre = egui::Rect::from_center_size(egui::pos2(w / 2.0, h / 2.0), egui::vec2(2.0, 2.0));
+                        assert!(
+                            rs.iter().all(|r| !overlap(*r, centre)),
+                            "{what}: the middle of the picture is hidden"
+                        );
+                    }
+                    if w >= 640.0 && h >= 360.0 {
+                        let inspector = inspector.expect("the inspector");
+                        let (across, along) = (inspector.width(), inspector.height());
+                        assert!(
+                            along < h || across <= w * INSPECTOR_SHARE,
+                            "{what}: the inspector hides the picture"
+                        );
+                        assert!(
+                            (across >= INSPECTOR_MIN_WIDTH && along == h)
+                                || (along >= INSPECTOR_MIN_HEIGHT && across >= 120.0),
+                            "{what}: an inspector of {across}x{along} is too small to read"
+                        );
+                    }
+                }
+            }
+        }
+        // The default 640x360 with both panels and the centre picked: F1 on the right, the
+        // inspector on the left, the middle of the picture between them.
+        let l = layout((640.0, 360.0), true, true, Some((320.0, 180.0)));
+        assert!(matches!(l.panel, Some(Place::Right(w)) if w > 250.0), "{l:?}");
+        assert!(matches!(l.inspector, Some(Place::Left(w)) if w > 250.0), "{l:?}");
+        // Not inspecting, F1's panel is as wide as ever.
+        let l = layout((640.0, 360.0), true, false, Some((320.0, 180.0)));
+        assert_eq!(l.panel, Some(Place::Right(PANEL_WIDTH)));
+        assert_eq!(l.inspector, None);
     }
 
     #[test]

@@ -236,6 +236,12 @@ impl Session {
         self.buttons != 0 && self.input(Input::Drag(x, y))
     }
 
+    /// The mouse moved to (x, y) over something drawn above the lab (the window's panels): the
+    /// lab sees no motion, but a button pressed next is where the mouse is.
+    pub fn moved_over_panel(&mut self, x: i32, y: i32) {
+        self.cursor = (x, y);
+    }
+
     /// Hands `input` to the lab; returns whether its state (and so its title) changed.
     pub fn input(&mut self, input: Input) -> bool {
         self.touched();
@@ -281,6 +287,31 @@ impl Session {
                 Err(e)
             }
         }
+    }
+
+    /// Shows `lab`, built anew from the shaders just saved, in place of the lab shown (the
+    /// window's live reload, which builds off its frame loop): the parameters carry over by
+    /// name where the count of numbers is the same, and the standing shader error clears.
+    pub fn rebuilt(&mut self, mut lab: Box<dyn Lab>) {
+        let old = self.lab.params();
+        let new = lab.params_mut();
+        for spec in old.specs() {
+            if let (Some(value), Some(default)) = (old.get(spec.name), new.get(spec.name)) {
+                if value.len() == default.len() {
+                    new.set_unchecked(spec.name, value);
+                }
+            }
+        }
+        self.lab = lab;
+        self.shader_error = None;
+        self.touched();
+    }
+
+    /// A rebuild of the lab failed with `error`: the lab shown keeps drawing, and the error
+    /// stands as [`Session::shader_error`] until a reload succeeds.
+    pub fn rebuild_failed(&mut self, error: String) {
+        self.shader_error = Some(error);
+        self.changed();
     }
 
     /// Turns inspect mode on or off (F2): on, a click picks the pixel to inspect.

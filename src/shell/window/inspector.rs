@@ -62,7 +62,11 @@ impl Inspector {
                         let spawned = std::thread::Builder::new()
                             .name("shaderlab-inspect".into())
                             .spawn(move || {
-                                let result = Inspection::new(lab, &captured, x, y).map_err(|e| e.to_string());
+                                // A panic in the replay is said in the panel, like its errors.
+                                let result = match super::panics::contained(|| Inspection::new(lab, &captured, x, y)) {
+                                    Ok(replayed) => replayed.map_err(|e| e.to_string()),
+                                    Err(report) => Err(report.into_error().to_string()),
+                                };
                                 let _ = tx.send(result);
                             });
                         match spawned {

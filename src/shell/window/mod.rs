@@ -13,7 +13,13 @@
 //!
 //! A lost GPU device (or a GPU out of memory) ends the event loop with one clear message and
 //! exit status 1, never a panic; a frame that never ends (the watchdog, `--timeout`) stops
-//! drawing with the title saying so, and Esc or close then end the process at once.
+//! drawing with the title saying so, and Esc or close then end the process at once. A panic
+//! ends it as an internal error with the panic's message and place, except winit's on a window
+//! another program destroyed, which says so.
+//!
+//! Live reload compiles off the frame loop ([`Compiles`]): a saved shader builds the lab anew on
+//! a worker thread while the last good pipeline keeps drawing; a compile that fails or panics
+//! leaves it drawing, with SHADER ERROR in the title and the message in the terminal.
 //!
 //! Test hooks: `SHADERLAB_TEST_LOSE_DEVICE=SECONDS` destroys the GPU device that many seconds
 //! after the window opens, so the tests can check what a lost device looks like.
@@ -21,10 +27,14 @@
 //! the program instead of for a time a busy machine can exceed: `shaderlab-test: frame N` after
 //! each frame is shown, `shaderlab-test: sync` when the key F11 arrives (every event sent before
 //! it has then been handled), `shaderlab-test: idle` when the window has nothing more to
-//! draw after one of those, and `shaderlab-test: inspected X,Y rgba(R, G, B, A)` when F2's
-//! inspector has a new result.
+//! draw after one of those, `shaderlab-test: inspected X,Y rgba(R, G, B, A)` when F2's
+//! inspector has a new result, and `shaderlab-test: compile N started` / `compile N ended`
+//! around live reload's compile of the Nth save. `SHADERLAB_TEST_PANIC=init` panics while the
+//! window opens, `=reload` inside each live reload's compile, so that the tests can check
+//! what a panic looks like.
 
 mod inspector;
+mod panics;
 mod screen;
 
 use std::path::PathBuf;
@@ -40,7 +50,7 @@ use winit::window::{Window, WindowId};
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{BuildContext, LabEntry, UserFiles};
+use crate::lab::{BuildContext, Lab, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen};
 use crate::params::Params;
 use crate::render::Frame;
@@ -111,6 +121,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
     };
     let mut app = App {
         entry,
+        proxy: event_loop.create_proxy(),
         args: args.clone(),
         params: Some(params),
         source,
@@ -118,12 +129,11 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
         state: None,
         error: None,
     };
-    // winit panics inside its X11 backend when another program destroys the window
-    // (`xdotool windowclose`): turn that into an error instead of a crash report.
-    let previous_hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|_| {}));
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| event_loop.run_app(&mut app)));
-    std::panic::set_hook(previous_hook);
+    // A panic in the window is said as an error of its own, not as a crash report: winit's X11
+    // backend panics when another program destroys the window (`xdotool windowclose`), and
+    // anything else is an internal error, with the panic's message and place.
+    let _hook = panics::install();
+    let outcome = panics::contained(|| event_loop.run_app(&mut app));
     // A recording still running is kept, not lost, however the window ended: Esc, closed by
     // the window manager or destroyed by another program, a signal, an error. Its frames are
     // drawn offscreen, so the window is not needed to finish it.
@@ -138,15 +148,28 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
         );
         crate::fsutil::signals::exit_now(1);
     }
-    match outcome {
-        Ok(result) => result.map_err(|e| Error::Surface(format!("event loop failed: {e}")))?,
-        Err(_) => {
-            return Err(Error::Surface(
-                "the window was closed or destroyed by another program".into(),
-            ))
+    let error = match outcome {
+        Ok(Ok(())) => app.error.take(),
+        Ok(Err(e)) => Some(Error::Surface(format!("event loop failed: {e}"))),
+        Err(report) if report.window_destroyed() => Some(Error::Surface(
+            "the window was closed or destroyed by another program".into(),
+        )),
+        Err(report) => Some(report.into_error()),
+    };
+    if app.state.as_ref().is_some_and(WindowState::compiling) {
+        // A compile still runs on a worker thread, maybe for minutes inside the driver's
+        // compiler, and can be neither stopped nor waited for: end the process now, as it
+        // would have ended.
+        match error {
+            Some(Error::Interrupted { signal }) => crate::fsutil::signals::end_by(signal),
+            Some(e) => {
+                eprintln!("{}: error: {e}", app.entry.info.name);
+                crate::fsutil::signals::exit_now(1)
+            }
+            None => crate::fsutil::signals::exit_now(0),
         }
     }
-    match app.error {
+    match error {
         Some(e) => Err(e),
         None => Ok(()),
     }
@@ -157,6 +180,8 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
 enum Wake {
     /// A deferred signal (its number).
     Signal(i32),
+    /// A compile on a worker thread ended ([`Compiles`]).
+    Compiled,
 }
 
 /// Starts a thread that turns a deferred signal into a [`Wake::Signal`] for the event loop: the
@@ -194,6 +219,8 @@ fn wake_on_signal(proxy: winit::event_loop::EventLoopProxy<Wake>) {
 
 struct App {
     entry: &'static LabEntry,
+    /// Wakes the event loop from other threads.
+    proxy: winit::event_loop::EventLoopProxy<Wake>,
     args: Args,
     params: Option<Params>,
     source: ShaderSource,
@@ -210,6 +237,50 @@ struct Sources {
     source: ShaderSource,
     files: Arc<UserFiles>,
     reload: Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)>,
+}
+
+/// How many compiles may run at once: a save while one compiles (a fix of a shader that
+/// compiles for minutes) starts another; later saves wait for one of them to end.
+const MAX_COMPILES: usize = 2;
+
+/// How long editors get to finish writing a save before it is compiled.
+const SAVE_SETTLE: Duration = Duration::from_millis(50);
+
+/// How long a compile runs before the title says so.
+const SAY_COMPILING_AFTER: Duration = Duration::from_millis(500);
+
+/// What a compile on a worker thread gives: the lab built anew, or why not (an error, or a
+/// panic inside the compile).
+type Compiled = std::result::Result<Result<Box<dyn Lab>>, panics::Report>;
+
+/// Live reload's compiles. Each save builds the lab anew on a worker thread, so that a compile
+/// taking minutes (a large array on a CPU driver) never stops the frame loop: the lab shown
+/// keeps drawing, keys and Esc keep working, and the lab of the newest save that finished
+/// compiling takes its place (an older one finishing later is dropped).
+#[derive(Default)]
+struct Compiles {
+    /// A save was seen: it is compiled at this time, once the editor has finished writing.
+    due: Option<Instant>,
+    /// The compiles running: the number of their save, when they started, their result.
+    running: Vec<(u64, Instant, mpsc::Receiver<Compiled>)>,
+    /// Saves compiled so far (the last one's number).
+    started: u64,
+    /// The number of the save whose result is shown (its lab, or its error).
+    shown: u64,
+    /// Whether the title says that a compile runs.
+    said: bool,
+}
+
+impl Compiles {
+    /// When the title should say that a compile runs: a compile newer than the result shown
+    /// has run for [`SAY_COMPILING_AFTER`].
+    fn say_at(&self) -> Option<Instant> {
+        self.running
+            .iter()
+            .filter(|(n, _, _)| *n > self.shown)
+            .map(|(_, at, _)| *at + SAY_COMPILING_AFTER)
+            .min()
+    }
 }
 
 /// When frames are drawn, and how long they take.
@@ -231,10 +302,16 @@ struct Pacing {
 
 struct WindowState {
     window: Arc<Window>,
-    gpu: Gpu,
+    /// Shared with the compiles running on worker threads.
+    gpu: Arc<Gpu>,
     screen: Screen,
     session: Session,
     sources: Sources,
+    compiles: Compiles,
+    /// Wakes the event loop when a compile ends.
+    proxy: winit::event_loop::EventLoopProxy<Wake>,
+    /// `SHADERLAB_TEST_PANIC`'s place to panic, if set.
+    test_panic: Option<String>,
     /// The window's start: the clock's second 0.
     start: Instant,
     pacing: Pacing,
@@ -298,6 +375,10 @@ impl App {
 
     fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
         let entry = self.entry;
+        let test_panic = std::env::var("SHADERLAB_TEST_PANIC").ok();
+        if test_panic.as_deref() == Some("init") {
+            panic!("SHADERLAB_TEST_PANIC=init");
+        }
         let (width, height) = self.args.size(entry);
         let attributes = Window::default_attributes()
             .with_title(format!("{} {}", entry.info.original_title, entry.info.label))
@@ -372,7 +453,7 @@ impl App {
         let panel = super::panel::Panel::new(&window);
         let now = Instant::now();
         Ok(WindowState {
-            gpu,
+            gpu: Arc::new(gpu),
             screen,
             session,
             sources: Sources {
@@ -380,6 +461,9 @@ impl App {
                 files: self.files.clone(),
                 reload,
             },
+            compiles: Compiles::default(),
+            proxy: self.proxy.clone(),
+            test_panic,
             start: now,
             pacing: Pacing {
                 unpaced: self.args.unpaced,
@@ -457,6 +541,9 @@ impl WindowState {
         if self.session.shader_error().is_some() {
             title.push_str(" | SHADER ERROR (see terminal)");
         }
+        if self.compiles.said {
+            title.push_str(" | compiling the shaders saved");
+        }
         if self.stuck.is_some() {
             title.push_str(" | GPU STUCK: a frame never finished (see terminal); Esc quits");
         }
@@ -497,28 +584,145 @@ impl WindowState {
         }
     }
 
+    /// Live reload, never blocking the frame loop: notes saves, starts their compiles once
+    /// the editor has finished writing, and shows the compiles that ended ([`Compiles`]).
     fn check_reload(&mut self) {
-        let Some((_, rx)) = &self.sources.reload else { return };
-        if rx.try_recv().is_err() {
+        if let Some((_, rx)) = &self.sources.reload {
+            let mut saved = false;
+            while rx.try_recv().is_ok() {
+                saved = true;
+            }
+            if saved {
+                // Editors write in several steps: compile once they are done.
+                self.compiles.due = Some(Instant::now() + SAVE_SETTLE);
+            }
+        }
+        self.finish_compiles();
+        let due = self.compiles.due.is_some_and(|at| Instant::now() >= at);
+        if due && self.compiles.running.len() < MAX_COMPILES {
+            self.compiles.due = None;
+            self.start_compile();
+        }
+        let say = self.compiles.say_at().is_some_and(|at| Instant::now() >= at);
+        if say != self.compiles.said {
+            self.compiles.said = say;
+            self.update_title();
+        }
+    }
+
+    /// When the loop must wake for live reload: a save to compile, or a compile to say in the
+    /// title.
+    fn reload_wake(&self) -> Option<Instant> {
+        let due = self.compiles.due.filter(|_| self.compiles.running.len() < MAX_COMPILES);
+        let say = self.compiles.say_at().filter(|_| !self.compiles.said);
+        due.into_iter().chain(say).min()
+    }
+
+    /// Whether a compile still runs on a worker thread.
+    fn compiling(&self) -> bool {
+        !self.compiles.running.is_empty()
+    }
+
+    /// Builds the lab anew from the saved shaders on a worker thread (see [`Compiles`]).
+    fn start_compile(&mut self) {
+        self.compiles.started += 1;
+        let number = self.compiles.started;
+        let (tx, rx) = mpsc::channel();
+        let gpu = self.gpu.clone();
+        let source = self.sources.source.clone();
+        let files = self.sources.files.clone();
+        let format = self.screen.format();
+        let entry = self.session.entry();
+        let proxy = self.proxy.clone();
+        let test_panic = self.test_panic.as_deref() == Some("reload");
+        let spawned = std::thread::Builder::new()
+            .name("shaderlab-compile".into())
+            .spawn(move || {
+                let compiled = panics::contained(|| {
+                    if test_panic {
+                        panic!("SHADERLAB_TEST_PANIC=reload");
+                    }
+                    (entry.new)(&BuildContext {
+                        gpu: &gpu,
+                        source: &source,
+                        format,
+                        files: &files,
+                        lab: "",
+                    })
+                });
+                let _ = tx.send(compiled);
+                let _ = proxy.send_event(Wake::Compiled);
+            });
+        match spawned {
+            Ok(_) => {
+                self.compiles.running.push((number, Instant::now(), rx));
+                if let Some(log) = self.test_log.as_mut() {
+                    log.say(&format!("compile {number} started"));
+                }
+            }
+            Err(e) => {
+                self.show_compiled(
+                    number,
+                    Err(Error::Internal(format!(
+                        "cannot start a thread to compile the shaders: {e}"
+                    ))),
+                );
+            }
+        }
+    }
+
+    /// Shows the compiles that ended: the newest save's lab, or its error.
+    fn finish_compiles(&mut self) {
+        let mut ended = Vec::new();
+        self.compiles.running.retain(|(number, _, rx)| match rx.try_recv() {
+            Ok(compiled) => {
+                ended.push((*number, compiled));
+                false
+            }
+            Err(mpsc::TryRecvError::Empty) => true,
+            Err(mpsc::TryRecvError::Disconnected) => {
+                ended.push((
+                    *number,
+                    Ok(Err(Error::Internal(
+                        "the compile's thread ended without a result".into(),
+                    ))),
+                ));
+                false
+            }
+        });
+        for (number, compiled) in ended {
+            if let Some(log) = self.test_log.as_mut() {
+                log.say(&format!("compile {number} ended"));
+            }
+            let built = compiled.unwrap_or_else(|report| Err(report.into_error()));
+            self.show_compiled(number, built);
+        }
+    }
+
+    /// Shows the result of save `number`'s compile, unless a newer save's is shown already.
+    fn show_compiled(&mut self, number: u64, built: Result<Box<dyn Lab>>) {
+        if number <= self.compiles.shown {
             return;
         }
-        // Editors write in several steps: let them finish, then drain the queue.
-        std::thread::sleep(Duration::from_millis(50));
-        while rx.try_recv().is_ok() {}
+        self.compiles.shown = number;
         let had_error = self.session.shader_error().is_some();
-        let cx = BuildContext {
-            gpu: &self.gpu,
-            source: &self.sources.source,
-            format: self.screen.format(),
-            files: &self.sources.files,
-            lab: "",
-        };
-        match self.session.reload(&cx) {
-            Ok(()) if had_error => eprintln!("{}: shaders reloaded, error fixed", self.name()),
-            Ok(()) => eprintln!("{}: shaders reloaded", self.name()),
-            Err(e) => eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name()),
+        match built {
+            Ok(lab) => {
+                self.session.rebuilt(lab);
+                if had_error {
+                    eprintln!("{}: shaders reloaded, error fixed", self.name());
+                } else {
+                    eprintln!("{}: shaders reloaded", self.name());
+                }
+            }
+            Err(e) => {
+                eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name());
+                self.session.rebuild_failed(e.to_string());
+            }
         }
+        self.compiles.said = self.compiles.say_at().is_some_and(|at| Instant::now() >= at);
         self.update_title();
+        self.window.request_redraw();
     }
 
     /// A fresh name in the current directory: `NAME-SECONDS-PID-N.EXT` (F12 and F10).
@@ -896,6 +1100,11 @@ impl ApplicationHandler<Wake> for App {
                 self.error = Some(Error::Interrupted { signal });
                 event_loop.exit();
             }
+            Wake::Compiled => {
+                if let Some(state) = self.state.as_mut() {
+                    state.check_reload();
+                }
+            }
         }
     }
 
@@ -928,7 +1137,12 @@ impl ApplicationHandler<Wake> for App {
         let is_f1 =
             matches!(&event, WindowEvent::KeyboardInput { event: k, .. } if k.logical_key == Key::Named(NamedKey::F1));
         if !is_f1 && state.panel.event(&state.window, &event) {
-            // The panel took it (a click on it, a key typed into one of its fields).
+            // The panel took it (a click on it, a key typed into one of its fields). The lab sees
+            // nothing of it, but where the pointer is stays known: the next click on the
+            // picture is where the pointer then is, not where it last left the picture.
+            if let WindowEvent::CursorMoved { position, .. } = event {
+                state.session.moved_over_panel(position.x as i32, position.y as i32);
+            }
             state.session.changed();
             state.window.request_redraw();
             if let WindowEvent::MouseInput {
@@ -1027,7 +1241,8 @@ impl ApplicationHandler<Wake> for App {
             // looking at the shader folder a few times a second for live reload.
             if state.sources.reload.is_some() {
                 state.check_reload();
-                let wake = now + Duration::from_millis(100);
+                let wake =
+                    (now + Duration::from_millis(100)).min(state.reload_wake().unwrap_or(now + Duration::from_secs(1)));
                 event_loop.set_control_flow(ControlFlow::WaitUntil(wake));
                 if state.session.dirty() > 0 {
                     state.window.request_redraw();
