@@ -333,7 +333,7 @@ impl Gpu {
         ]
         .map(|filter| self.device.push_error_scope(filter));
         // A panic inside wgpu or naga (a bug in either) is contained and said like an error.
-        let value = crate::error::contain(f);
+        let value = crate::panics::contained(f);
         let mut first = None;
         for scope in scopes.into_iter().rev() {
             #[cfg(not(target_arch = "wasm32"))]

@@ -19,6 +19,7 @@
 //!   (targets and the device), [`camera`] (GLU matrices), [`geometry`] ([`mesh`], [`tess`]:
 //!   GLUT's solids, OBJ models, pictures), [`params`] (named, ranged values), [`user_files`],
 //!   [`fsutil`] (files in and out, never lost), [`memory`] (what the process may still take),
+//!   [`panics`] (dependencies' panics contained),
 //!   [`error`].
 //! - The speed/accuracy yardsticks of the tests and studies, which nothing above uses: [`exact`],
 //!   [`metrics`], [`noise`].
@@ -51,6 +52,7 @@ pub mod labs;
 pub mod legacy;
 pub mod memory;
 pub mod offscreen;
+pub mod panics;
 pub mod params;
 pub mod render;
 pub mod shader;

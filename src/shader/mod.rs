@@ -765,8 +765,8 @@ fn try_spirv(module: &naga::Module, info: &ModuleInfo, stage: ShaderStage) -> st
         };
         let options = naga::back::spv::Options::default();
         let _refusal_or_words =
-            crate::error::contain(|| naga::back::spv::write_vec(module, info, &options, Some(&pipeline)))
-                .map_err(Unfinished::BackEnd)?;
+            crate::panics::contained(|| naga::back::spv::write_vec(module, info, &options, Some(&pipeline)))
+                .map_err(|panic| Unfinished::BackEnd(panic.to_string()))?;
     }
     #[cfg(target_arch = "wasm32")]
     let _ = (module, info, stage);

@@ -63,7 +63,7 @@ impl Inspector {
                             .name("shaderlab-inspect".into())
                             .spawn(move || {
                                 // A panic in the replay is said in the panel, like its errors.
-                                let result = match super::panics::contained(|| Inspection::new(lab, &captured, x, y)) {
+                                let result = match crate::panics::contained(|| Inspection::new(lab, &captured, x, y)) {
                                     Ok(replayed) => replayed.map_err(|e| e.to_string()),
                                     Err(report) => Err(report.into_error().to_string()),
                                 };

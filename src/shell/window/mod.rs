@@ -34,7 +34,6 @@
 //! what a panic looks like.
 
 mod inspector;
-mod panics;
 mod screen;
 
 use std::path::PathBuf;
@@ -132,8 +131,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
     // A panic in the window is said as an error of its own, not as a crash report: winit's X11
     // backend panics when another program destroys the window (`xdotool windowclose`), and
     // anything else is an internal error, with the panic's message and place.
-    let _hook = panics::install();
-    let outcome = panics::contained(|| event_loop.run_app(&mut app));
+    let outcome = crate::panics::contained(|| event_loop.run_app(&mut app));
     // A recording still running is kept, not lost, however the window ended: Esc, closed by
     // the window manager or destroyed by another program, a signal, an error. Its frames are
     // drawn offscreen, so the window is not needed to finish it.
@@ -251,7 +249,7 @@ const SAY_COMPILING_AFTER: Duration = Duration::from_millis(500);
 
 /// What a compile on a worker thread gives: the lab built anew, or why not (an error, or a
 /// panic inside the compile).
-type Compiled = std::result::Result<Result<Box<dyn Lab>>, panics::Report>;
+type Compiled = std::result::Result<Result<Box<dyn Lab>>, crate::panics::Report>;
 
 /// Live reload's compiles. Each save builds the lab anew on a worker thread, so that a compile
 /// taking minutes (a large array on a CPU driver) never stops the frame loop: the lab shown
@@ -638,7 +636,7 @@ impl WindowState {
         let spawned = std::thread::Builder::new()
             .name("shaderlab-compile".into())
             .spawn(move || {
-                let compiled = panics::contained(|| {
+                let compiled = crate::panics::contained(|| {
                     if test_panic {
                         panic!("SHADERLAB_TEST_PANIC=reload");
                     }

@@ -1,12 +1,13 @@
-//! Panics inside the window. Its event loop, its shader compiles and its inspector run under
-//! [`contained`], which turns a panic into a [`Report`] (the panic's message and where it
-//! happened) instead of a crash report on stderr; the window then says what happened in its
-//! own words. A panic outside those sections reaches the hook that was in place before the
-//! window opened, as it would without the window.
+//! Panics of dependencies, contained. naga's back ends, wgpu and winit panic on some inputs
+//! and states (a bug in them, an X11 window another program destroyed); code that calls them
+//! where such a panic must not end the program runs them under [`contained`], which turns a
+//! panic into a [`Report`] (its message and where it happened) instead of a crash report on
+//! stderr. A panic outside [`contained`] reaches the hook that was in place before, as it would
+//! without this module. Used by the shader compiler, [`crate::gpu::Gpu::checked`] and the
+//! window (its event loop, its shader compiles, its inspector).
 
 use std::cell::{Cell, RefCell};
 use std::panic::{self, AssertUnwindSafe, PanicHookInfo};
-use std::sync::Arc;
 
 use crate::error::Error;
 
@@ -80,42 +81,26 @@ thread_local! {
     static CAUGHT: RefCell<Option<Report>> = const { RefCell::new(None) };
 }
 
-type HookFn = dyn Fn(&PanicHookInfo<'_>) + Sync + Send + 'static;
-
-/// The window's panic hook, in place while it lives: inside [`contained`] it keeps the panic's
-/// report for the caller and prints nothing; elsewhere it hands the panic to the hook it
-/// replaced. Dropping it puts that hook back.
-pub struct Hook {
-    previous: Arc<HookFn>,
+/// Installs, once per process, the hook that keeps a panic inside [`contained`] for its caller
+/// and prints nothing, and hands any other panic to the hook that was in place before.
+fn install_once() {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if CATCHING.with(Cell::get) > 0 {
+                CAUGHT.with(|c| *c.borrow_mut() = Some(Report::of(info)));
+            } else {
+                previous(info);
+            }
+        }));
+    });
 }
 
-/// Installs the window's panic hook (see [`Hook`]).
-pub fn install() -> Hook {
-    let previous: Arc<HookFn> = Arc::from(panic::take_hook());
-    let chained = previous.clone();
-    panic::set_hook(Box::new(move |info| {
-        if CATCHING.with(Cell::get) > 0 {
-            CAUGHT.with(|c| *c.borrow_mut() = Some(Report::of(info)));
-        } else {
-            chained(info);
-        }
-    }));
-    Hook { previous }
-}
-
-impl Drop for Hook {
-    fn drop(&mut self) {
-        if std::thread::panicking() {
-            return;
-        }
-        let previous = self.previous.clone();
-        panic::set_hook(Box::new(move |info| previous(info)));
-    }
-}
-
-/// Runs `f`; a panic inside it becomes its [`Report`] (with the message and place the hook saw,
-/// when [`install`]ed) instead of unwinding further.
+/// Runs `f`; a panic inside it becomes its [`Report`] (the message and the place it happened)
+/// instead of unwinding further.
 pub fn contained<T>(f: impl FnOnce() -> T) -> Result<T, Report> {
+    install_once();
     CATCHING.with(|c| c.set(c.get() + 1));
     let result = panic::catch_unwind(AssertUnwindSafe(f));
     CATCHING.with(|c| c.set(c.get() - 1));
@@ -139,7 +124,6 @@ mod tests {
 
     #[test]
     fn a_contained_panic_keeps_its_message_and_place() {
-        let _hook = install();
         let line = line!() + 1;
         let report = contained(|| panic!("broken: {}", 42)).unwrap_err();
         assert_eq!(report.message, "broken: 42");
