@@ -410,6 +410,9 @@ impl App {
         });
         let screen = Screen::new(entry.info.name, &gpu, window.clone(), surface, self.args.unpaced)?;
         let size = window.inner_size();
+        // The first build has no last good pipeline to keep drawing: it is bounded as the
+        // command line's are, and live reloads compile beside the window instead.
+        gpu.bounded_compiles = true;
         let mut lab = (entry.new)(&BuildContext {
             gpu: &gpu,
             source: &self.source,
@@ -417,6 +420,7 @@ impl App {
             files: &self.files,
             lab: "",
         })?;
+        gpu.bounded_compiles = false;
         if let Some(params) = self.params.take() {
             *lab.params_mut() = params;
         }
