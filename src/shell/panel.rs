@@ -561,10 +561,10 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
     ui.separator();
     egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
         let listing = |ui: &mut egui::Ui, stage: Stage, id: &str| {
-            // A line gets a little over half the width, its values the rest.
+            // A line gets under half the width, its values the rest (the line whole on hover).
             let font = egui::TextStyle::Monospace.resolve(ui.style());
             let glyph = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
-            let chars = ((ui.available_width() * 0.55 / glyph) as usize).clamp(MIN_CODE_CHARS, 96);
+            let chars = ((ui.available_width() * 0.4 / glyph) as usize).clamp(MIN_CODE_CHARS, 96);
             egui::Grid::new(id).num_columns(3).striped(true).show(ui, |ui| {
                 let mut file = String::new();
                 for row in i.rows(stage) {
@@ -641,8 +641,9 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
     });
 }
 
-/// Characters of a shader line shown beside its values, at least.
-const MIN_CODE_CHARS: usize = 28;
+/// Characters of a shader line shown beside its values, at least: enough to know the line
+/// (its whole text is on hover), leaving a narrow inspector room for the values.
+const MIN_CODE_CHARS: usize = 12;
 
 fn file_name(path: &str) -> &str {
     path.rsplit(['/', '\\']).next().unwrap_or(path)
