@@ -66,9 +66,9 @@ pub const SUZANNE_OBJ: &str = include_str!("../../assets/suzanne.obj");
 /// The largest OBJ file read (256 MiB, some 5 million triangles); the course's Suzanne is 60 KiB.
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 
-/// The memory an OBJ file takes to read and parse, per byte of the file, at the most (its text,
-/// the positions and the corners, with the spare room of growing lists: a 66 MB file of 2 M
-/// triangles peaked at 11 times its size resident, more mapped).
+/// The memory an OBJ file takes to read and parse, per byte of the file, at the most: its text,
+/// the positions and the corners, with the spare room of growing lists (measured:
+/// docs/bad-input.md, "A model too large, or anything under a memory limit").
 const OBJ_MEMORY_PER_BYTE: u64 = 16;
 
 /// Reads and parses an OBJ file: a regular file of at most [`MAX_OBJ_BYTES`]
