@@ -95,7 +95,8 @@ pub struct GlutGeometry {
 
 impl GlutGeometry {
     /// A stage with no mesh built yet: [`GlutGeometry::prepare`] builds the drawn one on first use
-    /// (building all four up front cost every start ~0.5 ms for objects never drawn).
+    /// (building all four up front would lengthen every start for objects never drawn; figures:
+    /// `docs/speed.md`, "Start-up").
     pub fn new(gpu: &Gpu, label: &str, config: StageConfig) -> Self {
         let meshes = HashMap::new();
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
