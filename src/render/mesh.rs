@@ -41,7 +41,7 @@ macro_rules! vertex_type {
 }
 
 // GLUT's meshes: gl_Vertex and gl_Normal, as seed 000's shaders name them.
-vertex_type!(crate::mesh::Vertex, {
+vertex_type!(crate::geometry::mesh::Vertex, {
     position: "vertex_position" => Float32x3,
     normal: "vertex_normal" => Float32x3,
 });
@@ -51,11 +51,11 @@ vertex_type!(crate::mesh::Vertex, {
 /// memory is the machine's own) everything it takes (`total_bytes`, CPU copies included) within
 /// the memory the machine has available now. A model too large is then one clear message
 /// instead of a driver's out-of-memory error after a minute of work.
-pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) -> crate::Result<()> {
+pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) -> crate::error::Result<()> {
     use crate::fsutil::human_bytes;
     let max = gpu.device.limits().max_buffer_size;
     if buffer_bytes > max {
-        return Err(crate::Error::Limit(format!(
+        return Err(crate::error::Error::Limit(format!(
             "{what} needs a vertex buffer of {} ({buffer_bytes} bytes); this GPU takes at most {} in one buffer",
             human_bytes(buffer_bytes),
             human_bytes(max)

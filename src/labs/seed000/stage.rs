@@ -9,14 +9,14 @@ use std::collections::HashMap;
 use glam::{Mat3, Mat4, Vec3};
 
 use crate::camera;
+use crate::geometry::mesh::{Mesh, Vertex};
 use crate::gpu::Gpu;
 use crate::lab::{Input, LabInfo};
-use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Culling, GpuMesh, Uniforms, ViewOrdered};
 
+use crate::geometry::tess::{self, Object};
 use crate::labs::common::{self, object_key, std140_mat3, FaceOrder, GlutMouse, TransformUniforms, XANGLE, YANGLE};
-use crate::tess::{self, Object};
 
 /// Seed 000's object order (keys `1`-`4`: cube, sphere, torus, teapot).
 pub const OBJECTS_000: &[&str] = &["cube", "sphere", "torus", "teapot"];
