@@ -67,8 +67,8 @@ pub const SUZANNE_OBJ: &str = include_str!("../../assets/suzanne.obj");
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 
 /// The memory an OBJ file takes to read and parse, per byte of the file, at the most (its text,
-/// the positions and the corners, with the spare room of growing lists; the measured peak
-/// stays under it: figures: `docs/speed.md`, "Large meshes, models and pictures").
+/// the positions and the corners, with the spare room of growing lists); the measured peak
+/// stays under it (figures: `docs/speed.md`, "Large meshes, models and pictures").
 const OBJ_MEMORY_PER_BYTE: u64 = 16;
 
 /// Reads and parses an OBJ file: a regular file of at most [`MAX_OBJ_BYTES`]
