@@ -101,7 +101,8 @@ impl Drop for Gpu {
 impl Gpu {
     /// A new instance honouring `WGPU_BACKEND` and friends. Without `WGPU_BACKEND` it holds the
     /// primary backends (Vulkan, Metal, DX12) only: starting the GL backend as well (EGL and
-    /// its driver) costs ~7 ms of every start on lavapipe; [`Gpu::fallback_instance`] is GL.
+    /// its driver) lengthens every start (figures: `docs/speed.md`, "Start-up");
+    /// [`Gpu::fallback_instance`] is GL.
     pub fn new_instance() -> wgpu::Instance {
         let mut desc = Self::descriptor();
         if std::env::var_os("WGPU_BACKEND").is_none() {
@@ -123,8 +124,8 @@ impl Gpu {
 
     /// wgpu's options from the environment, less the validation of indirect draws: shaderlab
     /// draws nothing indirectly, and that validation builds compute pipelines at device
-    /// creation (~2.5 ms of every start on lavapipe). `WGPU_VALIDATION_INDIRECT_CALL=1` turns
-    /// it back on.
+    /// creation, in every start (figures: `docs/speed.md`, "Start-up").
+    /// `WGPU_VALIDATION_INDIRECT_CALL=1` turns it back on.
     fn descriptor() -> wgpu::InstanceDescriptor {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.flags.remove(wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL);
@@ -404,10 +405,10 @@ impl Gpu {
     ///
     /// Why not block at once: on a CPU driver (lavapipe) the work runs on the driver's queue
     /// thread and rasteriser threads, and a blocked waiter is woken by a futex from another
-    /// CPU, which on a small virtual machine costs tens of microseconds each time. Polling for
-    /// the whole frame takes CPU from the rasteriser threads, so only the first
-    /// [`POLL_BEFORE_WAIT`] is polled: it covers a cheap frame whole, and in a dear one it
-    /// overlaps the driver's vertex and binning work, when the rasterisers are idle.
+    /// CPU, which is slow on a small virtual machine. Polling for the whole frame takes CPU
+    /// from the rasteriser threads, so only the first [`POLL_BEFORE_WAIT`] is polled: it covers
+    /// a cheap frame whole, and in a dear one it overlaps the driver's vertex and binning work,
+    /// when the rasterisers are idle (figures: `docs/speed.md`, "Polling").
     pub fn poll_then_wait(
         &self,
         done: impl Fn(wgpu::PollStatus) -> bool,

@@ -11,6 +11,9 @@
 //!   [`shell::session::Session`]; `--screenshot`, `--bench`, `--record`, the tools. It drives any
 //!   [`Lab`] through its [`LabEntry`] and never names an exercise.
 //! - [`labs`]: one module per exercise and [`labs::ALL`], the one list of labs.
+//! - [`debug`]: the GLSL debugger, why a pixel has its colour: a frame's draws read back and
+//!   replayed on the CPU for one pixel, naga's IR of its shaders interpreted; `shaderlab
+//!   debug`, F2 in a window and the page's Inspect.
 //! - [`lab`]: the contract a lab fulfils ([`Lab`], [`lab::Input`]) and the runner of labs
 //!   described as data ([`lab::Recipe`]: a [`lab::Geometry`] drawn with a [`lab::Material`]).
 //! - [`legacy`]: a course's own GLSL 1.10/1.20 shaders translated to GLSL 450 (source-mapped).
@@ -19,10 +22,9 @@
 //!   (targets and the device), [`camera`] (GLU matrices), [`geometry`] ([`mesh`], [`tess`]:
 //!   GLUT's solids, OBJ models, pictures), [`params`] (named, ranged values), [`user_files`],
 //!   [`fsutil`] (files in and out, never lost), [`memory`] (what the process may still take),
-//!   [`panics`] (dependencies' panics contained),
-//!   [`error`].
-//! - The speed/accuracy yardsticks of the tests and studies, which nothing above uses: [`exact`],
-//!   [`metrics`], [`noise`].
+//!   [`panics`] (dependencies' panics contained), [`error`] (the typed errors).
+//! - [`study`]: the speed/accuracy yardsticks of the tests and studies, which nothing above
+//!   uses: [`exact`], [`metrics`], [`noise`].
 //!
 //! Everything that needs no GPU can be used directly, e.g. GLUT's meshes and the tessellation
 //! level `--tess auto` would pick:
@@ -61,8 +63,114 @@ pub mod study;
 pub mod user_files;
 
 pub use error::{Error, Result};
+pub use geometry::tess::Object;
 pub use geometry::{mesh, tess};
 pub use gpu::Gpu;
 pub use lab::{Lab, LabEntry};
 pub use study::{exact, metrics, noise};
-pub use tess::Object;
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    /// The names this file re-exports at the crate's root (`pub use a::{b, c};`, `pub use a::b;`).
+    fn root_re_exports(lib: &str) -> Vec<String> {
+        let mut names = Vec::new();
+        for line in lib.lines().filter_map(|l| l.strip_prefix("pub use ")) {
+            let line = line.trim_end_matches(';');
+            let list = match line.split_once("::{") {
+                Some((_, list)) => list.trim_end_matches('}').to_owned(),
+                None => line.rsplit("::").next().unwrap_or(line).to_owned(),
+            };
+            names.extend(list.split(',').map(|n| n.trim().to_owned()).filter(|n| !n.is_empty()));
+        }
+        names
+    }
+
+    /// The places in `text` that name `crate::NAME` for one of `names` (not `$crate::`, which a
+    /// macro expands where the crate's user wrote it, nor a longer path ending in `crate`).
+    fn through_the_root(text: &str, names: &[String]) -> Vec<String> {
+        let mut found = Vec::new();
+        for (at, _) in text.match_indices("crate::") {
+            let before = text[..at].chars().next_back();
+            if before.is_some_and(|c| c.is_alphanumeric() || matches!(c, '_' | ':' | '$')) {
+                continue;
+            }
+            let rest = &text[at + "crate::".len()..];
+            let ident: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            if names.contains(&ident) {
+                let line = text[..at].matches('\n').count() + 1;
+                found.push(format!("{line}: crate::{ident}"));
+            }
+        }
+        found
+    }
+
+    /// The layer list above and the README's "How it is built" name every module of the crate.
+    #[test]
+    fn the_layer_lists_name_every_module() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let lib = std::fs::read_to_string(root.join("src/lib.rs")).unwrap();
+        let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+        let doc: String = lib.lines().filter_map(|l| l.strip_prefix("//!")).collect();
+        let tree = readme
+            .split("## How it is built")
+            .nth(1)
+            .and_then(|rest| rest.split("```").nth(1))
+            .expect("README: a tree under \"How it is built\"");
+        let modules: Vec<&str> = lib
+            .lines()
+            .filter_map(|l| l.strip_prefix("pub mod ")?.strip_suffix(';'))
+            .collect();
+        assert!(modules.len() > 10, "{modules:?}");
+        for module in modules {
+            assert!(
+                doc.contains(&format!("[`{module}`]")),
+                "lib.rs's layers leave out `{module}`"
+            );
+            let named = tree
+                .split_whitespace()
+                .any(|w| w == format!("{module}/") || w == format!("{module}.rs"));
+            assert!(named, "README's \"How it is built\" leaves out `{module}`");
+        }
+    }
+
+    /// The crate's root re-exports are for its users: inside the crate every module names an
+    /// item by the module that defines it (`crate::geometry::mesh`, `crate::error::Error`), so
+    /// that no lower layer depends on the root, which holds every layer.
+    #[test]
+    fn inside_the_crate_items_are_named_by_their_modules_not_the_root() {
+        let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let names = root_re_exports(&std::fs::read_to_string(src.join("lib.rs")).unwrap());
+        for name in ["mesh", "Error", "metrics", "Object"] {
+            assert!(names.iter().any(|n| n == name), "{name} in {names:?}");
+        }
+        let sample = "use crate::mesh::Mesh;\nfn f() -> crate::Result<()> { $crate::mesh; crate::geometry::mesh }";
+        assert_eq!(through_the_root(sample, &names), ["1: crate::mesh", "2: crate::Result"]);
+
+        let mut found = Vec::new();
+        let mut dirs = vec![src.clone()];
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    dirs.push(path);
+                } else if path.extension().is_some_and(|e| e == "rs") && path != src.join("lib.rs") {
+                    let text = std::fs::read_to_string(&path).unwrap();
+                    let file = path.strip_prefix(&src).unwrap().display().to_string();
+                    found.extend(
+                        through_the_root(&text, &names)
+                            .into_iter()
+                            .map(|f| format!("src/{file}:{f}")),
+                    );
+                }
+            }
+        }
+        found.sort();
+        assert!(
+            found.is_empty(),
+            "named through the crate's root re-exports:\n{}",
+            found.join("\n")
+        );
+    }
+}

@@ -65,12 +65,12 @@ fn address_space_limit() -> Option<u64> {
     None
 }
 
-/// Refuses, as [`crate::Error::Limit`], work that needs about `bytes` of memory when this
+/// Refuses, as [`crate::error::Error::Limit`], work that needs about `bytes` of memory when this
 /// process may take less ([`available`]); `what` names the work (`"big.png (8192×8192)"`).
-pub fn check(what: &str, bytes: u64) -> crate::Result<()> {
+pub fn check(what: &str, bytes: u64) -> crate::error::Result<()> {
     use crate::fsutil::human_bytes;
     match available() {
-        Some(free) if bytes > free => Err(crate::Error::Limit(format!(
+        Some(free) if bytes > free => Err(crate::error::Error::Limit(format!(
             "{what} needs about {} of memory; this process may take {} now (the machine's free memory, within \
              its `ulimit -v` if it has one)",
             human_bytes(bytes),

@@ -190,7 +190,7 @@ fn the_readmes_example_lab_is_the_real_file() {
     let root = env!("CARGO_MANIFEST_DIR");
     let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
     let file = std::fs::read_to_string(format!("{root}/src/labs/seed000/position_rgb.rs")).unwrap();
-    let code = &file[file.find("use crate::lab").expect("the file's first use")..];
+    let code = &file[file.find("\nuse ").expect("the file's first use") + 1..];
     let shown = readme
         .split("```rust\n")
         .nth(1)

@@ -212,7 +212,8 @@ pub fn mip_chain(level0: &Image) -> Vec<Image> {
 
 /// How many RGBA8 copies of a picture are alive at once on its way to the GPU, at the most: the
 /// decoder's, the RGBA copy, a flipped copy, the mipmaps, the upload and the driver's texture
-/// (measured: docs/bad-input.md, "A model too large, or anything under a memory limit").
+/// (the measured peak stays under it; figures: `docs/speed.md`, "Large meshes, models and
+/// pictures").
 const PICTURE_COPIES: u64 = 7;
 
 /// The largest picture file read (64 MiB); a full 8192×8192 RGBA PNG without any compression

@@ -79,8 +79,8 @@ impl Mesh {
     ///   NaN never welds. (A plain bitwise key for all positions would miss the teapot's 1-2 ulp
     ///   seams: 1890 instead of 1621 vertices at grid 8, and cracks.) Vertices whose 27 cells
     ///   hold no other position (`isolated_leaders`, nearly all of a fine mesh) skip the grid:
-    ///   27 hash probes each into a table of millions of cells made the level-512 teapot (8.4 M
-    ///   vertices) take a minute and 2.3 GB.
+    ///   27 hash probes each into a table of millions of cells are slow and large for a fine
+    ///   mesh (figures: `docs/speed.md`, "Large meshes, models and pictures").
     pub fn welded(&self) -> Mesh {
         let max_abs = self
             .vertices

@@ -13,8 +13,8 @@
 //! groups and unknown keywords are ignored.
 //!
 //! Read by hand in one pass, not with `tobj`: the checks above need every line read anyway, and
-//! reading the text twice (checked here, then parsed again by tobj and matched back) cost twice
-//! the time and memory (2 M triangles: 2.5 s and 1.1 GB, now well under half; issue 33).
+//! reading the text twice (checked here, then parsed again by tobj and matched back) takes twice
+//! the time and memory (figures: `docs/speed.md`, "Large meshes, models and pictures").
 
 use crate::error::{Error, Result};
 use bytemuck::{Pod, Zeroable};
@@ -66,9 +66,9 @@ pub const SUZANNE_OBJ: &str = include_str!("../../assets/suzanne.obj");
 /// The largest OBJ file read (256 MiB, some 5 million triangles); the course's Suzanne is 60 KiB.
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 
-/// The memory an OBJ file takes to read and parse, per byte of the file, at the most: its text,
-/// the positions and the corners, with the spare room of growing lists (measured:
-/// docs/bad-input.md, "A model too large, or anything under a memory limit").
+/// The memory an OBJ file takes to read and parse, per byte of the file, at the most (its text,
+/// the positions and the corners, with the spare room of growing lists); the measured peak
+/// stays under it (figures: `docs/speed.md`, "Large meshes, models and pictures").
 const OBJ_MEMORY_PER_BYTE: u64 = 16;
 
 /// Reads and parses an OBJ file: a regular file of at most [`MAX_OBJ_BYTES`]

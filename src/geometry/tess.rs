@@ -9,7 +9,7 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
-use crate::mesh::Mesh;
+use crate::geometry::mesh::Mesh;
 
 /// The four objects of keys `1`..`4`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

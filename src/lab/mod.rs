@@ -144,7 +144,7 @@ pub trait Lab: wgpu::WasmNotSend {
     }
     /// An error found while drawing that the window should show once (e.g. a model whose
     /// shader is broken); `None` when all is well.
-    fn take_error(&mut self) -> Option<crate::Error> {
+    fn take_error(&mut self) -> Option<crate::error::Error> {
         None
     }
 }

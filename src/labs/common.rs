@@ -4,10 +4,10 @@
 use glam::{Mat3, Mat4};
 
 use crate::camera;
+use crate::geometry::tess::Object;
 use crate::lab::Input;
 use crate::params::{ParamSpec, Params};
 use crate::render::Culling;
-use crate::tess::Object;
 
 /// The shared transform block of `transform.glsl`: the GL 2.0 built-in matrices.
 #[repr(C)]

@@ -126,7 +126,8 @@ mod tests {
                 .map(|e| e.info.name)
                 .collect()
         };
-        // SuzanneStage (the model) is built by suzanne_plain, suzanne_textured and suzanne_lit.
+        // The model (`seed004::stage::Model`) is built by `seed004::suzanne`'s three families:
+        // `draw` (normals as colour), `sample` (textured) and `shade` (lit).
         assert_eq!(
             with(|t| t.model),
             [
@@ -140,7 +141,7 @@ mod tests {
                 "suzanne_phong"
             ]
         );
-        // `cx.files.texture` is read by suzanne_textured, texparams and legacy.
+        // `cx.files.texture` is read by `seed004::suzanne::sample`, texparams and legacy.
         assert_eq!(
             with(|t| t.texture),
             ["suzanne_texture", "suzanne_texture_color", "texparams", "legacy"]

@@ -26,7 +26,7 @@ impl LegacySource {
 
     /// Reads a file: a regular file of at most 1 MiB in UTF-8, as every shader file
     /// ([`crate::shader::read_shader_file`]).
-    pub fn read(path: &std::path::Path) -> crate::Result<Self> {
+    pub fn read(path: &std::path::Path) -> crate::error::Result<Self> {
         // The rule of every shader file: a regular file of at most 1 MiB, UTF-8.
         let text = crate::shader::read_shader_file(path)?;
         // A byte-order mark is not GLSL.

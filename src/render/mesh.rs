@@ -41,7 +41,7 @@ macro_rules! vertex_type {
 }
 
 // GLUT's meshes: gl_Vertex and gl_Normal, as seed 000's shaders name them.
-vertex_type!(crate::mesh::Vertex, {
+vertex_type!(crate::geometry::mesh::Vertex, {
     position: "vertex_position" => Float32x3,
     normal: "vertex_normal" => Float32x3,
 });
@@ -51,11 +51,11 @@ vertex_type!(crate::mesh::Vertex, {
 /// memory is the machine's own) everything it takes (`total_bytes`, CPU copies included) within
 /// the memory the machine has available now. A model too large is then one clear message
 /// instead of a driver's out-of-memory error after a minute of work.
-pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) -> crate::Result<()> {
+pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) -> crate::error::Result<()> {
     use crate::fsutil::human_bytes;
     let max = gpu.device.limits().max_buffer_size;
     if buffer_bytes > max {
-        return Err(crate::Error::Limit(format!(
+        return Err(crate::error::Error::Limit(format!(
             "{what} needs a vertex buffer of {} ({buffer_bytes} bytes); this GPU takes at most {} in one buffer",
             human_bytes(buffer_bytes),
             human_bytes(max)
@@ -72,8 +72,8 @@ pub fn check_fits(gpu: &Gpu, what: &str, buffer_bytes: u64, total_bytes: u64) ->
 
 /// Triangles above which a mesh is large: an automatic choice (`auto`) never draws more, and a
 /// mesh a user asks for beyond it is announced with its cost before it is drawn (on a software
-/// rasteriser each frame of such a mesh takes seconds, and memory climbs by the gigabyte:
-/// `phong_fragment --tess 512`'s teapot, 8.4 M triangles, took 11 s and 1.4 GB).
+/// rasteriser each frame of such a mesh takes seconds, and memory climbs by the gigabyte;
+/// figures: `docs/speed.md`, "Large meshes, models and pictures").
 pub const LARGE_MESH_TRIANGLES: u64 = 1_000_000;
 
 /// Prints `message` on stderr once per process (a window draws the same state many times).
@@ -284,9 +284,9 @@ const GUARD_EDGE_LIMIT: usize = 16;
 const GUARD_CELL_LIMIT: usize = 512;
 
 impl TieGuard {
-    /// Finds the mesh's edges and the triangles that cross another: 2-4 ms for GLUT's teapot
-    /// (3136 triangles), 0.5-0.9 s for half a million triangles (built with a mesh's first
-    /// order; a large mesh sorts only once its view holds still).
+    /// Finds the mesh's edges and the triangles that cross another, once per mesh (built with
+    /// a mesh's first order; a large mesh sorts only once its view holds still; figures:
+    /// `docs/speed.md`, "Ordering the triangles").
     pub fn new(positions: &[[f32; 3]], indices: &[u32]) -> Self {
         use glam::{IVec3, Vec3};
         let points: Vec<Vec3> = positions.iter().map(|&p| Vec3::from_array(p)).collect();
@@ -548,11 +548,11 @@ fn near(a: &[glam::Vec3; 3], b: &[glam::Vec3; 3], eps: f32) -> bool {
 /// ([`facing_first`]; the labs' `faces=facing_first`). Mesh order draws the mesh as given,
 /// indexed or not, untouched; the view's order is drawn through an indexed copy built on first
 /// use, whose index buffer is rewritten only when the view changes: a still picture costs
-/// nothing per frame, a turning one a sort on the CPU and one `write_buffer` (5 µs for GLUT's
-/// torus, 14 µs for its teapot). A mesh of more than [`SORT_EVERY_FRAME`] triangles is sorted
-/// only once the view holds still for a frame, and drawn in its last order meanwhile: any
-/// order draws the same pixels but for exact depth ties, and sorting a 512-level torus (half a
-/// million triangles) takes 6.6 ms.
+/// nothing per frame, a turning one a sort on the CPU and one `write_buffer`. A mesh of more
+/// than [`SORT_EVERY_FRAME`] triangles is sorted only once the view holds still for a frame,
+/// and drawn in its last order meanwhile: any order draws the same pixels but for exact depth
+/// ties, and sorting a mesh that large in every frame of a turn would slow the turn (figures:
+/// `docs/speed.md`, "Ordering the triangles").
 pub struct ViewOrdered<V: VertexType> {
     label: String,
     plain: GpuMesh<V>,
@@ -569,7 +569,8 @@ pub struct ViewOrdered<V: VertexType> {
     guard: Option<std::cell::OnceCell<TieGuard>>,
 }
 
-/// The most triangles [`ViewOrdered`] sorts in the frame their view changes (about 0.7 ms).
+/// The most triangles [`ViewOrdered`] sorts in the frame their view changes (figures:
+/// `docs/speed.md`, "Ordering the triangles").
 pub const SORT_EVERY_FRAME: usize = 65_536;
 
 impl<V: VertexType> ViewOrdered<V> {

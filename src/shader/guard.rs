@@ -26,18 +26,18 @@ use std::ops::Range;
 pub const MAX_DEPTH: usize = 256;
 
 /// The most tokens a shader's macro expansions may produce, all together. naga's GLSL front
-/// end is slower than linear in the tokens: 2.6 s for 262,144 (2^16 nested `(A+A)`), 9.8 s for
-/// twice as many.
+/// end is slower than linear in the tokens, and takes seconds at this many (figures:
+/// `docs/speed.md`, "Shader limits").
 pub const MAX_EXPANDED_TOKENS: usize = 1 << 18;
 
 /// The most tokens outside function bodies (declarations, constant initializers): naga's
-/// handling of global constants is slower than linear, 2.6 s for 262,144 tokens of `const`
-/// initializers. A 4096-entry constant table is under 10,000.
+/// handling of global constants is slower than linear (figures: `docs/speed.md`, "Shader
+/// limits"). A 4096-entry constant table is under 10,000.
 pub const MAX_GLOBAL_TOKENS: usize = 1 << 16;
 
 /// The most tokens a function may have with every call inlined, as the GPU driver compiles it.
-/// Mesa's lavapipe takes 3 s and 350 MB for 150,000 (a 14-deep chain of `f(x) + f(x)`), and
-/// crashes after 3 GB long before 2^40.
+/// Mesa's lavapipe takes seconds and hundreds of megabytes at this many, and crashes long
+/// before a chain of doubling calls reaches 2^40 (figures: `docs/speed.md`, "Shader limits").
 pub const MAX_INLINED_TOKENS: u64 = 1 << 17;
 
 /// A limit the text passes: where (a byte range of the text checked) and why.

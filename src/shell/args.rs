@@ -185,7 +185,7 @@ fn parse_tess(s: &str) -> Result<f64, String> {
         return Ok(-1.0);
     }
     match s.parse::<u32>() {
-        Ok(n) if (crate::tess::MIN_LEVEL..=crate::tess::MAX_LEVEL).contains(&n) => Ok(f64::from(n)),
+        Ok(n) if (crate::geometry::tess::MIN_LEVEL..=crate::geometry::tess::MAX_LEVEL).contains(&n) => Ok(f64::from(n)),
         _ => Err(format!("`{s}`: expected `auto` or a level from 3 to 512")),
     }
 }

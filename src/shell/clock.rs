@@ -103,10 +103,10 @@ mod tests {
         fn input(&mut self, _: Input) -> bool {
             false
         }
-        fn reload(&mut self, _: &crate::lab::BuildContext) -> crate::Result<()> {
+        fn reload(&mut self, _: &crate::lab::BuildContext) -> crate::error::Result<()> {
             Ok(())
         }
-        fn render(&mut self, _: &mut Frame<'_>) -> crate::Result<()> {
+        fn render(&mut self, _: &mut Frame<'_>) -> crate::error::Result<()> {
             Ok(())
         }
         fn animated(&self) -> bool {

@@ -98,9 +98,10 @@ pub fn ensure_runtime_dir() {
 
 /// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` orders the GPUs so that the one
 /// driving the display comes first: to know it, it connects to the X server (and Wayland) twice
-/// while the adapters are listed, ~25 ms of every start under Xvfb. An offscreen run
-/// (`--screenshot`, `--bench`) draws into no display, so it skips the layer, unless the user
-/// steers it (`MESA_VK_DEVICE_SELECT`, or `NODEVICE_SELECT` set either way).
+/// while the adapters are listed, which lengthens every start (figures: `docs/speed.md`,
+/// "Start-up"). An offscreen run (`--screenshot`, `--bench`) draws into no display, so it
+/// skips the layer, unless the user steers it (`MESA_VK_DEVICE_SELECT`, or `NODEVICE_SELECT`
+/// set either way).
 #[cfg(not(target_arch = "wasm32"))]
 fn skip_display_device_select() {
     if std::env::var_os("MESA_VK_DEVICE_SELECT").is_some() || std::env::var_os("NODEVICE_SELECT").is_some() {

@@ -240,8 +240,8 @@ pub fn record(
             let (centis, _) = gif_delay(recording.fps);
             with_errors(path, |w, failed| {
                 use image::codecs::gif::{GifEncoder, Repeat};
-                // Speed 10 of 1–30: NeuQuant's palette at a tenth of the pixels, ~10x faster
-                // than 1 with no visible loss on these flat-shaded pictures.
+                // Speed 10 of 1–30: NeuQuant learns the palette from a tenth of the pixels (1:
+                // from every pixel), with no visible loss on these flat-shaded pictures.
                 let mut encoder = GifEncoder::new_with_speed(w, 10);
                 encoder.set_repeat(Repeat::Infinite).map_err(io::Error::other)?;
                 for k in 0..recording.frames {

@@ -1,10 +1,10 @@
 //! Presenting through X shared memory (MIT-SHM) for CPU adapters.
 //!
-//! lavapipe's X11 swapchain (Mesa 22) sends every frame through the X socket (`PutImage`,
-//! ~0.8 ms for 640x360 on the test machine), while the original's GL driver puts its frames
-//! through shared memory. For a CPU adapter under X11 the window can do the same: the lab draws
-//! into an offscreen `Bgra8Unorm` target, the frame is copied into a System V shared memory
-//! segment the X server has attached, and one `ShmPutImage` shows it. Three segments take
+//! lavapipe's X11 swapchain (Mesa 22) sends every frame through the X socket (`PutImage`;
+//! figures: `docs/speed.md`, "Presenting a window's frame"), while the original's GL driver puts
+//! its frames through shared memory. For a CPU adapter under X11 the window can do the same: the
+//! lab draws into an offscreen `Bgra8Unorm` target, the frame is copied into a System V shared
+//! memory segment the X server has attached, and one `ShmPutImage` shows it. Three segments take
 //! turns, so the server shows one frame while the next is drawn; a segment is written again
 //! only after the server's completion event for it. The pixels are the ones the swapchain would
 //! show (same format, same pipelines).

@@ -10,10 +10,11 @@
 //! Differences from the native shell, all forced by the browser: start-up is async (no
 //! blocking on the GPU), there are no files (shaders are built in, edits live in memory as
 //! [`ShaderSource::Edited`], user files come from the page as bytes), and a validation error
-//! on WebGPU reaches the console rather than a `Result` ([`crate::Gpu::checked`]).
+//! on WebGPU reaches the console rather than a `Result` ([`Gpu::checked`]).
 //!
-//! Results cross to JavaScript as JSON text (a handful of flat records; written here by
-//! [`json`] rather than pulling serde into the build for them).
+//! Results cross to JavaScript as JSON text, written with `serde_json` (as the debugger's
+//! `--json` is): the labs, the parameters' controls, errors as `{"error": "..."}` and the
+//! inspector's report (`Inspection::json`).
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;

@@ -15,6 +15,7 @@ use glam::Vec3;
 use crate::camera;
 use crate::error::{Error, Result};
 use crate::geometry::images::{self, Image};
+use crate::geometry::tess::{self, Object};
 use crate::gpu::Gpu;
 use crate::lab::{BuildContext, FilesTaken, Input, Lab, LabEntry, LabInfo, UserFiles};
 use crate::legacy::{self, state, LegacySource, SamplerDim, Translation, STATE_BLOCK, UNIFORM_BLOCK};
@@ -23,7 +24,6 @@ use crate::render::{
     sampler, AnyProgram, Bind, Frame, GpuMesh, Load, Program, RenderState, Resource, SamplerDesc, Texture,
 };
 use crate::shader::{CompiledShader, ShaderSource};
-use crate::tess::{self, Object};
 
 use crate::labs::seed000::stage::{GlutGeometry, StageConfig, PARAMS_000};
 

@@ -3,11 +3,11 @@
 //! with a clock in seconds. Keys: `R/r G/g B/b` ±0.05 on the shade colour (clamped to [0, 1]),
 //! `1`-`4` objects, mouse drag rotates, Space pauses the clock.
 
+use crate::geometry::tess::Object;
 use crate::lab::{Keys, LabInfo, Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
 use crate::params::{ParamSpec, Params};
 use crate::render::Derived;
-use crate::tess::Object;
 
 use crate::labs::seed000::stage::{title_000, Solid, PARAMS_000};
 use crate::labs::seed000::{noise_time, NOISE_PARAMS, SHADE_KEYS};

@@ -1,9 +1,9 @@
 //! Exercise 2, normal → RGB (`Lab05-2`): `normalize(gl_NormalMatrix * gl_Normal)` in eye space
 //! as colour; negative components clamp to 0. Keys: `1`-`4` objects, mouse drag rotates.
 
+use crate::geometry::tess::Object;
 use crate::lab::{Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
-use crate::tess::Object;
 
 use crate::labs::seed000::stage::{Solid, PARAMS_000};
 use crate::labs::seed000::STAGE_KEYS;

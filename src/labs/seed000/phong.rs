@@ -16,13 +16,13 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
+use crate::geometry::mesh::{Mesh, Vertex};
+use crate::geometry::tess::Object;
 use crate::lab::{BuildContext, Input, Key::C, KeyRow, Keys, Lab, LabEntry, LabInfo};
 use crate::labs::common::FaceOrder;
-use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Derived, Frame, GpuMesh, Load, ParamBlock, Program, RenderState, Uniforms};
 use crate::shader::ShaderSource;
-use crate::tess::Object;
 
 use crate::labs::common::TransformUniforms;
 use crate::labs::seed000::stage::{title_000, GlutGeometry, StageConfig, PARAMS_000};

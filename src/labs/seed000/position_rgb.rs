@@ -2,9 +2,9 @@
 //! + 0.5` — a 4-component normalize with w = 1 — so the object shows its position as colour,
 //! z as red, y as green, x as blue; values above 1 clamp. Keys: `1`-`4` objects, mouse drag rotates.
 
+use crate::geometry::tess::Object;
 use crate::lab::{Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
-use crate::tess::Object;
 
 use crate::labs::seed000::stage::{Solid, PARAMS_000};
 use crate::labs::seed000::STAGE_KEYS;

@@ -9,14 +9,14 @@ use std::collections::HashMap;
 use glam::{Mat3, Mat4, Vec3};
 
 use crate::camera;
+use crate::geometry::mesh::{Mesh, Vertex};
 use crate::gpu::Gpu;
 use crate::lab::{Input, LabInfo};
-use crate::mesh::{Mesh, Vertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Culling, GpuMesh, Uniforms, ViewOrdered};
 
+use crate::geometry::tess::{self, Object};
 use crate::labs::common::{self, object_key, std140_mat3, FaceOrder, GlutMouse, TransformUniforms, XANGLE, YANGLE};
-use crate::tess::{self, Object};
 
 /// Seed 000's object order (keys `1`-`4`: cube, sphere, torus, teapot).
 pub const OBJECTS_000: &[&str] = &["cube", "sphere", "torus", "teapot"];
@@ -95,7 +95,8 @@ pub struct GlutGeometry {
 
 impl GlutGeometry {
     /// A stage with no mesh built yet: [`GlutGeometry::prepare`] builds the drawn one on first use
-    /// (building all four up front cost every start ~0.5 ms for objects never drawn).
+    /// (building all four up front would lengthen every start for objects never drawn; figures:
+    /// `docs/speed.md`, "Start-up").
     pub fn new(gpu: &Gpu, label: &str, config: StageConfig) -> Self {
         let meshes = HashMap::new();
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);

@@ -14,8 +14,8 @@
 use glam::Vec3;
 
 use crate::error::Result;
+use crate::geometry::mesh::Vertex;
 use crate::lab::{BuildContext, Geometry, Input, Key::C, KeyRow, Keys, Scene};
-use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
 

@@ -10,12 +10,12 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use crate::camera;
+use crate::geometry::mesh::Vertex;
+use crate::geometry::tess::Object;
 use crate::gpu::Gpu;
 use crate::lab::Input;
-use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, Culling, GpuMesh, Uniforms, VertexType, ViewOrdered};
-use crate::tess::Object;
 
 use crate::labs::common::{self, object_key, FaceOrder, GlutMouse, TransformUniforms, XANGLE, YANGLE};
 
@@ -146,7 +146,7 @@ pub const TESS: &[ParamSpec] = &[ParamSpec::int(
     "tess",
     &[0.0],
     0.0,
-    crate::tess::MAX_LEVEL as f64,
+    crate::geometry::tess::MAX_LEVEL as f64,
     "port: tessellation of sphere, torus (slices = stacks) and teapot (0: GLUT's 24, 24, 8)",
 )];
 
@@ -175,7 +175,10 @@ impl Solids {
             .or_insert_with(|| {
                 let mesh = match level {
                     0 => object.mesh(),
-                    l => crate::tess::mesh(object, l.clamp(crate::tess::MIN_LEVEL, crate::tess::MAX_LEVEL)),
+                    l => crate::geometry::tess::mesh(
+                        object,
+                        l.clamp(crate::geometry::tess::MIN_LEVEL, crate::geometry::tess::MAX_LEVEL),
+                    ),
                 };
                 let positions = mesh.vertices.iter().map(|v| v.position).collect();
                 ViewOrdered::new(

@@ -9,11 +9,11 @@ use glam::Vec3;
 
 use crate::geometry::glut::teapot_texcoords;
 use crate::geometry::images;
+use crate::geometry::mesh::Mesh;
+use crate::geometry::tess::Object;
 use crate::lab::{Keys, Material, MaterialScene, Recipe, ShaderPair};
 use crate::labs::common::FaceOrder;
-use crate::mesh::Mesh;
 use crate::render::{sampler, Bind, SamplerDesc, Texture, ViewOrdered};
-use crate::tess::Object;
 
 use crate::labs::seed001::stage::{OrderedGeometry, UstcView, FACES, ROTATION};
 

@@ -16,9 +16,9 @@ use bytemuck::Zeroable;
 use glam::Vec3;
 
 use crate::error::{Error, Result};
+use crate::geometry::mesh::Vertex;
 use crate::gpu::Gpu;
 use crate::lab::{Geometry, Input, Key::C, KeyRow, Keys, Material, MaterialScene, Recipe, ShaderPair};
-use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, Uniforms};
 use crate::shader::CompiledShader;

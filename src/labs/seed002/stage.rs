@@ -12,13 +12,13 @@
 use glam::{Mat4, Vec3};
 
 use crate::camera;
+use crate::geometry::mesh::Vertex;
+use crate::geometry::tess::Object;
 use crate::gpu::Gpu;
 use crate::lab::Geometry;
 use crate::labs::common::{FaceOrder, TransformUniforms};
-use crate::mesh::Vertex;
 use crate::params::Params;
 use crate::render::{Bind, GpuMesh, Uniforms, ViewOrdered};
-use crate::tess::Object;
 
 /// `gluPerspective(60, 1, 0.1, 100)`: the course passes aspect 1 whatever the window.
 pub const PERSPECTIVE: (f64, f64, f64, f64) = (60.0, 1.0, 0.1, 100.0);

@@ -126,8 +126,8 @@ impl Model {
             Some(file) => {
                 // Two VBOs (face and vertex normals), each uploaded through a staging copy, with
                 // the positions and index lists kept to reorder it, and the driver's own work
-                // per vertex drawn: about 250 bytes per corner on lavapipe (10 M triangles, 30 M
-                // corners: 9.7 GB at its peak, 2.2 GB of it the model as read).
+                // per vertex drawn: about 250 bytes per corner on lavapipe (figures:
+                // `docs/speed.md`, "Large meshes, models and pictures").
                 let corners = file.data.corners.len() as u64;
                 let vbo = corners * std::mem::size_of::<ObjCorner>() as u64;
                 let total = corners * 250;

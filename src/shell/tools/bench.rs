@@ -5,13 +5,14 @@
 //! a comparison with the original is measured side by side, alternating, with the originals'
 //! `bench-vs-original` script (see `docs/speed.md`), never against stored figures.
 
+use crate::gpu::Gpu;
 use crate::lab::BuildContext;
+use crate::labs;
 use crate::offscreen::COLOR_FORMAT;
 use crate::params::Kind;
 use crate::shader::ShaderSource;
 use crate::shell::bench;
 use crate::shell::{say, tool_exit};
-use crate::{labs, Gpu};
 use clap::{CommandFactory, FromArgMatches, Parser};
 
 #[derive(Parser)]

@@ -81,15 +81,15 @@ fn check_output(output: &Path) -> anyhow::Result<()> {
 
 /// An output's error: a usage error (status 2) for a name that cannot take the output (an
 /// input, a directory), else the library's message.
-fn output_error(e: crate::Error) -> anyhow::Error {
+fn output_error(e: crate::error::Error) -> anyhow::Error {
     match e {
-        crate::Error::Param(message) => Usage(message).into(),
+        crate::error::Error::Param(message) => Usage(message).into(),
         e => lib(e),
     }
 }
 
 /// A library error as one message (its Display already names the cause).
-fn lib(e: crate::Error) -> anyhow::Error {
+fn lib(e: crate::error::Error) -> anyhow::Error {
     anyhow::anyhow!("{e}")
 }
 

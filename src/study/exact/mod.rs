@@ -217,7 +217,7 @@ pub struct SilhouetteError {
 }
 
 /// Silhouette error in pixels between a rendered coverage mask (row-major, top row first, as
-/// [`ExactScene::coverage_mask`] and [`crate::metrics::mask`] give it) and the exact one: for
+/// [`ExactScene::coverage_mask`] and [`crate::study::metrics::mask`] give it) and the exact one: for
 /// every pixel whose coverage differs, the distance from its centre to the exact silhouette;
 /// the maximum, the mean and the number of differing pixels.
 ///
@@ -229,16 +229,16 @@ pub struct SilhouetteError {
 /// quarter pixel and more (at most 1/16 pixel right at the curve). Features thinner than an
 /// eighth of a pixel that fall between samples are not seen.
 ///
-/// A mask that is not `width * height` long is an [`Error::Param`](crate::Error::Param).
+/// A mask that is not `width * height` long is an [`Error::Param`](crate::error::Error::Param).
 pub fn silhouette_error(
     exact: &ExactScene,
     rendered_mask: &[bool],
     width: u32,
     height: u32,
-) -> crate::Result<SilhouetteError> {
+) -> crate::error::Result<SilhouetteError> {
     let (w, h) = (width as usize, height as usize);
     if rendered_mask.len() != w * h {
-        return Err(crate::Error::Param(format!(
+        return Err(crate::error::Error::Param(format!(
             "the mask has {} entries, not {width} x {height}",
             rendered_mask.len()
         )));
@@ -361,21 +361,21 @@ pub struct ImageError {
 }
 
 /// Accuracy of `rendered` against `exact`: RMSE (0..255 units over RGB), the maximum per-pixel
-/// error (max over channels) and PSNR, as [`crate::metrics`] computes them.
-/// Images of different sizes are an [`Error::Param`](crate::Error::Param).
-pub fn image_error(exact: &RgbImage, rendered: &RgbImage) -> crate::Result<ImageError> {
+/// error (max over channels) and PSNR, as [`crate::study::metrics`] computes them.
+/// Images of different sizes are an [`Error::Param`](crate::error::Error::Param).
+pub fn image_error(exact: &RgbImage, rendered: &RgbImage) -> crate::error::Result<ImageError> {
     let size_error = || {
-        crate::Error::Param(format!(
+        crate::error::Error::Param(format!(
             "cannot compare a {:?} image with a {:?} one",
             exact.dimensions(),
             rendered.dimensions()
         ))
     };
-    let mse = crate::metrics::mse(exact, rendered).ok_or_else(size_error)?;
+    let mse = crate::study::metrics::mse(exact, rendered).ok_or_else(size_error)?;
     Ok(ImageError {
         rmse: mse.sqrt(),
-        max: crate::metrics::max_abs_diff(exact, rendered).ok_or_else(size_error)?,
-        psnr: crate::metrics::psnr(exact, rendered).ok_or_else(size_error)?,
+        max: crate::study::metrics::max_abs_diff(exact, rendered).ok_or_else(size_error)?,
+        psnr: crate::study::metrics::psnr(exact, rendered).ok_or_else(size_error)?,
     })
 }
 
@@ -796,7 +796,7 @@ mod tests {
         assert!((hx - 320.0).abs() < 1e-9 && hy < 175.0, "({hx}, {hy})");
 
         let image = ExactScene::default().render(W, H);
-        let (bx, by) = crate::metrics::highlight(&image, 0.0);
+        let (bx, by) = crate::study::metrics::highlight(&image, 0.0);
         let (bx, by) = (bx + 0.5, by + 0.5); // pixel index to pixel centre
         assert!(
             ((bx - hx).powi(2) + (by - hy).powi(2)).sqrt() <= 2.0,
@@ -1014,7 +1014,7 @@ mod tests {
             );
             let background = *original.get_pixel(0, 0);
             assert_eq!(background.0, CLEAR.map(quantise));
-            let mask = crate::metrics::mask(&original, background.0, 0);
+            let mask = crate::study::metrics::mask(&original, background.0, 0);
             let e = silhouette_error(&scene, &mask, W, H).expect("sizes match");
             assert!(e.max_px <= max_px && e.mean_px < 0.6, "{name}: {e:?}");
         }
@@ -1027,7 +1027,7 @@ mod tests {
             let start = std::time::Instant::now();
             let image = scene.render(W, H);
             let render = start.elapsed();
-            let mask = crate::metrics::mask(&image, CLEAR.map(quantise), 0);
+            let mask = crate::study::metrics::mask(&image, CLEAR.map(quantise), 0);
             assert_eq!(mask, scene.coverage_mask(W, H));
             // A mask one pixel too wide, so that the silhouette is located and searched.
             let wide: Vec<bool> = (0..mask.len())
