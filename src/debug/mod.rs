@@ -51,20 +51,13 @@ pub fn source_line<'s>(shader: &'s CompiledShader, file: &str, line: u32) -> Opt
     text.lines().nth(line.checked_sub(1)? as usize)
 }
 
-/// A name as the user wrote it. The course translator renames: a uniform it holds in another
-/// form is `sl_u_NAME`, a built-in input or output `sl_Vertex` (for `gl_Vertex`), a name GLSL
-/// 450 reserves `sl_texture`.
+/// A name of `shader` as the user wrote it: a translated shader's through the translator's
+/// rule ([`crate::legacy::names::user_name`]), any other's as it is.
 pub fn user_name(shader: &CompiledShader, name: &str) -> String {
-    if !shader.translated {
-        return name.to_owned();
-    }
-    if let Some(rest) = name.strip_prefix("sl_u_") {
-        return rest.to_owned();
-    }
-    match name.strip_prefix("sl_") {
-        Some(rest) if rest.starts_with(|c: char| c.is_ascii_uppercase()) => format!("gl_{rest}"),
-        Some(rest) => rest.to_owned(),
-        None => name.to_owned(),
+    if shader.translated {
+        crate::legacy::names::user_name(name)
+    } else {
+        name.to_owned()
     }
 }
 
