@@ -2,7 +2,7 @@
 //!
 //! A frame is drawn as usual with its draws written down ([`crate::render::DrawLog`]), the
 //! buffers they drew from are read back ([`capture`]), and the frame is replayed on the CPU for
-//! one pixel ([`replay`]): the vertex shader over every vertex for the positions, the
+//! one pixel ([`mod@replay`]): the vertex shader over every vertex for the positions, the
 //! rasteriser's coverage, depth test and `discard` for which fragment stays ([`raster`]), then
 //! that fragment traced — its triangle's corners through the vertex shader and its 2×2 quad
 //! through the fragment shader ([`interp`], naga's IR of the very module the pipeline was built

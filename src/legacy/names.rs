@@ -1,5 +1,5 @@
 //! The names the translator writes where the user's own cannot stand in GLSL 450, and the way
-//! back to the user's: one rule for the translator ([`super::translate`]) and for the
+//! back to the user's: one rule for the translator ([`super::translate()`]) and for the
 //! debugger, which shows a translated shader's steps under the names the user wrote
 //! ([`user_name`]).
 //!
