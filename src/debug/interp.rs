@@ -919,7 +919,41 @@ impl<'m> Run<'m> {
         Ok(v)
     }
 
+    /// Evaluates `expr` (expression `h`): the match picks its family, each family has its own
+    /// function.
     fn eval_expr(&mut self, h: Handle<naga::Expression>, expr: &'m naga::Expression, span: Span) -> Res<Val> {
+        match expr {
+            E::Literal(_)
+            | E::Constant(_)
+            | E::ZeroValue(_)
+            | E::Compose { .. }
+            | E::Splat { .. }
+            | E::Swizzle { .. } => self.construct(expr, span),
+            E::FunctionArgument(_) | E::GlobalVariable(_) | E::LocalVariable(_) | E::Load { .. } => {
+                self.variable(expr, span)
+            }
+            E::AccessIndex { base, index } => self.access_index(*base, *index, span),
+            E::Access { base, index } => self.access(*base, *index, span),
+            E::Unary { .. } | E::Binary { .. } | E::Select { .. } | E::Relational { .. } | E::As { .. } => {
+                self.arithmetic(expr, span)
+            }
+            E::Math {
+                fun,
+                arg,
+                arg1,
+                arg2,
+                arg3: _,
+            } => self.built_in(*fun, *arg, *arg1, *arg2, span),
+            E::Derivative { .. } | E::ImageSample { .. } | E::ImageLoad { .. } | E::ImageQuery { .. } => {
+                self.image(h, expr, span)
+            }
+            E::CallResult(_) => fail(span, "a call's result used before the call"),
+            other => unsupported(other, span),
+        }
+    }
+
+    /// Literals, constants and values built from others: `vec3(a, b, c)`, `vec4(x)`, `v.zyx`.
+    fn construct(&mut self, expr: &'m naga::Expression, span: Span) -> Res<Val> {
         let module = self.module;
         Ok(match expr {
             E::Literal(l) => Val::Data(vec![literal(*l, span)?]),
@@ -948,6 +982,15 @@ impl<'m> Run<'m> {
                         .collect(),
                 )
             }
+            other => return unsupported(other, span),
+        })
+    }
+
+    /// A function's argument, a variable (a pointer to it, or the texture or sampler it is),
+    /// and a load through a pointer.
+    fn variable(&mut self, expr: &'m naga::Expression, span: Span) -> Res<Val> {
+        let module = self.module;
+        Ok(match expr {
             E::FunctionArgument(i) => self.frame().args[*i as usize].clone(),
             E::GlobalVariable(g) => {
                 let var = &module.global_variables[*g];
@@ -986,157 +1029,172 @@ impl<'m> Run<'m> {
                     other => other.clone(),
                 }
             }
-            E::AccessIndex { base, index } => {
-                let b = self.get(*base)?;
-                let base_ty = self.ty(*base);
-                match b.as_ref() {
-                    Val::Ptr(ptr) => {
-                        let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
-                            message: "an access through a pointer of unknown type".into(),
-                            span,
-                        })?;
-                        let (mut at, len, _) =
-                            value::part(module, &pointee, *index as usize).ok_or_else(|| Failure {
-                                message: "an access the debugger cannot follow".into(),
-                                span,
-                            })?;
-                        if let Root::Buffer(_) = ptr.root {
-                            at = value::byte_part(module, &pointee, *index)
-                                .ok_or_else(|| Failure {
-                                    message: "an access the debugger cannot follow".into(),
-                                    span,
-                                })?
-                                .0 as usize;
-                        }
-                        let members = match &pointee {
-                            TypeInner::Struct { members, .. } => Some(members.as_slice()),
-                            _ => None,
-                        };
-                        Val::Ptr(Ptr {
-                            root: ptr.root,
-                            offset: match &ptr.offset {
-                                Offset::Fixed(o) => Offset::Fixed(advance(ptr.root, *o, at)),
-                                Offset::Each(v) => Offset::Each(v.iter().map(|&o| advance(ptr.root, o, at)).collect()),
-                            },
-                            len,
-                            name: format!("{}{}", ptr.name, value::part_name(&pointee, *index as usize, members)),
-                        })
-                    }
-                    Val::Data(d) => {
-                        let (at, len, _) = value::part(module, base_ty, *index as usize).ok_or_else(|| Failure {
+            other => return unsupported(other, span),
+        })
+    }
+
+    /// `base.member` or `base[constant]`: a part of a value, or a pointer to a part.
+    fn access_index(&mut self, base: Handle<naga::Expression>, index: u32, span: Span) -> Res<Val> {
+        let module = self.module;
+        let b = self.get(base)?;
+        let base_ty = self.ty(base);
+        Ok(match b.as_ref() {
+            Val::Ptr(ptr) => {
+                let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
+                    message: "an access through a pointer of unknown type".into(),
+                    span,
+                })?;
+                let (mut at, len, _) = value::part(module, &pointee, index as usize).ok_or_else(|| Failure {
+                    message: "an access the debugger cannot follow".into(),
+                    span,
+                })?;
+                if let Root::Buffer(_) = ptr.root {
+                    at = value::byte_part(module, &pointee, index)
+                        .ok_or_else(|| Failure {
                             message: "an access the debugger cannot follow".into(),
                             span,
-                        })?;
+                        })?
+                        .0 as usize;
+                }
+                let members = match &pointee {
+                    TypeInner::Struct { members, .. } => Some(members.as_slice()),
+                    _ => None,
+                };
+                Val::Ptr(Ptr {
+                    root: ptr.root,
+                    offset: match &ptr.offset {
+                        Offset::Fixed(o) => Offset::Fixed(advance(ptr.root, *o, at)),
+                        Offset::Each(v) => Offset::Each(v.iter().map(|&o| advance(ptr.root, o, at)).collect()),
+                    },
+                    len,
+                    name: format!("{}{}", ptr.name, value::part_name(&pointee, index as usize, members)),
+                })
+            }
+            Val::Data(d) => {
+                let (at, len, _) = value::part(module, base_ty, index as usize).ok_or_else(|| Failure {
+                    message: "an access the debugger cannot follow".into(),
+                    span,
+                })?;
+                Val::Data(d[at..at + len].to_vec())
+            }
+            _ => return fail(span, "an access into a texture or sampler"),
+        })
+    }
+
+    /// `base[index]` with an index computed per lane: an element of a value, or a pointer to
+    /// one, restricted or wrapped as the GPU does.
+    fn access(&mut self, base: Handle<naga::Expression>, index: Handle<naga::Expression>, span: Span) -> Res<Val> {
+        let module = self.module;
+        let b = self.get(base)?;
+        let idx = self.data(index)?;
+        let base_ty = self.ty(base);
+        let idx = &idx[0];
+        let signed = idx.kind == Kind::I32;
+        // wgpu's Vulkan backend has naga restrict an index into a variable or a value
+        // (`BoundsCheckPolicy::Restrict`): `min(index, n − 1)` compared as unsigned, so
+        // a negative index reads the last element.
+        let clamp = |bits: u32, n: usize| -> usize { (bits as usize).min(n.saturating_sub(1)) };
+        let n = match b.as_ref() {
+            Val::Ptr(_) => pointee(module, base_ty).as_ref().and_then(value::elements),
+            _ => value::elements(base_ty),
+        };
+        if let Some(n) = n {
+            if (0..idx.bits.len()).any(|l| idx.bits.at(l) as usize >= n) {
+                self.undefined(
+                    span,
+                    "GLSL leaves an index out of range undefined (a variable's is restricted to its last element, a uniform block's reads the buffer's bytes there or zero past its end)",
+                );
+            }
+        }
+        Ok(match b.as_ref() {
+            Val::Ptr(ptr) if matches!(ptr.root, Root::Buffer(_)) => {
+                // Into a uniform buffer naga leaves the index as it is and the driver's
+                // robust buffer access reads zero past the buffer's end (wgpu's
+                // `buffer` policy is `Unchecked` where `robustBufferAccess2` is
+                // supported, as on lavapipe): the address wraps at 32 bits.
+                let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
+                    message: "an access through a pointer of unknown type".into(),
+                    span,
+                })?;
+                let (stride, elem) = value::byte_part(module, &pointee, 1).ok_or_else(|| Failure {
+                    message: "a dynamic index into something that is not an array, matrix or vector".into(),
+                    span,
+                })?;
+                let at = |o: usize, i: u32| (o as u32).wrapping_add(i.wrapping_mul(stride)) as usize;
+                let offset = self.indexed(&ptr.offset, &idx.bits, at);
+                let name = match &idx.bits {
+                    Bits::One(i) if signed => format!("{}[{}]", ptr.name, *i as i32),
+                    Bits::One(i) => format!("{}[{i}]", ptr.name),
+                    Bits::Each(_) => format!("{}[i]", ptr.name),
+                };
+                Val::Ptr(Ptr {
+                    root: ptr.root,
+                    offset,
+                    len: value::count(module, &elem),
+                    name,
+                })
+            }
+            Val::Ptr(ptr) => {
+                let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
+                    message: "an access through a pointer of unknown type".into(),
+                    span,
+                })?;
+                let n = value::elements(&pointee).ok_or_else(|| Failure {
+                    message: "a dynamic index into something that is not an array, matrix or vector".into(),
+                    span,
+                })?;
+                let (_, len, _) = value::part(module, &pointee, 0).ok_or_else(|| Failure {
+                    message: "an access the debugger cannot follow".into(),
+                    span,
+                })?;
+                let offset = self.indexed(&ptr.offset, &idx.bits, |o, i| o + clamp(i, n) * len);
+                let name = match &idx.bits {
+                    Bits::One(i) => format!("{}[{}]", ptr.name, clamp(*i, n)),
+                    Bits::Each(_) => format!("{}[i]", ptr.name),
+                };
+                Val::Ptr(Ptr {
+                    root: ptr.root,
+                    offset,
+                    len,
+                    name,
+                })
+            }
+            Val::Data(d) => {
+                let n = value::elements(base_ty).ok_or_else(|| Failure {
+                    message: "a dynamic index into something that is not an array, matrix or vector".into(),
+                    span,
+                })?;
+                let (_, len, _) = value::part(module, base_ty, 0).ok_or_else(|| Failure {
+                    message: "an access the debugger cannot follow".into(),
+                    span,
+                })?;
+                match &idx.bits {
+                    Bits::One(i) => {
+                        let at = clamp(*i, n) * len;
                         Val::Data(d[at..at + len].to_vec())
                     }
-                    _ => return fail(span, "an access into a texture or sampler"),
+                    Bits::Each(_) => Val::Data(
+                        (0..len)
+                            .map(|k| {
+                                let kind = d[k].kind;
+                                let bits = (0..self.lanes)
+                                    .map(|lane| d[clamp(idx.bits.at(lane), n) * len + k].bits.at(lane))
+                                    .collect();
+                                Comp::new(kind, Bits::Each(bits))
+                            })
+                            .collect(),
+                    ),
                 }
             }
-            E::Access { base, index } => {
-                let b = self.get(*base)?;
-                let idx = self.data(*index)?;
-                let base_ty = self.ty(*base);
-                let idx = &idx[0];
-                let signed = idx.kind == Kind::I32;
-                // wgpu's Vulkan backend has naga restrict an index into a variable or a value
-                // (`BoundsCheckPolicy::Restrict`): `min(index, n − 1)` compared as unsigned, so
-                // a negative index reads the last element.
-                let clamp = |bits: u32, n: usize| -> usize { (bits as usize).min(n.saturating_sub(1)) };
-                let n = match b.as_ref() {
-                    Val::Ptr(_) => pointee(module, base_ty).as_ref().and_then(value::elements),
-                    _ => value::elements(base_ty),
-                };
-                if let Some(n) = n {
-                    if (0..idx.bits.len()).any(|l| idx.bits.at(l) as usize >= n) {
-                        self.undefined(
-                            span,
-                            "GLSL leaves an index out of range undefined (a variable's is restricted to its last element, a uniform block's reads the buffer's bytes there or zero past its end)",
-                        );
-                    }
-                }
-                match b.as_ref() {
-                    Val::Ptr(ptr) if matches!(ptr.root, Root::Buffer(_)) => {
-                        // Into a uniform buffer naga leaves the index as it is and the driver's
-                        // robust buffer access reads zero past the buffer's end (wgpu's
-                        // `buffer` policy is `Unchecked` where `robustBufferAccess2` is
-                        // supported, as on lavapipe): the address wraps at 32 bits.
-                        let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
-                            message: "an access through a pointer of unknown type".into(),
-                            span,
-                        })?;
-                        let (stride, elem) = value::byte_part(module, &pointee, 1).ok_or_else(|| Failure {
-                            message: "a dynamic index into something that is not an array, matrix or vector".into(),
-                            span,
-                        })?;
-                        let at = |o: usize, i: u32| (o as u32).wrapping_add(i.wrapping_mul(stride)) as usize;
-                        let offset = self.indexed(&ptr.offset, &idx.bits, at);
-                        let name = match &idx.bits {
-                            Bits::One(i) if signed => format!("{}[{}]", ptr.name, *i as i32),
-                            Bits::One(i) => format!("{}[{i}]", ptr.name),
-                            Bits::Each(_) => format!("{}[i]", ptr.name),
-                        };
-                        Val::Ptr(Ptr {
-                            root: ptr.root,
-                            offset,
-                            len: value::count(module, &elem),
-                            name,
-                        })
-                    }
-                    Val::Ptr(ptr) => {
-                        let pointee = pointee(module, base_ty).ok_or_else(|| Failure {
-                            message: "an access through a pointer of unknown type".into(),
-                            span,
-                        })?;
-                        let n = value::elements(&pointee).ok_or_else(|| Failure {
-                            message: "a dynamic index into something that is not an array, matrix or vector".into(),
-                            span,
-                        })?;
-                        let (_, len, _) = value::part(module, &pointee, 0).ok_or_else(|| Failure {
-                            message: "an access the debugger cannot follow".into(),
-                            span,
-                        })?;
-                        let offset = self.indexed(&ptr.offset, &idx.bits, |o, i| o + clamp(i, n) * len);
-                        let name = match &idx.bits {
-                            Bits::One(i) => format!("{}[{}]", ptr.name, clamp(*i, n)),
-                            Bits::Each(_) => format!("{}[i]", ptr.name),
-                        };
-                        Val::Ptr(Ptr {
-                            root: ptr.root,
-                            offset,
-                            len,
-                            name,
-                        })
-                    }
-                    Val::Data(d) => {
-                        let n = value::elements(base_ty).ok_or_else(|| Failure {
-                            message: "a dynamic index into something that is not an array, matrix or vector".into(),
-                            span,
-                        })?;
-                        let (_, len, _) = value::part(module, base_ty, 0).ok_or_else(|| Failure {
-                            message: "an access the debugger cannot follow".into(),
-                            span,
-                        })?;
-                        match &idx.bits {
-                            Bits::One(i) => {
-                                let at = clamp(*i, n) * len;
-                                Val::Data(d[at..at + len].to_vec())
-                            }
-                            Bits::Each(_) => Val::Data(
-                                (0..len)
-                                    .map(|k| {
-                                        let kind = d[k].kind;
-                                        let bits = (0..self.lanes)
-                                            .map(|lane| d[clamp(idx.bits.at(lane), n) * len + k].bits.at(lane))
-                                            .collect();
-                                        Comp::new(kind, Bits::Each(bits))
-                                    })
-                                    .collect(),
-                            ),
-                        }
-                    }
-                    _ => return fail(span, "an index into a texture or sampler"),
-                }
-            }
+            _ => return fail(span, "an index into a texture or sampler"),
+        })
+    }
+
+    /// Operators, `?:`, the relational built-ins (`all`, `any`, `isnan`, `isinf`) and
+    /// conversions, with what GLSL leaves undefined (a division by zero, a float out of an
+    /// int's range) noted.
+    fn arithmetic(&mut self, expr: &'m naga::Expression, span: Span) -> Res<Val> {
+        Ok(match expr {
             E::Unary { op, expr } => {
                 let v = self.data(*expr)?;
                 Val::Data(
@@ -1195,12 +1253,6 @@ impl<'m> Run<'m> {
                         .collect(),
                 )
             }
-            E::Derivative { axis, ctrl: _, expr } => {
-                // llvmpipe computes `dFdx`, `dFdxFine` and `dFdxCoarse` alike: each pixel's
-                // own row and column (GLSL lets a coarse derivative be the fine one).
-                let v = self.data(*expr)?;
-                Val::Data(v.iter().map(|c| self.derivative(c, *axis, false)).collect())
-            }
             E::Relational { fun, argument } => {
                 let v = self.data(*argument)?;
                 use naga::RelationalFunction as R;
@@ -1228,24 +1280,6 @@ impl<'m> Run<'m> {
                         .map(|c| Comp::new(Kind::Bool, c.bits.map(|b| u32::from(f32::from_bits(b).is_infinite()))))
                         .collect(),
                 })
-            }
-            E::Math {
-                fun,
-                arg,
-                arg1,
-                arg2,
-                arg3: _,
-            } => {
-                let a = self.data(*arg)?;
-                let b = arg1.map(|h| self.data(h)).transpose()?;
-                let c = arg2.map(|h| self.data(h)).transpose()?;
-                let ty = self.ty(*arg);
-                let mut undefined = Vec::new();
-                let v = super::math::math(*fun, &a, b.as_deref(), c.as_deref(), ty, span, &mut undefined)?;
-                for what in undefined {
-                    self.undefined(span, format!("GLSL leaves {what} undefined"));
-                }
-                Val::Data(v)
             }
             E::As { expr, kind, convert } => {
                 let v = self.data(*expr)?;
@@ -1276,7 +1310,42 @@ impl<'m> Run<'m> {
                 }
                 Val::Data(out)
             }
-            E::CallResult(_) => return fail(span, "a call's result used before the call"),
+            other => return unsupported(other, span),
+        })
+    }
+
+    /// A built-in function of GLSL's (naga's `MathFunction`, run by [`super::math::math`]),
+    /// with what GLSL leaves undefined on its arguments noted.
+    fn built_in(
+        &mut self,
+        fun: naga::MathFunction,
+        arg: Handle<naga::Expression>,
+        arg1: Option<Handle<naga::Expression>>,
+        arg2: Option<Handle<naga::Expression>>,
+        span: Span,
+    ) -> Res<Val> {
+        let a = self.data(arg)?;
+        let b = arg1.map(|h| self.data(h)).transpose()?;
+        let c = arg2.map(|h| self.data(h)).transpose()?;
+        let ty = self.ty(arg);
+        let mut undefined = Vec::new();
+        let v = super::math::math(fun, &a, b.as_deref(), c.as_deref(), ty, span, &mut undefined)?;
+        for what in undefined {
+            self.undefined(span, format!("GLSL leaves {what} undefined"));
+        }
+        Ok(Val::Data(v))
+    }
+
+    /// Derivatives across the quad and the texture operations: lookups, `texelFetch` and
+    /// `textureSize`.
+    fn image(&mut self, h: Handle<naga::Expression>, expr: &'m naga::Expression, span: Span) -> Res<Val> {
+        Ok(match expr {
+            E::Derivative { axis, ctrl: _, expr } => {
+                // llvmpipe computes `dFdx`, `dFdxFine` and `dFdxCoarse` alike: each pixel's
+                // own row and column (GLSL lets a coarse derivative be the fine one).
+                let v = self.data(*expr)?;
+                Val::Data(v.iter().map(|c| self.derivative(c, *axis, false)).collect())
+            }
             E::ImageSample {
                 image,
                 sampler,
@@ -1300,63 +1369,7 @@ impl<'m> Run<'m> {
                 if offset.is_some() {
                     return fail(span, "the debugger does not run lookups with a texel offset");
                 }
-                let (Val::Image(img), Val::Sampler(smp)) =
-                    (self.get(*image)?.as_ref().clone(), self.get(*sampler)?.as_ref().clone())
-                else {
-                    return fail(span, "a lookup whose texture or sampler the debugger cannot tell");
-                };
-                let coord = self.data(*coordinate)?;
-                let lods: Vec<Lod> = match level {
-                    naga::SampleLevel::Zero => vec![Lod::Level(0.0); self.lanes],
-                    naga::SampleLevel::Exact(l) => {
-                        let l = self.data(*l)?;
-                        (0..self.lanes).map(|i| Lod::Level(l[0].f(i))).collect()
-                    }
-                    naga::SampleLevel::Auto | naga::SampleLevel::Bias(_) => {
-                        let bias = match level {
-                            naga::SampleLevel::Bias(b) => Some(self.data(*b)?),
-                            _ => None,
-                        };
-                        if !self.quad {
-                            vec![Lod::Level(0.0); self.lanes]
-                        } else {
-                            use naga::DerivativeAxis as Ax;
-                            let d = |axis, quad| -> Vec<Comp> {
-                                coord.iter().map(|c| self.derivative(c, axis, quad)).collect()
-                            };
-                            let (cx, cy) = (d(Ax::X, true), d(Ax::Y, true));
-                            let (fx, fy) = (d(Ax::X, false), d(Ax::Y, false));
-                            (0..self.lanes)
-                                .map(|i| Lod::Implicit {
-                                    coarse: (vec3(&cx, i), vec3(&cy, i)),
-                                    fine: (vec3(&fx, i), vec3(&fy, i)),
-                                    bias: bias.as_ref().map_or(0.0, |b| b[0].f(i)),
-                                })
-                                .collect()
-                        }
-                    }
-                    naga::SampleLevel::Gradient { x, y } => {
-                        let (dx, dy) = (self.data(*x)?, self.data(*y)?);
-                        (0..self.lanes)
-                            .map(|i| Lod::Implicit {
-                                coarse: (vec3(&dx, i), vec3(&dy, i)),
-                                fine: (vec3(&dx, i), vec3(&dy, i)),
-                                bias: 0.0,
-                            })
-                            .collect()
-                    }
-                };
-                let mut out: Vec<Vec<u32>> = (0..4).map(|_| Vec::with_capacity(self.lanes)).collect();
-                for (lane, lod) in lods.iter().enumerate() {
-                    let rgba = self
-                        .host
-                        .sample(img, smp, vec3(&coord, lane), *lod)
-                        .map_err(|m| Failure { message: m, span })?;
-                    for k in 0..4 {
-                        out[k].push(rgba[k].to_bits());
-                    }
-                }
-                Val::Data(out.into_iter().map(|b| Comp::new(Kind::F32, Bits::Each(b))).collect())
+                self.sample(*image, *sampler, *coordinate, level, span)?
             }
             E::ImageLoad {
                 image,
@@ -1413,8 +1426,78 @@ impl<'m> Run<'m> {
                     _ => return fail(span, "the debugger does not run textureQueryLevels or array queries"),
                 }
             }
-            other => return fail(span, format!("the debugger does not run {}", expression_name(other))),
+            other => return unsupported(other, span),
         })
+    }
+
+    /// A lookup of `image` through `sampler` at `coordinate`, at the level of detail `level`
+    /// gives (implicit ones from the quad's derivatives), filtered by the host.
+    fn sample(
+        &mut self,
+        image: Handle<naga::Expression>,
+        sampler: Handle<naga::Expression>,
+        coordinate: Handle<naga::Expression>,
+        level: &'m naga::SampleLevel,
+        span: Span,
+    ) -> Res<Val> {
+        let (Val::Image(img), Val::Sampler(smp)) =
+            (self.get(image)?.as_ref().clone(), self.get(sampler)?.as_ref().clone())
+        else {
+            return fail(span, "a lookup whose texture or sampler the debugger cannot tell");
+        };
+        let coord = self.data(coordinate)?;
+        let lods: Vec<Lod> = match level {
+            naga::SampleLevel::Zero => vec![Lod::Level(0.0); self.lanes],
+            naga::SampleLevel::Exact(l) => {
+                let l = self.data(*l)?;
+                (0..self.lanes).map(|i| Lod::Level(l[0].f(i))).collect()
+            }
+            naga::SampleLevel::Auto | naga::SampleLevel::Bias(_) => {
+                let bias = match level {
+                    naga::SampleLevel::Bias(b) => Some(self.data(*b)?),
+                    _ => None,
+                };
+                if !self.quad {
+                    vec![Lod::Level(0.0); self.lanes]
+                } else {
+                    use naga::DerivativeAxis as Ax;
+                    let d =
+                        |axis, quad| -> Vec<Comp> { coord.iter().map(|c| self.derivative(c, axis, quad)).collect() };
+                    let (cx, cy) = (d(Ax::X, true), d(Ax::Y, true));
+                    let (fx, fy) = (d(Ax::X, false), d(Ax::Y, false));
+                    (0..self.lanes)
+                        .map(|i| Lod::Implicit {
+                            coarse: (vec3(&cx, i), vec3(&cy, i)),
+                            fine: (vec3(&fx, i), vec3(&fy, i)),
+                            bias: bias.as_ref().map_or(0.0, |b| b[0].f(i)),
+                        })
+                        .collect()
+                }
+            }
+            naga::SampleLevel::Gradient { x, y } => {
+                let (dx, dy) = (self.data(*x)?, self.data(*y)?);
+                (0..self.lanes)
+                    .map(|i| Lod::Implicit {
+                        coarse: (vec3(&dx, i), vec3(&dy, i)),
+                        fine: (vec3(&dx, i), vec3(&dy, i)),
+                        bias: 0.0,
+                    })
+                    .collect()
+            }
+        };
+        let mut out: Vec<Vec<u32>> = (0..4).map(|_| Vec::with_capacity(self.lanes)).collect();
+        for (lane, lod) in lods.iter().enumerate() {
+            let rgba = self
+                .host
+                .sample(img, smp, vec3(&coord, lane), *lod)
+                .map_err(|m| Failure { message: m, span })?;
+            for k in 0..4 {
+                out[k].push(rgba[k].to_bits());
+            }
+        }
+        Ok(Val::Data(
+            out.into_iter().map(|b| Comp::new(Kind::F32, Bits::Each(b))).collect(),
+        ))
     }
 
     /// d/dx or d/dy of `c` across the quad: at each pixel from its own row and column, or
@@ -1699,6 +1782,11 @@ fn statement_name(s: &naga::Statement) -> &'static str {
         }
         _ => "this statement",
     }
+}
+
+/// The failure for an expression the debugger does not run, naming it.
+fn unsupported<T>(e: &naga::Expression, span: Span) -> Res<T> {
+    fail(span, format!("the debugger does not run {}", expression_name(e)))
 }
 
 fn expression_name(e: &naga::Expression) -> String {

@@ -162,8 +162,46 @@ fn asin_of(x: f32, p0: f32, p1: f32, piecewise: bool) -> f32 {
     far
 }
 
+/// One call: the function, its first argument `a` and the further ones.
+struct Call<'a> {
+    fun: M,
+    a: &'a [Comp],
+    b: Option<&'a [Comp]>,
+    c: Option<&'a [Comp]>,
+    span: Span,
+}
+
+impl Call<'_> {
+    /// A further argument the function cannot go without.
+    fn need(&self, x: Option<&[Comp]>) -> Res<Vec<Comp>> {
+        x.map(<[Comp]>::to_vec).ok_or_else(|| Failure {
+            message: format!("{} without its arguments", math_name(self.fun)),
+            span: self.span,
+        })
+    }
+
+    /// The kind of the first argument's components.
+    fn kind(&self) -> Kind {
+        self.a[0].kind
+    }
+
+    /// `g` on every component of the first argument.
+    fn each(&self, g: &dyn Fn(f32) -> f32) -> Vec<Comp> {
+        self.a.iter().map(|c| f(c, g)).collect()
+    }
+
+    /// The failure for a function the debugger does not run, naming it.
+    fn unsupported(&self) -> Res<Vec<Comp>> {
+        Err(Failure {
+            message: format!("the debugger does not run {}", math_name(self.fun)),
+            span: self.span,
+        })
+    }
+}
+
 /// Runs `fun` on `a` (of type `ty`) and the further arguments; what GLSL leaves undefined
-/// on the values met is added to `undefined` (a sentence naming the function).
+/// on the values met is added to `undefined` (a sentence naming the function). The match picks
+/// the function's family, each family has its own function.
 pub fn math(
     fun: M,
     a: &[Comp],
@@ -173,44 +211,87 @@ pub fn math(
     span: Span,
     undefined: &mut Vec<String>,
 ) -> Res<Vec<Comp>> {
-    let need = |x: Option<&[Comp]>| -> Res<Vec<Comp>> {
-        x.map(<[Comp]>::to_vec).ok_or_else(|| Failure {
-            message: format!("{} without its arguments", math_name(fun)),
-            span,
-        })
-    };
-    let kind = a[0].kind;
-    let float = kind == Kind::F32;
-    let each = |g: &dyn Fn(f32) -> f32| -> Vec<Comp> { a.iter().map(|c| f(c, g)).collect() };
-    if float {
-        let name = math_name(fun);
-        let nan = |v: Option<&[Comp]>| v.is_some_and(|v| any(v, f32::is_nan));
-        let why = match fun {
-            M::Min | M::Max | M::Clamp if nan(Some(a)) || nan(b) || nan(c) => Some("of NaN".to_owned()),
-            M::Clamp if b.zip(c).is_some_and(|(l, h)| any2(l, h, |l, h| l > h)) => {
-                Some("with its minimum above its maximum".to_owned())
-            }
-            M::Atan2 if b.is_some_and(|x| any2(a, x, |y, x| y == 0.0 && x == 0.0)) => Some("at (0, 0)".to_owned()),
-            M::Pow if b.is_some_and(|y| any2(a, y, |x, y| x < 0.0 || (x == 0.0 && y <= 0.0))) => {
-                Some("of a negative number, or of 0 to a power ≤ 0".to_owned())
-            }
-            M::Log | M::Log2 if any(a, |x| x <= 0.0) => Some("of a number ≤ 0".to_owned()),
-            M::Sqrt if any(a, |x| x < 0.0) => Some("of a negative number".to_owned()),
-            M::InverseSqrt if any(a, |x| x <= 0.0) => Some("of a number ≤ 0".to_owned()),
-            M::Asin | M::Acos if any(a, |x| x.abs() > 1.0) => Some("of a number beyond ±1".to_owned()),
-            M::Acosh if any(a, |x| x < 1.0) => Some("of a number below 1".to_owned()),
-            M::Atanh if any(a, |x| x.abs() >= 1.0) => Some("of a number beyond (−1, 1)".to_owned()),
-            M::SmoothStep if b.is_some_and(|e1| any2(a, e1, |e0, e1| e0 >= e1)) => {
-                Some("with edge0 ≥ edge1".to_owned())
-            }
-            _ => None,
-        };
-        if let Some(why) = why {
-            undefined.push(format!("{name} {why}"));
+    if a[0].kind == Kind::F32 {
+        if let Some(why) = undefined_for(fun, a, b, c) {
+            undefined.push(format!("{} {why}", math_name(fun)));
         }
     }
+    let call = Call { fun, a, b, c, span };
+    match fun {
+        M::Abs | M::Sign | M::Min | M::Max | M::Clamp | M::Saturate | M::Step | M::SmoothStep | M::Mix | M::Fma => {
+            common(&call)
+        }
+        M::Ceil | M::Floor | M::Round | M::Fract | M::Trunc | M::Modf | M::Frexp | M::Ldexp => parts(&call),
+        M::Cos
+        | M::Cosh
+        | M::Sin
+        | M::Sinh
+        | M::Tan
+        | M::Tanh
+        | M::Acos
+        | M::Asin
+        | M::Atan
+        | M::Asinh
+        | M::Acosh
+        | M::Atanh
+        | M::Atan2
+        | M::Radians
+        | M::Degrees => trigonometry(&call),
+        M::Exp | M::Exp2 | M::Log | M::Log2 | M::Pow | M::Sqrt | M::InverseSqrt => exponential(&call),
+        M::Dot | M::Length | M::Distance | M::Normalize | M::Cross | M::Reflect | M::Refract | M::FaceForward => {
+            geometric(&call)
+        }
+        M::Transpose | M::Determinant | M::Inverse | M::Outer => matrix(&call, ty),
+        M::CountOneBits
+        | M::ReverseBits
+        | M::CountTrailingZeros
+        | M::CountLeadingZeros
+        | M::FirstTrailingBit
+        | M::FirstLeadingBit
+        | M::ExtractBits => integer(&call),
+        M::Pack4x8unorm
+        | M::Pack4x8snorm
+        | M::Pack2x16unorm
+        | M::Pack2x16snorm
+        | M::Unpack4x8unorm
+        | M::Unpack4x8snorm
+        | M::Unpack2x16unorm
+        | M::Unpack2x16snorm => packing(&call),
+        _ => call.unsupported(),
+    }
+}
+
+/// What GLSL leaves undefined for the float arguments met, if anything: "of NaN", "at (0, 0)",
+/// ...
+fn undefined_for(fun: M, a: &[Comp], b: Option<&[Comp]>, c: Option<&[Comp]>) -> Option<String> {
+    let nan = |v: Option<&[Comp]>| v.is_some_and(|v| any(v, f32::is_nan));
+    match fun {
+        M::Min | M::Max | M::Clamp if nan(Some(a)) || nan(b) || nan(c) => Some("of NaN".to_owned()),
+        M::Clamp if b.zip(c).is_some_and(|(l, h)| any2(l, h, |l, h| l > h)) => {
+            Some("with its minimum above its maximum".to_owned())
+        }
+        M::Atan2 if b.is_some_and(|x| any2(a, x, |y, x| y == 0.0 && x == 0.0)) => Some("at (0, 0)".to_owned()),
+        M::Pow if b.is_some_and(|y| any2(a, y, |x, y| x < 0.0 || (x == 0.0 && y <= 0.0))) => {
+            Some("of a negative number, or of 0 to a power ≤ 0".to_owned())
+        }
+        M::Log | M::Log2 if any(a, |x| x <= 0.0) => Some("of a number ≤ 0".to_owned()),
+        M::Sqrt if any(a, |x| x < 0.0) => Some("of a negative number".to_owned()),
+        M::InverseSqrt if any(a, |x| x <= 0.0) => Some("of a number ≤ 0".to_owned()),
+        M::Asin | M::Acos if any(a, |x| x.abs() > 1.0) => Some("of a number beyond ±1".to_owned()),
+        M::Acosh if any(a, |x| x < 1.0) => Some("of a number below 1".to_owned()),
+        M::Atanh if any(a, |x| x.abs() >= 1.0) => Some("of a number beyond (−1, 1)".to_owned()),
+        M::SmoothStep if b.is_some_and(|e1| any2(a, e1, |e0, e1| e0 >= e1)) => Some("with edge0 ≥ edge1".to_owned()),
+        _ => None,
+    }
+}
+
+/// `abs`, `sign`, `min`, `max`, `clamp`, `step`, `smoothstep`, `mix` and `fma`.
+fn common(call: &Call) -> Res<Vec<Comp>> {
+    let (fun, a, b, c) = (call.fun, call.a, call.b, call.c);
+    let kind = call.kind();
+    let float = kind == Kind::F32;
     Ok(match fun {
-        M::Abs if float => each(&f32::abs),
+        M::Abs if float => call.each(&f32::abs),
         M::Abs => a
             .iter()
             .map(|c| {
@@ -226,8 +307,13 @@ pub fn math(
                 )
             })
             .collect(),
+        M::Sign if float => call.each(&sign),
+        M::Sign => a
+            .iter()
+            .map(|c| Comp::new(kind, c.bits.map(|x| (x as i32).signum() as u32)))
+            .collect(),
         M::Min | M::Max => {
-            let b = need(b)?;
+            let b = call.need(b)?;
             let max = fun == M::Max;
             (0..a.len())
                 .map(|k| {
@@ -248,7 +334,7 @@ pub fn math(
                 .collect()
         }
         M::Clamp => {
-            let (lo, hi) = (need(b)?, need(c)?);
+            let (lo, hi) = (call.need(b)?, call.need(c)?);
             (0..a.len())
                 .map(|k| match kind {
                     // min(max(x, lo), hi), as Mesa lowers it: a NaN x gives lo.
@@ -267,87 +353,17 @@ pub fn math(
                 })
                 .collect()
         }
-        M::Saturate => each(&|x| nan_clamp(x, 0.0, 1.0)),
-        M::Cos => each(&f32::cos),
-        // Mesa's formulas: ½(eˣ ± e⁻ˣ), tanh over x clamped to ±10, asinh and acosh through
-        // log(|x| + √(x² ± 1)) (so asinh(1e30) overflows to ∞), atanh as ½·log((1 + x)/(1 − x)).
-        M::Cosh => each(&|x| (x.exp() + (-x).exp()) * 0.5),
-        M::Sin => each(&f32::sin),
-        M::Sinh => each(&|x| (x.exp() - (-x).exp()) * 0.5),
-        M::Tan => each(&f32::tan),
-        M::Tanh => each(&|x| {
-            if 0.0 < x.abs() {
-                let c = nan_clamp(x, -10.0, 10.0);
-                let (p, n) = (c.exp(), (-c).exp());
-                (p - n) / (p + n)
-            } else {
-                x
-            }
-        }),
-        M::Acos => each(&|x| std::f32::consts::FRAC_PI_2 - asin_of(x, 0.081_324_63, -0.023_633_18, false)),
-        M::Asin => each(&|x| asin_of(x, 0.086_566_724, -0.031_029_55, true)),
-        M::Atan => each(&atan),
-        M::Asinh => each(&|x| sign(x) * ln(x.abs() + (x * x + 1.0).sqrt())),
-        M::Acosh => each(&|x| ln(x + (x * x - 1.0).sqrt())),
-        // At 1 lavapipe gives NaN where the formula gives ∞ (measured; GLSL leaves it undefined).
-        M::Atanh => each(&|x| {
-            if x == 1.0 {
-                f32::NAN
-            } else {
-                ln((x + 1.0) / (1.0 - x)) * 0.5
-            }
-        }),
-        M::Atan2 => {
-            let b = need(b)?;
-            (0..a.len()).map(|k| f2(&a[k], at(&b, k), atan2)).collect()
-        }
-        M::Radians => each(&|x| x * (std::f32::consts::PI / 180.0)),
-        M::Degrees => each(&|x| x * (180.0 / std::f32::consts::PI)),
-        M::Ceil => each(&f32::ceil),
-        M::Floor => each(&f32::floor),
-        // GLSL's roundEven, as SPIR-V's RoundEven and naga's `round`.
-        M::Round => each(&f32::round_ties_even),
-        M::Fract => each(&|x| x - x.floor()),
-        M::Trunc => each(&f32::trunc),
-        M::Exp => each(&f32::exp),
-        M::Exp2 => each(&f32::exp2),
-        // llvmpipe's log gives the positive quiet NaN below 0 (and for NaN).
-        M::Log => each(&ln),
-        M::Log2 => each(&|x| if x < 0.0 || x.is_nan() { f32::NAN } else { x.log2() }),
-        M::Pow => {
-            // llvmpipe: 0 for x = 0, else 2^(y·log2 x) (NaN for x < 0).
-            let b = need(b)?;
-            (0..a.len())
-                .map(|k| {
-                    f2(&a[k], at(&b, k), |x, y| {
-                        if x == 0.0 {
-                            0.0
-                        } else if x < 0.0 {
-                            f32::NAN
-                        } else {
-                            x.powf(y)
-                        }
-                    })
-                })
-                .collect()
-        }
-        M::Sqrt => each(&f32::sqrt),
-        M::InverseSqrt => each(&|x| 1.0 / x.sqrt()),
-        M::Sign if float => each(&sign),
-        M::Sign => a
-            .iter()
-            .map(|c| Comp::new(kind, c.bits.map(|x| (x as i32).signum() as u32)))
-            .collect(),
+        M::Saturate => call.each(&|x| nan_clamp(x, 0.0, 1.0)),
         M::Step => {
             // step(edge, x): 0 where x < edge.
-            let b = need(b)?;
+            let b = call.need(b)?;
             let n = a.len().max(b.len());
             (0..n)
                 .map(|k| f2(at(a, k), at(&b, k), |e, x| if x < e { 0.0 } else { 1.0 }))
                 .collect()
         }
         M::SmoothStep => {
-            let (b, x) = (need(b)?, need(c)?);
+            let (b, x) = (call.need(b)?, call.need(c)?);
             let n = a.len().max(b.len()).max(x.len());
             (0..n)
                 .map(|k| {
@@ -360,7 +376,7 @@ pub fn math(
                 .collect()
         }
         M::Mix => {
-            let (b, t) = (need(b)?, need(c)?);
+            let (b, t) = (call.need(b)?, call.need(c)?);
             if t[0].kind == Kind::Bool {
                 (0..a.len())
                     .map(|k| {
@@ -380,19 +396,145 @@ pub fn math(
             }
         }
         M::Fma => {
-            let (b, c) = (need(b)?, need(c)?);
+            let (b, c) = (call.need(b)?, call.need(c)?);
             // Not fused: a multiply and an add, each rounded (GLSL leaves it open).
             (0..a.len())
                 .map(|k| f3(&a[k], at(&b, k), at(&c, k), |x, y, z| x * y + z))
                 .collect()
         }
-        M::Dot => vec![dot(a, &need(b)?)],
+        _ => return call.unsupported(),
+    })
+}
+
+/// A float's parts: `ceil`, `floor`, `round`, `fract`, `trunc`, `modf`, `frexp` and `ldexp`.
+fn parts(call: &Call) -> Res<Vec<Comp>> {
+    let a = call.a;
+    Ok(match call.fun {
+        M::Ceil => call.each(&f32::ceil),
+        M::Floor => call.each(&f32::floor),
+        // GLSL's roundEven, as SPIR-V's RoundEven and naga's `round`.
+        M::Round => call.each(&f32::round_ties_even),
+        M::Fract => call.each(&|x| x - x.floor()),
+        M::Trunc => call.each(&f32::trunc),
+        M::Modf => {
+            // A struct: the fractional parts, then the whole parts.
+            let mut out: Vec<Comp> = a.iter().map(|c| f(c, |x| x - x.trunc())).collect();
+            out.extend(a.iter().map(|c| f(c, f32::trunc)));
+            out
+        }
+        M::Frexp => {
+            let mut out: Vec<Comp> = a.iter().map(|c| f(c, |x| frexp(x).0)).collect();
+            out.extend(
+                a.iter()
+                    .map(|c| Comp::new(Kind::I32, c.bits.map(|b| frexp(f32::from_bits(b)).1 as u32))),
+            );
+            out
+        }
+        M::Ldexp => {
+            let e = call.need(call.b)?;
+            (0..a.len())
+                .map(|k| {
+                    Comp::new(
+                        Kind::F32,
+                        a[k].bits.zip(&at(&e, k).bits, |x, e| {
+                            (f32::from_bits(x) * 2f32.powi(e as i32)).to_bits()
+                        }),
+                    )
+                })
+                .collect()
+        }
+        _ => return call.unsupported(),
+    })
+}
+
+/// The angle and trigonometry functions, by Mesa's formulas where lavapipe uses them.
+fn trigonometry(call: &Call) -> Res<Vec<Comp>> {
+    let a = call.a;
+    Ok(match call.fun {
+        M::Cos => call.each(&f32::cos),
+        // Mesa's formulas: ½(eˣ ± e⁻ˣ), tanh over x clamped to ±10, asinh and acosh through
+        // log(|x| + √(x² ± 1)) (so asinh(1e30) overflows to ∞), atanh as ½·log((1 + x)/(1 − x)).
+        M::Cosh => call.each(&|x| (x.exp() + (-x).exp()) * 0.5),
+        M::Sin => call.each(&f32::sin),
+        M::Sinh => call.each(&|x| (x.exp() - (-x).exp()) * 0.5),
+        M::Tan => call.each(&f32::tan),
+        M::Tanh => call.each(&|x| {
+            if 0.0 < x.abs() {
+                let c = nan_clamp(x, -10.0, 10.0);
+                let (p, n) = (c.exp(), (-c).exp());
+                (p - n) / (p + n)
+            } else {
+                x
+            }
+        }),
+        M::Acos => call.each(&|x| std::f32::consts::FRAC_PI_2 - asin_of(x, 0.081_324_63, -0.023_633_18, false)),
+        M::Asin => call.each(&|x| asin_of(x, 0.086_566_724, -0.031_029_55, true)),
+        M::Atan => call.each(&atan),
+        M::Asinh => call.each(&|x| sign(x) * ln(x.abs() + (x * x + 1.0).sqrt())),
+        M::Acosh => call.each(&|x| ln(x + (x * x - 1.0).sqrt())),
+        // At 1 lavapipe gives NaN where the formula gives ∞ (measured; GLSL leaves it undefined).
+        M::Atanh => call.each(&|x| {
+            if x == 1.0 {
+                f32::NAN
+            } else {
+                ln((x + 1.0) / (1.0 - x)) * 0.5
+            }
+        }),
+        M::Atan2 => {
+            let b = call.need(call.b)?;
+            (0..a.len()).map(|k| f2(&a[k], at(&b, k), atan2)).collect()
+        }
+        M::Radians => call.each(&|x| x * (std::f32::consts::PI / 180.0)),
+        M::Degrees => call.each(&|x| x * (180.0 / std::f32::consts::PI)),
+        _ => return call.unsupported(),
+    })
+}
+
+/// `exp`, `exp2`, `log`, `log2`, `pow`, `sqrt` and `inversesqrt`, as llvmpipe gives them
+/// outside their domains.
+fn exponential(call: &Call) -> Res<Vec<Comp>> {
+    let a = call.a;
+    Ok(match call.fun {
+        M::Exp => call.each(&f32::exp),
+        M::Exp2 => call.each(&f32::exp2),
+        // llvmpipe's log gives the positive quiet NaN below 0 (and for NaN).
+        M::Log => call.each(&ln),
+        M::Log2 => call.each(&|x| if x < 0.0 || x.is_nan() { f32::NAN } else { x.log2() }),
+        M::Pow => {
+            // llvmpipe: 0 for x = 0, else 2^(y·log2 x) (NaN for x < 0).
+            let b = call.need(call.b)?;
+            (0..a.len())
+                .map(|k| {
+                    f2(&a[k], at(&b, k), |x, y| {
+                        if x == 0.0 {
+                            0.0
+                        } else if x < 0.0 {
+                            f32::NAN
+                        } else {
+                            x.powf(y)
+                        }
+                    })
+                })
+                .collect()
+        }
+        M::Sqrt => call.each(&f32::sqrt),
+        M::InverseSqrt => call.each(&|x| 1.0 / x.sqrt()),
+        _ => return call.unsupported(),
+    })
+}
+
+/// The geometric functions on vectors: `dot`, `length`, `distance`, `normalize`, `cross`,
+/// `reflect`, `refract` and `faceforward`, one operation at a time.
+fn geometric(call: &Call) -> Res<Vec<Comp>> {
+    let (a, b, c) = (call.a, call.b, call.c);
+    Ok(match call.fun {
+        M::Dot => vec![dot(a, &call.need(b)?)],
         M::Length => {
             let d = dot(a, a);
             vec![f(&d, f32::sqrt)]
         }
         M::Distance => {
-            let b = need(b)?;
+            let b = call.need(b)?;
             let diff: Vec<Comp> = (0..a.len()).map(|k| f2(&a[k], &b[k], |x, y| x - y)).collect();
             vec![f(&dot(&diff, &diff), f32::sqrt)]
         }
@@ -402,7 +544,7 @@ pub fn math(
             a.iter().map(|c| f2(c, &len, |x, l| x / l)).collect()
         }
         M::Cross => {
-            let b = need(b)?;
+            let b = call.need(b)?;
             let m = |i: usize, j: usize| f2(&a[i], &b[j], |x, y| x * y);
             vec![
                 f2(&m(1, 2), &m(2, 1), |x, y| x - y),
@@ -412,15 +554,15 @@ pub fn math(
         }
         M::Reflect => {
             // I − 2·dot(N, I)·N.
-            let n = need(b)?;
+            let n = call.need(b)?;
             let d = dot(&n, a);
             (0..a.len())
                 .map(|k| f3(&a[k], &n[k], &d, |i, n, d| i - 2.0 * d * n))
                 .collect()
         }
         M::Refract => {
-            let n = need(b)?;
-            let eta = need(c)?;
+            let n = call.need(b)?;
+            let eta = call.need(c)?;
             let d = dot(&n, a);
             let k = f2(&d, &eta[0], |d, e| 1.0 - e * e * (1.0 - d * d));
             (0..a.len())
@@ -446,12 +588,21 @@ pub fn math(
         }
         M::FaceForward => {
             // faceforward(N, I, Nref): N if dot(Nref, I) < 0, else −N.
-            let (i, nref) = (need(b)?, need(c)?);
+            let (i, nref) = (call.need(b)?, call.need(c)?);
             let d = dot(&nref, &i);
             a.iter()
                 .map(|n| f2(n, &d, |n, d| if d < 0.0 { n } else { -n }))
                 .collect()
         }
+        _ => return call.unsupported(),
+    })
+}
+
+/// The matrix functions on `a` of type `ty`: `transpose`, `determinant`, `inverse` and
+/// `outerProduct`.
+fn matrix(call: &Call, ty: &TypeInner) -> Res<Vec<Comp>> {
+    let (fun, a, span) = (call.fun, call.a, call.span);
+    Ok(match fun {
         M::Transpose => {
             let (rows, cols) = matrix_shape(ty, fun, span)?;
             let mut out = Vec::with_capacity(a.len());
@@ -485,35 +636,8 @@ pub fn math(
             }
             out.into_iter().map(|b| Comp::new(Kind::F32, bits(b))).collect()
         }
-        M::Modf => {
-            // A struct: the fractional parts, then the whole parts.
-            let mut out: Vec<Comp> = a.iter().map(|c| f(c, |x| x - x.trunc())).collect();
-            out.extend(a.iter().map(|c| f(c, f32::trunc)));
-            out
-        }
-        M::Frexp => {
-            let mut out: Vec<Comp> = a.iter().map(|c| f(c, |x| frexp(x).0)).collect();
-            out.extend(
-                a.iter()
-                    .map(|c| Comp::new(Kind::I32, c.bits.map(|b| frexp(f32::from_bits(b)).1 as u32))),
-            );
-            out
-        }
-        M::Ldexp => {
-            let e = need(b)?;
-            (0..a.len())
-                .map(|k| {
-                    Comp::new(
-                        Kind::F32,
-                        a[k].bits.zip(&at(&e, k).bits, |x, e| {
-                            (f32::from_bits(x) * 2f32.powi(e as i32)).to_bits()
-                        }),
-                    )
-                })
-                .collect()
-        }
         M::Outer => {
-            let b = need(b)?;
+            let b = call.need(call.b)?;
             let mut out = Vec::with_capacity(a.len() * b.len());
             for column in &b {
                 for row in a {
@@ -522,6 +646,15 @@ pub fn math(
             }
             out
         }
+        _ => return call.unsupported(),
+    })
+}
+
+/// The integer functions on bits: `bitCount`, `bitfieldReverse`, `findLSB`, `findMSB`,
+/// `bitfieldExtract`, and naga's counts of leading and trailing zeros.
+fn integer(call: &Call) -> Res<Vec<Comp>> {
+    let (a, kind) = (call.a, call.kind());
+    Ok(match call.fun {
         M::CountOneBits => a.iter().map(|c| Comp::new(kind, c.bits.map(u32::count_ones))).collect(),
         M::ReverseBits => a
             .iter()
@@ -557,7 +690,7 @@ pub fn math(
             })
             .collect(),
         M::ExtractBits => {
-            let (offset, count) = (need(b)?, need(c)?);
+            let (offset, count) = (call.need(call.b)?, call.need(call.c)?);
             let (o, n) = (offset[0].bits.at(0).min(32), count[0].bits.at(0));
             let n = n.min(32 - o);
             a.iter()
@@ -579,6 +712,14 @@ pub fn math(
                 })
                 .collect()
         }
+        _ => return call.unsupported(),
+    })
+}
+
+/// `packUnorm4x8` and its kin, and their inverses.
+fn packing(call: &Call) -> Res<Vec<Comp>> {
+    let (fun, a) = (call.fun, call.a);
+    Ok(match fun {
         M::Pack4x8unorm | M::Pack4x8snorm | M::Pack2x16unorm | M::Pack2x16snorm => {
             let lanes = lanes(&a.iter().collect::<Vec<_>>());
             let (n, bits) = if matches!(fun, M::Pack4x8unorm | M::Pack4x8snorm) {
@@ -629,12 +770,7 @@ pub fn math(
                 })
                 .collect()
         }
-        _ => {
-            return Err(Failure {
-                message: format!("the debugger does not run {}", math_name(fun)),
-                span,
-            })
-        }
+        _ => return call.unsupported(),
     })
 }
 

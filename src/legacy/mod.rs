@@ -32,6 +32,7 @@
 
 mod builtins;
 mod map;
+pub mod names;
 pub mod state;
 mod translate;
 
@@ -135,7 +136,8 @@ impl Translated {
                     return self.spanless(message);
                 }
                 let line = self.source_line_at(range.start);
-                let message = crate::shader::plain_message(&message.replace("'sl_main'", "'main'"), &line);
+                let message =
+                    crate::shader::plain_message(&message.replace(&format!("'{}'", names::MAIN), "'main'"), &line);
                 self.error_at(range.start, range.len().max(1), &message)
             })
             .collect();

@@ -14,6 +14,7 @@ use naga::ShaderStage;
 
 use super::builtins::{classify, texture_function, Builtin, SamplerDim, CLASHES, MAX_TEXTURE_COORDS, STATE, STRUCTS};
 use super::map::{apply, Edit, File, LegacySource, Origin, Output};
+use super::names;
 use crate::error::{Error, Result};
 
 /// A scalar kind of GLSL 1.10.
@@ -110,7 +111,7 @@ impl Uniform {
     pub fn member(&self) -> String {
         match self.encoding {
             Encoding::Plain => self.glsl.clone(),
-            _ => format!("sl_u_{}", self.glsl),
+            _ => names::encoded(&self.glsl),
         }
     }
 
@@ -418,7 +419,7 @@ impl Analysis<'_> {
             // wgpu draws points one pixel wide and has no point-size output in WGSL: the
             // shader's writes go to a private variable, so the runner and `glsl2wgsl --legacy`
             // accept the same shaders (the runner draws triangles, where GL ignores it too).
-            Builtin::Native if name == "gl_PointSize" => self.edit(range, "sl_PointSize"),
+            Builtin::Native if name == "gl_PointSize" => self.edit(range, names::builtin(name)),
             Builtin::TexCoord if !self.handled.contains(&range.start) => self.texcoord_any = true,
             Builtin::State(m)
                 if matches!(m.name, "gl_LightSource" | "gl_FrontLightProduct")
@@ -553,7 +554,7 @@ impl Visitor for Analysis<'_> {
         if CLASHES.contains(&name) {
             let range = span0(ident);
             if !self.handled.contains(&range.start) {
-                self.edit(range, format!("sl_{name}"));
+                self.edit(range, names::reserved(name));
             }
         }
         Visit::Children
@@ -587,7 +588,7 @@ impl Visitor for Analysis<'_> {
                 );
             }
             let range = span0(&def.prototype.name);
-            self.edit(range.clone(), "sl_main");
+            self.edit(range.clone(), names::MAIN);
             self.main = Some(range);
         }
         Visit::Children
@@ -1030,7 +1031,7 @@ fn encoding(ty: Ty, array: Option<u32>) -> Encoding {
 
 fn glsl_name(name: &str) -> String {
     if CLASHES.contains(&name) {
-        format!("sl_{name}")
+        names::reserved(name)
     } else {
         name.to_owned()
     }
@@ -1394,29 +1395,41 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
     if vertex {
         if a.builtins.contains_key("gl_Vertex") || a.ftransform.is_some() {
             out.generated(
-                "layout(location = 0) in vec3 sl_Vertex;\nvec4 gl_Vertex;\n",
+                &format!(
+                    "layout(location = 0) in vec3 {};\nvec4 gl_Vertex;\n",
+                    names::builtin("gl_Vertex")
+                ),
                 a.builtins
                     .get("gl_Vertex")
                     .or(a.ftransform.as_ref())
                     .map_or(at_main, |r| Origin::this(r.clone())),
             );
-            init.push("gl_Vertex = vec4(sl_Vertex, 1.0);".to_owned());
+            init.push(format!("gl_Vertex = vec4({}, 1.0);", names::builtin("gl_Vertex")));
         }
         if a.builtins.contains_key("gl_Normal") {
             out.generated("layout(location = 1) in vec3 gl_Normal;\n", first_use("gl_Normal"));
         }
         if a.builtins.contains_key("gl_PointSize") {
             out.generated(
-                "float sl_PointSize; // gl_PointSize: wgpu draws points one pixel wide\n",
+                &format!(
+                    "float {}; // gl_PointSize: wgpu draws points one pixel wide\n",
+                    names::builtin("gl_PointSize")
+                ),
                 first_use("gl_PointSize"),
             );
         }
         if a.builtins.contains_key("gl_MultiTexCoord0") {
             out.generated(
-                "layout(location = 2) in vec2 sl_MultiTexCoord0;\nvec4 gl_MultiTexCoord0;\n",
+                &format!(
+                    "layout(location = 2) in vec2 {};\nvec4 gl_MultiTexCoord0;\n",
+                    names::builtin("gl_MultiTexCoord0")
+                ),
                 first_use("gl_MultiTexCoord0"),
             );
-            init.push("gl_MultiTexCoord0 = vec4(sl_MultiTexCoord0, 0.0, 1.0);".to_owned());
+            init.push(format!(
+                "gl_MultiTexCoord0 = vec4({}, 0.0, 1.0);",
+                names::builtin("gl_MultiTexCoord0")
+            ));
         }
         for k in 1..8 {
             let name = format!("gl_MultiTexCoord{k}");
@@ -1452,25 +1465,29 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
         );
         for (k, loc) in ctx.texcoords {
             let dir = if vertex { "out" } else { "in" };
+            let varying = names::builtin(&format!("gl_TexCoord{k}"));
             out.generated(
-                &format!("layout(location = {loc}) {dir} vec4 sl_TexCoord{k};\n"),
+                &format!("layout(location = {loc}) {dir} vec4 {varying};\n"),
                 first_use("gl_TexCoord"),
             );
             if vertex {
                 init.push(format!("gl_TexCoord[{k}] = vec4(0.0, 0.0, 0.0, 1.0);"));
-                finish.push(format!("sl_TexCoord{k} = gl_TexCoord[{k}];"));
+                finish.push(format!("{varying} = gl_TexCoord[{k}];"));
             } else {
-                init.push(format!("gl_TexCoord[{k}] = sl_TexCoord{k};"));
+                init.push(format!("gl_TexCoord[{k}] = {varying};"));
             }
         }
     }
     if !vertex {
         if a.fragdata {
             out.generated(
-                "layout(location = 0) out vec4 sl_FragData0;\nvec4 gl_FragData[1];\n",
+                &format!(
+                    "layout(location = 0) out vec4 {};\nvec4 gl_FragData[1];\n",
+                    names::builtin("gl_FragData0")
+                ),
                 first_use("gl_FragData"),
             );
-            finish.push("sl_FragData0 = gl_FragData[0];".to_owned());
+            finish.push(format!("{} = gl_FragData[0];", names::builtin("gl_FragData0")));
         } else {
             out.generated(
                 "layout(location = 0) out vec4 gl_FragColor;\n",
@@ -1581,7 +1598,7 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
     for line in init.iter().chain(&privates) {
         body.push_str(&format!("    {line}\n"));
     }
-    body.push_str("    sl_main();\n");
+    body.push_str(&format!("    {}();\n", names::MAIN));
     for line in &finish {
         body.push_str(&format!("    {line}\n"));
     }
