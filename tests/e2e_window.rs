@@ -1892,7 +1892,7 @@ fn lecture_keys_work_in_a_window() {
 // Presentation through X shared memory
 // ---------------------------------------------------------------------------------------------
 
-/// On lavapipe under X11 the window presents through MIT-SHM (src/shell/shm.rs), lavapipe
+/// On lavapipe under X11 the window presents through MIT-SHM (src/shell/window/shm.rs), lavapipe
 /// writing each frame into the shared memory itself; copying it there through a readback buffer
 /// (`SHADERLAB_PRESENT=shm-copy`) and the swapchain (`SHADERLAB_PRESENT=swapchain`) stay as
 /// fallbacks. All three must show exactly the pixels of `--screenshot`, and each must be the

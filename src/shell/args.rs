@@ -294,8 +294,8 @@ impl Args {
                 Some(f) => a.value_names(f.names.iter().copied()).num_args(0..=f.names.len()),
                 None => a.hide(true),
             });
-        let matches = super::parse_command_line(pixel_flag.apply(command), argv);
-        let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| super::exit_on_clap_error(info.name, e));
+        let matches = super::cli::parse_command_line(pixel_flag.apply(command), argv);
+        let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| super::cli::exit_on_clap_error(info.name, e));
         Args { pixel_flag, ..args }
     }
 

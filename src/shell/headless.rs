@@ -10,7 +10,8 @@ use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
 
-use super::{say, Args, Failure};
+use super::args::Args;
+use super::cli::{say, Failure};
 use crate::lab::draw::{render_into, screenshot};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
@@ -108,7 +109,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         if args.json {
             say(&inspection.json())?;
         } else {
-            super::print(&inspection.text())?;
+            super::cli::print(&inspection.text())?;
         }
         return Ok(());
     }

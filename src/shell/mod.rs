@@ -2,6 +2,11 @@
 //! `--bench`) and the window. It drives any [`Lab`](crate::lab::Lab) through its [`LabEntry`] and never names an
 //! exercise.
 //!
+//! This file is the folder's face: its modules, what they export, and the entry points that
+//! send a command line to the offscreen paths (`headless`) or the window. What every
+//! command-line program shares (exit statuses, stdout, clap's parsing) lives in `cli`, the
+//! command line's flags in `args`.
+//!
 //! Usage errors exit with status 2 and say what is valid; they are found before anything is
 //! rendered (parameters are checked against the lab's declaration before the GPU is opened).
 //! Runtime errors (no adapter, broken shader, unwritable file) print one clear message and exit
@@ -14,17 +19,14 @@
 #[cfg(not(target_arch = "wasm32"))]
 mod args;
 #[cfg(not(target_arch = "wasm32"))]
-mod capture;
+mod cli;
 pub mod clock;
-#[cfg(not(target_arch = "wasm32"))]
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod panel;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod record;
 pub mod session;
-#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
-mod shm;
 pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod tools;
@@ -45,71 +47,14 @@ pub use crate::lab::draw::{render_into, screenshot};
 #[cfg(not(target_arch = "wasm32"))]
 pub use args::{Args, PixelFlag};
 #[cfg(not(target_arch = "wasm32"))]
+pub use cli::{ensure_runtime_dir, exit_on_clap_error, one_line, parse_command_line, print, say, tool_exit, Failure};
+#[cfg(not(target_arch = "wasm32"))]
 pub use headless::{bench, progress_bar, BenchResult};
 
+#[cfg(not(target_arch = "wasm32"))]
 use crate::error::Error;
 use crate::lab::LabEntry;
 use crate::params::Params;
-
-/// A failure with the exit status it deserves.
-#[derive(Debug)]
-pub struct Failure {
-    /// 1 for runtime errors, 2 for usage errors.
-    pub code: u8,
-    /// What to print.
-    pub error: Error,
-}
-
-impl From<Error> for Failure {
-    fn from(error: Error) -> Self {
-        let code = if matches!(error, Error::Param(_)) { 2 } else { 1 };
-        Failure { code, error }
-    }
-}
-
-/// Mesa prints two warnings on every run when `XDG_RUNTIME_DIR` is unset, which makes a
-/// newcomer's first, successful run look broken: give the process a private one instead
-/// (`$TMP/shaderlab-runtime-UID`, created mode 0700 and used only if it is this user's own
-/// directory with that mode; it is kept and reused by the next run, never removed, as several
-/// runs may share it at once). Call it first thing in `main`, before any thread
-/// starts; the lab examples do it through [`main`], the other examples call it themselves.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn ensure_runtime_dir() {
-    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| !d.is_empty()) {
-        return;
-    }
-    // One directory per user, reused by every run (nothing to clean up), and used only if it
-    // is ours alone. Only where Mesa runs (and `libc` is a dependency).
-    #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
-    {
-        use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
-        // SAFETY: getuid has no preconditions.
-        let uid = unsafe { libc::getuid() };
-        let dir = std::env::temp_dir().join(format!("shaderlab-runtime-{uid}"));
-        let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
-        let ours = std::fs::symlink_metadata(&dir)
-            .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o777 == 0o700);
-        if ours {
-            // SAFETY: called first thing in main, before any other thread exists.
-            unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
-        }
-    }
-}
-
-/// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` orders the GPUs so that the one
-/// driving the display comes first: to know it, it connects to the X server (and Wayland) twice
-/// while the adapters are listed, which lengthens every start (figures: `docs/speed.md`,
-/// "Start-up"). An offscreen run (`--screenshot`, `--bench`) draws into no display, so it
-/// skips the layer, unless the user steers it (`MESA_VK_DEVICE_SELECT`, or `NODEVICE_SELECT`
-/// set either way).
-#[cfg(not(target_arch = "wasm32"))]
-fn skip_display_device_select() {
-    if std::env::var_os("MESA_VK_DEVICE_SELECT").is_some() || std::env::var_os("NODEVICE_SELECT").is_some() {
-        return;
-    }
-    // SAFETY: called from main before any other thread exists (argument parsing starts none).
-    unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
-}
 
 /// Entry point of every example: parses arguments, then renders offscreen or opens a window.
 #[cfg(not(target_arch = "wasm32"))]
@@ -187,7 +132,7 @@ pub fn debug_main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) 
 fn main_parsed(entry: &'static LabEntry, args: Args) -> ExitCode {
     let name = entry.info.name;
     if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() || args.debug.is_some() {
-        skip_display_device_select();
+        cli::skip_display_device_select();
     }
     let result = run(entry, args);
     match result {
@@ -253,94 +198,6 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
         headless::run(entry, &args, params, &files)
     } else {
         window::run(entry, &args, params, files).map_err(Failure::from)
-    }
-}
-
-/// Prints a line to stdout; a closed or full stdout is a clean error, not a panic. When an
-/// output of this run is standard output itself (`--screenshot /dev/stdout`), the line goes to
-/// stderr instead, so the bytes stay clean.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn say(line: &str) -> Result<(), Error> {
-    print(&format!("{line}\n"))
-}
-
-/// Writes `text` to stdout (stderr when an output took stdout, see [`say`]) and flushes it; a
-/// closed or full stdout is [`Error::Io`] on `<stdout>`, never a panic.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn print(text: &str) -> Result<(), Error> {
-    let fail = |source| Error::Io {
-        path: PathBuf::from("<stdout>"),
-        source,
-    };
-    if crate::fsutil::stdout_taken() {
-        let mut err = std::io::stderr().lock();
-        return err.write_all(text.as_bytes()).map_err(fail);
-    }
-    let mut out = std::io::stdout().lock();
-    out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(fail)
-}
-
-/// Parses a command line with clap, for every command and example: `--help` and `--version`
-/// are written to stdout with [`print()`] (a write that fails ends the process with one line and
-/// status 1, instead of clap's panic or silent loss), usage errors go to stderr with status 2.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn parse_command_line(
-    command: clap::Command,
-    argv: impl IntoIterator<Item = impl Into<std::ffi::OsString> + Clone>,
-) -> clap::ArgMatches {
-    let name = command.get_name().to_owned();
-    match command.try_get_matches_from(argv) {
-        Ok(matches) => matches,
-        Err(e) => exit_on_clap_error(&name, e),
-    }
-}
-
-/// The end of a tool's `main` (`bench`, `tradeoff`, `labs`): status 0, or one line
-/// `NAME: error: what: why` (anyhow's causes joined, no backtrace) and status 1; a run stopped by
-/// a signal ends as the signal asked.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn tool_exit(name: &str, result: anyhow::Result<()>) -> ExitCode {
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            if let Some(Error::Interrupted { signal }) = e.downcast_ref::<Error>() {
-                crate::fsutil::signals::end_by(*signal);
-            }
-            let _ = writeln!(std::io::stderr(), "{name}: error: {}", one_line(&e));
-            ExitCode::from(1)
-        }
-    }
-}
-
-/// An error and its causes on one line, each cause once (shaderlab's errors already name
-/// their cause, which anyhow's chain would repeat).
-#[cfg(not(target_arch = "wasm32"))]
-pub fn one_line(e: &anyhow::Error) -> String {
-    let mut text = e.to_string();
-    for cause in e.chain().skip(1) {
-        let cause = cause.to_string();
-        if !text.contains(&cause) {
-            text.push_str(": ");
-            text.push_str(&cause);
-        }
-    }
-    text
-}
-
-/// Ends the process for a clap error or request as [`parse_command_line`] describes.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn exit_on_clap_error(name: &str, e: clap::Error) -> ! {
-    if e.use_stderr() {
-        let _ = e.print();
-        std::process::exit(e.exit_code());
-    }
-    let text = e.render().to_string();
-    match print(&text) {
-        Ok(()) => std::process::exit(0),
-        Err(failure) => {
-            let _ = writeln!(std::io::stderr(), "{name}: error: {failure}");
-            std::process::exit(1)
-        }
     }
 }
 

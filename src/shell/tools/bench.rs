@@ -12,7 +12,7 @@ use crate::offscreen::COLOR_FORMAT;
 use crate::params::Kind;
 use crate::shader::ShaderSource;
 use crate::shell::bench;
-use crate::shell::{say, tool_exit};
+use crate::shell::cli::{self, say, tool_exit};
 use clap::{CommandFactory, FromArgMatches, Parser};
 
 #[derive(Parser)]
@@ -36,14 +36,14 @@ struct Args {
 
 /// `bench`'s `main`: the command line of the process.
 pub fn main() -> std::process::ExitCode {
-    crate::shell::ensure_runtime_dir();
+    cli::ensure_runtime_dir();
     tool_exit("bench", run(std::env::args_os()))
 }
 
 /// The benchmark for a command line (program name first); `shaderlab bench` calls it too.
 pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result<()> {
-    let matches = crate::shell::parse_command_line(Args::command(), argv);
-    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| crate::shell::exit_on_clap_error("bench", e));
+    let matches = cli::parse_command_line(Args::command(), argv);
+    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| cli::exit_on_clap_error("bench", e));
     let gpu = Gpu::headless()?;
     if args.debugger {
         return debugger(&gpu, &args);

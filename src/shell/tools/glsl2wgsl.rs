@@ -23,6 +23,7 @@ use std::process::ExitCode;
 
 use crate::fsutil::{check_output_path, inputs, write_atomic, Batch, NewDir};
 use crate::shader::compile_file;
+use crate::shell::cli;
 use anyhow::{bail, Context};
 use clap::{CommandFactory, FromArgMatches, Parser};
 
@@ -104,7 +105,7 @@ fn write(path: &Path, text: &str) -> anyhow::Result<()> {
 
 fn run(args: &Args) -> anyhow::Result<()> {
     if let Some([vert, frag]) = args.legacy.as_deref() {
-        crate::shell::print(&legacy(vert, frag)?).map_err(lib)?;
+        cli::print(&legacy(vert, frag)?).map_err(lib)?;
         return Ok(());
     }
     if let Some([dir, out_dir]) = args.all.as_deref() {
@@ -168,25 +169,25 @@ fn run(args: &Args) -> anyhow::Result<()> {
     let wgsl = translate(file)?;
     match &args.output {
         Some(out) => write(out, &wgsl)?,
-        None => crate::shell::print(&wgsl).map_err(lib)?,
+        None => cli::print(&wgsl).map_err(lib)?,
     }
     Ok(())
 }
 
 /// `glsl2wgsl`'s `main`: the command line of the process.
 pub fn main() -> ExitCode {
-    crate::shell::ensure_runtime_dir();
+    cli::ensure_runtime_dir();
     main_from(std::env::args_os())
 }
 
 /// The translator for a command line (program name first); `shaderlab glsl2wgsl` calls it too.
 pub fn main_from(argv: impl IntoIterator<Item = std::ffi::OsString>) -> ExitCode {
-    let matches = crate::shell::parse_command_line(Args::command(), argv);
-    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| crate::shell::exit_on_clap_error("glsl2wgsl", e));
+    let matches = cli::parse_command_line(Args::command(), argv);
+    let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| cli::exit_on_clap_error("glsl2wgsl", e));
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("glsl2wgsl: error: {}", crate::shell::one_line(&e));
+            eprintln!("glsl2wgsl: error: {}", cli::one_line(&e));
             ExitCode::from(if e.is::<Usage>() { 2 } else { 1 })
         }
     }

@@ -33,8 +33,11 @@
 //! window opens, `=reload` inside each live reload's compile, so that the tests can check
 //! what a panic looks like.
 
+mod capture;
 mod inspector;
 mod screen;
+#[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
+mod shm;
 
 use std::path::PathBuf;
 use std::sync::{mpsc, Arc, Mutex};
@@ -55,8 +58,8 @@ use crate::params::Params;
 use crate::render::Frame;
 use crate::shader::ShaderSource;
 
+use super::args::Args;
 use super::session::{Button, Session};
-use super::Args;
 use screen::{Screen, Shown};
 
 pub use screen::surface_size;
@@ -322,7 +325,7 @@ struct WindowState {
     /// Screenshots and recordings named so far (`NAME-SECONDS-PID-N.EXT`).
     named: u32,
     /// F10's recording, while one runs.
-    capture: Option<super::capture::Capture>,
+    capture: Option<capture::Capture>,
     /// F1's parameter panel.
     panel: super::panel::Panel,
     /// Why drawing stopped for good: a frame did not finish within the watchdog (a shader that
@@ -755,7 +758,7 @@ impl WindowState {
             Some(capture) => report_capture(self.name(), capture),
             None => {
                 let path = self.fresh_name("gif");
-                match super::capture::Capture::start(&path) {
+                match capture::Capture::start(&path) {
                     Ok(capture) => {
                         eprintln!("{}: recording to {} (F10 stops)", self.name(), path.display());
                         self.capture = Some(capture);
@@ -829,7 +832,7 @@ impl WindowState {
             files,
             source,
             error: error.as_deref(),
-            recording: self.capture.as_ref().map(super::capture::Capture::frames),
+            recording: self.capture.as_ref().map(capture::Capture::frames),
         };
         let inspect = self.session.inspecting().then(|| super::panel::InspectView {
             pixel: self.session.inspected(),
@@ -891,7 +894,7 @@ impl WindowState {
         let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
         self.sources.source = ShaderSource::Dir(dir.clone());
         self.sources.reload = watch(std::slice::from_ref(&dir), &self.sources.files.inputs);
-        let _ = super::say(&format!("shaders: {} (edit them; the lab reloads live)", dir.display()));
+        let _ = super::cli::say(&format!("shaders: {} (edit them; the lab reloads live)", dir.display()));
     }
 
     fn screenshot(&mut self) {
@@ -912,7 +915,7 @@ impl WindowState {
         {
             Ok(()) => {
                 let path = std::fs::canonicalize(&path).unwrap_or(path);
-                let _ = super::say(&format!("screenshot: {}", path.display()));
+                let _ = super::cli::say(&format!("screenshot: {}", path.display()));
             }
             Err(e) => eprintln!("{}: screenshot failed: {e}", self.name()),
         }
@@ -1083,12 +1086,12 @@ fn dom_key(event: &KeyEvent) -> Option<String> {
 }
 
 /// Finishes a recording and says where it is (or why it failed).
-fn report_capture(name: &str, capture: super::capture::Capture) {
+fn report_capture(name: &str, capture: capture::Capture) {
     let frames = capture.frames();
     match capture.finish() {
         Ok(path) => {
             let path = std::fs::canonicalize(&path).unwrap_or(path);
-            let _ = super::say(&format!("recording: {} ({frames} frames)", path.display()));
+            let _ = super::cli::say(&format!("recording: {} ({frames} frames)", path.display()));
         }
         Err(e) => eprintln!("{name}: recording failed: {e}"),
     }

@@ -1,5 +1,5 @@
 //! How a frame reaches the window: the swapchain, or, for a CPU adapter under X11, the X
-//! server's shared memory ([`super::super::shm`]), which the lab draws into directly. The
+//! server's shared memory ([`super::shm`]), which the lab draws into directly. The
 //! window asks for a [`Target`], records the lab and the panel into it, and hands it back to
 //! [`Screen::present`]; everything that differs between the two paths lives here.
 //!
@@ -16,7 +16,7 @@ use crate::gpu::Gpu;
 use crate::offscreen::depth_texture;
 
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
-use super::super::shm::ShmPresenter as Presenter;
+use super::shm::ShmPresenter as Presenter;
 
 /// No shared-memory presenter on this platform: always the swapchain.
 #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
