@@ -1553,9 +1553,9 @@ fn generate(a: &Analysis, ctx: &Context) -> Output {
             text,
         });
     }
-    // Padded arrays read in place: `a[i]` becomes `sl_u_a[i].x` (a copy of the whole array
-    // into a private one, on every invocation, is what made `uniform float a[1000]` take
-    // 20 s to compile in lavapipe).
+    // Padded arrays read in place: `a[i]` becomes `sl_u_a[i].x`, not a copy of the whole array
+    // into a private one on every invocation, which the driver compiles slowly (figures:
+    // docs/speed.md, "Shader limits").
     if !in_place.is_empty() {
         let mut names = BTreeSet::new();
         let mut reads = Vec::new();
