@@ -554,13 +554,7 @@ fn mismatched_uniform_struct_is_rejected() {
     assert_layout_message(check_layout::<BadPhongUniforms>("BadPhongUniforms", &block).unwrap_err());
     // Binding the struct to a program runs the same check, and names both sides.
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default())
             .unwrap();
@@ -580,13 +574,7 @@ fn mismatched_uniform_struct_is_rejected() {
     let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
     std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
     let source = copy.source();
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     let block =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "int_ka", "phong.vert", "phong.frag", RenderState::default())
             .unwrap()
@@ -664,13 +652,7 @@ fn lab_set_unknown_name_is_param_error() {
 fn bindings_and_vertex_inputs_are_checked_by_name() {
     use shaderlab::render::{Bind, SamplerDesc, Texture};
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "check", "phong.vert", "phong.frag", RenderState::default())
             .expect("phong builds");
