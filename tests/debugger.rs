@@ -36,13 +36,7 @@ impl Rng {
 fn build(name: &str, files: &UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
     let entry = shaderlab::labs::find(name).expect("a lab");
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, files);
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
     for (k, v) in set {
         lab.params_mut()
@@ -575,13 +569,8 @@ void main() {
 #[test]
 fn discard_and_blending_replay_as_the_gpu_draws() {
     let source = overlap::Overlap::source();
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &UserFiles::default(),
-        lab: "",
-    };
+    let files = UserFiles::default();
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
     let lab = overlap::Overlap::new(&cx).expect("overlap builds");
     let (checked, misses, _) = agreement("overlap", Box::new(lab), 0x0d15_ca4d);
     assert!(checked >= SURFACE, "{checked} pixels");

@@ -26,13 +26,8 @@ fn edited(lab: &str, file: &str, main: &str, set: &[(&str, &str)]) -> Box<dyn La
     let at = text.find("void main()").expect("a main");
     let texts: BTreeMap<String, String> = [(file.to_owned(), format!("{}{main}", &text[..at]))].into();
     let source = ShaderSource::Edited(Arc::new(texts));
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &UserFiles::default(),
-        lab: "",
-    };
+    let files = UserFiles::default();
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
     let entry = shaderlab::labs::find(lab).expect("a lab");
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{lab} builds with\n{main}\n{e}"));
     for (k, v) in set {

@@ -205,13 +205,7 @@ fn zero_vectors_never_reach_the_picture() {
 /// `entry` built with user files, rendered into the float target at half its size.
 fn render_with_files(entry: &LabEntry, files: &UserFiles) -> Vec<[f32; 4]> {
     let gpu = common::gpu();
-    let cx = BuildContext {
-        gpu,
-        source: &ShaderSource::Embedded,
-        format: FLOAT,
-        files,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu, &ShaderSource::Embedded, FLOAT, files);
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{}: {e}", entry.info.name));
     let (w, h) = entry.info.size;
     let target = shaderlab::offscreen::Offscreen::with_format(gpu, w / 2, h / 2, FLOAT);

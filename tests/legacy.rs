@@ -45,13 +45,7 @@ fn legacy(files: Vec<PathBuf>, set: &[(&str, &str)]) -> Box<dyn Lab> {
 
 fn legacy_with(files: UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &files,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
     let mut lab = (shaderlab::labs::LEGACY.new)(&cx).unwrap_or_else(|e| panic!("legacy builds: {e}"));
     for (k, v) in set {
         lab.params_mut()
@@ -343,13 +337,7 @@ fn live_reload_keeps_the_last_good_pipeline_and_values() {
         inputs: vec![vert.clone(), frag.clone()],
         ..UserFiles::default()
     };
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &files,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
     // An edit that adds a uniform: `tint` keeps its value, `gain` appears with GL's 0.
     std::fs::write(
         &frag,

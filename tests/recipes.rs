@@ -83,13 +83,13 @@ fn a_block_member_without_a_parameter_is_named() {
     let edited = text.replace("float twisting;", "float twisting;\n    float spin;");
     assert_ne!(text, edited, "twist_params.glsl has `float twisting;`");
     std::fs::write(&file, edited).unwrap();
-    let cx = shaderlab::lab::BuildContext {
-        gpu: gpu(),
-        source: &ShaderSource::Dir(dir.clone()),
-        format: shaderlab::offscreen::COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let source = ShaderSource::Dir(dir.clone());
+    let cx = shaderlab::lab::BuildContext::new(
+        gpu(),
+        &source,
+        shaderlab::offscreen::COLOR_FORMAT,
+        &shaderlab::lab::NO_FILES,
+    );
     let err = match (labs::TWIST.new)(&cx) {
         Ok(_) => panic!("twist built with a block member no parameter feeds"),
         Err(e) => e.to_string(),
@@ -106,13 +106,12 @@ fn a_reload_that_changes_a_block_keeps_the_last_good_pipeline() {
     let _ = std::fs::remove_dir_all(&dir);
     copy_shaders(&dir);
     let source = ShaderSource::Dir(dir.clone());
-    let cx = shaderlab::lab::BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: shaderlab::offscreen::COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = shaderlab::lab::BuildContext::new(
+        gpu(),
+        &source,
+        shaderlab::offscreen::COLOR_FORMAT,
+        &shaderlab::lab::NO_FILES,
+    );
     let mut lab = (labs::TWIST.new)(&cx).expect("twist builds");
     let before = shot(lab.as_mut());
     let file = dir.join("twist_params.glsl");
@@ -169,13 +168,13 @@ fn a_texture_the_lab_does_not_provide_is_named() {
     );
     assert_ne!(text, edited, "twist.frag has a main");
     std::fs::write(&file, edited).unwrap();
-    let cx = shaderlab::lab::BuildContext {
-        gpu: gpu(),
-        source: &ShaderSource::Dir(dir.clone()),
-        format: shaderlab::offscreen::COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let source = ShaderSource::Dir(dir.clone());
+    let cx = shaderlab::lab::BuildContext::new(
+        gpu(),
+        &source,
+        shaderlab::offscreen::COLOR_FORMAT,
+        &shaderlab::lab::NO_FILES,
+    );
     let err = match (labs::TWIST.new)(&cx) {
         Ok(_) => panic!("twist built without the texture its shader declares"),
         Err(e) => e.to_string(),

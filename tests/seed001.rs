@@ -995,13 +995,7 @@ fn every_spec_state_renders_by_its_parameters() {
 #[test]
 fn vertex_types_are_checked_against_the_shaders_inputs() {
     use shaderlab::render::{Program, RenderState};
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &ShaderSource::Embedded,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &ShaderSource::Embedded, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     // GLUT's vertex (position, normal) cannot feed `attribute float height`.
     let err =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "t", "height.vert", "pass_color.frag", RenderState::default())

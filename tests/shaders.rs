@@ -2,7 +2,8 @@
 //! at the right `path:line:column` by the library, by the example binaries and by live reload
 //! (which keeps the last good pipeline); errors in `#include` snippets point into the snippet;
 //! GLSL → WGSL output parses, validates and renders the same images; Rust uniform structs are
-//! checked against the reflected blocks; `--set` names and values are checked.
+//! checked against the reflected blocks; `--set` names and values are checked; a session lists
+//! the files each program was spliced from.
 //!
 //! The example binaries are built by the tests themselves (`cargo build --example ...`), because
 //! `cargo test --test shaders` does not build examples.
@@ -554,13 +555,7 @@ fn mismatched_uniform_struct_is_rejected() {
     assert_layout_message(check_layout::<BadPhongUniforms>("BadPhongUniforms", &block).unwrap_err());
     // Binding the struct to a program runs the same check, and names both sides.
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "bad", "phong.vert", "phong.frag", RenderState::default())
             .unwrap();
@@ -580,13 +575,7 @@ fn mismatched_uniform_struct_is_rejected() {
     let params = std::fs::read_to_string(copy.path("phong_params.glsl")).unwrap();
     std::fs::write(copy.path("phong_params.glsl"), params.replace("float Ka;", "int Ka;")).unwrap();
     let source = copy.source();
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     let block =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "int_ka", "phong.vert", "phong.frag", RenderState::default())
             .unwrap()
@@ -664,13 +653,7 @@ fn lab_set_unknown_name_is_param_error() {
 fn bindings_and_vertex_inputs_are_checked_by_name() {
     use shaderlab::render::{Bind, SamplerDesc, Texture};
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: gpu(),
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &shaderlab::lab::NO_FILES);
     let mut program =
         Program::<shaderlab::mesh::Vertex>::new(&cx, "check", "phong.vert", "phong.frag", RenderState::default())
             .expect("phong builds");
@@ -891,4 +874,49 @@ fn a_panic_inside_wgpu_or_naga_is_an_error() {
     let mut lab = common::lab(labs::POSITION_RGB);
     assert!(coverage(&lab.rgb(64, 36), [0, 0, 0]) > 0.05);
     std::fs::remove_dir_all(&copy.dir).ok();
+}
+
+#[test]
+fn a_session_lists_each_programs_files_and_every_file_spliced_into_it() {
+    use shaderlab::shell::session::Session;
+    let source = ShaderSource::Embedded;
+    let files = &shaderlab::lab::NO_FILES;
+    let mut session =
+        Session::open(labs::DISPLACEMENT, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("displacement opens");
+    let programs = session.shader_files();
+    assert_eq!(programs.len(), 1, "{programs:?}");
+    let program = &programs[0];
+    assert_eq!(
+        (program.vertex.as_str(), program.fragment.as_str()),
+        ("displacement.vert", "displacement.frag")
+    );
+    // displacement.vert includes transform.glsl, displacement_params.glsl and noise.glsl.
+    for name in [
+        "displacement.vert",
+        "transform.glsl",
+        "displacement_params.glsl",
+        "noise.glsl",
+        "displacement.frag",
+    ] {
+        let found = program.spliced.iter().filter(|f| f.ends_with(name)).count();
+        assert_eq!(found, 1, "{name} once in {:?}", program.spliced);
+    }
+}
+
+#[test]
+fn a_session_given_the_command_lines_parameters_runs_its_clock_from_their_time() {
+    use shaderlab::shell::session::Session;
+    let source = ShaderSource::Embedded;
+    let files = &shaderlab::lab::NO_FILES;
+    let open = || Session::open(labs::WAVE, gpu(), &source, COLOR_FORMAT, files, 10.0, 2.0).expect("wave opens");
+    let mut params = open().lab().params().clone();
+    params.set("time", &[7.0]).unwrap();
+    let mut session = open().with_params(params);
+    assert!(session.animated());
+    session.tick(11.0);
+    assert_eq!(
+        session.lab().params().f64("time"),
+        9.0,
+        "7 at second 10, two per second"
+    );
 }

@@ -306,13 +306,7 @@ fn native(name: &str, sets: &[&str]) -> RgbImage {
         }
     }
     let gpu = common::gpu();
-    let cx = BuildContext {
-        gpu,
-        source: &ShaderSource::Embedded,
-        format: COLOR_FORMAT,
-        files: &files,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu, &ShaderSource::Embedded, COLOR_FORMAT, &files);
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
     common::set_state(lab.as_mut(), &state);
     let (w, h) = entry.info.size;

@@ -290,13 +290,12 @@ static EMBEDDED: shaderlab::shader::ShaderSource = shaderlab::shader::ShaderSour
 /// What every study builds its labs with: the GPU, the built-in shaders, the offscreen format,
 /// no user files.
 pub fn context(gpu: &shaderlab::Gpu) -> shaderlab::lab::BuildContext<'_> {
-    shaderlab::lab::BuildContext {
+    shaderlab::lab::BuildContext::new(
         gpu,
-        source: &EMBEDDED,
-        format: shaderlab::offscreen::COLOR_FORMAT,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    }
+        &EMBEDDED,
+        shaderlab::offscreen::COLOR_FORMAT,
+        &shaderlab::lab::NO_FILES,
+    )
 }
 
 /// One line of a sweep's progress: above the bar on a terminal, on stderr in a log.

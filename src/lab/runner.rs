@@ -98,10 +98,7 @@ impl Runner {
     /// Builds the recipe's lab.
     pub fn boxed(cx: &BuildContext, recipe: &'static Recipe) -> Result<Box<dyn Lab>> {
         let params = recipe.params();
-        let cx = BuildContext {
-            lab: recipe.info.name,
-            ..*cx
-        };
+        let cx = cx.with_lab(recipe.info.name);
         let scene = (recipe.build)(&cx, &params)?;
         Ok(Box::new(Runner { recipe, params, scene }))
     }

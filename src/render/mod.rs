@@ -10,7 +10,9 @@ use crate::shader::ShaderSource;
 /// What programs, textures and labs are built with: the device, where shader files come from,
 /// the colour format drawn into, the user's files, and the name of the lab being built (the
 /// prefix of its GPU objects' labels; set by [`crate::lab::Runner`] from the lab's registration).
+/// Made by [`BuildContext::new`] only, so a new field has one place to get its default.
 #[derive(Clone, Copy)]
+#[non_exhaustive]
 pub struct BuildContext<'a> {
     /// The device.
     pub gpu: &'a Gpu,
@@ -22,6 +24,30 @@ pub struct BuildContext<'a> {
     pub files: &'a crate::user_files::UserFiles,
     /// The lab's name, for labels (empty outside a lab).
     pub lab: &'static str,
+}
+
+impl<'a> BuildContext<'a> {
+    /// What to build with on `gpu`, from `source`, drawing in `format`, with the user's `files`;
+    /// the lab's name is empty until [`BuildContext::with_lab`] names it.
+    pub fn new(
+        gpu: &'a Gpu,
+        source: &'a ShaderSource,
+        format: wgpu::TextureFormat,
+        files: &'a crate::user_files::UserFiles,
+    ) -> Self {
+        BuildContext {
+            gpu,
+            source,
+            format,
+            files,
+            lab: "",
+        }
+    }
+
+    /// The same, building the lab called `lab` (its name prefixes the labels of what it builds).
+    pub fn with_lab(self, lab: &'static str) -> Self {
+        BuildContext { lab, ..self }
+    }
 }
 
 mod frame;

@@ -11,6 +11,8 @@ use crate::lab::Lab;
 #[derive(Clone, Debug)]
 pub struct Clock {
     scale: f64,
+    /// The caller's second it started at.
+    start: f64,
     /// The lab's time at the caller's second 0.
     offset: f64,
     paused: bool,
@@ -29,9 +31,19 @@ impl Clock {
         };
         Clock {
             scale,
+            start: now,
             offset: time - now * scale,
             paused: false,
             last: None,
+        }
+    }
+
+    /// The clock started anew at the same second, from the lab's `time` now (its parameters
+    /// were replaced before the first frame), paused as it was.
+    pub fn restarted(&self, lab: &dyn Lab) -> Clock {
+        Clock {
+            paused: self.paused,
+            ..Clock::new(lab, self.start, self.scale)
         }
     }
 
@@ -156,5 +168,19 @@ mod tests {
         assert_eq!(lab.params().f64("time"), 11.0);
         let stopped = Clock::new(&lab, 0.0, 1.0).paused();
         assert!(stopped.is_paused() && !stopped.runs(&lab));
+    }
+
+    #[test]
+    fn a_restarted_clock_starts_from_the_new_time_at_the_same_second_and_scale() {
+        let mut lab = lab(0.0);
+        let clock = Clock::new(&lab, 10.0, 2.0);
+        lab.params_mut().set_unchecked("time", &[7.0]);
+        let mut restarted = clock.restarted(&lab);
+        restarted.tick(&mut lab, 11.0);
+        assert_eq!(lab.params().f64("time"), 9.0, "7 at second 10, two per second");
+        assert!(
+            Clock::new(&lab, 0.0, 1.0).paused().restarted(&lab).is_paused(),
+            "paused as it was"
+        );
     }
 }

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{BuildContext, Lab, LabEntry, UserFiles};
+use crate::lab::{Lab, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen, COLOR_FORMAT};
 use crate::params::Params;
 use crate::render::Frame;
@@ -44,14 +44,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     gpu.watchdog = args.watchdog();
     gpu.bounded_compiles = true;
     let source = args.shader_source()?;
-    let cx = BuildContext {
-        gpu: &gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files,
-        lab: "",
-    };
-    let mut lab = (entry.new)(&cx)?;
+    let mut lab = super::session::Session::open_lab(entry, &gpu, &source, COLOR_FORMAT, files)?;
     // The lab has read its shaders and every file they include: inputs too, which no output
     // may replace. Checked again now, before any frame is drawn.
     if let Some(path) = &args.screenshot {

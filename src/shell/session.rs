@@ -2,16 +2,22 @@
 //! ([`super::window`]) and the page (`shell::web`, in the browser build) each hold a [`Session`] and keep only what
 //! their platform forces (where events come from, how a frame reaches the screen).
 //!
-//! A session holds the lab (its parameters with it), the clock of an animated lab, the frames
-//! still to draw after a change, the mouse (GLUT's drag rule: the motion callback runs while any
-//! button is held, the press and release callbacks are the left button's), the standing shader
-//! error, and turns key names into the original's callbacks. The panel's model (which control
-//! each parameter gets, in which group) is [`super::panel::widgets`], also shared.
+//! A session opens the lab ([`Session::open`]; [`Session::open_lab`] builds one without a
+//! session, for the headless runs and the window's live reload) and lists its shader files
+//! ([`Session::shader_files`]). It holds the lab (its parameters with it), the clock of an
+//! animated lab, the frames still to draw after a change, the mouse (GLUT's drag rule: the
+//! motion callback runs while any button is held, the press and release callbacks are the left
+//! button's), the standing shader error, and turns key names into the original's callbacks.
+//! The panel's model (which control each parameter gets, in which group) is
+//! [`super::panel::widgets`], also shared.
 
 use super::clock::Clock;
 use crate::error::{Error, Result};
-use crate::lab::{Input, Lab, LabEntry, Special};
+use crate::gpu::Gpu;
+use crate::lab::{Input, Lab, LabEntry, Special, UserFiles};
+use crate::params::Params;
 use crate::render::{BuildContext, Frame};
+use crate::shader::ShaderSource;
 
 /// A mouse button.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -81,10 +87,49 @@ const CLICK_SLOP: i32 = 2;
 /// Frames drawn after a change: two, as a double-buffered window needs both its buffers new.
 const FRAMES_AFTER_A_CHANGE: u32 = 2;
 
+/// The shader files of one of the lab's programs.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProgramFiles {
+    /// The vertex shader's file, as the lab names it.
+    pub vertex: String,
+    /// The fragment shader's file, as the lab names it.
+    pub fragment: String,
+    /// Every file the two shaders were spliced from (the files they include too), by display
+    /// path, each once, in the order their lines come.
+    pub spliced: Vec<String>,
+}
+
 impl Session {
-    /// A session of `lab`, `entry`'s, its clock starting at `now` (seconds on the front end's
-    /// clock) and running `scale` times real time.
-    pub fn new(entry: &'static LabEntry, lab: Box<dyn Lab>, now: f64, scale: f64) -> Session {
+    /// Builds `entry`'s lab on `gpu` from `source`, to draw in `format`, with the user's `files`:
+    /// how every front end opens a lab (the headless runs and the window's live reload too).
+    pub fn open_lab(
+        entry: &'static LabEntry,
+        gpu: &Gpu,
+        source: &ShaderSource,
+        format: wgpu::TextureFormat,
+        files: &UserFiles,
+    ) -> Result<Box<dyn Lab>> {
+        (entry.new)(&BuildContext::new(gpu, source, format, files))
+    }
+
+    /// A session of `entry`'s lab, opened as [`Session::open_lab`] does, its clock starting at
+    /// `now` (seconds on the front end's clock) and running `scale` times real time.
+    pub fn open(
+        entry: &'static LabEntry,
+        gpu: &Gpu,
+        source: &ShaderSource,
+        format: wgpu::TextureFormat,
+        files: &UserFiles,
+        now: f64,
+        scale: f64,
+    ) -> Result<Session> {
+        let lab = Session::open_lab(entry, gpu, source, format, files)?;
+        Ok(Session::new(entry, lab, now, scale))
+    }
+
+    /// A session of `lab`, `entry`'s, its clock starting at `now` and running `scale` times
+    /// real time.
+    fn new(entry: &'static LabEntry, lab: Box<dyn Lab>, now: f64, scale: f64) -> Session {
         let clock = Clock::new(lab.as_ref(), now, scale);
         Session {
             entry,
@@ -97,6 +142,14 @@ impl Session {
             version: 0,
             inspect: Inspect::default(),
         }
+    }
+
+    /// With the lab's parameters replaced by `params` (the command line's) before its first
+    /// frame: the clock starts from their `time`.
+    pub fn with_params(mut self, params: Params) -> Session {
+        *self.lab.params_mut() = params;
+        self.clock = self.clock.restarted(self.lab.as_ref());
+        self
     }
 
     /// With the clock paused (a link that keeps its `time`).
@@ -273,11 +326,18 @@ impl Session {
         self.shader_error.as_deref()
     }
 
-    /// Compiles the lab's shaders again (live reload, an edit on the page); a failure keeps the
-    /// last good pipelines and stands as [`Session::shader_error`] until a reload succeeds.
-    pub fn reload(&mut self, cx: &BuildContext) -> Result<()> {
+    /// Compiles the lab's shaders again from `source` (an edit on the page), with what it was
+    /// opened with otherwise; a failure keeps the last good pipelines and stands as
+    /// [`Session::shader_error`] until a reload succeeds.
+    pub fn reload(
+        &mut self,
+        gpu: &Gpu,
+        source: &ShaderSource,
+        format: wgpu::TextureFormat,
+        files: &UserFiles,
+    ) -> Result<()> {
         self.touched();
-        match self.lab.reload(cx) {
+        match self.lab.reload(&BuildContext::new(gpu, source, format, files)) {
             Ok(()) => {
                 self.shader_error = None;
                 Ok(())
@@ -312,6 +372,30 @@ impl Session {
     pub fn rebuild_failed(&mut self, error: String) {
         self.shader_error = Some(error);
         self.changed();
+    }
+
+    /// The shader files of each of the lab's programs (the window's panel lists them, the page
+    /// offers them to edit).
+    pub fn shader_files(&mut self) -> Vec<ProgramFiles> {
+        let mut all = Vec::new();
+        for program in self.lab.programs() {
+            let (vertex, fragment) = program.files();
+            let mut spliced: Vec<String> = Vec::new();
+            let (v, f) = program.shaders();
+            for shader in [v, f] {
+                for (file, _) in &shader.source.line_map {
+                    if !spliced.contains(file) {
+                        spliced.push(file.clone());
+                    }
+                }
+            }
+            all.push(ProgramFiles {
+                vertex: vertex.to_owned(),
+                fragment: fragment.to_owned(),
+                spliced,
+            });
+        }
+        all
     }
 
     /// Turns inspect mode on or off (F2): on, a click picks the pixel to inspect.

@@ -25,7 +25,7 @@ use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
 use crate::gpu::Gpu;
-use crate::lab::{BuildContext, UserFile, UserFiles};
+use crate::lab::{UserFile, UserFiles};
 use crate::offscreen::{depth_texture, Offscreen};
 use crate::params::Kind;
 use crate::render::Frame;
@@ -255,17 +255,18 @@ impl WebApp {
             self.files.inputs.clear();
         }
         let source = self.shader_source();
-        let cx = BuildContext {
-            gpu: &self.gpu,
-            source: &source,
-            format: self.config.format,
-            files: &self.files,
-            lab: "",
-        };
-        let lab = (entry.new)(&cx).map_err(js_error)?;
+        let session = Session::open(
+            entry,
+            &self.gpu,
+            &source,
+            self.config.format,
+            &self.files,
+            self.now,
+            1.0,
+        )
+        .map_err(js_error)?;
         let (width, height) = entry.info.size;
         self.resize(width, height);
-        let session = Session::new(entry, lab, self.now, 1.0);
         let mut session = if paused { session.paused() } else { session };
         for (key, value) in assignments {
             if let Err(e) = session.set(&key, &value) {
@@ -692,14 +693,11 @@ impl WebApp {
             };
         }
         let mut names: Vec<String> = Vec::new();
-        for program in open.lab_mut().programs() {
-            let (v, f) = program.shaders();
-            for shader in [v, f] {
-                for (file, _) in &shader.source.line_map {
-                    let name = file.strip_prefix("shaders_glsl/").unwrap_or(file).to_owned();
-                    if !names.contains(&name) {
-                        names.push(name);
-                    }
+        for program in open.shader_files() {
+            for file in &program.spliced {
+                let name = file.strip_prefix("shaders_glsl/").unwrap_or(file).to_owned();
+                if !names.contains(&name) {
+                    names.push(name);
                 }
             }
         }
@@ -711,14 +709,10 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return String::new();
         };
-        let cx = BuildContext {
-            gpu: &self.gpu,
-            source: &source,
-            format: self.config.format,
-            files: &self.files,
-            lab: "",
-        };
-        open.reload(&cx).err().map(|e| e.to_string()).unwrap_or_default()
+        open.reload(&self.gpu, &source, self.config.format, &self.files)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
     }
 
     /// Sizes the canvas, the surface and the depth buffer to the lab's picture.

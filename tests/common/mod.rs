@@ -95,13 +95,7 @@ impl TestLab {
     }
     /// Compiles the shaders again from the lab's source (live reload).
     pub fn reload(&mut self) -> shaderlab::Result<()> {
-        let cx = BuildContext {
-            gpu: gpu(),
-            source: &self.source,
-            format: self.format,
-            files: &shaderlab::lab::NO_FILES,
-            lab: "",
-        };
+        let cx = BuildContext::new(gpu(), &self.source, self.format, &shaderlab::lab::NO_FILES);
         self.lab.reload(&cx)
     }
     /// Renders offscreen (RGBA).
@@ -133,13 +127,7 @@ pub fn lab_from(entry: &LabEntry, source: &ShaderSource) -> TestLab {
 
 /// A lab with shaders from `source`, built for targets of `format`.
 pub fn lab_with(entry: &LabEntry, source: &ShaderSource, format: wgpu::TextureFormat) -> TestLab {
-    let cx = BuildContext {
-        gpu: gpu(),
-        source,
-        format,
-        files: &shaderlab::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu(), source, format, &shaderlab::lab::NO_FILES);
     TestLab {
         lab: (entry.new)(&cx).expect("lab builds"),
         source: source.clone(),

@@ -324,13 +324,7 @@ impl Lab for Phong {
         } else {
             // Only when a model is still to be built (the context borrows the source).
             let source = self.source.clone();
-            self.ensure_model(&BuildContext {
-                gpu,
-                source: &source,
-                format: self.format,
-                files: &crate::lab::NO_FILES,
-                lab: "",
-            });
+            self.ensure_model(&BuildContext::new(gpu, &source, self.format, &crate::lab::NO_FILES));
         }
         self.drawn = self.params.index_of("shading");
         self.uniforms.fill(&self.params, &Derived::default())?;

@@ -52,13 +52,7 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
     say("| lab | object | size | ms/frame | gpu ms |")?;
     say("|---|---|---|---|---|")?;
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu: &gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &crate::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(&gpu, &source, COLOR_FORMAT, &crate::lab::NO_FILES);
     let bar = crate::shell::progress_bar(labs::ALL.len() as u64, "labs");
     for entry in labs::ALL {
         bar.inc(1);
@@ -116,13 +110,7 @@ fn debugger(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
     say("| lab | size | capture ms | first trace ms | trace ms (median) | trace ms (slowest) |")?;
     say("|---|---|---|---|---|---|")?;
     let source = ShaderSource::Embedded;
-    let cx = BuildContext {
-        gpu,
-        source: &source,
-        format: COLOR_FORMAT,
-        files: &crate::lab::NO_FILES,
-        lab: "",
-    };
+    let cx = BuildContext::new(gpu, &source, COLOR_FORMAT, &crate::lab::NO_FILES);
     for entry in labs::ALL {
         if args
             .only

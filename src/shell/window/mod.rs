@@ -52,7 +52,7 @@ use winit::window::{Window, WindowId};
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{BuildContext, Lab, LabEntry, UserFiles};
+use crate::lab::{Lab, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen};
 use crate::params::Params;
 use crate::render::Frame;
@@ -413,19 +413,28 @@ impl App {
         });
         let screen = Screen::new(entry.info.name, &gpu, window.clone(), surface, self.args.unpaced)?;
         let size = window.inner_size();
+        let env_seconds = |name: &str| {
+            std::env::var(name)
+                .ok()
+                .and_then(|s| s.trim().parse::<f64>().ok())
+                .filter(|s| s.is_finite() && *s >= 0.0)
+        };
+        let clock_scale = env_seconds("SHADERLAB_CLOCK_SCALE").filter(|s| *s > 0.0).unwrap_or(1.0);
         // The first build has no last good pipeline to keep drawing: it is bounded as the
         // command line's are, and live reloads compile beside the window instead.
         gpu.bounded_compiles = true;
-        let mut lab = (entry.new)(&BuildContext {
-            gpu: &gpu,
-            source: &self.source,
-            format: screen.format(),
-            files: &self.files,
-            lab: "",
-        })?;
+        let mut session = Session::open(
+            entry,
+            &gpu,
+            &self.source,
+            screen.format(),
+            &self.files,
+            0.0,
+            clock_scale,
+        )?;
         gpu.bounded_compiles = false;
         if let Some(params) = self.params.take() {
-            *lab.params_mut() = params;
+            session = session.with_params(params);
         }
         // Live reload watches the shader folder and the folders of the lab's input files.
         let mut dirs: Vec<PathBuf> = match &self.source {
@@ -442,18 +451,10 @@ impl App {
             }
         }
         let reload = watch(&dirs, &self.files.inputs);
-        let env_seconds = |name: &str| {
-            std::env::var(name)
-                .ok()
-                .and_then(|s| s.trim().parse::<f64>().ok())
-                .filter(|s| s.is_finite() && *s >= 0.0)
-        };
-        let clock_scale = env_seconds("SHADERLAB_CLOCK_SCALE").filter(|s| *s > 0.0).unwrap_or(1.0);
         let lose_device_at = env_seconds("SHADERLAB_TEST_LOSE_DEVICE")
             .and_then(|s| Duration::try_from_secs_f64(s).ok())
             .map(|d| Instant::now() + d);
         let refresh_millihertz = window.current_monitor().and_then(|m| m.refresh_rate_millihertz());
-        let session = Session::new(entry, lab, 0.0, clock_scale);
         window.set_title(&session.title());
         let panel = super::panel::Panel::new(&window);
         let now = Instant::now();
@@ -647,13 +648,7 @@ impl WindowState {
                     if test_panic {
                         panic!("SHADERLAB_TEST_PANIC=reload");
                     }
-                    (entry.new)(&BuildContext {
-                        gpu: &gpu,
-                        source: &source,
-                        format,
-                        files: &files,
-                        lab: "",
-                    })
+                    Session::open_lab(entry, &gpu, &source, format, &files)
                 });
                 let _ = tx.send(compiled);
                 let _ = proxy.send_event(Wake::Compiled);
@@ -814,11 +809,9 @@ impl WindowState {
             return;
         }
         let draw_ms = self.pacing.started.elapsed().as_secs_f64() * 1000.0;
-        let mut files: Vec<(String, String)> = Vec::new();
-        for program in self.session.lab_mut().programs() {
-            let (v, f) = program.files();
-            files.push((v.to_owned(), f.to_owned()));
-        }
+        let files: Vec<(String, String)> = (self.session.shader_files().into_iter())
+            .map(|program| (program.vertex, program.fragment))
+            .collect();
         let source = match (&self.sources.source, self.sources.reload.is_some()) {
             (ShaderSource::Dir(dir), true) => format!("from {} (reloads live)", dir.display()),
             (ShaderSource::Dir(dir), false) => format!("from {}", dir.display()),
