@@ -68,10 +68,12 @@ pub struct Gpu {
 }
 
 /// How often [`Gpu::compiling`] looks at the process's memory while the driver compiles.
+#[cfg(not(target_arch = "wasm32"))]
 const COMPILE_CHECK: std::time::Duration = std::time::Duration::from_millis(25);
 
 /// What [`Gpu::compiling`] leaves free of the memory the process could take when it began:
 /// a driver's compiler that runs out of memory crashes without a word, so the run ends first.
+#[cfg(not(target_arch = "wasm32"))]
 const COMPILE_MEMORY_MARGIN: u64 = 256 << 20;
 
 /// The command line's default watchdog ([`Gpu::watchdog`], `--timeout`): a frame of the labs

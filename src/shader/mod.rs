@@ -679,7 +679,9 @@ pub fn compile_text(path: &str, text: &str, stage: ShaderStage, resolve: &Includ
 pub(crate) enum Unfinished {
     /// naga's validator refused it.
     Invalid(Box<naga::WithSpan<naga::valid::ValidationError>>),
-    /// A back end of naga panicked on it (a bug in naga): the panic's message.
+    /// A back end of naga panicked on it (a bug in naga): the panic's message. Natively only:
+    /// the browser's back ends are the browser's.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     BackEnd(String),
 }
 
