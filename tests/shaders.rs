@@ -920,3 +920,44 @@ fn a_session_given_the_command_lines_parameters_runs_its_clock_from_their_time()
         "7 at second 10, two per second"
     );
 }
+
+/// The shells' frame ([`Session::draw`], which the window's `record` and both of the page's
+/// paths go through): the picture an offscreen render of the same lab draws, and a broken
+/// shading model's error (found by the lab while drawing) comes back once and stands.
+#[test]
+fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_once() {
+    use shaderlab::offscreen::Offscreen;
+    use shaderlab::shell::session::Session;
+    let dir = output_dir().join(format!("session_draw_{}", std::process::id()));
+    common::copy_shaders(&dir);
+    let flat = dir.join("phong_flat.frag");
+    let good = std::fs::read_to_string(&flat).unwrap();
+    std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
+    let source = ShaderSource::Dir(dir.clone());
+    let files = &shaderlab::lab::NO_FILES;
+    let open = || Session::open(labs::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let (w, h) = (160, 90);
+    let draw = |session: &mut Session| {
+        let target = Offscreen::with_format(gpu(), w, h, COLOR_FORMAT);
+        let error = session.draw(gpu(), "test.frame", &target.color, &target.depth, (w, h));
+        (error, target.read(gpu()).expect("read back"))
+    };
+    let mut session = open();
+    let (error, picture) = draw(&mut session);
+    assert!(error.is_none(), "{error:?}");
+    let mut offscreen = open();
+    let expected = shaderlab::lab::draw::screenshot(gpu(), offscreen.lab_mut(), w, h).expect("offscreen");
+    assert!(
+        picture == expected,
+        "the session's frame differs from the offscreen render"
+    );
+    assert!(session.key("m", 0.0)); // blinn
+    assert!(draw(&mut session).0.is_none());
+    assert!(session.key("m", 0.0)); // flat is broken: skipped
+    let (error, _) = draw(&mut session);
+    let error = error.expect("the broken model's error");
+    assert!(error.to_string().contains("phong_flat.frag"), "{error}");
+    assert!(session.shader_error().is_some_and(|e| e.contains("phong_flat.frag")));
+    assert!(draw(&mut session).0.is_none(), "the error is returned once");
+    std::fs::remove_dir_all(&dir).ok();
+}

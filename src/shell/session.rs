@@ -3,8 +3,10 @@
 //! their platform forces (where events come from, how a frame reaches the screen).
 //!
 //! A session opens the lab ([`Session::open`]; [`Session::open_lab`] builds one without a
-//! session, for the headless runs and the window's live reload) and lists its shader files
-//! ([`Session::shader_files`]). It holds the lab (its parameters with it), the clock of an
+//! session, for the headless runs and the window's live reload), lists its shader files
+//! ([`Session::shader_files`]) and draws the lab's frame into a view it is given
+//! ([`Session::draw`]; [`Session::record`] leaves the encoder open for the window's panel),
+//! checked, with the error to show. It holds the lab (its parameters with it), the clock of an
 //! animated lab, the frames still to draw after a change, the mouse (GLUT's drag rule: the
 //! motion callback runs while any button is held, the press and release callbacks are the left
 //! button's), the standing shader error, and turns key names into the original's callbacks.
@@ -437,11 +439,26 @@ impl Session {
         self.inspect.taken = Some(self.version);
     }
 
-    /// Records the lab's frame; returns an error to show once (the frame's own, or one the lab
-    /// found, such as a shading model whose shader is broken, which then also stands as the
-    /// shader error).
-    pub fn render(&mut self, frame: &mut Frame<'_>) -> Option<Error> {
-        if let Err(e) = self.lab.render(frame) {
+    /// Records the lab's frame into `encoder`, drawing into `color` with its `depth` buffer,
+    /// `size` pixels, under [`Gpu::checked`] (an error wgpu reports, or a panic inside it,
+    /// comes back rather than reaching the device's handler); returns an error to show once
+    /// (the frame's own, or one the lab found, such as a shading model whose shader is broken,
+    /// which then also stands as the shader error). The window records its panel into the same
+    /// encoder, and submits it as it presents.
+    pub fn record(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        (width, height): (u32, u32),
+    ) -> Option<Error> {
+        let lab = self.lab.as_mut();
+        let context = format!("{}.render", lab.info().name);
+        let rendered = gpu.checked(&context, || {
+            lab.render(&mut Frame::new(gpu, encoder, color, depth, width, height))
+        });
+        if let Err(e) = rendered.and_then(|r| r) {
             return Some(e);
         }
         let found = self.lab.take_error();
@@ -449,5 +466,24 @@ impl Session {
             self.shader_error = Some(e.to_string());
         }
         found
+    }
+
+    /// Records the lab's frame as [`Session::record`] does, in an encoder of its own named
+    /// `label`, and submits it; returns the error to show once. The caller presents or reads
+    /// back what was drawn.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        label: &str,
+        color: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        size: (u32, u32),
+    ) -> Option<Error> {
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+        let error = self.record(gpu, &mut encoder, color, depth, size);
+        gpu.queue.submit([encoder.finish()]);
+        error
     }
 }

@@ -28,7 +28,6 @@ use crate::gpu::Gpu;
 use crate::lab::{UserFile, UserFiles};
 use crate::offscreen::{depth_texture, Offscreen};
 use crate::params::Kind;
-use crate::render::Frame;
 use crate::shader::{embedded_source, ShaderSource};
 
 use super::panel::{widgets, Control};
@@ -311,18 +310,8 @@ impl WebApp {
             label: Some("web.frame"),
             ..Default::default()
         });
-        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("web.frame"),
-        });
-        let error = open.render(&mut Frame::new(
-            &self.gpu,
-            &mut encoder,
-            &view,
-            &self.depth,
-            self.config.width,
-            self.config.height,
-        ));
-        self.gpu.queue.submit([encoder.finish()]);
+        let size = (self.config.width, self.config.height);
+        let error = open.draw(&self.gpu, "web.frame", &view, &self.depth, size);
         self.gpu.queue.present(frame);
         if let Some(e) = error {
             self.error = Some(e.to_string());
@@ -613,20 +602,12 @@ impl WebApp {
     pub fn read_start(&mut self) -> Result<(), JsValue> {
         let open = self.open.as_mut().ok_or_else(|| js_error("no lab is open"))?;
         let target = Offscreen::with_format(&self.gpu, self.config.width, self.config.height, self.config.format);
-        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("web.read"),
-        });
-        open.lab_mut()
-            .render(&mut Frame::new(
-                &self.gpu,
-                &mut encoder,
-                &target.color,
-                &target.depth,
-                target.width,
-                target.height,
-            ))
-            .map_err(js_error)?;
-        self.gpu.queue.submit([encoder.finish()]);
+        let size = (target.width, target.height);
+        // As on the canvas: an error is shown once ([`WebApp::take_error`]) and the picture
+        // is what the frame drew.
+        if let Some(e) = open.draw(&self.gpu, "web.read", &target.color, &target.depth, size) {
+            self.error = Some(e.to_string());
+        }
         let done = Rc::new(RefCell::new(None));
         let slot = done.clone();
         target.request_read(&self.gpu, move |r| {

@@ -55,7 +55,6 @@ use crate::gpu::Gpu;
 use crate::lab::{Lab, LabEntry, UserFiles};
 use crate::offscreen::{save_png, Offscreen};
 use crate::params::Params;
-use crate::render::Frame;
 use crate::shader::ShaderSource;
 
 use super::args::Args;
@@ -954,14 +953,9 @@ impl WindowState {
             label: Some("window.frame"),
         });
         let ((w, h), format) = (target.size, target.format);
-        let error = self.session.render(&mut Frame::new(
-            &self.gpu,
-            &mut encoder,
-            &target.view,
-            &target.depth,
-            w,
-            h,
-        ));
+        let error = self
+            .session
+            .record(&self.gpu, &mut encoder, &target.view, &target.depth, (w, h));
         if let Some(e) = error {
             // A lab may rebuild a program while drawing (a shading model chosen by key); a
             // broken shader file leaves the previous one in place, and the error is shown once.
