@@ -1435,10 +1435,7 @@ fn window_mode_failures_are_one_clear_message() {
 #[test]
 fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     let x = Xvfb::start("live_reload");
-    let shaders = x.dir.join("shaders");
-    common::copy_shaders(&shaders);
-    let frag = shaders.join("phong.frag");
-    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let (shaders, frag, original) = phong_shaders(&x);
     let lab = x.launch(
         "phong",
         &["--shaders", shaders.to_str().expect("utf-8 path"), "--object", "sphere"],
@@ -1499,6 +1496,16 @@ fn live_reload_recompiles_keeps_the_last_good_pipeline_and_recovers() {
     assert!(p > 40.0, "after the fix the picture is the original again: {p:.1} dB");
 }
 
+/// A copy of the built-in shaders in the display's folder: the folder, its `phong.frag` and that
+/// file's text.
+fn phong_shaders(x: &Xvfb) -> (PathBuf, PathBuf, String) {
+    let shaders = x.dir.join("shaders");
+    common::copy_shaders(&shaders);
+    let frag = shaders.join("phong.frag");
+    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    (shaders, frag, original)
+}
+
 /// phong.frag edited: `add` joins the end of `main`'s first line, and `term` is added to the
 /// colour it writes.
 fn phong_frag_with(original: &str, add: &str, term: &str) -> String {
@@ -1530,10 +1537,7 @@ fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipel
     );
     assert!(!out.contains("closed or destroyed by another program"), "{out}");
 
-    let shaders = x.dir.join("shaders");
-    common::copy_shaders(&shaders);
-    let frag = shaders.join("phong.frag");
-    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let (shaders, frag, original) = phong_shaders(&x);
     let dir = shaders.to_str().expect("utf-8 path");
     let mut lab = x.launch("phong", &["--shaders", dir, "--object", "sphere"], &[]);
     lab.first_frame();
@@ -1586,10 +1590,7 @@ fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipel
 #[test]
 fn a_window_whose_first_compile_runs_away_meets_the_watchdog() {
     let x = Xvfb::start("first_compile");
-    let shaders = x.dir.join("shaders");
-    common::copy_shaders(&shaders);
-    let frag = shaders.join("phong.frag");
-    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let (shaders, frag, original) = phong_shaders(&x);
     let slow = phong_frag_with(
         &original,
         "    float a[100000];\n    a[int(gl_FragCoord.x)] = 1.0;",
@@ -1612,10 +1613,7 @@ fn a_window_whose_first_compile_runs_away_meets_the_watchdog() {
 #[test]
 fn a_reload_that_compiles_for_minutes_keeps_the_window_answering() {
     let x = Xvfb::start("slow_compile");
-    let shaders = x.dir.join("shaders");
-    common::copy_shaders(&shaders);
-    let frag = shaders.join("phong.frag");
-    let original = std::fs::read_to_string(&frag).expect("read phong.frag");
+    let (shaders, frag, original) = phong_shaders(&x);
     let slow = phong_frag_with(
         &original,
         "    float a[100000];\n    for (int i = 0; i < 100000; i++) a[i] = float(i) * 1e-6;",

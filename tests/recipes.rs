@@ -182,23 +182,23 @@ fn a_texture_the_lab_does_not_provide_is_named() {
     assert!(err.contains("`extra`") && err.contains("does not provide"), "{err}");
 }
 
-/// The README's "Adding an exercise" shows exercise 1's file as it is: a copy that drifted from
+/// "Adding an exercise" (docs/adding-an-exercise.md) shows exercise 1's file as it is: a copy that drifted from
 /// the code would teach a newcomer something false.
 #[test]
 fn the_readmes_example_lab_is_the_real_file() {
     let root = env!("CARGO_MANIFEST_DIR");
-    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let readme = std::fs::read_to_string(format!("{root}/docs/adding-an-exercise.md")).unwrap();
     let file = std::fs::read_to_string(format!("{root}/src/labs/seed000/position_rgb.rs")).unwrap();
     let code = &file[file.find("\nuse ").expect("the file's first use") + 1..];
     let shown = readme
         .split("```rust\n")
         .nth(1)
         .and_then(|rest| rest.split("\n```").next())
-        .expect("a rust block in the README");
+        .expect("a rust block in docs/adding-an-exercise.md");
     assert_eq!(
         shown.trim_end(),
         code.trim_end(),
-        "README's copy of position_rgb.rs differs from the file"
+        "docs/adding-an-exercise.md's copy of position_rgb.rs differs from the file"
     );
     // And what it names exists.
     for name in [
