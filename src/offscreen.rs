@@ -9,8 +9,9 @@ use std::path::Path;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 
+use crate::gpu::targets::depth_texture;
 pub use crate::gpu::targets::{
-    copyable_color, depth_texture, padded_row, readback_buffer, target_descriptor, COLOR_FORMAT, DEPTH_FORMAT,
+    copyable_color, padded_row, readback_buffer, target_descriptor, COLOR_FORMAT, DEPTH_FORMAT,
 };
 
 /// An offscreen colour + depth target that can be read back.

@@ -946,7 +946,7 @@ fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_on
     let (error, picture) = draw(&mut session);
     assert!(error.is_none(), "{error:?}");
     let mut offscreen = open();
-    let expected = shaderlab::lab::draw::screenshot(gpu(), offscreen.lab_mut(), w, h).expect("offscreen");
+    let expected = shaderlab::lab::frame::screenshot(gpu(), offscreen.lab_mut(), w, h).expect("offscreen");
     assert!(
         picture == expected,
         "the session's frame differs from the offscreen render"
@@ -960,4 +960,109 @@ fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_on
     assert!(session.shader_error().is_some_and(|e| e.contains("phong_flat.frag")));
     assert!(draw(&mut session).0.is_none(), "the error is returned once");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The offscreen frame ([`shaderlab::lab::frame::record`], which `--screenshot`, `--record`,
+/// F10, F12 and the debugger's capture go through) is the session's frame: the same checked
+/// render, whose broken shading model fails the offscreen frame with the session's error.
+#[test]
+fn the_offscreen_frame_and_the_sessions_are_one_checked_render() {
+    use shaderlab::offscreen::Offscreen;
+    use shaderlab::shell::session::Session;
+    let dir = output_dir().join(format!("frame_one_{}", std::process::id()));
+    common::copy_shaders(&dir);
+    let flat = dir.join("phong_flat.frag");
+    let good = std::fs::read_to_string(&flat).unwrap();
+    std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
+    let source = ShaderSource::Dir(dir.clone());
+    let files = &shaderlab::lab::NO_FILES;
+    let mut session = Session::open(labs::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let target = Offscreen::with_format(gpu(), 64, 48, COLOR_FORMAT);
+    let log = shaderlab::render::DrawLog::new();
+    let frame = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, Some(&log)).expect("phong draws");
+    gpu().queue.submit([frame]);
+    assert!(!log.draws().is_empty(), "the logged frame writes its draws down");
+    assert!(session.key("m", 0.0)); // blinn
+    assert!(session.key("m", 0.0)); // flat is broken
+    let error = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, None)
+        .err()
+        .expect("the broken model fails the offscreen frame");
+    assert!(error.to_string().contains("phong_flat.frag"), "{error}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The inspector's sequence, in the session for the window and the page: the frame drawn is
+/// captured, read back and replayed by the runner handed in (inline, as the page runs it; on a
+/// thread, as the window does), the result is the pixel drawn; a change to the lab inspects
+/// again, a runner that cannot start says why, and F2 off forgets the result.
+#[test]
+fn a_session_inspects_its_frame_with_the_runner_it_is_handed() {
+    use shaderlab::offscreen::Offscreen;
+    use shaderlab::shell::inspector::{inline, on_a_thread, Job};
+    use shaderlab::shell::session::Session;
+    let source = ShaderSource::Embedded;
+    let files = &shaderlab::lab::NO_FILES;
+    let mut session = Session::open(labs::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let (w, h) = (96, 64);
+    let (x, y) = (w / 2, h / 2);
+    let draw = |session: &mut Session| {
+        let target = Offscreen::with_format(gpu(), w, h, COLOR_FORMAT);
+        assert!(session
+            .draw(gpu(), "test.frame", &target.color, &target.depth, (w, h))
+            .is_none());
+        session.inspect_frame(gpu(), (w, h), COLOR_FORMAT);
+        target.read(gpu()).expect("read back").get_pixel(x, y).0
+    };
+    let settle = |session: &mut Session, run: fn(Job) -> Result<(), String>| {
+        let start = std::time::Instant::now();
+        while !session.inspect_poll(gpu(), run) {
+            assert!(start.elapsed().as_secs() < 60, "the inspection never came");
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert!(!session.inspect_busy());
+    };
+    assert!(session.inspection().is_none());
+    draw(&mut session);
+    assert!(!session.inspect_busy(), "nothing is captured before a pixel is picked");
+    session.inspect_pixel(Some((x, y)));
+    let drawn = draw(&mut session);
+    assert!(session.inspect_busy(), "the frame drawn is captured");
+    settle(&mut session, inline);
+    let first = session.inspection().expect("a result").as_ref().expect("an inspection");
+    assert_eq!((first.x, first.y, first.width, first.height), (x, y, w, h));
+    let close = |a: [u8; 4], b: [u8; 4]| a.iter().zip(b).all(|(p, q)| p.abs_diff(q) <= 1);
+    assert!(
+        close(first.replayed.pixel, drawn),
+        "{:?} replayed, {drawn:?} drawn",
+        first.replayed.pixel
+    );
+
+    draw(&mut session);
+    assert!(!session.inspect_busy(), "the same state is not inspected again");
+    assert!(session.key("m", 0.0)); // blinn: the lab changed
+    let drawn = draw(&mut session);
+    assert!(session.inspect_busy(), "a change to the lab inspects again");
+    settle(&mut session, on_a_thread);
+    let again = session.inspection().expect("a result").as_ref().expect("an inspection");
+    assert!(
+        close(again.replayed.pixel, drawn),
+        "{:?} replayed, {drawn:?} drawn",
+        again.replayed.pixel
+    );
+
+    assert!(session.key("m", 0.0));
+    draw(&mut session);
+    settle(&mut session, |_| Err("no threads here".into()));
+    assert_eq!(
+        session
+            .inspection()
+            .expect("a result")
+            .as_ref()
+            .err()
+            .map(String::as_str),
+        Some("no threads here")
+    );
+
+    session.toggle_inspect();
+    assert!(session.inspection().is_none(), "F2 off forgets the result");
 }

@@ -73,7 +73,7 @@ fn record_logged(
 ) -> Result<(crate::offscreen::Offscreen, wgpu::CommandBuffer, Pending)> {
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, format);
     let log = crate::render::DrawLog::new();
-    let frame = crate::lab::draw::record(gpu, lab, &target, Some(&log))?;
+    let frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
     let pending = Pending::start(gpu, &log);
     Ok((target, frame, pending))
 }

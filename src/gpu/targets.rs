@@ -80,3 +80,44 @@ pub fn readback_buffer(device: &wgpu::Device, label: &str, stride: u32, height: 
         mapped_at_creation: false,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    /// The depth buffer is made in one place and named by one path: no module defines a second
+    /// `depth_texture` or passes this one on under its own name.
+    #[test]
+    fn one_depth_texture_by_one_path() {
+        let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let mut defined = Vec::new();
+        let mut passed_on = Vec::new();
+        let mut dirs = vec![src.clone()];
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    dirs.push(path);
+                    continue;
+                }
+                if path.extension().is_none_or(|e| e != "rs") {
+                    continue;
+                }
+                let text = std::fs::read_to_string(&path).unwrap();
+                let file = path.strip_prefix(&src).unwrap().display().to_string();
+                if text.contains("fn depth_texture(") {
+                    defined.push(file.clone());
+                }
+                // A `pub use` that names it, on one line or over a list.
+                for (at, _) in text.match_indices("pub use ") {
+                    let statement = text[at..].split(';').next().unwrap_or("");
+                    if statement.contains("depth_texture") {
+                        passed_on.push(file.clone());
+                    }
+                }
+            }
+        }
+        assert_eq!(defined, ["gpu/targets.rs"], "depth_texture defined in {defined:?}");
+        assert!(passed_on.is_empty(), "depth_texture passed on by {passed_on:?}");
+    }
+}

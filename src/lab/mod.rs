@@ -5,7 +5,7 @@
 //! [`Lab::params_mut`], and asks the lab to [`render`](Lab::render) into a [`Frame`]. A lab never
 //! sees winit, and no lab knows another.
 
-pub mod draw;
+pub mod frame;
 mod keys;
 mod runner;
 

@@ -12,7 +12,7 @@ use crate::render::Frame;
 
 use super::args::Args;
 use super::cli::{say, Failure};
-use crate::lab::draw::{render_into, screenshot};
+use crate::lab::frame::{render_into, screenshot};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
 pub(crate) fn check_png_path(path: &Path) -> Result<()> {

@@ -13,7 +13,7 @@
 //! with 1.
 //!
 //! In the browser build (wasm32) the page's shell (`web`) takes the window's place, with
-//! [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
+//! [`session`], [`inspector`], [`surface`], [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
 //! the native window need processes, files, a terminal and blocking on the GPU.
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -23,6 +23,7 @@ mod cli;
 pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
+pub mod inspector;
 pub mod panel;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod record;
@@ -43,7 +44,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[cfg(not(target_arch = "wasm32"))]
-pub use crate::lab::draw::{render_into, screenshot};
+pub use crate::lab::frame::{render_into, screenshot};
 #[cfg(not(target_arch = "wasm32"))]
 pub use args::{Args, PixelFlag};
 #[cfg(not(target_arch = "wasm32"))]

@@ -220,7 +220,7 @@ pub fn record(
         if has_time {
             lab.params_mut().set("time", &[recording.time(k)])?;
         }
-        crate::lab::draw::render_into(gpu, lab, &target)?;
+        crate::lab::frame::render_into(gpu, lab, &target)?;
         let image = target.read(gpu)?;
         progress(k + 1);
         Ok(image)

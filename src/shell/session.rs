@@ -14,11 +14,12 @@
 //! [`super::panel::widgets`], also shared.
 
 use super::clock::Clock;
+use super::inspector::{Inspector, Job, Shown};
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 use crate::lab::{Input, Lab, LabEntry, Special, UserFiles};
 use crate::params::Params;
-use crate::render::{BuildContext, Frame};
+use crate::render::BuildContext;
 use crate::shader::ShaderSource;
 
 /// A mouse button.
@@ -68,6 +69,8 @@ pub struct Session {
     /// Bumped whenever what the lab draws may have changed (input, parameters, reload, time).
     version: u64,
     inspect: Inspect,
+    /// The inspector's capture and replay in flight, and its last result.
+    inspector: Inspector,
 }
 
 /// The pixel inspector's state: whether clicks pick a pixel (F2 in the window, the page's
@@ -143,6 +146,7 @@ impl Session {
             shader_error: None,
             version: 0,
             inspect: Inspect::default(),
+            inspector: Inspector::default(),
         }
     }
 
@@ -178,6 +182,12 @@ impl Session {
     /// The lab, to change.
     pub fn lab_mut(&mut self) -> &mut dyn Lab {
         self.lab.as_mut()
+    }
+
+    /// The lab, to change, beside the last inspection (the window's panel shows the one and
+    /// edits the other's parameters).
+    pub fn lab_and_inspection(&mut self) -> (&mut dyn Lab, Option<&Shown>) {
+        (self.lab.as_mut(), self.inspector.shown())
     }
 
     /// Whether the clock is paused.
@@ -400,10 +410,14 @@ impl Session {
         all
     }
 
-    /// Turns inspect mode on or off (F2): on, a click picks the pixel to inspect.
+    /// Turns inspect mode on or off (F2): on, a click picks the pixel to inspect; off, the
+    /// last inspection is forgotten.
     pub fn toggle_inspect(&mut self) {
         self.inspect.on = !self.inspect.on;
         self.inspect.press = None;
+        if !self.inspect.on {
+            self.inspector.clear();
+        }
         self.changed();
     }
 
@@ -427,21 +441,55 @@ impl Session {
         self.touched();
     }
 
-    /// The pixel to inspect when the lab changed since its last inspection was captured:
-    /// the next frame should be drawn with its draws written down.
-    pub fn inspection_due(&self) -> Option<(u32, u32)> {
-        let pixel = self.inspected()?;
-        (self.inspect.taken != Some(self.version)).then_some(pixel)
+    /// The frame just drawn, at `size` in `format`: when a pixel is inspected, the lab changed
+    /// since its last inspection was captured and none is in flight, the frame is recorded
+    /// again offscreen with its draws written down, and their read-back starts
+    /// ([`Session::inspect_poll`] moves it on). The same state draws the same frame, so the
+    /// capture is the frame shown. Returns whether [`Session::inspection`] changed (the
+    /// capture failed; then draw again).
+    pub fn inspect_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+        let Some(pixel) = self.inspected() else {
+            return false;
+        };
+        if self.inspect.taken == Some(self.version) || self.inspector.busy() {
+            return false;
+        }
+        self.inspect.taken = Some(self.version);
+        let changed = self.inspector.start(gpu, self.lab.as_mut(), size, format, pixel);
+        if changed {
+            self.changed();
+        }
+        changed
     }
 
-    /// The frame about to be drawn is the inspection's capture.
-    pub fn inspection_taken(&mut self) {
-        self.inspect.taken = Some(self.version);
+    /// Moves the inspection on without blocking: a finished read-back is replayed by `run`
+    /// (a worker thread in the window, [`super::inspector::inline`] on the page), a finished
+    /// replay becomes [`Session::inspection`]. Returns whether that changed (then draw again).
+    pub fn inspect_poll(&mut self, gpu: &Gpu, run: impl FnOnce(Job) -> std::result::Result<(), String>) -> bool {
+        if !self.inspector.busy() {
+            return false;
+        }
+        let changed = self.inspector.poll(gpu, self.entry.info.name, run);
+        if changed {
+            self.changed();
+        }
+        changed
+    }
+
+    /// Whether an inspection is being captured or replayed.
+    pub fn inspect_busy(&self) -> bool {
+        self.inspector.busy()
+    }
+
+    /// The last inspection of the inspected pixel, or why it failed; `None` before the first
+    /// and while inspect mode is off.
+    pub fn inspection(&self) -> Option<&Shown> {
+        self.inspector.shown()
     }
 
     /// Records the lab's frame into `encoder`, drawing into `color` with its `depth` buffer,
-    /// `size` pixels, under [`Gpu::checked`] (an error wgpu reports, or a panic inside it,
-    /// comes back rather than reaching the device's handler); returns an error to show once
+    /// `size` pixels, as every frame is drawn ([`crate::lab::frame::draw`], checked); returns
+    /// an error to show once
     /// (the frame's own, or one the lab found, such as a shading model whose shader is broken,
     /// which then also stands as the shader error). The window records its panel into the same
     /// encoder, and submits it as it presents.
@@ -451,21 +499,17 @@ impl Session {
         encoder: &mut wgpu::CommandEncoder,
         color: &wgpu::TextureView,
         depth: &wgpu::TextureView,
-        (width, height): (u32, u32),
+        size: (u32, u32),
     ) -> Option<Error> {
-        let lab = self.lab.as_mut();
-        let context = format!("{}.render", lab.info().name);
-        let rendered = gpu.checked(&context, || {
-            lab.render(&mut Frame::new(gpu, encoder, color, depth, width, height))
-        });
-        if let Err(e) = rendered.and_then(|r| r) {
-            return Some(e);
+        match crate::lab::frame::draw(gpu, encoder, self.lab.as_mut(), color, depth, size, None) {
+            Err(e) => Some(e),
+            Ok(found) => {
+                if let Some(e) = &found {
+                    self.shader_error = Some(e.to_string());
+                }
+                found
+            }
         }
-        let found = self.lab.take_error();
-        if let Some(e) = &found {
-            self.shader_error = Some(e.to_string());
-        }
-        found
     }
 
     /// Records the lab's frame as [`Session::record`] does, in an encoder of its own named

@@ -26,12 +26,13 @@ use wasm_bindgen::prelude::*;
 
 use crate::gpu::Gpu;
 use crate::lab::{UserFile, UserFiles};
-use crate::offscreen::{depth_texture, Offscreen};
+use crate::offscreen::Offscreen;
 use crate::params::Kind;
 use crate::shader::{embedded_source, ShaderSource};
 
 use super::panel::{widgets, Control};
 use super::session::{Button, Session};
+use super::surface::{Acquired, Swapchain};
 
 /// The course's seed-000 GLSL 1.10 files (the five exercises of Lab05, as the tests run them:
 /// the two syntax errors of the printed course mended, `assets/course/seed000-mended`), for
@@ -144,19 +145,12 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
     super::surface::on_trouble(&gpu, |trouble| {
         web_sys::console::error_1(&JsValue::from_str(&trouble.to_string()))
     });
-    let caps = surface.get_capabilities(&gpu.adapter);
-    let format = super::surface::format(&caps).ok_or_else(|| js_error("the canvas supports no formats"))?;
-    let max = gpu.device.limits().max_texture_dimension_2d;
     let size = (canvas.width(), canvas.height());
-    let config = super::surface::config(&caps, format, size, max, wgpu::PresentMode::Fifo);
-    surface.configure(&gpu.device, &config);
-    let depth = depth_texture(&gpu.device, config.width, config.height);
+    let screen = Swapchain::new(&gpu, "the canvas", surface, size, &[]).map_err(js_error)?;
     let texts = COURSE.iter().map(|(n, t)| (n.to_string(), t.to_string())).collect();
     Ok(WebApp {
         gpu,
-        surface,
-        config,
-        depth,
+        screen,
         canvas,
         open: None,
         texts,
@@ -164,7 +158,6 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
         now: 0.0,
         error: None,
         reading: None,
-        inspecting: None,
         inspection: String::new(),
     })
 }
@@ -173,9 +166,8 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement, backend: String) -> Resul
 #[wasm_bindgen]
 pub struct WebApp {
     gpu: Gpu,
-    surface: wgpu::Surface<'static>,
-    config: wgpu::SurfaceConfiguration,
-    depth: wgpu::TextureView,
+    /// The canvas's surface and depth buffer.
+    screen: Swapchain,
     canvas: web_sys::HtmlCanvasElement,
     /// The lab on the page.
     open: Option<Session>,
@@ -190,8 +182,6 @@ pub struct WebApp {
     error: Option<String>,
     /// A picture being read back ([`WebApp::read_start`]), and whether it is mapped yet.
     reading: Option<(Offscreen, Rc<RefCell<Option<Result<(), String>>>>)>,
-    /// The inspector's capture being read back, and its pixel.
-    inspecting: Option<(crate::debug::Pending, (u32, u32))>,
     /// The last inspection as JSON ("" before one).
     inspection: String,
 }
@@ -258,7 +248,7 @@ impl WebApp {
             entry,
             &self.gpu,
             &source,
-            self.config.format,
+            self.screen.format(),
             &self.files,
             self.now,
             1.0,
@@ -274,7 +264,6 @@ impl WebApp {
         }
         self.open = Some(session);
         self.error = None;
-        self.inspecting = None;
         self.inspection.clear();
         Ok(refused.join("\n"))
     }
@@ -298,20 +287,20 @@ impl WebApp {
         };
         open.tick(self.now);
         open.drawn();
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface.configure(&self.gpu.device, &self.config);
+        let frame = match self.screen.acquire() {
+            Acquired::Frame(frame) => frame,
+            Acquired::Outdated | Acquired::Lost => {
+                self.screen.resize(&self.gpu, self.screen.size());
                 return;
             }
-            _ => return,
+            Acquired::Skipped | Acquired::Invalid => return,
         };
         let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
             label: Some("web.frame"),
             ..Default::default()
         });
-        let size = (self.config.width, self.config.height);
-        let error = open.draw(&self.gpu, "web.frame", &view, &self.depth, size);
+        let size = self.screen.size();
+        let error = open.draw(&self.gpu, "web.frame", &view, self.screen.depth(), size);
         self.gpu.queue.present(frame);
         if let Some(e) = error {
             self.error = Some(e.to_string());
@@ -370,28 +359,17 @@ impl WebApp {
     /// picture, and a page whose canvas cannot be presented (headless Chromium's WebGPU) can
     /// still be inspected.
     pub fn inspection(&mut self) -> String {
-        let _ = self.gpu.device.poll(wgpu::PollType::Poll);
-        if self.inspecting.is_none() {
-            if let Some(open) = self.open.as_mut() {
-                if let Some(pixel) = open.inspection_due() {
-                    open.inspection_taken();
-                    let size = (self.config.width, self.config.height);
-                    match crate::debug::capture_start(&self.gpu, open.lab_mut(), size, self.config.format) {
-                        Ok(pending) => self.inspecting = Some((pending, pixel)),
-                        Err(e) => self.inspection = json_error(e),
-                    }
-                }
-            }
-        }
-        if self.inspecting.as_ref().is_some_and(|(p, _)| p.ready()) {
-            let (pending, (x, y)) = self.inspecting.take().expect("checked above");
-            let name = self.lab();
-            self.inspection = match pending
-                .finish()
-                .and_then(|captured| crate::debug::Inspection::new(&name, &captured, x, y))
-            {
-                Ok(i) => i.json(),
-                Err(e) => json_error(e),
+        let Some(open) = self.open.as_mut() else {
+            return self.inspection.clone();
+        };
+        let size = self.screen.size();
+        let failed = open.inspect_frame(&self.gpu, size, self.screen.format());
+        // The page has no threads: the replay runs here, once the read-back is done.
+        if open.inspect_poll(&self.gpu, super::inspector::inline) || failed {
+            self.inspection = match open.inspection() {
+                Some(Ok(i)) => i.json(),
+                Some(Err(e)) => json_error(e),
+                None => String::new(),
             };
         }
         self.inspection.clone()
@@ -601,7 +579,8 @@ impl WebApp {
     /// [`WebApp::read_result`] has the pixels once the browser mapped them.
     pub fn read_start(&mut self) -> Result<(), JsValue> {
         let open = self.open.as_mut().ok_or_else(|| js_error("no lab is open"))?;
-        let target = Offscreen::with_format(&self.gpu, self.config.width, self.config.height, self.config.format);
+        let (width, height) = self.screen.size();
+        let target = Offscreen::with_format(&self.gpu, width, height, self.screen.format());
         let size = (target.width, target.height);
         // As on the canvas: an error is shown once ([`WebApp::take_error`]) and the picture
         // is what the frame drew.
@@ -690,7 +669,7 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return String::new();
         };
-        open.reload(&self.gpu, &source, self.config.format, &self.files)
+        open.reload(&self.gpu, &source, self.screen.format(), &self.files)
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default()
@@ -702,11 +681,8 @@ impl WebApp {
         let (width, height) = (width.clamp(1, max), height.clamp(1, max));
         self.canvas.set_width(width);
         self.canvas.set_height(height);
-        if (self.config.width, self.config.height) != (width, height) {
-            self.config.width = width;
-            self.config.height = height;
-            self.surface.configure(&self.gpu.device, &self.config);
-            self.depth = depth_texture(&self.gpu.device, width, height);
+        if self.screen.size() != (width, height) {
+            self.screen.resize(&self.gpu, (width, height));
         }
     }
 }

@@ -80,7 +80,7 @@ impl Capture {
             self.target = Some(Offscreen::with_format(gpu, width, height, format));
         }
         let target = self.target.as_ref().expect("made above");
-        crate::lab::draw::render_into(gpu, lab, target)?;
+        crate::lab::frame::render_into(gpu, lab, target)?;
         let image = target.read(gpu)?;
         let now = Instant::now();
         if let Some((previous, at)) = self.pending.replace((image, now)) {

@@ -34,7 +34,6 @@
 //! what a panic looks like.
 
 mod capture;
-mod inspector;
 mod screen;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
@@ -332,8 +331,6 @@ struct WindowState {
     stuck: Option<String>,
     /// `SHADERLAB_TEST_LOG`'s signals.
     test_log: Option<TestLog>,
-    /// F2's pixel inspector.
-    inspector: inspector::Inspector,
 }
 
 /// The window's signals for tests (see the module docs).
@@ -490,7 +487,6 @@ impl App {
             panel,
             stuck: None,
             test_log: std::env::var_os("SHADERLAB_TEST_LOG").map(|_| TestLog::default()),
-            inspector: inspector::Inspector::default(),
         })
     }
 }
@@ -826,11 +822,13 @@ impl WindowState {
             error: error.as_deref(),
             recording: self.capture.as_ref().map(capture::Capture::frames),
         };
-        let inspect = self.session.inspecting().then(|| super::panel::InspectView {
-            pixel: self.session.inspected(),
-            result: self.inspector.shown.as_ref(),
-            busy: self.inspector.busy(),
-        });
+        let (inspecting, pixel, busy) = (
+            self.session.inspecting(),
+            self.session.inspected(),
+            self.session.inspect_busy(),
+        );
+        let (lab, result) = self.session.lab_and_inspection();
+        let inspect = inspecting.then_some(super::panel::InspectView { pixel, result, busy });
         let (changed, request) = self.panel.draw(
             &self.gpu,
             &self.window,
@@ -838,7 +836,7 @@ impl WindowState {
             view,
             format,
             size,
-            self.session.lab_mut(),
+            lab,
             &status,
             inspect.as_ref(),
         );
@@ -901,7 +899,7 @@ impl WindowState {
         let (w, h) = self.screen.size();
         // Drawn by the window's own pipelines (its format), read back as RGB.
         let target = Offscreen::with_format(&self.gpu, w, h, self.screen.format());
-        match crate::lab::draw::render_into(&self.gpu, self.session.lab_mut(), &target)
+        match crate::lab::frame::render_into(&self.gpu, self.session.lab_mut(), &target)
             .and_then(|()| target.read(&self.gpu))
             .and_then(|image| save_png(&image, &path))
         {
@@ -966,11 +964,7 @@ impl WindowState {
         self.draw_panel(&mut encoder, &view, target.format, target.size);
         let shown = self.screen.present(&self.gpu, target, encoder)?;
         // The lab changed since the last inspection: the frame just shown is captured.
-        if let Some(pixel) = self.session.inspection_due().filter(|_| self.inspector.idle()) {
-            self.session.inspection_taken();
-            self.inspector
-                .start(&self.gpu, self.session.lab_mut(), (w, h), format, pixel);
-        }
+        self.session.inspect_frame(&self.gpu, (w, h), format);
         match shown {
             Shown::Yes => {}
             Shown::Again => self.session.changed(),
@@ -1027,9 +1021,6 @@ impl WindowState {
             Key::Named(NamedKey::F10) => self.toggle_capture(),
             Key::Named(NamedKey::F2) => {
                 self.session.toggle_inspect();
-                if !self.session.inspecting() {
-                    self.inspector.clear();
-                }
                 self.window.request_redraw();
             }
             Key::Named(NamedKey::F1) => {
@@ -1201,10 +1192,9 @@ impl ApplicationHandler<Wake> for App {
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         let Some(state) = self.state.as_mut() else { return };
-        if state.inspector.busy() && state.inspector.poll(&state.gpu, state.session.name()) {
-            // A new inspection to show.
-            state.session.changed();
-            if let (Some(log), Some(shown)) = (state.test_log.as_mut(), &state.inspector.shown) {
+        // A new inspection to show: the replay runs on a worker thread of its own.
+        if state.session.inspect_poll(&state.gpu, super::inspector::on_a_thread) {
+            if let (Some(log), Some(shown)) = (state.test_log.as_mut(), state.session.inspection()) {
                 log.say(&match shown {
                     Ok(i) => {
                         let p = i.replayed.pixel;
@@ -1249,7 +1239,7 @@ impl ApplicationHandler<Wake> for App {
             // Input still wakes the loop at once; only drawing waits for its turn.
             event_loop.set_control_flow(ControlFlow::WaitUntil(state.pacing.next));
         }
-        if state.inspector.busy() {
+        if state.session.inspect_busy() {
             // An inspection in flight is looked at every few milliseconds until it is done.
             let soon = Instant::now() + Duration::from_millis(8);
             match event_loop.control_flow() {

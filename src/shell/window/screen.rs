@@ -13,7 +13,8 @@ use winit::window::Window;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::offscreen::depth_texture;
+
+use super::super::surface::{Acquired, Swapchain};
 
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 use super::shm::ShmPresenter as Presenter;
@@ -52,13 +53,11 @@ impl Presenter {
 /// retrying for ever.
 const MAX_SURFACE_RETRIES: u32 = 120;
 
-/// The window's surface, depth buffer and presenter.
+/// The window's swapchain (its surface and depth buffer) and presenter.
 pub(super) struct Screen {
     name: &'static str,
     window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
-    config: wgpu::SurfaceConfiguration,
-    depth: wgpu::TextureView,
+    swapchain: Swapchain,
     shm: Option<Presenter>,
     unpaced: bool,
     /// Frames in a row that found the surface unusable.
@@ -92,9 +91,9 @@ pub(super) enum Shown {
 }
 
 impl Screen {
-    /// The screen of `window` drawn by `gpu` through `surface`: the swapchain configured (a
-    /// plain UNORM format, [`super::super::surface::format`]), and the shared-memory presenter
-    /// where it can start (said with `SHADERLAB_PRESENT=shm`).
+    /// The screen of `window` drawn by `gpu` through `surface`: the swapchain configured
+    /// ([`Swapchain::new`], presenting as fast as it can when `unpaced`), and the shared-memory
+    /// presenter where it can start (said with `SHADERLAB_PRESENT=shm`).
     pub fn new(
         name: &'static str,
         gpu: &Gpu,
@@ -102,27 +101,20 @@ impl Screen {
         surface: wgpu::Surface<'static>,
         unpaced: bool,
     ) -> Result<Screen> {
-        let caps = surface.get_capabilities(&gpu.adapter);
-        let format = super::super::surface::format(&caps)
-            .ok_or_else(|| Error::Surface("the surface supports no formats".into()))?;
-        let present_mode = if unpaced {
-            [wgpu::PresentMode::Immediate, wgpu::PresentMode::Mailbox]
-                .into_iter()
-                .find(|m| caps.present_modes.contains(m))
-                .unwrap_or(wgpu::PresentMode::Fifo)
-        } else {
-            wgpu::PresentMode::Fifo
-        };
+        let unpaced_modes = [wgpu::PresentMode::Immediate, wgpu::PresentMode::Mailbox];
+        let present_modes: &[wgpu::PresentMode] = if unpaced { &unpaced_modes } else { &[] };
         let size = window.inner_size();
         let max = gpu.device.limits().max_texture_dimension_2d;
-        let config = super::super::surface::config(&caps, format, (size.width, size.height), max, present_mode);
-        // A surface that was never configured makes wgpu panic on the first frame: check it.
-        gpu.checked("configuring the window surface", || {
-            surface.configure(&gpu.device, &config)
-        })?;
-        let depth = depth_texture(&gpu.device, config.width, config.height);
+        let swapchain = Swapchain::new(
+            gpu,
+            "the window surface",
+            surface,
+            (size.width, size.height),
+            present_modes,
+        )?;
+        let (format, (width, height)) = (swapchain.format(), swapchain.size());
         let shm = if format == wgpu::TextureFormat::Bgra8Unorm {
-            Presenter::new(gpu, &window, config.width, config.height)
+            Presenter::new(gpu, &window, width, height)
         } else {
             Err(format!("the window's format is {format:?}"))
         };
@@ -145,9 +137,7 @@ impl Screen {
         Ok(Screen {
             name,
             window,
-            surface,
-            config,
-            depth,
+            swapchain,
             shm,
             unpaced,
             retries: 0,
@@ -157,12 +147,12 @@ impl Screen {
 
     /// The colour format the lab's pipelines draw in.
     pub fn format(&self) -> wgpu::TextureFormat {
-        self.config.format
+        self.swapchain.format()
     }
 
     /// The size frames are drawn at.
     pub fn size(&self) -> (u32, u32) {
-        (self.config.width, self.config.height)
+        self.swapchain.size()
     }
 
     /// Follows a resize of the window to `size` (at most the device's largest texture, said
@@ -175,12 +165,10 @@ impl Screen {
         };
         let max = gpu.device.limits().max_texture_dimension_2d;
         self.said_too_large = too_large(self.name, size, max, self.said_too_large);
-        self.config.width = width.min(max);
-        self.config.height = height.min(max);
-        self.surface.configure(&gpu.device, &self.config);
-        self.depth = depth_texture(&gpu.device, self.config.width, self.config.height);
+        self.swapchain.resize(gpu, (width, height));
+        let (width, height) = self.swapchain.size();
         if let Some(shm) = &mut self.shm {
-            if let Err(why) = shm.resize(gpu, self.config.width, self.config.height) {
+            if let Err(why) = shm.resize(gpu, width, height) {
                 if !shm.window_gone() {
                     eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name);
                 }
@@ -192,10 +180,11 @@ impl Screen {
 
     /// A `Lost` surface must be created again from the window, then configured.
     fn recreate_surface(&mut self, gpu: &Gpu) -> Result<()> {
-        self.surface = gpu
+        let surface = gpu
             .instance
             .create_surface(self.window.clone())
             .map_err(|e| Error::Surface(format!("cannot create the window surface again: {e}")))?;
+        self.swapchain.renew(surface);
         let size = self.window.inner_size();
         self.resize(gpu, size);
         Ok(())
@@ -214,17 +203,19 @@ impl Screen {
                 frame: None,
             }));
         }
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
-            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(None),
-            status @ (wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost) => {
+        let frame = match self.swapchain.acquire() {
+            Acquired::Frame(frame) => frame,
+            Acquired::Skipped => return Ok(None),
+            status @ (Acquired::Outdated | Acquired::Lost) => {
                 self.retries += 1;
+                let lost = matches!(status, Acquired::Lost);
                 if self.retries > MAX_SURFACE_RETRIES {
+                    let status = if lost { "Lost" } else { "Outdated" };
                     return Err(Error::Surface(format!(
-                        "the window surface stays unusable ({status:?} {MAX_SURFACE_RETRIES} frames in a row)"
+                        "the window surface stays unusable ({status} {MAX_SURFACE_RETRIES} frames in a row)"
                     )));
                 }
-                if matches!(status, wgpu::CurrentSurfaceTexture::Lost) {
+                if lost {
                     self.recreate_surface(gpu)?;
                 } else {
                     let size = self.window.inner_size();
@@ -232,7 +223,7 @@ impl Screen {
                 }
                 return Ok(None);
             }
-            wgpu::CurrentSurfaceTexture::Validation => {
+            Acquired::Invalid => {
                 // The uncaptured-error handler printed why; a lost device ends here, and an error
                 // that repeats every frame ends the window instead of flooding the terminal.
                 self.retries += 1;
@@ -251,8 +242,8 @@ impl Screen {
         });
         Ok(Some(Target {
             view,
-            depth: self.depth.clone(),
-            format: self.config.format,
+            depth: self.swapchain.depth().clone(),
+            format: self.swapchain.format(),
             size: self.size(),
             frame: Some(frame),
         }))
