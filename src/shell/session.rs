@@ -1,17 +1,21 @@
 //! What every front end does with the lab it shows, written once: the window
-//! ([`super::window`]) and the page (`shell::web`, in the browser build) each hold a [`Session`] and keep only what
-//! their platform forces (where events come from, how a frame reaches the screen).
+//! ([`super::window`]) and the page (`shell::web`, in the browser build) each hold a
+//! [`Session`] and keep only what their platform forces (where events come from, how a frame
+//! reaches the screen, how the inspector's replay runs).
 //!
 //! A session opens the lab ([`Session::open`]; [`Session::open_lab`] builds one without a
 //! session, for the headless runs and the window's live reload), lists its shader files
-//! ([`Session::shader_files`]) and draws the lab's frame into a view it is given
-//! ([`Session::draw`]; [`Session::record`] leaves the encoder open for the window's panel),
-//! checked, with the error to show. It holds the lab (its parameters with it), the clock of an
-//! animated lab, the frames still to draw after a change, the mouse (GLUT's drag rule: the
-//! motion callback runs while any button is held, the press and release callbacks are the left
-//! button's), the standing shader error, and turns key names into the original's callbacks.
-//! The panel's model (which control each parameter gets, in which group) is
-//! [`super::panel::widgets`], also shared.
+//! ([`Session::shader_files`]), draws the lab's frame into a view it is given
+//! ([`Session::draw`]; [`Session::record`] leaves the encoder open for the window's panel)
+//! through the one checked render ([`crate::lab::frame::draw`]), with the error to show, and
+//! inspects a pixel of the frame it drew ([`Session::inspect_frame`], [`Session::inspect_poll`]
+//! with the replay's runner handed in; [`super::inspector`]). It holds the lab (its parameters
+//! with it), the clock of an animated lab, the frames still to draw after a change, the mouse
+//! (GLUT's drag rule: the motion callback runs while any button is held, the press and release
+//! callbacks are the left button's), the standing shader error, and turns key names into the
+//! original's callbacks. The panel's model (which control each parameter gets, in which group)
+//! is [`super::panel::widgets`], and the surface drawn into is [`super::surface::Swapchain`],
+//! both shared too.
 
 use super::clock::Clock;
 use super::inspector::{Inspector, Job, Shown};
@@ -489,10 +493,9 @@ impl Session {
 
     /// Records the lab's frame into `encoder`, drawing into `color` with its `depth` buffer,
     /// `size` pixels, as every frame is drawn ([`crate::lab::frame::draw`], checked); returns
-    /// an error to show once
-    /// (the frame's own, or one the lab found, such as a shading model whose shader is broken,
-    /// which then also stands as the shader error). The window records its panel into the same
-    /// encoder, and submits it as it presents.
+    /// an error to show once (the frame's own, or one the lab found, such as a shading model
+    /// whose shader is broken, which then also stands as the shader error). The window records
+    /// its panel into the same encoder, and submits it as it presents.
     pub fn record(
         &mut self,
         gpu: &Gpu,

@@ -9,8 +9,11 @@
 //!
 //! Differences from the native shell, all forced by the browser: start-up is async (no
 //! blocking on the GPU), there are no files (shaders are built in, edits live in memory as
-//! [`ShaderSource::Edited`], user files come from the page as bytes), and a validation error
-//! on WebGPU reaches the console rather than a `Result` ([`Gpu::checked`]).
+//! [`ShaderSource::Edited`], user files come from the page as bytes), the inspector's replay
+//! runs inline (no threads: [`super::inspector::inline`]) and read-backs are mapped
+//! asynchronously (polled from the animation frames), and a validation error on WebGPU
+//! reaches the console rather than a `Result` ([`Gpu::checked`]). The canvas's surface is a
+//! [`Swapchain`], as the window's is.
 //!
 //! Results cross to JavaScript as JSON text, written with `serde_json` (as the debugger's
 //! `--json` is): the labs, the parameters' controls, errors as `{"error": "..."}` and the
