@@ -984,9 +984,9 @@ fn the_offscreen_frame_and_the_sessions_are_one_checked_render() {
     assert!(!log.draws().is_empty(), "the logged frame writes its draws down");
     assert!(session.key("m", 0.0)); // blinn
     assert!(session.key("m", 0.0)); // flat is broken
-    let error = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, None)
-        .err()
-        .expect("the broken model fails the offscreen frame");
+    let Err(error) = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, None) else {
+        panic!("the broken model fails the offscreen frame");
+    };
     assert!(error.to_string().contains("phong_flat.frag"), "{error}");
     std::fs::remove_dir_all(&dir).ok();
 }
