@@ -10,7 +10,7 @@
 //! - [`shell`]: the command line, the window and the browser page, each around one
 //!   [`shell::session::Session`]; `--screenshot`, `--bench`, `--record`, the tools. It drives any
 //!   [`Lab`] through its [`LabEntry`] and never names an exercise.
-//! - [`labs`]: one module per exercise and [`labs::ALL`], the one list of labs.
+//! - [`course`]: one module per exercise and [`course::ALL`], the one list of labs.
 //! - [`debug`]: the GLSL debugger, why a pixel has its colour: a frame's draws read back and
 //!   replayed on the CPU for one pixel, naga's IR of its shaders interpreted; `shaderlab
 //!   debug`, F2 in a window and the page's Inspect.
@@ -44,15 +44,16 @@
 #![warn(missing_docs)]
 
 pub mod camera;
+pub mod course;
 pub mod debug;
 pub mod error;
 pub mod fsutil;
-pub mod geometry;
 pub mod gpu;
+pub mod images;
 pub mod lab;
-pub mod labs;
 pub mod legacy;
 pub mod memory;
+pub mod mesh;
 pub mod offscreen;
 pub mod panics;
 pub mod params;
@@ -63,10 +64,10 @@ pub mod study;
 pub mod user_files;
 
 pub use error::{Error, Result};
-pub use geometry::tess::Object;
-pub use geometry::{mesh, tess};
 pub use gpu::Gpu;
 pub use lab::{Lab, LabEntry};
+pub use mesh::tess;
+pub use mesh::tess::Object;
 pub use study::{exact, metrics, noise};
 
 #[cfg(test)]
@@ -136,7 +137,7 @@ mod tests {
     }
 
     /// The crate's root re-exports are for its users: inside the crate every module names an
-    /// item by the module that defines it (`crate::geometry::mesh`, `crate::error::Error`), so
+    /// item by the module that defines it (`crate::mesh`, `crate::error::Error`), so
     /// that no lower layer depends on the root, which holds every layer.
     #[test]
     fn inside_the_crate_items_are_named_by_their_modules_not_the_root() {
@@ -145,7 +146,7 @@ mod tests {
         for name in ["mesh", "Error", "metrics", "Object"] {
             assert!(names.iter().any(|n| n == name), "{name} in {names:?}");
         }
-        let sample = "use crate::mesh::Mesh;\nfn f() -> crate::Result<()> { $crate::mesh; crate::geometry::mesh }";
+        let sample = "use crate::mesh::Mesh;\nfn f() -> crate::Result<()> { $crate::mesh; crate::mesh }";
         assert_eq!(through_the_root(sample, &names), ["1: crate::mesh", "2: crate::Result"]);
 
         let mut found = Vec::new();

@@ -28,7 +28,7 @@ pub struct BuildContext<'a> {
 
 impl<'a> BuildContext<'a> {
     /// What to build with on `gpu`, from `source`, drawing in `format`, with the user's `files`;
-    /// the lab's name is empty until [`BuildContext::with_lab`] names it.
+    /// the lab's name is empty until [`BuildContext::named`] names it.
     pub fn new(
         gpu: &'a Gpu,
         source: &'a ShaderSource,
@@ -45,7 +45,7 @@ impl<'a> BuildContext<'a> {
     }
 
     /// The same, building the lab called `lab` (its name prefixes the labels of what it builds).
-    pub fn with_lab(self, lab: &'static str) -> Self {
+    pub fn named(self, lab: &'static str) -> Self {
         BuildContext { lab, ..self }
     }
 }
