@@ -10,7 +10,7 @@
 //! - [`shell`]: the command line, the window and the browser page, each around one
 //!   [`shell::session::Session`]; `--screenshot`, `--bench`, `--record`, the tools. It drives any
 //!   [`Lab`] through its [`LabEntry`] and never names an exercise.
-//! - [`course`]: one module per exercise and [`course::ALL`], the one list of labs.
+//! - [`course`]: the course, one module per lab, and [`course::ALL`], the one list of labs.
 //! - [`debug`]: the GLSL debugger, why a pixel has its colour: a frame's draws read back and
 //!   replayed on the CPU for one pixel, naga's IR of its shaders interpreted; `shaderlab
 //!   debug`, F2 in a window and the page's Inspect.
@@ -19,8 +19,9 @@
 //! - [`legacy`]: a course's own GLSL 1.10/1.20 shaders translated to GLSL 450 (source-mapped).
 //! - [`render`]: programs reflected from their shaders, uniform blocks, meshes, textures, frames.
 //! - Foundations: [`shader`] (GLSL loading, diagnostics, reflection), [`offscreen`] and [`gpu`]
-//!   (targets and the device), [`camera`] (GLU matrices), [`geometry`] ([`mesh`], [`tess`]:
-//!   GLUT's solids, OBJ models, pictures), [`params`] (named, ranged values), [`user_files`],
+//!   (targets and the device), [`camera`] (GLU matrices), [`mesh`] (meshes on the CPU: GLUT's
+//!   solids and their levels, [`tess`], OBJ models), [`images`] (pictures and procedural
+//!   textures), [`params`] (named, ranged values), [`user_files`],
 //!   [`fsutil`] (files in and out, never lost), [`memory`] (what the process may still take),
 //!   [`panics`] (dependencies' panics contained), [`error`] (the typed errors).
 //! - [`study`]: the speed/accuracy yardsticks of the tests and studies, which nothing above
@@ -137,17 +138,17 @@ mod tests {
     }
 
     /// The crate's root re-exports are for its users: inside the crate every module names an
-    /// item by the module that defines it (`crate::mesh`, `crate::error::Error`), so
-    /// that no lower layer depends on the root, which holds every layer.
+    /// item by the module that defines it (`crate::mesh::tess`, `crate::error::Error`),
+    /// so that no lower layer depends on the root, which holds every layer.
     #[test]
     fn inside_the_crate_items_are_named_by_their_modules_not_the_root() {
         let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
         let names = root_re_exports(&std::fs::read_to_string(src.join("lib.rs")).unwrap());
-        for name in ["mesh", "Error", "metrics", "Object"] {
+        for name in ["tess", "Error", "metrics", "Object"] {
             assert!(names.iter().any(|n| n == name), "{name} in {names:?}");
         }
-        let sample = "use crate::mesh::Mesh;\nfn f() -> crate::Result<()> { $crate::mesh; crate::mesh }";
-        assert_eq!(through_the_root(sample, &names), ["1: crate::mesh", "2: crate::Result"]);
+        let sample = "use crate::tess::Object;\nfn f() -> crate::Result<()> { $crate::tess; crate::mesh::tess }";
+        assert_eq!(through_the_root(sample, &names), ["1: crate::tess", "2: crate::Result"]);
 
         let mut found = Vec::new();
         let mut dirs = vec![src.clone()];

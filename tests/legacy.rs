@@ -477,7 +477,7 @@ fn builtin_state_shaders_match_their_hand_ports() {
         assert!(db >= 60.0, "twist {state}: {db:.1} dB");
         worst = worst.min(db);
     }
-    // normal_world turns Rz·Ry·Rx, the legacy stage Rx·Ry·Rz: states about one axis.
+    // normal_world turns Rz·Ry·Rx, the legacy geometry Rx·Ry·Rz: states about one axis.
     for (state, port, angles) in [("default", vec![], "0,0,0"), ("below", vec![("rx", "-70")], "-70,0,0")] {
         let [x, y, z]: [&str; 3] = angles.split(',').collect::<Vec<_>>().try_into().unwrap();
         let db = versus_hand_port(

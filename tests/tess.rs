@@ -97,12 +97,12 @@ fn auto_torus_meets_the_budget_minimally() {
     check(Object::Torus, Shape::Torus, [0.0, 0.0, 12.0]);
 }
 
-/// The level the phong lab's stage draws for `object` seen from `camera` (`tess` -1 is auto).
+/// The level the phong lab's geometry draws for `object` seen from `camera` (`tess` -1 is auto).
 fn auto_level(object: Object, camera: [f32; 3], height: u32, tess: f64) -> u32 {
     let mut p = Params::new(PARAMS_000);
     p.set_str("object", object.name()).expect("object");
     p.set("tess", &[tess]).expect("tess");
-    let stage = GlutGeometry::new(
+    let geometry = GlutGeometry::new(
         gpu(),
         "test",
         GeometryConfig {
@@ -110,7 +110,7 @@ fn auto_level(object: Object, camera: [f32; 3], height: u32, tess: f64) -> u32 {
             eye: Vec3::from_array(camera),
         },
     );
-    stage.level(&p, height, true)
+    geometry.level(&p, height, true)
 }
 
 #[test]

@@ -18,7 +18,7 @@ use crate::render::{
 pub struct Recipe {
     /// Name, title, size, keys, files.
     pub info: LabInfo,
-    /// Its parameters, in groups (a stage's, then the effect's).
+    /// Its parameters, in groups (a geometry's, then the effect's).
     pub params: &'static [&'static [ParamSpec]],
     /// Whether a clock drives `time` in a window.
     pub animated: bool,
@@ -70,7 +70,7 @@ macro_rules! entry {
 }
 
 /// What a recipe's scene does: draw for the parameters, hand out its programs, and take the
-/// input its rows do not (a stage's mouse and object keys).
+/// input its rows do not (a geometry's mouse and object keys).
 pub trait Scene: wgpu::WasmNotSend {
     /// Input no key row took; returns whether anything changed.
     fn input(&mut self, _p: &mut Params, _input: Input) -> bool {

@@ -1,4 +1,4 @@
-//! The frame every seed-001 exercise shares (SPEC §1, "Common frame"): `gluPerspective(45,
+//! The geometry every seed-001 exercise shares (SPEC §1, "Common frame"): `gluPerspective(45,
 //! aspect, 0.1, 100)`, `gluLookAt(eye, origin, +y)` with a per-exercise eye, the model turned by
 //! `glRotatef(xangle, 1,0,0); glRotatef(yangle, 0,1,0)` that the left-button drag changes, the
 //! GL 2.0 matrices as the `Transform` block (`transform_block.glsl`), and, for the exercises that
@@ -193,9 +193,9 @@ impl Solids {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Geometry`]): GLUT's solid chosen by `object`.
+/// The geometry as the runner draws it ([`crate::lab::Geometry`]): GLUT's solid chosen by `object`.
 pub struct SolidGeometry {
-    /// The frame.
+    /// The shared camera and matrices ([`UstcView`]).
     pub geometry: UstcView,
     solids: Solids,
     /// The face order of `faces=auto`, by solid ([`teapot_and_torus_facing_first`] unless the
@@ -204,7 +204,7 @@ pub struct SolidGeometry {
 }
 
 impl SolidGeometry {
-    /// A frame looking from `eye`.
+    /// A geometry looking from `eye`.
     pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
         SolidGeometry {
             geometry: UstcView::new(gpu, label, eye),
@@ -214,9 +214,9 @@ impl SolidGeometry {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh.
+/// The geometry as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh.
 pub struct MeshGeometry<V: VertexType> {
-    /// The frame.
+    /// The shared camera and matrices ([`UstcView`]).
     pub geometry: UstcView,
     /// The mesh.
     pub mesh: GpuMesh<V>,
@@ -259,10 +259,10 @@ impl<V: VertexType + 'static> crate::lab::Geometry for MeshGeometry<V> {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh of a solid in
+/// The geometry as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh of a solid in
 /// the face order the `faces` parameter asks for ([`FACES`]; `auto`: [`OrderedGeometry::auto`]).
 pub struct OrderedGeometry<V: VertexType> {
-    /// The frame.
+    /// The shared camera and matrices ([`UstcView`]).
     pub geometry: UstcView,
     /// The mesh, with its positions for the CPU's facing test.
     pub mesh: ViewOrdered<V>,
@@ -294,10 +294,10 @@ impl<V: VertexType + 'static> crate::lab::Geometry for OrderedGeometry<V> {
     }
 }
 
-/// The frame as the runner draws it ([`crate::lab::Geometry`]): one of the lab's meshes, the one a
+/// The geometry as the runner draws it ([`crate::lab::Geometry`]): one of the lab's meshes, the one a
 /// choice parameter names (meshes in the choice's order).
 pub struct ChosenGeometry<V: VertexType> {
-    /// The frame.
+    /// The shared camera and matrices ([`UstcView`]).
     pub geometry: UstcView,
     /// The meshes, indexed by the choice.
     pub meshes: Vec<GpuMesh<V>>,

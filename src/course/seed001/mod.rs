@@ -1,4 +1,4 @@
-//! Seed 001, USTC GLSL (III): twelve exercises on one frame ([`geometry`]), the GL 1.x light
+//! Seed 001, USTC GLSL (III): twelve exercises on one geometry ([`geometry`]), the GL 1.x light
 //! state they read ([`gl_light`]), and the immediate-mode recorder ([`immediate`]).
 
 pub mod geometry;
