@@ -495,8 +495,8 @@ mod tests {
 
     #[test]
     fn welded_many_non_finite_positions() {
-        // Every NaN position used to land in one grid cell and be compared with every earlier
-        // one there: 20 000 took 0.46 s, 300 000 about 100 s. Each stays its own vertex.
+        // NaN positions must not all land in one grid cell and be compared with every earlier
+        // one there (quadratic; figures in docs/speed.md). Each stays its own vertex.
         let count = 300_000;
         let m = Mesh {
             vertices: (0..count)
@@ -753,8 +753,8 @@ mod tests {
 
     #[test]
     fn welded_level_512_is_what_it_was() {
-        // Hashes of the level-512 welds the grid-only version made (the teapot took it 60 s
-        // there, too long to run the reference in a test), and their vertex counts.
+        // Hashes of the level-512 welds the grid-only version made (too slow to run as a
+        // reference in a test; docs/speed.md), and their vertex counts.
         for (object, vertices, hash) in [
             (Object::Sphere, 261_634, 0x65cd_7539_acb8_cc48),
             (Object::Torus, 262_144, 0xf364_ac96_c374_a922),

@@ -9,6 +9,6 @@ use crate::lab::Recipe;
 
 /// Seed 004 §4.5.
 pub static RECIPE: Recipe = textured(lab_name!(), "texture × colour", |cx, _| {
-    // Mesh order: facing the eye first measured 0.990 of it (wall, 9 pairs), no gain.
+    // Mesh order: facing the eye first gained nothing measurable (docs/speed.md).
     sample(cx, RECIPE.info.name, "suzanne_texture_color.frag", |_| FaceOrder::Mesh)
 });
