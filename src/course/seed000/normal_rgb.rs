@@ -17,7 +17,7 @@ const AUTO: &[(Object, FaceOrder)] = &[
     (Object::Teapot, FaceOrder::FacingFirst),
 ];
 
-/// Exercise 2: the geometry and one pass, no uniforms of its own.
+/// Exercise 2: the geometry and one shader pair, no uniforms of its own.
 pub static RECIPE: Recipe = Recipe::new(
     super::info(lab_name!(), "Lab05-2", "normal to RGB", GEOMETRY_KEYS),
     &[PARAMS_000],

@@ -32,7 +32,7 @@ crate::vertex_type!(BumpVertex, {
     st: "vertex_texcoord" => Float32x2,
 });
 
-/// The quad on the common frame: its four corners twice, with each of Mesa's `GL_QUADS`
+/// The quad on the shared geometry: its four corners twice, with each of Mesa's `GL_QUADS`
 /// splits as indices (the unclipped one, then the clipped one).
 struct Quad {
     geometry: UstcView,

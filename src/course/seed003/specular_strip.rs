@@ -38,7 +38,7 @@ use crate::mesh::shapes::{bezier_strip, bezier_strip_n, StripVertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, GpuMesh, RenderState, Uniforms};
 
-/// `specular_strip`: the strip seen by the live camera ([`Fly`]), one pass.
+/// `specular_strip`: the strip seen by the live camera ([`Fly`]), one shader pair.
 pub static RECIPE: Recipe = Recipe::new(
     LabInfo {
         name: "specular_strip",

@@ -187,7 +187,7 @@ pub fn bmp(gpu: &Gpu, user: Option<&UserFile<Image>>) -> Result<GlTexture> {
     }
 }
 
-/// A geometry drawn by one pass sampling texture unit 0 (`tex`, `tex_sampler`): the texture and
+/// A geometry drawn by one shader pair sampling texture unit 0 (`tex`, `tex_sampler`): the texture and
 /// the GL parameters `pick` chooses for the parameters, bound again when they change
 /// (`glBindTexture`, `glTexParameteri`).
 pub struct Sampled<S: Geometry> {
@@ -200,19 +200,19 @@ pub struct Sampled<S: Geometry> {
 }
 
 impl<S: Geometry> Sampled<S> {
-    /// Compiles `pass`; the first frame binds the geometry's blocks and the texture picked.
+    /// Compiles `pair`; the first frame binds the geometry's blocks and the texture picked.
     pub fn build(
         cx: &BuildContext,
         name: &str,
         geometry: S,
-        pass: ShaderPair,
+        pair: ShaderPair,
         textures: Vec<GlTexture>,
         pick: fn(&Params) -> (usize, TexParams),
     ) -> Result<Box<dyn Scene>> {
         Ok(Box::new(Sampled {
             label: name.to_owned(),
             geometry,
-            program: Program::new(cx, name, pass.vert, pass.frag, pass.state)?,
+            program: Program::new(cx, name, pair.vert, pair.frag, pair.state)?,
             textures,
             pick,
             bound: None,

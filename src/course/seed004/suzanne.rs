@@ -1,7 +1,7 @@
 //! The exercises on the model ([`Model`]), three families, each a recipe builder and a scene
 //! builder that an exercise calls with its name and its shaders or shading model:
 //!
-//! - normals as colour (4.1–4.3, [`colour`], [`draw`]): one pass, no uniforms but the matrices;
+//! - normals as colour (4.1–4.3, [`colour`], [`draw`]): one shader pair, no uniforms but the matrices;
 //! - textured (4.4, 4.5, [`textured`], [`sample`]): the vertex shader of 4.2 on the
 //!   vertex-normal VBO (pinned: the exercises follow "Smooth Suzanne") and a fragment shader
 //!   sampling unit 0, which holds the checker (`tex=0`) or the "BMP" texture (`tex=1`), each
@@ -177,7 +177,7 @@ pub const fn lit(name: &'static str, label: &'static str, start: Shading, build:
     )
 }
 
-/// The three models' passes, `shading` picking one (keys switch without a pause).
+/// The three models' shader pairs, `shading` picking one (keys switch without a pause).
 static LIT: Material = Material::new(&[
     ShaderPair::new("suzanne_flat.vert", "suzanne_flat.frag").named("flat"),
     ShaderPair::new("suzanne_gouraud.vert", "suzanne_gouraud.frag").named("gouraud"),

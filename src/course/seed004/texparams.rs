@@ -131,6 +131,6 @@ fn build(cx: &BuildContext, _p: &Params) -> Result<Box<dyn Scene>> {
         matrices: Uniforms::new(cx.gpu, "texparams.matrices", matrices),
         mesh: GpuMesh::new(cx.gpu, "texparams.floor", &shapes::texparams_floor(), None),
     };
-    let pass = ShaderPair::new("suzanne_normal_matrix.vert", "suzanne_texture.frag");
-    Sampled::build(cx, "texparams", floor, pass, vec![texture], |p| (0, tex_params(p)))
+    let pair = ShaderPair::new("suzanne_normal_matrix.vert", "suzanne_texture.frag");
+    Sampled::build(cx, "texparams", floor, pair, vec![texture], |p| (0, tex_params(p)))
 }
