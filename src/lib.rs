@@ -108,6 +108,82 @@ mod tests {
         found
     }
 
+    /// The text files of the crate, its tests, examples and docs (`.rs`, `.md`, shaders), by path
+    /// from the crate's root, this file left out (it names what it looks for).
+    fn texts() -> Vec<(String, String)> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut found = vec![(
+            "README.md".to_owned(),
+            std::fs::read_to_string(root.join("README.md")).unwrap(),
+        )];
+        let mut dirs: Vec<_> = ["src", "tests", "examples", "docs", "shaders_glsl"]
+            .iter()
+            .map(|d| root.join(d))
+            .collect();
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).unwrap() {
+                let path = entry.unwrap().path();
+                let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+                if path.is_dir() {
+                    dirs.push(path);
+                } else if ["rs", "md", "glsl", "vert", "frag"].contains(&ext) && path != root.join("src/lib.rs") {
+                    let name = path.strip_prefix(root).unwrap().display().to_string();
+                    found.push((name, std::fs::read_to_string(&path).unwrap()));
+                }
+            }
+        }
+        found
+    }
+
+    /// Whether `text` holds `word` as a whole word (not inside a longer identifier).
+    fn has_word(text: &str, word: &str) -> bool {
+        let ident = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+        text.match_indices(word)
+            .any(|(at, _)| !ident(text[..at].chars().next_back()) && !ident(text[at + word.len()..].chars().next()))
+    }
+
+    /// One name per idea: the course is `course` (a lab is one of its modules), CPU meshes are
+    /// `mesh` and pictures `images` (a lab's camera, matrices and mesh are its geometry, the
+    /// trait `lab::Geometry`), which shader pairs a material draws is its `PairChoice`, a draw the
+    /// debugger captured is a `CapturedDraw`, F10 makes a recording, and a `BuildContext` has a
+    /// name. The names these ideas had before are nowhere.
+    #[test]
+    fn one_name_per_idea() {
+        assert!(has_word("a stage.", "stage") && !has_word("max_inter_stage_x", "stage"));
+        let retired = [
+            "crate::labs",
+            "shaderlab::labs",
+            "src/labs/",
+            "crate::geometry",
+            "shaderlab::geometry",
+            "src/geometry/",
+            "stage.rs",
+            "StageConfig",
+            "STAGE_KEYS",
+            "with_lab",
+            "cx.lab",
+            "window/capture.rs",
+            "capture::Capture",
+            "Draw::ChosenBy",
+            "capture::Draw",
+            "material.passes",
+            "MATERIAL.passes",
+        ];
+        let mut found = Vec::new();
+        for (file, text) in texts() {
+            for name in retired {
+                if text.contains(name) {
+                    found.push(format!("{file}: {name}"));
+                }
+            }
+            // Inside the course "stage" meant a lab's geometry: the word is kept out of it.
+            if file.starts_with("src/course/") && (has_word(&text, "stage") || has_word(&text, "stages")) {
+                found.push(format!("{file}: stage"));
+            }
+        }
+        assert!(found.is_empty(), "retired names:\n{}", found.join("\n"));
+    }
+
     /// The layer list above and the README's "How it is built" name every module of the crate.
     #[test]
     fn the_layer_lists_name_every_module() {
