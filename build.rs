@@ -36,7 +36,7 @@ fn main() {
     }
     names.sort();
 
-    let named = names_used_by_labs(&root.join("src/labs"));
+    let named = names_used_by_labs(&root.join("src/course"));
     let missing: Vec<&String> = named.iter().filter(|n| !names.contains(n)).collect();
     if !missing.is_empty() {
         fail(&format!(

@@ -1,10 +1,10 @@
-//! `cargo run --release --example labs`: lists every lab of `labs::ALL` — its example name,
+//! `cargo run --release --example labs`: lists every lab of `course::ALL` — its example name,
 //! lecture, original title, default size, keys and parameters — as Markdown (`--markdown`) or
 //! plain text. Needs no GPU.
 
 use std::fmt::Write as _;
 
-use shaderlab::labs;
+use shaderlab::course;
 
 fn main() -> std::process::ExitCode {
     let markdown = std::env::args().any(|a| a == "--markdown");
@@ -13,7 +13,7 @@ fn main() -> std::process::ExitCode {
         out.push_str("| example | lecture | effect | size | keys and mouse | parameters (`--set`) |\n");
         out.push_str("|---|---|---|---|---|---|\n");
     }
-    for entry in labs::ALL {
+    for entry in course::ALL {
         let info = entry.info;
         let params = (entry.params)();
         let names: Vec<String> = params

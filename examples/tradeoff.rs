@@ -46,7 +46,7 @@ use shaderlab::fsutil::{check_output_path, check_writable, Dest, NewDir};
 use shaderlab::metrics::mask;
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, say, screenshot};
-use shaderlab::{labs, Gpu, Object};
+use shaderlab::{course, Gpu, Object};
 
 shaderlab::say_when_exhausted!();
 
@@ -267,7 +267,7 @@ fn phong000(args: &Args, out: &mut Outputs, gpu: &Gpu) -> anyhow::Result<Summary
         args.frames
     );
     let cx = chart::context(gpu);
-    let mut lab = (labs::PHONG.new)(&cx)?;
+    let mut lab = (course::PHONG.new)(&cx)?;
     let mut rows = Vec::new();
     let mut done = 0;
     // A bar on a terminal; in a log, one line per configuration as before.

@@ -1,5 +1,5 @@
 // Shared snippet (seed 001): GL 2.0's built-in light and material state as one uniform block,
-// filled from the CPU by src/labs/seed001/gl_light.rs. The names are GLSL's without the
+// filled from the CPU by src/course/seed001/gl_light.rs. The names are GLSL's without the
 // reserved `gl_` prefix: gl_LightSource[0] is LightSource[0], gl_FrontMaterial is FrontMaterial,
 // gl_FrontLightProduct[0] is FrontLightProduct[0]. Only the members the course reads are kept.
 struct LightSourceParameters {

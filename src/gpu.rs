@@ -76,8 +76,8 @@ const COMPILE_CHECK: std::time::Duration = std::time::Duration::from_millis(25);
 #[cfg(not(target_arch = "wasm32"))]
 const COMPILE_MEMORY_MARGIN: u64 = 256 << 20;
 
-/// The command line's default watchdog ([`Gpu::watchdog`], `--timeout`): a frame of the labs
-/// takes milliseconds, the largest models a few seconds on lavapipe.
+/// The command line's default watchdog ([`Gpu::watchdog`], `--timeout`): well above what a
+/// frame of the labs or the largest model takes on lavapipe (figures in docs/speed.md).
 pub const WATCHDOG: std::time::Duration = std::time::Duration::from_secs(10);
 
 /// Set once a wait for the GPU has been given up: its queue holds work that may never end.

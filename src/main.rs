@@ -6,7 +6,7 @@ use std::ffi::OsString;
 use std::io::Write;
 use std::process::ExitCode;
 
-use shaderlab::labs;
+use shaderlab::course;
 
 use shaderlab::shell::tools::{bench, glsl2wgsl};
 
@@ -52,7 +52,7 @@ fn verb_help(verb: &str) -> String {
              --json       print one JSON object (pixel, covered, trace, ...) instead of the text",
         ),
     };
-    let names: Vec<&str> = labs::ALL.iter().map(|e| e.info.name).collect();
+    let names: Vec<&str> = course::ALL.iter().map(|e| e.info.name).collect();
     format!(
         "shaderlab {verb}: {what}\n\nUsage: {usage}\n\n  NAME         a lab: {}{flags}\n  \
          FLAGS…       the lab's own flags (--set, --size, --shaders, ...): shaderlab {verb} NAME --help lists them\n",
@@ -82,7 +82,7 @@ fn main() -> ExitCode {
         Some("list") => {
             let mut lines = Vec::new();
             let mut lecture = "";
-            for entry in labs::ALL {
+            for entry in course::ALL {
                 let info = entry.info;
                 if info.lecture != lecture {
                     lecture = info.lecture;
@@ -107,8 +107,8 @@ fn main() -> ExitCode {
             } else {
                 (words.get(2).map(String::as_str), 3)
             };
-            let Some(entry) = name.and_then(labs::find) else {
-                let names: Vec<&str> = labs::ALL.iter().map(|e| e.info.name).collect();
+            let Some(entry) = name.and_then(course::find) else {
+                let names: Vec<&str> = course::ALL.iter().map(|e| e.info.name).collect();
                 eprintln!(
                     "shaderlab {verb}: {}; the labs are: {}\n\nUsage: shaderlab {verb} NAME{} [FLAGS…]",
                     match name {

@@ -5,14 +5,14 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
-use crate::geometry::images::{load_image, Image};
-use crate::geometry::obj::{load_obj, ObjModel};
+use crate::images::{load_image, Image};
+use crate::mesh::obj::{load_obj, ObjModel};
 
 /// Files named on the command line (`--model`, `--texture`), already read and checked, for the
 /// labs that draw a model or a picture texture; the shell refuses a flag the lab has no use for
 /// ([`crate::lab::LabInfo::files`]) before reading its file. Every file is read by
 /// [`crate::fsutil::read_user_file`]'s rule: a regular file within a size cap
-/// ([`crate::geometry::obj::MAX_OBJ_BYTES`], [`crate::geometry::images::MAX_IMAGE_FILE_BYTES`]).
+/// ([`crate::mesh::obj::MAX_OBJ_BYTES`], [`crate::images::MAX_IMAGE_FILE_BYTES`]).
 #[derive(Clone, Debug, Default)]
 pub struct UserFiles {
     /// `--model FILE.obj`: a Wavefront OBJ, parsed.

@@ -40,7 +40,7 @@ fn the_installed_command_lists_runs_and_refuses() {
     let list = run(&["list"]);
     assert!(list.status.success());
     let text = String::from_utf8_lossy(&list.stdout);
-    for entry in shaderlab::labs::ALL {
+    for entry in shaderlab::course::ALL {
         assert!(
             text.lines()
                 .any(|l| l.split_whitespace().next() == Some(entry.info.name)),
@@ -57,7 +57,7 @@ fn the_installed_command_lists_runs_and_refuses() {
     let shot = run(&["run", "twist", "--set", "twisting=2", "--screenshot", "t.png"]);
     assert!(shot.status.success(), "{}", String::from_utf8_lossy(&shot.stderr));
     let picture = image::open(dir.join("t.png")).unwrap().to_rgb8();
-    let reference = common::render_state(shaderlab::labs::TWIST, &[("twisting", "2")]);
+    let reference = common::render_state(shaderlab::course::TWIST, &[("twisting", "2")]);
     assert_eq!(picture, reference, "the command draws what the lab draws");
 
     let rec = run(&["record", "twist", "r.gif", "--frames", "2"]);

@@ -34,7 +34,7 @@ impl Rng {
 }
 
 fn build(name: &str, files: &UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
-    let entry = shaderlab::labs::find(name).expect("a lab");
+    let entry = shaderlab::course::find(name).expect("a lab");
     let source = ShaderSource::Embedded;
     let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, files);
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
@@ -141,7 +141,7 @@ fn course(lab: u32) -> Vec<PathBuf> {
 fn states() -> Vec<(String, Box<dyn Lab>)> {
     let none = UserFiles::default();
     let mut out: Vec<(String, Box<dyn Lab>)> = Vec::new();
-    for entry in shaderlab::labs::ALL {
+    for entry in shaderlab::course::ALL {
         let name = entry.info.name;
         if name == "legacy" {
             continue;

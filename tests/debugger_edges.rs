@@ -28,7 +28,7 @@ fn edited(lab: &str, file: &str, main: &str, set: &[(&str, &str)]) -> Box<dyn La
     let source = ShaderSource::Edited(Arc::new(texts));
     let files = UserFiles::default();
     let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
-    let entry = shaderlab::labs::find(lab).expect("a lab");
+    let entry = shaderlab::course::find(lab).expect("a lab");
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{lab} builds with\n{main}\n{e}"));
     for (k, v) in set {
         lab.params_mut().set_str(k, v).expect("a parameter");

@@ -8,10 +8,10 @@
 mod common;
 
 use common::lab_with;
-use shaderlab::geometry::images::Image;
-use shaderlab::geometry::obj::parse_obj;
+use shaderlab::course;
+use shaderlab::images::Image;
 use shaderlab::lab::{BuildContext, LabEntry, UserFile, UserFiles};
-use shaderlab::labs;
+use shaderlab::mesh::obj::parse_obj;
 use shaderlab::shader::ShaderSource;
 
 const FLOAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -79,7 +79,7 @@ fn assert_finite(what: &str, o: &Outcome) {
 /// view (nothing drawn, as in the original), and stay finite.
 #[test]
 fn huge_times_stay_finite_and_wave_repeats_with_its_period() {
-    for entry in [labs::WAVE, labs::MORPH, labs::PARTICLES] {
+    for entry in [course::WAVE, course::MORPH, course::PARTICLES] {
         for t in ["1e6", "1e9", "-1e9"] {
             let o = float_render(entry, &[("time", t)]);
             let what = format!("{} at time {t}", entry.info.name);
@@ -92,8 +92,8 @@ fn huge_times_stay_finite_and_wave_repeats_with_its_period() {
     }
     // The wave's time is reduced modulo 2π in double: t and t + 2π·k draw the same picture.
     let k = 159_154.0 * std::f64::consts::TAU;
-    let a = common::render_state(labs::WAVE, &[("time", "0.7")]);
-    let b = common::render_state(labs::WAVE, &[("time", &format!("{}", 0.7 + k))]);
+    let a = common::render_state(course::WAVE, &[("time", "0.7")]);
+    let b = common::render_state(course::WAVE, &[("time", &format!("{}", 0.7 + k))]);
     let db = shaderlab::metrics::psnr(&a, &b).unwrap();
     println!("wave at 0.7 and 0.7 + 2π·159154 s (1.0e6 s): {db:.1} dB");
     assert!(db >= 50.0, "{db:.1} dB");
@@ -109,35 +109,35 @@ fn lights_on_the_surface_and_at_the_eye() {
     let cases: &[(&LabEntry, &[(&str, &str)])] = &[
         // Seed 001: the sphere (radius 1) 4 units in front of the eye, in eye space.
         (
-            labs::PHONG_FRAGMENT,
+            course::PHONG_FRAGMENT,
             &[("object", "sphere"), ("lx", "0"), ("ly", "0"), ("lz", "-3")],
         ),
         (
-            labs::PHONG_FRAGMENT,
+            course::PHONG_FRAGMENT,
             &[("object", "sphere"), ("lx", "0"), ("ly", "0"), ("lz", "0")],
         ),
         (
-            labs::PHONG_VERTEX,
+            course::PHONG_VERTEX,
             &[("object", "sphere"), ("lx", "0"), ("ly", "0"), ("lz", "-3")],
         ),
         (
-            labs::TOON,
+            course::TOON,
             &[("object", "sphere"), ("lx", "0"), ("ly", "0"), ("lz", "0")],
         ),
-        (labs::BUMP, &[("blx", "0"), ("bly", "0"), ("blz", "0")]),
-        (labs::NORMMAP, &[("blx", "0"), ("bly", "0"), ("blz", "0")]),
+        (course::BUMP, &[("blx", "0"), ("bly", "0"), ("blz", "0")]),
+        (course::NORMMAP, &[("blx", "0"), ("bly", "0"), ("blz", "0")]),
         // Seed 003: the light on the strip's curve and at the report's camera.
         (
-            labs::SPECULAR_STRIP,
+            course::SPECULAR_STRIP,
             &[("lightx", "0"), ("lighty", "-0.65"), ("lightz", "0")],
         ),
         // Seed 004: eye-space lights, at the eye.
         (
-            labs::SUZANNE_PHONG,
+            course::SUZANNE_PHONG,
             &[("lightx", "0"), ("lighty", "0"), ("lightz", "0")],
         ),
         (
-            labs::SUZANNE_GOURAUD,
+            course::SUZANNE_GOURAUD,
             &[("lightx", "0"), ("lighty", "0"), ("lightz", "0")],
         ),
     ];
@@ -152,7 +152,10 @@ fn lights_on_the_surface_and_at_the_eye() {
 /// says the range (so 0 and 1e6 never reach `pow`), and draw the ends of the range.
 #[test]
 fn shininess_at_and_beyond_the_ends() {
-    for (entry, lo, hi) in [(labs::PHONG_FRAGMENT, "1", "128"), (labs::SUZANNE_PHONG, "1", "256")] {
+    for (entry, lo, hi) in [
+        (course::PHONG_FRAGMENT, "1", "128"),
+        (course::SUZANNE_PHONG, "1", "256"),
+    ] {
         let mut lab = common::build(entry);
         for bad in ["0", "1e6"] {
             let err = lab.params_mut().set_str("shininess", bad).expect_err("refused");
@@ -173,12 +176,12 @@ fn shininess_at_and_beyond_the_ends() {
 /// (`normalize_or_zero`), it adds nothing to its corners' smooth normals and covers no pixel).
 #[test]
 fn zero_vectors_never_reach_the_picture() {
-    for entry in [labs::PHONG_FRAGMENT, labs::PHONG_VERTEX, labs::TOON] {
+    for entry in [course::PHONG_FRAGMENT, course::PHONG_VERTEX, course::TOON] {
         // Looking down on the sphere's pole.
         let o = float_render(entry, &[("object", "sphere"), ("xangle", "90")]);
         assert_sane(&format!("{} at the pole", entry.info.name), &o);
     }
-    let o = float_render(labs::SPECULAR_STRIP, &[]);
+    let o = float_render(course::SPECULAR_STRIP, &[]);
     assert_sane("specular_strip (its last normal is zero)", &o);
 
     let obj = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nv 2 2 0\nv 3 3 0\nv 4 4 0\nf 1 2 3\nf 4 5 6\nf 1 2 2\n";
@@ -191,10 +194,10 @@ fn zero_vectors_never_reach_the_picture() {
         ..UserFiles::default()
     };
     for entry in [
-        labs::SUZANNE_SMOOTH,
-        labs::SUZANNE_PHONG,
-        labs::SUZANNE_GOURAUD,
-        labs::SUZANNE_FLAT,
+        course::SUZANNE_SMOOTH,
+        course::SUZANNE_PHONG,
+        course::SUZANNE_GOURAUD,
+        course::SUZANNE_FLAT,
     ] {
         let pixels = render_with_files(entry, &files);
         let o = outcome(&pixels);
@@ -221,7 +224,7 @@ fn render_with_files(entry: &LabEntry, files: &UserFiles) -> Vec<[f32; 4]> {
 /// quad still shows and stays finite; at 90° and 270° it is exactly edge-on and covers no pixel.
 #[test]
 fn tangent_frames_edge_on() {
-    for entry in [labs::BUMP, labs::NORMMAP] {
+    for entry in [course::BUMP, course::NORMMAP] {
         for (yangle, shows) in [("80", true), ("88", true), ("90", false), ("270", false)] {
             let mut lab = lab_with(entry, &ShaderSource::Embedded, FLOAT);
             common::set_state(lab.lab.as_mut(), &[("yangle", yangle)]);
@@ -257,7 +260,11 @@ fn one_texel_and_odd_sized_textures() {
             }),
             ..UserFiles::default()
         };
-        for entry in [labs::TEXPARAMS, labs::SUZANNE_TEXTURE, labs::SUZANNE_TEXTURE_COLOR] {
+        for entry in [
+            course::TEXPARAMS,
+            course::SUZANNE_TEXTURE,
+            course::SUZANNE_TEXTURE_COLOR,
+        ] {
             let o = outcome(&render_with_files(entry, &files));
             assert_sane(&format!("{} with a {w}x{h} texture", entry.info.name), &o);
         }
@@ -274,13 +281,13 @@ fn one_texel_and_odd_sized_textures() {
 #[test]
 fn camera_inside_an_object() {
     let cases: &[(&LabEntry, &[(&str, &str)])] = &[
-        (labs::PHONG, &[("object", "sphere"), ("camera", "0,0,0.3")]),
-        (labs::PHONG, &[("object", "torus"), ("camera", "0.75,0,0")]),
+        (course::PHONG, &[("object", "sphere"), ("camera", "0,0,0.3")]),
+        (course::PHONG, &[("object", "torus"), ("camera", "0.75,0,0")]),
         (
-            labs::LEGACY,
+            course::LEGACY,
             &[("object", "sphere"), ("camera", "0,0,0"), ("near", "0.01")],
         ),
-        (labs::SPECULAR_STRIP, &[("forward", "6")]),
+        (course::SPECULAR_STRIP, &[("forward", "6")]),
     ];
     for (entry, state) in cases {
         let o = float_render(entry, state);

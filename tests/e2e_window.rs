@@ -26,7 +26,7 @@ use std::thread;
 use std::time::{Duration, Instant};
 
 use image::RgbImage;
-use shaderlab::labs;
+use shaderlab::course;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
 
 mod common;
@@ -1266,7 +1266,7 @@ fn input_storm_keeps_values_in_range_and_the_window_responsive() {
     storm.extend(std::iter::repeat_n('r', 120));
     assert_eq!(storm.len(), 2000);
     // What the lab must end with: the same keys through the effect's own handler.
-    let mut model = common::lab(labs::PHONG);
+    let mut model = common::lab(course::PHONG);
     for &c in &storm {
         model.key(c);
     }
@@ -1830,7 +1830,7 @@ fn legacy_window_reloads_the_users_files() {
 #[test]
 fn every_lecture_lab_opens_draws_and_quits() {
     let x = Xvfb::start("every_lab");
-    for entry in shaderlab::labs::ALL.iter().skip(5) {
+    for entry in shaderlab::course::ALL.iter().skip(5) {
         let name = entry.info.name;
         let mut lab = x.launch(name, &[], &[]);
         let frame = poll(PATIENCE, || {

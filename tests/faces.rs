@@ -11,7 +11,7 @@
 
 mod common;
 
-use shaderlab::labs;
+use shaderlab::course;
 use shaderlab::Object;
 
 /// A small deterministic generator (xorshift64*), so a failure names a reproducible state.
@@ -68,11 +68,11 @@ fn outside_faces_first_changes_no_pixel() {
     let mut rng = Rng(0x5EED_0000_0000_0014);
     let mut checked = 0;
     for entry in [
-        labs::POSITION_RGB,
-        labs::NORMAL_RGB,
-        labs::PHONG,
-        labs::NOISE,
-        labs::DISPLACEMENT,
+        course::POSITION_RGB,
+        course::NORMAL_RGB,
+        course::PHONG,
+        course::NOISE,
+        course::DISPLACEMENT,
     ] {
         let mut lab = common::lab(entry);
         for object in [Object::Cube, Object::Sphere, Object::Torus, Object::Teapot] {
@@ -89,9 +89,9 @@ fn outside_faces_first_changes_no_pixel() {
     }
     // The port-only modes that change the mesh or the shaders.
     let (mut displacement, mut noise, mut phong) = (
-        common::lab(labs::DISPLACEMENT),
-        common::lab(labs::NOISE),
-        common::lab(labs::PHONG),
+        common::lab(course::DISPLACEMENT),
+        common::lab(course::NOISE),
+        common::lab(course::PHONG),
     );
     for _ in 0..4 {
         let angles = [rng.angle(), rng.angle(), rng.angle()];
@@ -111,7 +111,7 @@ fn outside_faces_first_changes_no_pixel() {
 #[test]
 fn culling_is_opt_in_and_changes_only_silhouette_pixels_of_closed_meshes() {
     let mut rng = Rng(0x5EED_0000_0000_C011);
-    for entry in [labs::POSITION_RGB, labs::PHONG, labs::NOISE] {
+    for entry in [course::POSITION_RGB, course::PHONG, course::NOISE] {
         let mut lab = common::lab(entry);
         assert_eq!(
             lab.text("cull"),
@@ -183,7 +183,7 @@ fn later_lectures_reordered_faces_change_no_pixel() {
         ),
     ];
     for (name, angles, (w, h), objects) in cases {
-        let mut lab = common::lab(labs::find(name).expect("listed"));
+        let mut lab = common::lab(course::find(name).expect("listed"));
         assert_eq!(lab.text("faces"), "auto", "{name}");
         let objects: &[&str] = if objects.is_empty() { &[""] } else { objects };
         for object in objects {
@@ -235,7 +235,7 @@ fn seed_001_teapot_ties_settle_as_in_mesh_order() {
         ("phong_fragment", [101.033356, 357.07742]),
     ];
     for (name, [x, y]) in views {
-        let mut lab = common::lab(labs::find(name).expect("listed"));
+        let mut lab = common::lab(course::find(name).expect("listed"));
         lab.set("xangle", &[x]).expect("xangle");
         lab.set("yangle", &[y]).expect("yangle");
         lab.set_str("faces", "mesh").expect("faces");
@@ -257,11 +257,11 @@ fn seed_001_teapot_ties_settle_as_in_mesh_order() {
 fn seed_000_auto_order_changes_no_pixel_at_many_views() {
     let mut rng = Rng(0x5EED_0000_0000_0A00);
     for entry in [
-        labs::POSITION_RGB,
-        labs::NORMAL_RGB,
-        labs::PHONG,
-        labs::NOISE,
-        labs::DISPLACEMENT,
+        course::POSITION_RGB,
+        course::NORMAL_RGB,
+        course::PHONG,
+        course::NOISE,
+        course::DISPLACEMENT,
     ] {
         let mut lab = common::lab(entry);
         for object in [Object::Torus, Object::Teapot] {

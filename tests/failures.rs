@@ -7,8 +7,8 @@ mod common;
 use common::*;
 use glam::{Mat3, Vec3};
 use image::RgbImage;
+use shaderlab::course::{self, NOISE_PERIOD};
 use shaderlab::exact::{image_error, ExactScene, Shape};
-use shaderlab::labs::{self, NOISE_PERIOD};
 use shaderlab::metrics::{luma_stats, mask, psnr};
 use shaderlab::shader::ShaderSource;
 use shaderlab::Object;
@@ -31,7 +31,7 @@ fn blockiness(image: &RgbImage) -> f64 {
 }
 
 fn noise_at(time: f64, wrap: bool) -> RgbImage {
-    let mut lab = lab(labs::NOISE);
+    let mut lab = lab(course::NOISE);
     lab.set_object(Object::Sphere);
     lab.set_time(time);
     lab.set("wrap_time", &[if wrap { 1.0 } else { 0.0 }])
@@ -95,7 +95,7 @@ fn noise_time_precision_and_period() {
 }
 
 fn phong_sphere(shading: &str, level: u32) -> RgbImage {
-    let mut lab = lab(labs::PHONG);
+    let mut lab = lab(course::PHONG);
     lab.set_object(Object::Sphere);
     lab.set("tess", &[level as f32]).expect("tess");
     lab.set_str("shading", shading).expect("shading");
@@ -169,7 +169,7 @@ fn normal_matrix_under_non_uniform_scale() {
     assert!(worst > 30.0, "the naive matrix must be badly wrong under this scale");
     // In the image: the true normals of the flattened sphere point up and down far more (green).
     let render = |naive: bool| {
-        let mut lab = lab(labs::NORMAL_RGB);
+        let mut lab = lab(course::NORMAL_RGB);
         lab.set_object(Object::Sphere);
         lab.set("scale", &scale.to_array()).expect("scale");
         lab.set("naive_nm", &[if naive { 1.0 } else { 0.0 }]).expect("naive_nm");
@@ -239,7 +239,7 @@ fn degenerate_inputs_never_reach_the_image_as_nan() {
             ("original", ShaderSource::Dir(dir.clone())),
             ("port", ShaderSource::Embedded),
         ] {
-            let mut lab = lab_with(labs::PHONG, &source, wgpu::TextureFormat::Rgba32Float);
+            let mut lab = lab_with(course::PHONG, &source, wgpu::TextureFormat::Rgba32Float);
             lab.set_object(Object::Sphere);
             for (n, v) in *set {
                 lab.set(n, v).expect("set");
@@ -263,11 +263,11 @@ fn degenerate_inputs_never_reach_the_image_as_nan() {
     }
     // Every exercise on every object, including the teapot's degenerate poles: all finite.
     for entry in [
-        labs::POSITION_RGB,
-        labs::NORMAL_RGB,
-        labs::PHONG,
-        labs::NOISE,
-        labs::DISPLACEMENT,
+        course::POSITION_RGB,
+        course::NORMAL_RGB,
+        course::PHONG,
+        course::NOISE,
+        course::DISPLACEMENT,
     ] {
         let mut lab = lab_with(entry, &ShaderSource::Embedded, wgpu::TextureFormat::Rgba32Float);
         for object in Object::ALL {
@@ -299,7 +299,7 @@ fn displacement_cracks_and_the_smooth_variant() {
     // t = 1 the cube's faces are lit and the original shows dark gaps between them).
     let render = |smooth: f32| {
         render(
-            labs::DISPLACEMENT,
+            course::DISPLACEMENT,
             Object::Cube,
             [30.0, 45.0, 0.0],
             1.0,

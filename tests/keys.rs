@@ -3,12 +3,12 @@
 mod common;
 
 use glam::Vec3;
-use shaderlab::labs;
+use shaderlab::course;
 use shaderlab::Object;
 
 #[test]
 fn object_keys() {
-    let mut lab = common::lab(labs::POSITION_RGB);
+    let mut lab = common::lab(course::POSITION_RGB);
     assert_eq!(lab.object(), Object::Teapot, "the teapot is the default");
     for (key, object) in [
         ('1', Object::Cube),
@@ -24,7 +24,7 @@ fn object_keys() {
 
 #[test]
 fn phong_keys_and_clamps() {
-    let mut lab = common::lab(labs::PHONG);
+    let mut lab = common::lab(course::PHONG);
     let get = |lab: &common::TestLab, n: &str| lab.get(n).expect("param");
     lab.key('X');
     lab.key('Y');
@@ -66,14 +66,14 @@ fn phong_keys_and_clamps() {
 
 #[test]
 fn noise_and_displacement_keys() {
-    let mut noise = common::lab(labs::NOISE);
+    let mut noise = common::lab(course::NOISE);
     noise.key('r');
     assert!((noise.get("shade").expect("shade")[0] - 0.95).abs() < 1e-6);
     for _ in 0..50 {
         noise.key('g');
     }
     assert_eq!(noise.get("shade").expect("shade")[1], 0.0);
-    let mut disp = common::lab(labs::DISPLACEMENT);
+    let mut disp = common::lab(course::DISPLACEMENT);
     disp.key(']');
     assert!((disp.get("displacement").expect("d")[0] - 0.51).abs() < 1e-6);
     for _ in 0..200 {
@@ -86,14 +86,14 @@ fn noise_and_displacement_keys() {
 
 #[test]
 fn mouse_drag_rotates_like_glut() {
-    let mut lab = common::lab(labs::NOISE);
+    let mut lab = common::lab(course::NOISE);
     lab.mouse_press(100, 100);
     lab.mouse_motion(110, 100); // right: yAngle += 2
     lab.mouse_motion(120, 95); // right and up: yAngle += 2, xAngle -= 1
     lab.mouse_motion(120, 95); // no movement: nothing
     assert_eq!(lab.angles(), Vec3::new(359.0, 4.0, 0.0));
     // The original tests `if (xMotion)`: a press at x = 0 does not rotate around y.
-    let mut edge = common::lab(labs::NOISE);
+    let mut edge = common::lab(course::NOISE);
     edge.mouse_press(0, 50);
     edge.mouse_motion(30, 60);
     assert_eq!(edge.angles(), Vec3::new(1.0, 0.0, 0.0));
@@ -101,11 +101,11 @@ fn mouse_drag_rotates_like_glut() {
 
 #[test]
 fn set_rejects_bad_values() {
-    let mut lab = common::lab(labs::PHONG);
+    let mut lab = common::lab(course::PHONG);
     assert!(lab.set("Ka", &[f32::NAN]).is_err());
     assert!(lab.set("lightPosition", &[1.0]).is_err());
     assert!(lab.set("camera", &[0.0, 0.0, 3.0]).is_ok());
-    let mut p1 = common::lab(labs::POSITION_RGB);
+    let mut p1 = common::lab(course::POSITION_RGB);
     let err = p1.set("camera", &[0.0, 0.0, 3.0]).expect_err("no camera in exercise 1");
     assert!(err.to_string().contains("valid"), "{err}");
 }
@@ -113,7 +113,7 @@ fn set_rejects_bad_values() {
 #[test]
 fn key_m_cycles_shading_models_and_rebuilds_the_pipeline() {
     use shaderlab::offscreen::to_rgb;
-    let mut lab = common::lab(labs::PHONG);
+    let mut lab = common::lab(course::PHONG);
     lab.set_object(Object::Sphere);
     let phong = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
     assert!(lab.key('m'));
@@ -128,7 +128,7 @@ fn key_m_cycles_shading_models_and_rebuilds_the_pipeline() {
     let again = to_rgb(&lab.screenshot(common::gpu(), 320, 180).expect("render"));
     assert_eq!(phong, again, "back to the original after a full cycle");
     // Effects without shading models ignore m.
-    let mut noise = common::lab(labs::NOISE);
+    let mut noise = common::lab(course::NOISE);
     assert!(!noise.key('m'));
 }
 
@@ -142,7 +142,7 @@ fn key_m_skips_a_broken_model_and_recovers() {
     let flat = dir.join("phong_flat.frag");
     let good = std::fs::read_to_string(&flat).unwrap();
     std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
-    let mut lab = common::lab_from(labs::PHONG, &ShaderSource::Dir(dir.clone()));
+    let mut lab = common::lab_from(course::PHONG, &ShaderSource::Dir(dir.clone()));
     lab.set_object(Object::Sphere);
     lab.rgb(160, 90);
     lab.key('m'); // blinn

@@ -46,7 +46,7 @@ fn legacy(files: Vec<PathBuf>, set: &[(&str, &str)]) -> Box<dyn Lab> {
 fn legacy_with(files: UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
     let source = ShaderSource::Embedded;
     let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
-    let mut lab = (shaderlab::labs::LEGACY.new)(&cx).unwrap_or_else(|e| panic!("legacy builds: {e}"));
+    let mut lab = (shaderlab::course::LEGACY.new)(&cx).unwrap_or_else(|e| panic!("legacy builds: {e}"));
     for (k, v) in set {
         lab.params_mut()
             .set_str(k, v)
@@ -73,7 +73,7 @@ fn in_tests(rel: &str) -> PathBuf {
 
 /// labref.c's uniforms and state per exercise (lab 3: camera (0,0,5), clear (0.05,0.1,0.2)).
 fn labref_state(lab: u32) -> Vec<(&'static str, &'static str)> {
-    shaderlab::labs::legacy::course_state(lab).to_vec()
+    shaderlab::course::legacy::course_state(lab).to_vec()
 }
 
 #[test]
@@ -429,7 +429,7 @@ type State = (
 
 #[test]
 fn builtin_state_shaders_match_their_hand_ports() {
-    use shaderlab::labs;
+    use shaderlab::course;
     let mut worst = f64::INFINITY;
     let light = |x: &'static str| -> (&'static str, &'static str) { ("gl_LightSource[0].position", x) };
     let states: [State; 4] = [
@@ -447,12 +447,12 @@ fn builtin_state_shaders_match_their_hand_ports() {
         ),
     ];
     for (entry, files) in [
-        (labs::PHONG_VERTEX, ["seed001/phong_vertex.vert", "seed001/pass.frag"]),
+        (course::PHONG_VERTEX, ["seed001/phong_vertex.vert", "seed001/pass.frag"]),
         (
-            labs::PHONG_FRAGMENT,
+            course::PHONG_FRAGMENT,
             ["seed001/phong_fragment.vert", "seed001/phong_fragment.frag"],
         ),
-        (labs::TOON, ["seed001/toon.vert", "seed001/pass.frag"]),
+        (course::TOON, ["seed001/toon.vert", "seed001/pass.frag"]),
     ] {
         for (state, port, extra) in &states {
             if entry.info.name == "toon" && *state == "shiny" {
@@ -468,7 +468,7 @@ fn builtin_state_shaders_match_their_hand_ports() {
     }
     for (state, twisting) in [("default", "4.25"), ("none", "0"), ("neg", "-2"), ("strong", "8")] {
         let db = versus_hand_port(
-            labs::TWIST,
+            course::TWIST,
             ["seed002/twist.vert", "seed002/twist.frag"],
             &[("twisting", twisting)],
             &[("object", "grid"), ("twisting", twisting), ("color", "0.5,9,0.5")],
@@ -477,11 +477,11 @@ fn builtin_state_shaders_match_their_hand_ports() {
         assert!(db >= 60.0, "twist {state}: {db:.1} dB");
         worst = worst.min(db);
     }
-    // normal_world turns Rz·Ry·Rx, the legacy stage Rx·Ry·Rz: states about one axis.
+    // normal_world turns Rz·Ry·Rx, the legacy geometry Rx·Ry·Rz: states about one axis.
     for (state, port, angles) in [("default", vec![], "0,0,0"), ("below", vec![("rx", "-70")], "-70,0,0")] {
         let [x, y, z]: [&str; 3] = angles.split(',').collect::<Vec<_>>().try_into().unwrap();
         let db = versus_hand_port(
-            labs::NORMAL_WORLD,
+            course::NORMAL_WORLD,
             ["seed002/normal_world.vert", "seed002/normal_world.frag"],
             &port,
             &[

@@ -152,8 +152,8 @@ fn outputs_that_are_not_regular_files_are_never_replaced() {
 #[test]
 fn every_command_says_when_stdout_fails() {
     let dir = scratch("stdout");
-    let vert = concat!(env!("CARGO_MANIFEST_DIR"), "/src/labs/legacy/default.vert");
-    let frag = concat!(env!("CARGO_MANIFEST_DIR"), "/src/labs/legacy/default.frag");
+    let vert = concat!(env!("CARGO_MANIFEST_DIR"), "/src/course/legacy/default.vert");
+    let frag = concat!(env!("CARGO_MANIFEST_DIR"), "/src/course/legacy/default.frag");
     for args in [
         &["--version"][..],
         &["list"],
@@ -316,7 +316,7 @@ fn no_output_replaces_one_of_the_runs_inputs() {
         "vec4 tint() { return vec4(1.0, 0.5, 0.25, 1.0); }\n",
     )
     .unwrap();
-    let legacy = concat!(env!("CARGO_MANIFEST_DIR"), "/src/labs/legacy");
+    let legacy = concat!(env!("CARGO_MANIFEST_DIR"), "/src/course/legacy");
     for name in ["default.vert", "default.frag"] {
         fs::copy(format!("{legacy}/{name}"), dir.join(name)).unwrap();
     }

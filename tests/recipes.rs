@@ -1,4 +1,4 @@
-//! What the one runner promises for every lab of `labs::ALL`: each lab hands out its programs
+//! What the one runner promises for every lab of `course::ALL`: each lab hands out its programs
 //! and draws the same picture through naga's WGSL translation of them (the GLSL-versus-WGSL
 //! round trip); each key row names a parameter the lab has; a uniform block member that no
 //! parameter or computed value feeds is an error that names it.
@@ -6,7 +6,7 @@
 mod common;
 
 use common::*;
-use shaderlab::labs;
+use shaderlab::course;
 use shaderlab::metrics::psnr;
 use shaderlab::shader::ShaderSource;
 
@@ -14,7 +14,7 @@ use shaderlab::shader::ShaderSource;
 fn every_lab_draws_the_same_picture_through_wgsl() {
     let gpu = gpu();
     let mut report = Vec::new();
-    for entry in labs::ALL {
+    for entry in course::ALL {
         let name = entry.info.name;
         let mut glsl = build(entry);
         let mut wgsl = build(entry);
@@ -60,7 +60,7 @@ fn every_lab_draws_the_same_picture_through_wgsl() {
 
 #[test]
 fn every_key_row_names_a_parameter_of_its_lab() {
-    for entry in labs::ALL {
+    for entry in course::ALL {
         let params = (entry.params)();
         for name in entry.info.keys.params() {
             assert!(
@@ -90,7 +90,7 @@ fn a_block_member_without_a_parameter_is_named() {
         shaderlab::offscreen::COLOR_FORMAT,
         &shaderlab::lab::NO_FILES,
     );
-    let err = match (labs::TWIST.new)(&cx) {
+    let err = match (course::TWIST.new)(&cx) {
         Ok(_) => panic!("twist built with a block member no parameter feeds"),
         Err(e) => e.to_string(),
     };
@@ -112,7 +112,7 @@ fn a_reload_that_changes_a_block_keeps_the_last_good_pipeline() {
         shaderlab::offscreen::COLOR_FORMAT,
         &shaderlab::lab::NO_FILES,
     );
-    let mut lab = (labs::TWIST.new)(&cx).expect("twist builds");
+    let mut lab = (course::TWIST.new)(&cx).expect("twist builds");
     let before = shot(lab.as_mut());
     let file = dir.join("twist_params.glsl");
     let text = std::fs::read_to_string(&file).unwrap();
@@ -134,7 +134,7 @@ fn a_reload_that_changes_a_block_keeps_the_last_good_pipeline() {
 #[test]
 fn every_lab_has_its_example_and_every_example_is_a_lab_or_a_tool() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    for entry in labs::ALL {
+    for entry in course::ALL {
         let name = entry.info.name;
         let text = std::fs::read_to_string(dir.join(format!("{name}.rs")))
             .unwrap_or_else(|e| panic!("examples/{name}.rs: {e}"));
@@ -142,13 +142,13 @@ fn every_lab_has_its_example_and_every_example_is_a_lab_or_a_tool() {
             text.contains("shaderlab::lab_example!();"),
             "examples/{name}.rs does not call shaderlab::lab_example!()"
         );
-        assert!(labs::find(name).is_some_and(|e| std::ptr::eq(e, *entry)));
+        assert!(course::find(name).is_some_and(|e| std::ptr::eq(e, *entry)));
     }
     for file in std::fs::read_dir(&dir).unwrap() {
         let path = file.unwrap().path();
         let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
         assert!(
-            labs::find(&stem).is_some() || ["bench", "glsl2wgsl", "labs", "tradeoff", "web"].contains(&stem.as_str()),
+            course::find(&stem).is_some() || ["bench", "glsl2wgsl", "labs", "tradeoff", "web"].contains(&stem.as_str()),
             "examples/{stem}.rs is neither a lab nor a tool"
         );
     }
@@ -175,7 +175,7 @@ fn a_texture_the_lab_does_not_provide_is_named() {
         shaderlab::offscreen::COLOR_FORMAT,
         &shaderlab::lab::NO_FILES,
     );
-    let err = match (labs::TWIST.new)(&cx) {
+    let err = match (course::TWIST.new)(&cx) {
         Ok(_) => panic!("twist built without the texture its shader declares"),
         Err(e) => e.to_string(),
     };
@@ -188,7 +188,7 @@ fn a_texture_the_lab_does_not_provide_is_named() {
 fn the_readmes_example_lab_is_the_real_file() {
     let root = env!("CARGO_MANIFEST_DIR");
     let readme = std::fs::read_to_string(format!("{root}/docs/adding-an-exercise.md")).unwrap();
-    let file = std::fs::read_to_string(format!("{root}/src/labs/seed000/position_rgb.rs")).unwrap();
+    let file = std::fs::read_to_string(format!("{root}/src/course/seed000/position_rgb.rs")).unwrap();
     let code = &file[file.find("\nuse ").expect("the file's first use") + 1..];
     let shown = readme
         .split("```rust\n")

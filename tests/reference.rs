@@ -151,7 +151,7 @@ fn every_reference_state_matches_the_original() {
     let out = common::output_dir();
     let mut failures = Vec::new();
     for row in ROWS {
-        let entry = shaderlab::labs::find(row.lab).unwrap_or_else(|| panic!("no lab {}", row.lab));
+        let entry = shaderlab::course::find(row.lab).unwrap_or_else(|| panic!("no lab {}", row.lab));
         let expected = common::reference(row.reference);
         let actual = common::render_state(entry, row.state);
         let db = psnr(&actual, &expected).unwrap_or_else(|| panic!("{}: not the reference's size", row.reference));
@@ -179,7 +179,7 @@ fn every_reference_state_matches_the_original() {
 /// original's picture).
 #[test]
 fn every_lab_but_legacy_has_a_row() {
-    for entry in shaderlab::labs::ALL {
+    for entry in shaderlab::course::ALL {
         let name = entry.info.name;
         assert!(
             name == "legacy" || ROWS.iter().any(|r| r.lab == name),

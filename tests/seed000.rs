@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use image::RgbImage;
-use shaderlab::labs;
+use shaderlab::course;
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, psnr};
 use shaderlab::Object;
 
@@ -25,7 +25,7 @@ fn sphere_radius_px(d: f64) -> f64 {
 
 #[test]
 fn position_rgb_maps_z_y_x_to_red_green_blue() {
-    let cube = render(labs::POSITION_RGB, Object::Cube, [0.0; 3], 0.0, &[]);
+    let cube = render(course::POSITION_RGB, Object::Cube, [0.0; 3], 0.0, &[]);
     // The front face is z = +0.75: colour = normalize(z, y, x, 1) + 0.5 — red above 0.5 everywhere,
     // blue growing to the right (x), green growing upwards (y).
     let left = mean_color(&cube, (250, 150, 300, 210), Some(BLACK));
@@ -45,7 +45,7 @@ fn position_rgb_maps_z_y_x_to_red_green_blue() {
         "red must be high on the z = +0.75 face: {left:?} {right:?}"
     );
     // Turned around (yAngle 180) the visible face is z = -0.75: red drops.
-    let back = render(labs::POSITION_RGB, Object::Cube, [0.0, 180.0, 0.0], 0.0, &[]);
+    let back = render(course::POSITION_RGB, Object::Cube, [0.0, 180.0, 0.0], 0.0, &[]);
     let back_mid = mean_color(&back, (300, 160, 340, 200), Some(BLACK));
     assert!(back_mid[0] < 110.0, "the back face must be darker red: {back_mid:?}");
     // The cube, seen face on, is a square: glutSolidCube(1.5) at distance 4 - 0.75.
@@ -65,7 +65,7 @@ fn position_rgb_maps_z_y_x_to_red_green_blue() {
 
 #[test]
 fn normal_rgb_shows_eye_space_normals() {
-    let sphere = render(labs::NORMAL_RGB, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let sphere = render(course::NORMAL_RGB, Object::Sphere, [0.0; 3], 0.0, &[]);
     let r = sphere_radius_px(4.0) as u32;
     let right = mean_color(&sphere, (320 + r - 20, 170, 320 + r - 5, 190), None);
     let left = mean_color(&sphere, (320 - r + 5, 170, 320 - r + 20, 190), None);
@@ -81,13 +81,13 @@ fn normal_rgb_shows_eye_space_normals() {
         "blue = towards the eye: {centre:?}"
     );
     // Rotating the sphere must not change a sphere's normal image much (eye-space normals).
-    let turned = render(labs::NORMAL_RGB, Object::Sphere, [0.0, 90.0, 0.0], 0.0, &[]);
+    let turned = render(course::NORMAL_RGB, Object::Sphere, [0.0, 90.0, 0.0], 0.0, &[]);
     assert!(psnr(&sphere, &turned).expect("size") > 25.0);
 }
 
 #[test]
 fn phong_sphere_highlight_follows_the_light() {
-    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let base = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
     // Coverage: a unit sphere at distance 5.
     let r = sphere_radius_px(5.0);
     let expected = std::f64::consts::PI * r * r / (640.0 * 360.0);
@@ -109,7 +109,7 @@ fn phong_sphere_highlight_follows_the_light() {
     );
     // Moving the light right moves the highlight right; up moves it up.
     let right = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -118,7 +118,7 @@ fn phong_sphere_highlight_follows_the_light() {
     let (rx, _) = highlight(&right, 2.0);
     assert!(rx > hx + 10.0, "highlight must move right: {hx:.1} -> {rx:.1}");
     let down = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -134,19 +134,19 @@ fn phong_sphere_highlight_follows_the_light() {
 #[test]
 fn phong_coefficients_move_the_image() {
     let white_area = |img: &RgbImage| img.pixels().filter(|p| p[2] > 200).count();
-    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
-    let sharp = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("shininess", &[128.0])]);
+    let base = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let sharp = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("shininess", &[128.0])]);
     assert!(
         white_area(&sharp) * 2 < white_area(&base),
         "higher shininess must shrink the highlight"
     );
-    let no_spec = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Ks", &[0.0])]);
+    let no_spec = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Ks", &[0.0])]);
     assert_eq!(white_area(&no_spec), 0, "Ks = 0 removes the white highlight");
-    let dim = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Kd", &[0.5])]);
+    let dim = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[("Kd", &[0.5])]);
     let side = (250, 200, 280, 230);
     assert!(mean_color(&dim, side, Some(PHONG_BG))[0] < mean_color(&base, side, Some(PHONG_BG))[0] - 20.0);
     let green = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -159,7 +159,7 @@ fn phong_coefficients_move_the_image() {
     );
     // Ambient only: a flat colour Ka * ambientColor (0.1 * 0.1 -> 3/255) on the dark side.
     let flat = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -178,10 +178,10 @@ fn phong_coefficients_move_the_image() {
 fn phong_light_marker_appears_in_front_of_the_camera() {
     // Default light (0,1,1) is behind the eye: no marker. At (1.2, 0.8, -2.5) it projects to about
     // (528.6, 41.0) with a radius of about 8 pixels.
-    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let base = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
     assert_eq!(base.get_pixel(528, 41).0, PHONG_BG);
     let moved = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -197,9 +197,9 @@ fn phong_light_marker_appears_in_front_of_the_camera() {
 
 #[test]
 fn phong_camera_moves_the_view() {
-    let base = render(labs::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let base = render(course::PHONG, Object::Sphere, [0.0; 3], 0.0, &[]);
     let closer = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -210,7 +210,7 @@ fn phong_camera_moves_the_view() {
         "a closer camera makes the sphere bigger"
     );
     let left = render(
-        labs::PHONG,
+        course::PHONG,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -222,7 +222,7 @@ fn phong_camera_moves_the_view() {
 
 #[test]
 fn noise_statistics_and_time() {
-    let t0 = render(labs::NOISE, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let t0 = render(course::NOISE, Object::Sphere, [0.0; 3], 0.0, &[]);
     let m = mask(&t0, BLACK, 0);
     let (mean, var) = luma_stats(&t0, &m);
     // |snoise| over a surface: mean around 0.2-0.35, clearly varying.
@@ -233,13 +233,13 @@ fn noise_statistics_and_time() {
     // Grey: shade (1,1,1) gives r = g = b.
     assert!(t0.pixels().all(|p| p[0] == p[1] && p[1] == p[2]));
     // Time moves the pattern but keeps its statistics.
-    let t1 = render(labs::NOISE, Object::Sphere, [0.0; 3], 0.5, &[]);
+    let t1 = render(course::NOISE, Object::Sphere, [0.0; 3], 0.5, &[]);
     let (mean1, var1) = luma_stats(&t1, &mask(&t1, BLACK, 0));
     assert!(psnr(&t0, &t1).expect("size") < 25.0, "time must change the pattern");
     assert!((mean1 - mean).abs() < 0.1 && var1 > 0.01);
     // Shade (1,0,0) keeps only red.
     let red = render(
-        labs::NOISE,
+        course::NOISE,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -252,14 +252,14 @@ fn noise_statistics_and_time() {
 #[test]
 fn displacement_grows_the_silhouette() {
     let flat = render(
-        labs::DISPLACEMENT,
+        course::DISPLACEMENT,
         Object::Sphere,
         [0.0; 3],
         0.0,
         &[("displacement", &[0.0]), ("shade", &[1.0, 1.0, 1.0])],
     );
     let full = render(
-        labs::DISPLACEMENT,
+        course::DISPLACEMENT,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -280,12 +280,12 @@ fn displacement_grows_the_silhouette() {
         4.0 * r
     );
     // The default (0.5) lies in between, and the value clamps at 1.
-    let half = render(labs::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[]);
+    let half = render(course::DISPLACEMENT, Object::Sphere, [0.0; 3], 0.0, &[]);
     let (hx0, hy0, hx1, hy1) = bbox(&half);
     let half_size = (hx1 - hx0) + (hy1 - hy0);
     assert!(half_size > (fx1 - fx0) + (fy1 - fy0) && half_size < grown);
     let over = render(
-        labs::DISPLACEMENT,
+        course::DISPLACEMENT,
         Object::Sphere,
         [0.0; 3],
         0.0,
@@ -300,8 +300,8 @@ fn displacement_grows_the_silhouette() {
 
 #[test]
 fn rotation_turns_the_teapot() {
-    let front = render(labs::NORMAL_RGB, Object::Teapot, [0.0; 3], 0.0, &[]);
-    let side = render(labs::NORMAL_RGB, Object::Teapot, [0.0, 90.0, 0.0], 0.0, &[]);
+    let front = render(course::NORMAL_RGB, Object::Teapot, [0.0; 3], 0.0, &[]);
+    let side = render(course::NORMAL_RGB, Object::Teapot, [0.0, 90.0, 0.0], 0.0, &[]);
     let (x0, _, x1, _) = bounding_box(&front, BLACK).expect("visible");
     let (s0, _, s1, _) = bounding_box(&side, BLACK).expect("visible");
     assert!(
@@ -316,11 +316,11 @@ fn rotation_turns_the_teapot() {
 #[test]
 fn sizes_and_aspect() {
     // A square viewport keeps the sphere round and centred.
-    let img = render_sized(labs::NORMAL_RGB, Object::Sphere, [0.0; 3], 0.0, &[], 300, 300);
+    let img = render_sized(course::NORMAL_RGB, Object::Sphere, [0.0; 3], 0.0, &[], 300, 300);
     let (x0, y0, x1, y1) = bounding_box(&img, BLACK).expect("visible");
     assert!((x1 - x0).abs_diff(y1 - y0) <= 1 && (x0 + x1).abs_diff(299) <= 1 && (y0 + y1).abs_diff(299) <= 1);
     // One-pixel-high targets (the original clamps height 0 to 1) render without error.
-    let tiny = render_sized(labs::PHONG, Object::Teapot, [0.0; 3], 0.0, &[], 64, 1);
+    let tiny = render_sized(course::PHONG, Object::Teapot, [0.0; 3], 0.0, &[], 64, 1);
     assert_eq!(tiny.dimensions(), (64, 1));
 }
 
@@ -336,7 +336,7 @@ fn rotated_states_agree_with_the_exact_reference() {
         [10.0, 80.0, 40.0],
         [-35.0, 120.0, -70.0],
     ] {
-        let port = render(labs::PHONG, Object::Torus, angles, 0.0, &[]);
+        let port = render(course::PHONG, Object::Torus, angles, 0.0, &[]);
         let exact = ExactScene {
             shape: Shape::Torus,
             angles: angles.map(f64::from),

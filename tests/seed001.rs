@@ -9,8 +9,8 @@ use common::{build as lab, gpu, render_state as render, set_state as set, shot};
 use std::path::PathBuf;
 
 use image::RgbImage;
+use shaderlab::course;
 use shaderlab::lab::{BuildContext, Input, LabEntry, Special};
-use shaderlab::labs;
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
@@ -64,8 +64,8 @@ fn centroid(image: &RgbImage, pick: impl Fn([u8; 3]) -> bool) -> (f64, f64, usiz
 
 #[test]
 fn gl_light_block_has_specs_values_and_keys() {
+    use shaderlab::course::seed001::gl_light::{state, BUMP, COURSE};
     use shaderlab::lab::Keys;
-    use shaderlab::labs::seed001::gl_light::{state, BUMP, COURSE};
     use shaderlab::params::Params;
     let s = state(&COURSE, &Params::new(COURSE.params));
     let p = s.front_light_product[0];
@@ -150,18 +150,18 @@ fn gl_light_block_layout_matches_std140() {
         "LightSource@0 FrontMaterial@64 FrontLightProduct@144"
     );
     assert_eq!(
-        std::mem::size_of::<shaderlab::labs::seed001::gl_light::GlLightUniforms>(),
+        std::mem::size_of::<shaderlab::course::seed001::gl_light::GlLightUniforms>(),
         192
     );
     assert_eq!(
-        std::mem::offset_of!(shaderlab::labs::seed001::gl_light::MaterialParameters, shininess),
+        std::mem::offset_of!(shaderlab::course::seed001::gl_light::MaterialParameters, shininess),
         64
     );
 }
 
 #[test]
 fn immediate_mode_latches_current_attributes() {
-    use shaderlab::labs::seed001::immediate::Immediate;
+    use shaderlab::course::seed001::immediate::Immediate;
     let mut prim = Immediate::begin([0.0f32; 2]);
     prim.attrib(|v| v[1] = 7.0);
     prim.vertex(|v| v[0] = 1.0);
@@ -184,15 +184,15 @@ fn look_at_divides_like_glu() {
 #[test]
 fn height_modes_feed_the_same_vertices_and_image() {
     assert_eq!(
-        labs::seed001::height::immediate_strip(),
-        labs::seed001::height::array_strip()
+        course::seed001::height::immediate_strip(),
+        course::seed001::height::array_strip()
     );
     assert_eq!(
-        labs::seed001::height::array_strip(),
-        shaderlab::geometry::shapes::height_quad().to_vec()
+        course::seed001::height::array_strip(),
+        shaderlab::mesh::shapes::height_quad().to_vec()
     );
-    let immediate = render(labs::HEIGHT, &[("mode", "0")]);
-    let arrays = render(labs::HEIGHT, &[("mode", "1")]);
+    let immediate = render(course::HEIGHT, &[("mode", "0")]);
+    let arrays = render(course::HEIGHT, &[("mode", "1")]);
     assert!(immediate == arrays, "mode 0 and mode 1 must give the same image");
     // Red at the top, blue at the bottom.
     let top = mean(&immediate, (200, 110, 310, 120));
@@ -200,11 +200,11 @@ fn height_modes_feed_the_same_vertices_and_image() {
     assert!(top[0] > 200.0 && top[2] < 40.0, "top must be red: {top:?}");
     assert!(bottom[2] > 200.0 && bottom[0] < 40.0, "bottom must be blue: {bottom:?}");
     // Key v toggles the mode.
-    let mut lab = lab(labs::HEIGHT);
+    let mut lab = lab(course::HEIGHT);
     assert!(lab.input(Input::Key('v')));
     assert_eq!(lab.params().index_of("mode"), 1);
     // Rotated, the square is foreshortened but keeps its colours.
-    let rotated = render(labs::HEIGHT, &[("mode", "1"), ("yangle", "50"), ("xangle", "-30")]);
+    let rotated = render(course::HEIGHT, &[("mode", "1"), ("yangle", "50"), ("xangle", "-30")]);
     save(&rotated, "height_rotated");
     assert!(lit(&rotated) < lit(&immediate), "a turned square covers less");
 }
@@ -214,7 +214,7 @@ fn height_modes_feed_the_same_vertices_and_image() {
 
 #[test]
 fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
-    use shaderlab::labs::seed001::uniform_arrays::{course_uniforms, location, UniformArraysUniforms};
+    use shaderlab::course::seed001::uniform_arrays::{course_uniforms, location, UniformArraysUniforms};
     let shader = ShaderSource::Embedded.compile("uniform_arrays.frag").expect("compiles");
     let arrays = course_uniforms(&shader, 0).expect("mode 0");
     let elements = course_uniforms(&shader, 1).expect("mode 1");
@@ -233,8 +233,8 @@ fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
     assert!(location(&shader, "UniformArrays", "t[2]").is_err());
     assert!(location(&shader, "UniformArrays", "nope").is_err());
 
-    let image = render(labs::UNIFORM_ARRAYS, &[]);
-    let elements_image = render(labs::UNIFORM_ARRAYS, &[("mode", "1")]);
+    let image = render(course::UNIFORM_ARRAYS, &[]);
+    let elements_image = render(course::UNIFORM_ARRAYS, &[("mode", "1")]);
     assert!(image == elements_image, "both setter styles must give the same image");
     // Per-fragment bands: only the four course colours (as 8-bit) and the black background.
     let palette = [[0, 0, 0], [204, 204, 204], [102, 102, 204], [51, 51, 102], [26, 26, 26]];
@@ -249,7 +249,7 @@ fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
     // The specColor band faces the light: moving the light left moves it left.
     let spec = |p: [u8; 3]| near(p, [204, 204, 204]);
     let (x0, _, _) = centroid(&image, spec);
-    let left = render(labs::UNIFORM_ARRAYS, &[("lx", "-2")]);
+    let left = render(course::UNIFORM_ARRAYS, &[("lx", "-2")]);
     let (x1, _, _) = centroid(&left, spec);
     assert!(
         x1 < x0 - 30.0,
@@ -259,7 +259,7 @@ fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
         ("uniform_arrays_rotated", &[("xangle", "30"), ("yangle", "45")][..]),
         ("uniform_arrays_torus", &[("object", "2"), ("xangle", "60")][..]),
     ] {
-        let img = render(labs::UNIFORM_ARRAYS, state);
+        let img = render(course::UNIFORM_ARRAYS, state);
         save(&img, name);
         assert!(lit(&img) > 20_000, "{name} shows the object");
     }
@@ -270,8 +270,8 @@ fn uniform_arrays_setter_styles_agree_and_bands_are_the_course_colours() {
 
 #[test]
 fn wave_crest_moves_with_time_and_grows_with_h() {
-    let t0 = render(labs::WAVE, &[("time", "0")]);
-    let t15 = render(labs::WAVE, &[("time", "1.5")]);
+    let t0 = render(course::WAVE, &[("time", "0")]);
+    let t15 = render(course::WAVE, &[("time", "1.5")]);
     save(&t15, "wave_t1.5");
     assert!(psnr(&t0, &t15).expect("size") < 25.0, "time must move the surface");
     // The far edge (z = −2) of the surface rises and falls as h·sin(time + 3x) plus a constant:
@@ -305,15 +305,15 @@ fn wave_crest_moves_with_time_and_grows_with_h() {
         let m = e.iter().sum::<f64>() / e.len() as f64;
         (e.iter().map(|y| (y - m) * (y - m)).sum::<f64>() / e.len() as f64).sqrt()
     };
-    let low = render(labs::WAVE, &[("time", "0.75")]);
-    let high = render(labs::WAVE, &[("time", "0.75"), ("h", "0.2")]);
+    let low = render(course::WAVE, &[("time", "0.75")]);
+    let high = render(course::WAVE, &[("time", "0.75"), ("h", "0.2")]);
     save(&high, "wave_h0.2");
     let (a, b) = (swing(&low), swing(&high));
     assert!(
         b > 1.6 * a && b < 2.4 * a,
         "h=0.2 must double the swing: {a:.1} px -> {b:.1} px"
     );
-    let rotated = render(labs::WAVE, &[("time", "0.75"), ("yangle", "45")]);
+    let rotated = render(course::WAVE, &[("time", "0.75"), ("yangle", "45")]);
     save(&rotated, "wave_rotated");
     assert!(psnr(&rotated, &low).expect("size") < 25.0);
     // The checker: both course colours are on screen.
@@ -328,14 +328,14 @@ fn wave_crest_moves_with_time_and_grows_with_h() {
 #[test]
 fn morph_goes_from_circle_to_star() {
     assert_eq!(
-        labs::seed001::morph::course_triangles(),
-        shaderlab::geometry::shapes::morph_vertices()
+        course::seed001::morph::course_triangles(),
+        shaderlab::mesh::shapes::morph_vertices()
     );
-    assert_eq!(labs::seed001::morph::time_uniform(0.5), 500.0);
-    assert_eq!(labs::seed001::morph::time_uniform(1.25), 1250.0);
-    let circle = render(labs::MORPH, &[("time", "4.712389")]);
-    let half = render(labs::MORPH, &[("time", "0")]);
-    let star = render(labs::MORPH, &[("time", "1.570796")]);
+    assert_eq!(course::seed001::morph::time_uniform(0.5), 500.0);
+    assert_eq!(course::seed001::morph::time_uniform(1.25), 1250.0);
+    let circle = render(course::MORPH, &[("time", "4.712389")]);
+    let half = render(course::MORPH, &[("time", "0")]);
+    let star = render(course::MORPH, &[("time", "1.570796")]);
     save(&half, "morph_half");
     save(&star, "morph_star");
     // White only.
@@ -362,7 +362,7 @@ fn morph_goes_from_circle_to_star() {
     };
     assert!(at(&circle, 0.9, 22.5) && !at(&star, 0.9, 22.5));
     assert!(at(&circle, 0.9, 0.0) && at(&star, 0.9, 0.0));
-    let t05 = render(labs::MORPH, &[("time", "0.5")]);
+    let t05 = render(course::MORPH, &[("time", "0.5")]);
     assert!(
         lit(&t05) < h as usize,
         "time 0.5 is further towards the star than time 0"
@@ -374,13 +374,13 @@ fn morph_goes_from_circle_to_star() {
 
 #[test]
 fn particles_rise_then_fall() {
-    let points = labs::seed001::particles::course_points();
+    let points = course::seed001::particles::course_points();
     assert_eq!(points.len(), 2000);
     assert!(points.iter().all(|p| p.position == [0.0, -1.0, 0.0]));
     let colour = [255, 204, 76]; // vec4(1.0, 0.8, 0.3, 1.0) as GL writes it (0.3·255 = 76.5 → 76)
     let shots: Vec<(f64, RgbImage)> = [0.25, 1.0, 2.0]
         .iter()
-        .map(|&t| (t, render(labs::PARTICLES, &[("time", &t.to_string())])))
+        .map(|&t| (t, render(course::PARTICLES, &[("time", &t.to_string())])))
         .collect();
     let mut heights = Vec::new();
     for (t, img) in &shots {
@@ -398,13 +398,13 @@ fn particles_rise_then_fall() {
     assert!(heights[2] > heights[1] + 60.0, "then fall: {heights:?}");
     // The apex of y(t) = −1 + 2t − t² (vy ≈ 2) is ~1 unit above the start after ~1 s.
     // r restarts at t = 0: everything on the start point.
-    let mut lab = lab(labs::PARTICLES);
+    let mut lab = lab(course::PARTICLES);
     set(lab.as_mut(), &[("time", "1")]);
     assert!(lab.input(Input::Key('r')));
     assert_eq!(lab.params().f64("time"), 0.0);
     let start = shot(lab.as_mut());
     assert!(lit(&start) <= 2, "at t = 0 all particles share one pixel");
-    let side = render(labs::PARTICLES, &[("time", "1"), ("xangle", "60")]);
+    let side = render(course::PARTICLES, &[("time", "1"), ("xangle", "60")]);
     save(&side, "particles_side");
     assert!(
         psnr(&side, &shots[1].1).expect("size") < 30.0,
@@ -417,7 +417,7 @@ fn particles_rise_then_fall() {
 
 #[test]
 fn toon_has_the_three_course_colours_blended_at_edges() {
-    let image = render(labs::TOON, &[]);
+    let image = render(course::TOON, &[]);
     // Every colour is a blend of yellow (1,1,0), red (1,0,0) and black: blue is 0 and green
     // never exceeds red.
     for p in image.pixels() {
@@ -445,12 +445,12 @@ fn toon_has_the_three_course_colours_blended_at_edges() {
         "yellow ({yx:.0},{yy:.0}) must be up-right of red ({rx:.0},{ry:.0})"
     );
     // Moving the light to the left moves the yellow side left.
-    let left = render(labs::TOON, &[("lx", "-2")]);
+    let left = render(course::TOON, &[("lx", "-2")]);
     let (lx, _, _) = centroid(&left, |p| p == [255, 255, 0]);
     assert!(lx < yx - 40.0, "yellow must follow the light: {yx:.0} -> {lx:.0}");
     // The sphere: its silhouette vertices are mostly outside the 0.1 band, but dark (blended
     // towards black) pixels exist near the rim.
-    let sphere = render(labs::TOON, &[("object", "1")]);
+    let sphere = render(course::TOON, &[("object", "1")]);
     save(&sphere, "toon_sphere");
     assert!(
         sphere.pixels().any(|p| p.0[0] > 0 && p.0[0] < 200),
@@ -460,7 +460,7 @@ fn toon_has_the_three_course_colours_blended_at_edges() {
         ("toon_rotated", &[("xangle", "30"), ("yangle", "45")][..]),
         ("toon_torus", &[("object", "2"), ("xangle", "60")][..]),
     ] {
-        let img = render(labs::TOON, state);
+        let img = render(course::TOON, state);
         save(&img, name);
         assert!(lit(&img) > 20_000, "{name} shows the object");
     }
@@ -482,8 +482,8 @@ fn highlight_pixels(image: &RgbImage, threshold: u8) -> Vec<(u32, u32, u8)> {
 
 #[test]
 fn per_fragment_highlight_is_rounder_and_brighter_than_per_vertex() {
-    let vertex = render(labs::PHONG_VERTEX, &[]);
-    let fragment = render(labs::PHONG_FRAGMENT, &[]);
+    let vertex = render(course::PHONG_VERTEX, &[]);
+    let fragment = render(course::PHONG_FRAGMENT, &[]);
     let (hv, hf) = (highlight_pixels(&vertex, 150), highlight_pixels(&fragment, 150));
     assert!(!hv.is_empty() && !hf.is_empty(), "both have a highlight");
     // Brighter: per fragment the peak (between vertices) is reached, so its white core is large;
@@ -529,7 +529,7 @@ fn per_fragment_highlight_is_rounder_and_brighter_than_per_vertex() {
         "({vx:.0},{vy:.0}) vs ({fx:.0},{fy:.0})"
     );
     // Shininess 120 and the light on the left: a smaller highlight on the left.
-    let shiny = render(labs::PHONG_FRAGMENT, &[("shininess", "120"), ("lx", "-2")]);
+    let shiny = render(course::PHONG_FRAGMENT, &[("shininess", "120"), ("lx", "-2")]);
     save(&shiny, "phong_fragment_shiny");
     let hs = highlight_pixels(&shiny, 150);
     let (sx, _, _) = centroid(&shiny, |p| p[0] > 150);
@@ -540,7 +540,7 @@ fn per_fragment_highlight_is_rounder_and_brighter_than_per_vertex() {
         hf.len()
     );
     assert!(sx < fx - 50.0, "the highlight follows the light: {fx:.0} -> {sx:.0}");
-    for lab in [labs::PHONG_VERTEX, labs::PHONG_FRAGMENT] {
+    for lab in [course::PHONG_VERTEX, course::PHONG_FRAGMENT] {
         for (name, state) in [
             ("rotated", &[("xangle", "30"), ("yangle", "45")][..]),
             ("sphere", &[("object", "1")][..]),
@@ -554,10 +554,10 @@ fn per_fragment_highlight_is_rounder_and_brighter_than_per_vertex() {
 
 #[test]
 fn compare_draws_per_vertex_left_and_per_fragment_right() {
-    let [(lx, ly, side), (rx, _, _)] = labs::seed001::modified_phong::compare_viewports(512, 512);
+    let [(lx, ly, side), (rx, _, _)] = course::seed001::modified_phong::compare_viewports(512, 512);
     assert_eq!((lx, ly, side, rx), (0, 128, 256, 256));
-    let a = render(labs::PHONG_VERTEX, &[("compare", "1")]);
-    let b = render(labs::PHONG_FRAGMENT, &[("compare", "1")]);
+    let a = render(course::PHONG_VERTEX, &[("compare", "1")]);
+    let b = render(course::PHONG_FRAGMENT, &[("compare", "1")]);
     save(&a, "phong_compare");
     assert!(a == b, "compare draws the same picture from either lab");
     // Each half is the default scene at half size (a square viewport of 256): compare with
@@ -569,7 +569,7 @@ fn compare_draws_per_vertex_left_and_per_fragment_right() {
     let left = image::imageops::crop_imm(&a, 0, 128, 256, 256).to_image();
     let right = image::imageops::crop_imm(&a, 256, 128, 256, 256).to_image();
     // The same up to a few edge pixels (the viewport offset changes window-coordinate rounding).
-    let (sv, sf) = (small(labs::PHONG_VERTEX), small(labs::PHONG_FRAGMENT));
+    let (sv, sf) = (small(course::PHONG_VERTEX), small(course::PHONG_FRAGMENT));
     let (lv, rf) = (psnr(&left, &sv).expect("size"), psnr(&right, &sf).expect("size"));
     assert!(
         lv > 45.0 && rf > 45.0,
@@ -585,7 +585,7 @@ fn compare_draws_per_vertex_left_and_per_fragment_right() {
         .pixels()
         .all(|p| p.0 == [0, 0, 0]));
     // Key c toggles it.
-    let mut lab = lab(labs::PHONG_FRAGMENT);
+    let mut lab = lab(course::PHONG_FRAGMENT);
     assert!(lab.input(Input::Key('c')));
     assert!(lab.params().on("compare"));
 }
@@ -595,10 +595,10 @@ fn compare_draws_per_vertex_left_and_per_fragment_right() {
 
 #[test]
 fn texture_shows_the_uvgrid_on_the_teapot() {
-    let (vertices, indices) = labs::seed001::texture::textured_teapot();
+    let (vertices, indices) = course::seed001::texture::textured_teapot();
     assert_eq!(vertices.len(), 32 * 64);
     assert!(indices.iter().all(|&i| (i as usize) < vertices.len()));
-    let image = render(labs::TEXTURE, &[]);
+    let image = render(course::TEXTURE, &[]);
     // The uvgrid's colours only: white lines, the dark disc, and (i, j, 96) ramps: blue is 96
     // off the lines and the disc (linear filtering blends at their edges).
     let lit_px: Vec<[u8; 3]> = image.pixels().map(|p| p.0).filter(|p| *p != [0, 0, 0]).collect();
@@ -620,7 +620,7 @@ fn texture_shows_the_uvgrid_on_the_teapot() {
         ("texture_rotated", &[("xangle", "30"), ("yangle", "45")][..]),
         ("texture_top", &[("xangle", "70"), ("yangle", "-30")][..]),
     ] {
-        let img = render(labs::TEXTURE, state);
+        let img = render(course::TEXTURE, state);
         save(&img, name);
         assert!(lit(&img) > 20_000 && psnr(&img, &image).expect("size") < 25.0, "{name}");
     }
@@ -661,7 +661,7 @@ fn dominant_face(image: &RgbImage, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> Op
 
 #[test]
 fn envmap_reflects_the_faces_in_the_right_directions() {
-    let sphere = render(labs::ENVMAP, &[("object", "1")]);
+    let sphere = render(course::ENVMAP, &[("object", "1")]);
     // The sphere's radius on screen: 1 unit at distance 4 is 154.5 px; its silhouette is at
     // about 150 px. The middle reflects back towards the eye (+Z), the top upwards (+Y), the
     // right to +X, the left to −X, the bottom to −Y; near the rim the ray grazes on to −Z.
@@ -709,7 +709,7 @@ fn envmap_reflects_the_faces_in_the_right_directions() {
     );
     // Turning the sphere keeps the directions (the reflection is computed in world space);
     // turning the teapot changes its reflection.
-    let turned = render(labs::ENVMAP, &[("object", "1"), ("yangle", "90")]);
+    let turned = render(course::ENVMAP, &[("object", "1"), ("yangle", "90")]);
     assert_eq!(
         dominant_face(&turned, (c - 10, c - 10, c + 10, c + 10)),
         Some("+Z"),
@@ -720,9 +720,9 @@ fn envmap_reflects_the_faces_in_the_right_directions() {
         Some("+X"),
         "turned right"
     );
-    let teapot = render(labs::ENVMAP, &[("object", "0")]);
-    let teapot_rotated = render(labs::ENVMAP, &[("object", "0"), ("xangle", "30"), ("yangle", "45")]);
-    let torus = render(labs::ENVMAP, &[("object", "2"), ("xangle", "60")]);
+    let teapot = render(course::ENVMAP, &[("object", "0")]);
+    let teapot_rotated = render(course::ENVMAP, &[("object", "0"), ("xangle", "30"), ("yangle", "45")]);
+    let torus = render(course::ENVMAP, &[("object", "2"), ("xangle", "60")]);
     save(&teapot, "envmap_teapot");
     save(&teapot_rotated, "envmap_teapot_rotated");
     save(&torus, "envmap_torus");
@@ -758,7 +758,7 @@ fn bright_centre(image: &RgbImage) -> (f64, f64) {
 
 #[test]
 fn bump_shading_moves_with_the_light() {
-    let image = render(labs::BUMP, &[]);
+    let image = render(course::BUMP, &[]);
     // Diffuse colour (0.9, 0.7, 0.5) times Kd: every lit pixel keeps those proportions.
     for p in image.pixels().filter(|p| p.0[0] > 60) {
         let [r, g, b] = p.0.map(f64::from);
@@ -775,7 +775,7 @@ fn bump_shading_moves_with_the_light() {
         bx > 256.0 && by < 256.0,
         "brightness leans to the light, upper right: ({bx:.0}, {by:.0})"
     );
-    let left = render(labs::BUMP, &[("blx", "-1.5"), ("bly", "-0.5")]);
+    let left = render(course::BUMP, &[("blx", "-1.5"), ("bly", "-0.5")]);
     save(&left, "bump_light_left");
     let (lx, ly) = bright_centre(&left);
     assert!(
@@ -844,14 +844,14 @@ fn bump_shading_moves_with_the_light() {
     );
     assert!(e_rl > 5.0 * e_rr && e_lr > 5.0 * e_ll, "and it moves with the light");
     // Key: ← moves the light left.
-    let mut lab = lab(labs::BUMP);
+    let mut lab = lab(course::BUMP);
     assert!(lab.input(Input::Special(Special::Left)));
     assert_eq!(lab.params().f("blx"), 1.25);
     for (name, state) in [
         ("bump_tilted", &[("xangle", "-50")][..]),
         ("bump_rotated", &[("xangle", "-30"), ("yangle", "35")][..]),
     ] {
-        let img = render(labs::BUMP, state);
+        let img = render(course::BUMP, state);
         save(&img, name);
         assert!(
             lit(&img) > 20_000 && lit(&img) < lit(&image),
@@ -867,8 +867,8 @@ fn normmap_matches_bump_up_to_quantization() {
         &[("xangle", "-50")][..],
         &[("blx", "-1.5"), ("bly", "-0.5")][..],
     ] {
-        let a = render(labs::BUMP, state);
-        let b = render(labs::NORMMAP, state);
+        let a = render(course::BUMP, state);
+        let b = render(course::NORMMAP, state);
         let db = psnr(&a, &b).expect("size");
         println!("normmap vs bump at {state:?}: {db:.1} dB");
         assert!(
@@ -958,11 +958,11 @@ fn every_spec_state_renders_by_its_parameters() {
         "normmap",
     ];
     // The twelve effects are in the one list, in SPEC order, after seed 000's.
-    let listed: Vec<&str> = labs::ALL.iter().map(|e| e.info.name).collect();
+    let listed: Vec<&str> = course::ALL.iter().map(|e| e.info.name).collect();
     let at = listed.iter().position(|n| *n == "height").expect("height listed");
     assert_eq!(&listed[at..at + 12], &names[..]);
     for name in names {
-        let entry = labs::find(name).expect("listed");
+        let entry = course::find(name).expect("listed");
         assert_eq!(entry.info.size, (512, 512), "{name}: SPEC's size");
         let states: Vec<_> = STATES.iter().filter(|s| s.0 == name).collect();
         assert!(states.len() >= 3, "{name}: SPEC's states");
@@ -1060,11 +1060,11 @@ fn wave_subdivision_converges_and_auto_follows_the_wave() {
     let with = |state: &[(&str, &str)], subdiv: &str| {
         let mut all = state.to_vec();
         all.push(("subdiv", subdiv));
-        render(labs::WAVE, &all)
+        render(course::WAVE, &all)
     };
     assert_eq!(
         with(&course, "1"),
-        render(labs::WAVE, &course),
+        render(course::WAVE, &course),
         "subdiv=1 is the course's grid"
     );
     for (name, state, auto_within) in [("course", &course[..], 200), ("strong", &strong[..], 200)] {
@@ -1077,7 +1077,7 @@ fn wave_subdivision_converges_and_auto_follows_the_wave() {
         assert!(four * 4 < one, "{name}: splitting converges ({one} -> {four})");
         assert!(auto <= auto_within, "{name}: auto leaves {auto} px off");
     }
-    let mut lab = lab(labs::WAVE);
+    let mut lab = lab(course::WAVE);
     set(lab.as_mut(), &strong);
     set(lab.as_mut(), &[("subdiv", "auto")]);
     let _ = shot(lab.as_mut());

@@ -6,8 +6,8 @@ mod common;
 
 use common::{build, shot};
 use image::RgbImage;
+use shaderlab::course;
 use shaderlab::lab::{Input, LabEntry, Special};
-use shaderlab::labs;
 use shaderlab::metrics::{bounding_box, highlight, mean_color, psnr};
 use shaderlab::Lab;
 
@@ -45,7 +45,7 @@ const TWIST_GREEN: [u8; 3] = [128, 255, 128];
 
 #[test]
 fn twist_none_is_the_plain_square() {
-    let image = render(labs::TWIST, &[("twisting", "0")]);
+    let image = render(course::TWIST, &[("twisting", "0")]);
     // Clip [-0.5, 0.5]² on 512 px: window x from 128.0 to 384.0, i.e. pixel centres 128.5..383.5.
     assert_eq!(bounding_box(&image, BLACK), Some((128, 128, 383, 383)));
     let inside = count(&image, |p| p.0 == TWIST_GREEN);
@@ -58,7 +58,7 @@ fn twist_none_is_the_plain_square() {
 
 #[test]
 fn twist_sign_mirrors_and_strength_spreads() {
-    let base = render(labs::TWIST, &[]);
+    let base = render(course::TWIST, &[]);
     assert!(base.pixels().all(|p| p.0 == TWIST_GREEN || p.0 == BLACK));
     // Twisting turns points by angle = twisting·r: the corners (r = 0.707) leave the square.
     let (x0, y0, x1, y1) = bounding_box(&base, BLACK).expect("visible");
@@ -72,8 +72,8 @@ fn twist_sign_mirrors_and_strength_spreads() {
     let area = count(&base, |p| p.0 == TWIST_GREEN) as f64 / (256.0 * 256.0);
     assert!((area - 1.0).abs() < 0.03, "twisting keeps the area: {area}");
     // A negative twist is the mirror image (the square is symmetric about y = 0).
-    let neg = render(labs::TWIST, &[("twisting", "-2")]);
-    let pos = render(labs::TWIST, &[("twisting", "2")]);
+    let neg = render(course::TWIST, &[("twisting", "-2")]);
+    let pos = render(course::TWIST, &[("twisting", "2")]);
     let flipped = image::imageops::flip_vertical(&pos);
     let differ = neg.pixels().zip(flipped.pixels()).filter(|(a, b)| a != b).count();
     assert!(
@@ -83,14 +83,14 @@ fn twist_sign_mirrors_and_strength_spreads() {
     assert_ne!(neg, pos);
     // Stronger twisting winds the arms further out: pixels far from the centre along the
     // diagonals empty out, more than at 4.25.
-    let strong = render(labs::TWIST, &[("twisting", "8")]);
+    let strong = render(course::TWIST, &[("twisting", "8")]);
     assert!(psnr(&strong, &base).unwrap() < 20.0);
     assert!(count(&strong, |p| p.0 == TWIST_GREEN) > 60_000);
 }
 
 #[test]
 fn twist_keys_step_by_a_quarter() {
-    let mut lab = build(labs::TWIST);
+    let mut lab = build(course::TWIST);
     press(lab.as_mut(), &[Input::Key('+'), Input::Key('+'), Input::Key('-')]);
     assert_eq!(lab.params().f("twisting"), 4.5);
     assert!(!lab.input(Input::Key('x')));
@@ -114,21 +114,21 @@ fn wrong_against_exact(image: &RgbImage, twisting: f64) -> usize {
 #[test]
 fn twist_grid_auto_follows_the_exact_spiral_with_no_more_vertices_than_needed() {
     use shaderlab::study::twist::{auto_grid, DEFAULT_BUDGET_PX};
-    let course = wrong_against_exact(&render(labs::TWIST, &[]), 4.25);
-    let auto = wrong_against_exact(&render(labs::TWIST, &[("grid", "auto")]), 4.25);
+    let course = wrong_against_exact(&render(course::TWIST, &[]), 4.25);
+    let auto = wrong_against_exact(&render(course::TWIST, &[("grid", "auto")]), 4.25);
     let n = auto_grid(4.25, 512, 512, DEFAULT_BUDGET_PX);
     println!("twisting 4.25: course grid 100: {course} px wrong; auto {n}: {auto} px wrong");
     // Measured: 36 and 152 of 262,144 (the auto grid's edges within 0.5 px of their arcs).
     assert!(course <= 80, "{course}");
     assert!(auto <= 300, "{auto}");
     assert!((20..60).contains(&n), "auto grid {n}: far fewer than the course's 100");
-    let course20 = wrong_against_exact(&render(labs::TWIST, &[("twisting", "20")]), 20.0);
-    let auto20 = wrong_against_exact(&render(labs::TWIST, &[("twisting", "20"), ("grid", "auto")]), 20.0);
+    let course20 = wrong_against_exact(&render(course::TWIST, &[("twisting", "20")]), 20.0);
+    let auto20 = wrong_against_exact(&render(course::TWIST, &[("twisting", "20"), ("grid", "auto")]), 20.0);
     println!("twisting 20: course grid: {course20} px wrong; auto: {auto20} px wrong");
     // Measured: 2148 and 509.
     assert!(auto20 * 3 < course20, "{auto20} vs {course20}");
     let lab = {
-        let mut lab = build(labs::TWIST);
+        let mut lab = build(course::TWIST);
         lab.params_mut().set_str("grid", "auto").unwrap();
         lab
     };
@@ -142,7 +142,7 @@ fn twist_grid_auto_follows_the_exact_spiral_with_no_more_vertices_than_needed() 
 #[test]
 fn twist_at_huge_twisting_stays_bounded() {
     for t in ["10000", "-10000"] {
-        let image = render(labs::TWIST, &[("twisting", t)]);
+        let image = render(course::TWIST, &[("twisting", t)]);
         let shape = count(&image, |p| p.0 == [128, 255, 128]);
         let background = count(&image, |p| p.0 == [0, 0, 0]);
         assert_eq!(
@@ -166,14 +166,14 @@ fn white_in_cell_row(image: &RgbImage) -> usize {
 
 #[test]
 fn double_vision_zero_is_one_sharp_image() {
-    let zero = render(labs::DOUBLE_VISION, &[("left_x", "0"), ("right_x", "0")]);
-    let default = render(labs::DOUBLE_VISION, &[]);
+    let zero = render(course::DOUBLE_VISION, &[("left_x", "0"), ("right_x", "0")]);
+    let default = render(course::DOUBLE_VISION, &[]);
     // Seen once, the vertical lines stay white; averaged with a shifted copy they never do.
     assert!(white_in_cell_row(&zero) >= 6, "{}", white_in_cell_row(&zero));
     assert_eq!(white_in_cell_row(&default), 0);
     // With zero separation both reads are the same texel: the same picture as one read, so
     // moving the two reads together moves one sharp image (white lines again).
-    let both = render(labs::DOUBLE_VISION, &[("left_x", "0.05"), ("right_x", "0.05")]);
+    let both = render(course::DOUBLE_VISION, &[("left_x", "0.05"), ("right_x", "0.05")]);
     assert!(white_in_cell_row(&both) >= 6);
     assert!(psnr(&both, &zero).unwrap() < 30.0, "a common shift moves the picture");
     // The triangle: apex down, (−0.8, 0.8), (0.8, 0.8), (0, −0.8): top edge at window row and
@@ -191,11 +191,11 @@ fn dark(image: &RgbImage) -> usize {
 fn double_vision_separation_splits_the_disc() {
     // The disc (radius 40 texels = 64 px, at st (0.5, 0.5), pixel (256, 256)) seen once: about
     // π·64² pixels less the grid lines through it.
-    let zero = render(labs::DOUBLE_VISION, &[("left_x", "0"), ("right_x", "0")]);
+    let zero = render(course::DOUBLE_VISION, &[("left_x", "0"), ("right_x", "0")]);
     // ±0.1 (±41 px): only the lens where both copies overlap stays fully dark (≈ 3100 px less the lines).
-    let default = render(labs::DOUBLE_VISION, &[]);
+    let default = render(course::DOUBLE_VISION, &[]);
     // ±0.25 (±102 px): the copies no longer overlap, nothing is fully dark.
-    let wide = render(labs::DOUBLE_VISION, &[("left_x", "0.25"), ("right_x", "-0.25")]);
+    let wide = render(course::DOUBLE_VISION, &[("left_x", "0.25"), ("right_x", "-0.25")]);
     let (d0, d1, d2) = (dark(&zero), dark(&default), dark(&wide));
     println!("dark pixels: zero {d0}, default {d1}, wide {d2}");
     assert!((10_000..12_500).contains(&d0), "{d0}");
@@ -213,7 +213,7 @@ fn double_vision_separation_splits_the_disc() {
 
 #[test]
 fn double_vision_keys_step_the_separation() {
-    let mut lab = build(labs::DOUBLE_VISION);
+    let mut lab = build(course::DOUBLE_VISION);
     press(lab.as_mut(), &[Input::Key(']'), Input::Key(']'), Input::Key('[')]);
     let p = lab.params();
     assert!((p.f("left_x") - 0.12).abs() < 1e-6 && (p.f("right_x") + 0.12).abs() < 1e-6);
@@ -227,7 +227,7 @@ fn covered(image: &RgbImage) -> Vec<bool> {
 
 #[test]
 fn normal_world_colours_belong_to_the_surface_not_the_view() {
-    let default = render(labs::NORMAL_WORLD, &[]);
+    let default = render(course::NORMAL_WORLD, &[]);
     // The body faces the eye at +z: n ≈ (0, 0, 1) → (128, 128, 255).
     let front = mean_color(&default, (250, 262, 262, 274), None);
     assert!(front[2] > 240.0 && (front[0] - 128.0).abs() < 25.0, "{front:?}");
@@ -235,8 +235,8 @@ fn normal_world_colours_belong_to_the_surface_not_the_view() {
     // +x comes to face the eye), once by moving only the eye to +x. The silhouettes agree;
     // world-space colours differ (the surface facing the eye is +x in the second), where
     // eye-space colours would be identical.
-    let turned = render(labs::NORMAL_WORLD, &[("ry", "-90")]);
-    let moved = render(labs::NORMAL_WORLD, &[("eye", "5,0,0")]);
+    let turned = render(course::NORMAL_WORLD, &[("ry", "-90")]);
+    let moved = render(course::NORMAL_WORLD, &[("eye", "5,0,0")]);
     let (a, b) = (covered(&turned), covered(&moved));
     let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
     let area = a.iter().filter(|&&x| x).count();
@@ -252,7 +252,7 @@ fn normal_world_colours_belong_to_the_surface_not_the_view() {
     );
     assert!(moved_mid[0] > 230.0 && moved_mid[2] < 160.0, "eye moved: {moved_mid:?}");
     // Moving the eye further out only shrinks the picture: the colours stay.
-    let far = render(labs::NORMAL_WORLD, &[("eye", "0,0,8")]);
+    let far = render(course::NORMAL_WORLD, &[("eye", "0,0,8")]);
     let near_mean = mean_color(&default, (0, 0, 511, 511), Some(BLACK));
     let far_mean = mean_color(&far, (0, 0, 511, 511), Some(BLACK));
     assert!(
@@ -267,17 +267,17 @@ fn normal_world_colours_belong_to_the_surface_not_the_view() {
 #[test]
 fn normal_world_rotation_order_is_z_then_y_then_x() {
     // The SPEC states all differ from the default.
-    let rotated = render(labs::NORMAL_WORLD, &[("rx", "30"), ("ry", "45")]);
-    let spin = render(labs::NORMAL_WORLD, &[("ry", "90"), ("rz", "30")]);
-    let below = render(labs::NORMAL_WORLD, &[("rx", "-70")]);
-    let default = render(labs::NORMAL_WORLD, &[]);
+    let rotated = render(course::NORMAL_WORLD, &[("rx", "30"), ("ry", "45")]);
+    let spin = render(course::NORMAL_WORLD, &[("ry", "90"), ("rz", "30")]);
+    let below = render(course::NORMAL_WORLD, &[("rx", "-70")]);
+    let default = render(course::NORMAL_WORLD, &[]);
     for (name, image) in [("rotated", &rotated), ("spin", &spin), ("below", &below)] {
         assert!(psnr(image, &default).unwrap() < 25.0, "{name}");
     }
     // spin: glRotated(30, z) comes last, in world space, about the viewing axis (the eye is on
     // +z): the picture is the ry=90 picture turned 30° counter-clockwise about its centre, with
     // each colour's normal turned the same way. With z applied first (Rx·Ry·Rz) it is not.
-    let ry90 = render(labs::NORMAL_WORLD, &[("ry", "90")]);
+    let ry90 = render(course::NORMAL_WORLD, &[("ry", "90")]);
     let (sin, cos) = 30f64.to_radians().sin_cos();
     let decode = |c: u8| f64::from(c) / 255.0 * 2.0 - 1.0;
     let encode = |n: f64| (n + 1.0) * 0.5 * 255.0;
@@ -324,7 +324,7 @@ fn normal_world_rotation_order_is_z_then_y_then_x() {
     });
     assert!(bottom > 2000, "bottom pixels: {bottom}");
     // The same state with keys: X X X X X X (6 × +5°) and Y × 9.
-    let mut lab = build(labs::NORMAL_WORLD);
+    let mut lab = build(course::NORMAL_WORLD);
     press(lab.as_mut(), &[Input::Key('X'); 6]);
     press(lab.as_mut(), &[Input::Key('Y'); 9]);
     press(lab.as_mut(), &[Input::Key('z'), Input::Key('Z')]);
@@ -335,8 +335,8 @@ fn normal_world_rotation_order_is_z_then_y_then_x() {
 
 #[test]
 fn phong_dir_fixpos_moves_the_highlight() {
-    let course = render(labs::PHONG_DIR, &[]);
-    let fixed = render(labs::PHONG_DIR, &[("fixpos", "1")]);
+    let course = render(course::PHONG_DIR, &[]);
+    let fixed = render(course::PHONG_DIR, &[("fixpos", "1")]);
     let (hc, hf) = (highlight(&course, 8.0), highlight(&fixed, 8.0));
     let distance = ((hc.0 - hf.0).powi(2) + (hc.1 - hf.1).powi(2)).sqrt();
     println!("highlight course {hc:?} fixpos {hf:?}: {distance:.1} px");
@@ -344,16 +344,16 @@ fn phong_dir_fixpos_moves_the_highlight() {
     // Only the specular term depends on `position`: the silhouette and the diffuse body agree.
     assert_eq!(covered(&course), covered(&fixed));
     // Key p toggles the same switch.
-    let mut lab = build(labs::PHONG_DIR);
+    let mut lab = build(course::PHONG_DIR);
     press(lab.as_mut(), &[Input::Key('p')]);
     assert_eq!(psnr(&shot(lab.as_mut()), &fixed), Some(f64::INFINITY));
 }
 
 #[test]
 fn phong_dir_rx_turns_the_teapot() {
-    let default = render(labs::PHONG_DIR, &[]);
-    let rx30 = render(labs::PHONG_DIR, &[("rx", "30")]);
-    let rx_60 = render(labs::PHONG_DIR, &[("rx", "-60")]);
+    let default = render(course::PHONG_DIR, &[]);
+    let rx30 = render(course::PHONG_DIR, &[("rx", "30")]);
+    let rx_60 = render(course::PHONG_DIR, &[("rx", "-60")]);
     assert!(psnr(&rx30, &default).unwrap() < 25.0 && psnr(&rx_60, &default).unwrap() < 25.0);
     // glRotated(30, x) tips the lid toward the viewer: the picture grows taller.
     let h = |i: &RgbImage| {
@@ -365,7 +365,7 @@ fn phong_dir_rx_turns_the_teapot() {
     let min_b = default.pixels().filter(|p| p.0 != BLACK).map(|p| p[2]).min().unwrap();
     assert!(min_b >= 25, "ambient floor 0.1 → 26: {min_b}");
     // ↑ ×6 is rx = 30.
-    let mut lab = build(labs::PHONG_DIR);
+    let mut lab = build(course::PHONG_DIR);
     press(lab.as_mut(), &[Input::Special(Special::Up); 7]);
     press(lab.as_mut(), &[Input::Special(Special::Down)]);
     assert_eq!(psnr(&shot(lab.as_mut()), &rx30), Some(f64::INFINITY));

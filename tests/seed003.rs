@@ -8,9 +8,9 @@ use common::{build, seed_reference as reference, shot};
 use glam::Vec3;
 use image::RgbImage;
 use shaderlab::camera::fly::{FlyCamera, FlyStart};
-use shaderlab::geometry::shapes::bezier_strip;
+use shaderlab::course;
 use shaderlab::lab::{Input, Special};
-use shaderlab::labs;
+use shaderlab::mesh::shapes::bezier_strip;
 use shaderlab::metrics::{bounding_box, coverage, mean_color, psnr};
 use shaderlab::Lab;
 
@@ -18,7 +18,7 @@ const BLACK: [u8; 3] = [0, 0, 0];
 
 /// Renders the strip at its default size with `key=value` parameters (as `--set` does).
 fn render(set: &[(&str, &str)]) -> RgbImage {
-    let mut lab = build(labs::SPECULAR_STRIP);
+    let mut lab = build(course::SPECULAR_STRIP);
     for (k, v) in set {
         lab.params_mut().set_str(k, v).expect("parameter");
     }
@@ -151,7 +151,7 @@ fn pitch_stops_at_89_degrees() {
     assert!(same(&up89, &at(&under, "120")));
     assert!(!same(&up89, &at(&under, "80")));
     // Keys: ↑ 60 times (2° each) ends at 89°, the same picture as the state.
-    let mut lab = build(labs::SPECULAR_STRIP);
+    let mut lab = build(course::SPECULAR_STRIP);
     for (k, v) in under {
         lab.params_mut().set_str(k, v).unwrap();
     }
@@ -163,7 +163,7 @@ fn pitch_stops_at_89_degrees() {
 #[test]
 fn keys_and_mouse_drive_the_live_camera() {
     // W W W ← is forward=3 yaw=-2; E E then ↓ × 15 is "above" (up=2 pitch=-30).
-    let mut lab = build(labs::SPECULAR_STRIP);
+    let mut lab = build(course::SPECULAR_STRIP);
     let title = lab.title();
     feed(
         lab.as_mut(),
@@ -192,7 +192,7 @@ fn keys_and_mouse_drive_the_live_camera() {
     feed(lab.as_mut(), &[Input::Key('s'), Input::Key('a'), Input::Key('q')]);
     assert!(psnr(&shot(lab.as_mut()), &before).unwrap() > 45.0);
     // Left drag: rotate(0.1·dx, −0.1·dy) per event; 10 px right is yaw +1°, 20 px up pitch +2°.
-    let mut lab = build(labs::SPECULAR_STRIP);
+    let mut lab = build(course::SPECULAR_STRIP);
     assert!(!lab.input(Input::Press(100, 100)));
     feed(lab.as_mut(), &[Input::Drag(110, 100)]);
     assert!(!lab.input(Input::Drag(110, 100)), "no motion, no change");
@@ -228,13 +228,13 @@ fn light_position_moves_the_lighting() {
 /// a count from the curve's bend and the camera (more when the camera comes closer).
 #[test]
 fn strip_segments_converge_and_auto_follows_the_camera() {
-    use shaderlab::geometry::shapes::{bezier_point, bezier_strip_n};
+    use shaderlab::mesh::shapes::{bezier_point, bezier_strip_n};
     let exact = bezier_strip_n(10);
     assert_eq!(exact.len(), 22);
     let [x, y] = bezier_point(1.0);
     assert_eq!(&exact[20].position[..2], &[x, y], "the last step ends at t = 1");
     let at = |segments: &str, forward: &str| {
-        let mut lab = build(labs::SPECULAR_STRIP);
+        let mut lab = build(course::SPECULAR_STRIP);
         lab.params_mut().set_str("segments", segments).unwrap();
         lab.params_mut().set_str("forward", forward).unwrap();
         let image = shot(lab.as_mut());
@@ -243,7 +243,7 @@ fn strip_segments_converge_and_auto_follows_the_camera() {
     let (course, _) = at("100", "0");
     assert_eq!(
         course,
-        shot(build(labs::SPECULAR_STRIP).as_mut()),
+        shot(build(course::SPECULAR_STRIP).as_mut()),
         "segments=100 is the course's strip"
     );
     let (reference, _) = at("2000", "0");
@@ -281,7 +281,7 @@ fn strip_segments_converge_and_auto_follows_the_camera() {
         shaderlab::shell::screenshot(common::gpu(), lab, 64, 4800).expect("a tall screenshot");
         count(&lab.title())
     };
-    let mut lab = build(labs::SPECULAR_STRIP);
+    let mut lab = build(course::SPECULAR_STRIP);
     lab.params_mut().set_str("segments", "auto").unwrap();
     shot(lab.as_mut());
     let far = lab.title();

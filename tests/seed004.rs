@@ -13,9 +13,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use image::RgbImage;
-use shaderlab::geometry::images;
+use shaderlab::course::{self, seed004::gl_textures};
+use shaderlab::images;
 use shaderlab::lab::{Input, Special};
-use shaderlab::labs::{self, seed004::gl_textures};
 use shaderlab::metrics::{mean_color, psnr};
 
 /// Where the tests leave their images.
@@ -102,8 +102,8 @@ fn luma_in(image: &RgbImage, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> (f64, f6
 fn normals_turn_with_the_model_only_under_the_normal_matrix() {
     // At rest MV has no rotation, NM is the identity: both exercises draw the same image.
     let still = psnr(
-        &render(labs::SUZANNE_NORMAL_COLOR, &[]),
-        &render(labs::SUZANNE_NORMAL_MATRIX, &[]),
+        &render(course::SUZANNE_NORMAL_COLOR, &[]),
+        &render(course::SUZANNE_NORMAL_MATRIX, &[]),
     )
     .expect("same size");
     assert!(
@@ -112,8 +112,8 @@ fn normals_turn_with_the_model_only_under_the_normal_matrix() {
     );
     // Turned 90° about y, Suzanne shows her left side. In object space (normal_color) those
     // normals point along x: red. Turned by NM (normal_matrix) they face the eye: blue.
-    let object = render(labs::SUZANNE_NORMAL_COLOR, &[("yangle", "90")]);
-    let eye = render(labs::SUZANNE_NORMAL_MATRIX, &[("yangle", "90")]);
+    let object = render(course::SUZANNE_NORMAL_COLOR, &[("yangle", "90")]);
+    let eye = render(course::SUZANNE_NORMAL_MATRIX, &[("yangle", "90")]);
     save(&object, "normal_color_yangle90.png");
     save(&eye, "normal_matrix_yangle90.png");
     let (o, e) = (object_mean(&object), object_mean(&eye));
@@ -126,8 +126,8 @@ fn normals_turn_with_the_model_only_under_the_normal_matrix() {
 #[test]
 fn vertex_normals_blend_what_face_normals_keep_flat() {
     let state = [("xangle", "30"), ("yangle", "45")];
-    let faces = render(labs::SUZANNE_NORMAL_MATRIX, &state);
-    let smooth = render(labs::SUZANNE_SMOOTH, &state);
+    let faces = render(course::SUZANNE_NORMAL_MATRIX, &state);
+    let smooth = render(course::SUZANNE_SMOOTH, &state);
     save(&smooth, "smooth_rotated.png");
     // Face normals: one colour per triangle (967 in all, fewer visible). Vertex normals: a
     // gradient across every triangle, tens of thousands of colours.
@@ -156,9 +156,9 @@ fn equal_neighbours(image: &RgbImage) -> f64 {
 
 #[test]
 fn mipmaps_average_the_far_checker_to_grey_and_nearest_aliases() {
-    let mipmapped = render(labs::TEXPARAMS, &[]);
-    let nomip = render(labs::TEXPARAMS, &[("min", "1")]);
-    let trilinear = render(labs::TEXPARAMS, &[("mag", "1"), ("min", "3")]);
+    let mipmapped = render(course::TEXPARAMS, &[]);
+    let nomip = render(course::TEXPARAMS, &[("min", "1")]);
+    let trilinear = render(course::TEXPARAMS, &[("mag", "1"), ("min", "3")]);
     save(&nomip, "texparams_nomip.png");
     save(&trilinear, "texparams_linear.png");
     // Far away (rows 160-200, centre) a pixel covers many squares.
@@ -202,9 +202,9 @@ fn non_mipmapped_min_filters_switch_with_mag_where_gl_does() {
     // aliases like min=1 alone, and mag=0 min=2 blends like min=2 alone (a sampler clamped to
     // level 0 would use the MAG filter everywhere).
     let far = (280, 160, 360, 200);
-    let nearest = luma_in(&render(labs::TEXPARAMS, &[("mag", "1"), ("min", "1")]), far).1;
-    let linear = luma_in(&render(labs::TEXPARAMS, &[("mag", "0"), ("min", "2")]), far).1;
-    let linear_alone = luma_in(&render(labs::TEXPARAMS, &[("mag", "1"), ("min", "2")]), far).1;
+    let nearest = luma_in(&render(course::TEXPARAMS, &[("mag", "1"), ("min", "1")]), far).1;
+    let linear = luma_in(&render(course::TEXPARAMS, &[("mag", "0"), ("min", "2")]), far).1;
+    let linear_alone = luma_in(&render(course::TEXPARAMS, &[("mag", "1"), ("min", "2")]), far).1;
     assert!(nearest > 100.0, "min NEAREST far away: black or white ({nearest:.1})");
     assert!(
         (linear - linear_alone).abs() < 1.0 && linear < nearest,
@@ -214,7 +214,7 @@ fn non_mipmapped_min_filters_switch_with_mag_where_gl_does() {
 
 /// The pixel where the floor point (x, −1, z) of texparams appears.
 fn floor_pixel(x: f32, z: f32) -> (f64, f64) {
-    let p = labs::seed004::stage::projection(640.0 / 480.0) * labs::seed004::texparams::view();
+    let p = course::seed004::geometry::projection(640.0 / 480.0) * course::seed004::texparams::view();
     let clip = p * glam::Vec4::new(x, -1.0, z, 1.0);
     let (nx, ny) = (f64::from(clip.x / clip.w), f64::from(clip.y / clip.w));
     ((nx + 1.0) * 320.0, (1.0 - ny) * 240.0)
@@ -222,8 +222,8 @@ fn floor_pixel(x: f32, z: f32) -> (f64, f64) {
 
 #[test]
 fn clamp_to_edge_repeats_the_edge_texels() {
-    let repeat = render(labs::TEXPARAMS, &[]);
-    let clamp = render(labs::TEXPARAMS, &[("wrap_s", "1")]);
+    let repeat = render(course::TEXPARAMS, &[]);
+    let clamp = render(course::TEXPARAMS, &[("wrap_s", "1")]);
     save(&clamp, "texparams_clamp_s.png");
     // The bottom rows, where the floor is magnified (GL_NEAREST on level 0: exact texels).
     for y in (455..480).step_by(4) {
@@ -279,8 +279,8 @@ fn clamp_to_edge_repeats_the_edge_texels() {
 #[test]
 fn gouraud_loses_the_highlight_that_phong_keeps() {
     let top = [("xangle", "60"), ("yangle", "-30"), ("shininess", "100")];
-    let gouraud = render(labs::SUZANNE_GOURAUD, &top);
-    let phong = render(labs::SUZANNE_PHONG, &top);
+    let gouraud = render(course::SUZANNE_GOURAUD, &top);
+    let phong = render(course::SUZANNE_PHONG, &top);
     save(&gouraud, "gouraud_top.png");
     save(&phong, "phong_top.png");
     let max = |i: &RgbImage| i.pixels().map(|q| luma(q.0)).fold(0.0, f64::max);
@@ -307,8 +307,8 @@ fn gouraud_loses_the_highlight_that_phong_keeps() {
 
 #[test]
 fn flat_shading_has_one_colour_per_triangle() {
-    let flat = render(labs::SUZANNE_FLAT, &[("xangle", "30"), ("yangle", "45")]);
-    let gouraud = render(labs::SUZANNE_GOURAUD, &[("xangle", "30"), ("yangle", "45")]);
+    let flat = render(course::SUZANNE_FLAT, &[("xangle", "30"), ("yangle", "45")]);
+    let gouraud = render(course::SUZANNE_GOURAUD, &[("xangle", "30"), ("yangle", "45")]);
     let (nf, ng) = (distinct_colors(&flat), distinct_colors(&gouraud));
     let (ef, eg) = (equal_neighbours(&flat), equal_neighbours(&gouraud));
     assert!(nf < 967 && ng > nf, "flat {nf} colours, Gouraud {ng}");
@@ -329,7 +329,7 @@ fn lighting_parameters_change_the_picture_as_spec_says() {
         ("lighty", "1"),
         ("lightz", "1"),
     ];
-    let image = render(labs::SUZANNE_PHONG, &params);
+    let image = render(course::SUZANNE_PHONG, &params);
     save(&image, "phong_params.png");
     let m = object_mean(&image);
     assert!(m[2] > m[1] && m[1] > m[0], "blue-green material: {m:?}");
@@ -341,7 +341,7 @@ fn lighting_parameters_change_the_picture_as_spec_says() {
     );
     // No light at all but the ambient term: Ka·white everywhere, 0.2 → 51.
     let ambient = render(
-        labs::SUZANNE_PHONG,
+        course::SUZANNE_PHONG,
         &[("kdr", "0"), ("kdg", "0"), ("kdb", "0"), ("ks", "0")],
     );
     let a = object_mean(&ambient);
@@ -350,7 +350,7 @@ fn lighting_parameters_change_the_picture_as_spec_says() {
 
 #[test]
 fn keys_and_mouse_follow_spec() {
-    let mut lit = lab(labs::SUZANNE_GOURAUD);
+    let mut lit = lab(course::SUZANNE_GOURAUD);
     assert_eq!(lit.params().text("shading"), "gouraud");
     for input in [
         Input::Key('A'),
@@ -396,7 +396,7 @@ fn keys_and_mouse_follow_spec() {
     assert_eq!(lit.params().text("shading"), "flat");
 
     // Left drag: 0.5° per pixel, x motion turns about y, y motion about x.
-    let mut plain = lab(labs::SUZANNE_NORMAL_MATRIX);
+    let mut plain = lab(course::SUZANNE_NORMAL_MATRIX);
     assert!(!plain.input(Input::Drag(10, 10)), "no drag without a press");
     plain.input(Input::Press(100, 100));
     assert!(plain.input(Input::Drag(110, 96)));
@@ -406,7 +406,7 @@ fn keys_and_mouse_follow_spec() {
     assert!(!plain.input(Input::Drag(200, 200)), "released");
 
     // `t` toggles the texture; texparams' w/W/m/M cycle.
-    let mut textured = lab(labs::SUZANNE_TEXTURE);
+    let mut textured = lab(course::SUZANNE_TEXTURE);
     let checker = shot(textured.as_mut());
     textured.input(Input::Key('t'));
     assert_eq!(textured.params().text("tex"), "bmp");
@@ -416,7 +416,7 @@ fn keys_and_mouse_follow_spec() {
     );
     textured.input(Input::Key('t'));
     assert_eq!(textured.params().text("tex"), "checker");
-    let mut tp = lab(labs::TEXPARAMS);
+    let mut tp = lab(course::TEXPARAMS);
     for key in ['w', 'W', 'm', 'm', 'm', 'M', 'M'] {
         tp.input(Input::Key(key));
     }
@@ -600,7 +600,7 @@ fn user_model_and_texture_replace_the_course_data() {
 /// far squares along the view as much as across it.
 #[test]
 fn texparams_anisotropic_filtering_is_closer_to_the_supersampled_floor() {
-    let mut lab = lab(labs::TEXPARAMS);
+    let mut lab = lab(course::TEXPARAMS);
     common::set_state(lab.as_mut(), &[("min", "nearest"), ("mag", "nearest")]);
     let big =
         shaderlab::offscreen::to_rgb(&shaderlab::shell::screenshot(common::gpu(), lab.as_mut(), 2560, 1920).unwrap());
@@ -614,8 +614,8 @@ fn texparams_anisotropic_filtering_is_closer_to_the_supersampled_floor() {
             .sum();
         (sum / n).sqrt()
     };
-    let trilinear = render(labs::TEXPARAMS, &[("min", "linear_mipmap_linear"), ("mag", "linear")]);
-    let aniso = render(labs::TEXPARAMS, &[("aniso", "16")]);
+    let trilinear = render(course::TEXPARAMS, &[("min", "linear_mipmap_linear"), ("mag", "linear")]);
+    let aniso = render(course::TEXPARAMS, &[("aniso", "16")]);
     let (t, a) = (far_rmse(&trilinear), far_rmse(&aniso));
     println!("far-half RMSE against the 4x4-supersampled floor: trilinear {t:.2}, anisotropic 16 {a:.2}");
     assert!(a < 0.95 * t, "anisotropic {a:.2} against trilinear {t:.2}");

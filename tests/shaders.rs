@@ -17,9 +17,9 @@ use std::process::{Command, Output};
 
 use common::{gpu, output_dir};
 
+use shaderlab::course;
+use shaderlab::course::common::TransformUniforms;
 use shaderlab::lab::{BuildContext, LabEntry};
-use shaderlab::labs;
-use shaderlab::labs::common::TransformUniforms;
 use shaderlab::metrics::{coverage, psnr};
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::render::{Program, RenderState, Uniforms};
@@ -249,7 +249,7 @@ fn broken_shader_reported_by_example_binary() {
 fn reload_keeps_last_good_pipeline() {
     let gpu = gpu();
     let copy = ShaderCopy::new("reload");
-    let mut lab = common::lab_from(labs::PHONG, &copy.source());
+    let mut lab = common::lab_from(course::PHONG, &copy.source());
     lab.set_object(Object::Sphere);
     let good = lab.screenshot(gpu, 160, 90).expect("screenshot");
     for b in breaks() {
@@ -388,19 +388,19 @@ fn glsl_vs_wgsl(entry: &LabEntry, clear: [f64; 3]) {
 
 #[test]
 fn wgsl_renders_like_glsl_position_rgb() {
-    glsl_vs_wgsl(labs::POSITION_RGB, [0.0; 3]);
+    glsl_vs_wgsl(course::POSITION_RGB, [0.0; 3]);
 }
 
 #[test]
 fn wgsl_renders_like_glsl_normal_rgb() {
-    glsl_vs_wgsl(labs::NORMAL_RGB, [0.0; 3]);
+    glsl_vs_wgsl(course::NORMAL_RGB, [0.0; 3]);
 }
 
 #[test]
 fn wgsl_renders_like_glsl_phong() {
-    glsl_vs_wgsl(labs::PHONG, [0.05, 0.1, 0.2]);
+    glsl_vs_wgsl(course::PHONG, [0.05, 0.1, 0.2]);
     // use_wgsl really compiles the text it is given.
-    let mut lab = common::lab(labs::PHONG);
+    let mut lab = common::lab(course::PHONG);
     let err = lab.lab.programs()[0]
         .use_wgsl(gpu(), &wgsl_of("phong.vert"), "fn main( {")
         .expect_err("broken WGSL");
@@ -409,12 +409,12 @@ fn wgsl_renders_like_glsl_phong() {
 
 #[test]
 fn wgsl_renders_like_glsl_noise() {
-    glsl_vs_wgsl(labs::NOISE, [0.0; 3]);
+    glsl_vs_wgsl(course::NOISE, [0.0; 3]);
 }
 
 #[test]
 fn wgsl_renders_like_glsl_displacement() {
-    glsl_vs_wgsl(labs::DISPLACEMENT, [0.0; 3]);
+    glsl_vs_wgsl(course::DISPLACEMENT, [0.0; 3]);
 }
 
 #[test]
@@ -588,7 +588,7 @@ fn mismatched_uniform_struct_is_rejected() {
             .contains("field `ka: f32` does not fit GLSL block PhongParams member `int Ka` (use i32)"),
         "{err}"
     );
-    let err = (labs::PHONG.new)(&cx).err().expect("int Ka must be rejected");
+    let err = (course::PHONG.new)(&cx).err().expect("int Ka must be rejected");
     assert!(
         matches!(&err, Error::Layout(m) if m.contains("`Ka` (int Ka) takes whole numbers") && m.contains("got 0.1")),
         "{err}"
@@ -630,7 +630,7 @@ fn misspelt_set_name_lists_valid_names() {
 
 #[test]
 fn lab_set_unknown_name_is_param_error() {
-    let mut lab = common::lab(labs::PHONG);
+    let mut lab = common::lab(course::PHONG);
     match lab.set("Kx", &[0.2]) {
         Err(Error::Param(message)) => {
             for name in PHONG_NAMES {
@@ -754,7 +754,7 @@ void main() {
 fn out_arguments_into_parts_of_variables_draw() {
     let copy = ShaderCopy::new("out-arguments");
     std::fs::write(copy.path("position_rgb.frag"), OUT_ARGUMENTS).unwrap();
-    let mut lab = common::lab_from(labs::POSITION_RGB, &copy.source());
+    let mut lab = common::lab_from(course::POSITION_RGB, &copy.source());
     let image = lab.rgb(640, 360);
     // The teapot's centre: green from h's 0.25 (arr[1] halved cancels the 0.45), blue from
     // k's column, and the corner stays the clear colour.
@@ -871,7 +871,7 @@ fn a_panic_inside_wgpu_or_naga_is_an_error() {
         "{err}"
     );
     // The device still draws.
-    let mut lab = common::lab(labs::POSITION_RGB);
+    let mut lab = common::lab(course::POSITION_RGB);
     assert!(coverage(&lab.rgb(64, 36), [0, 0, 0]) > 0.05);
     std::fs::remove_dir_all(&copy.dir).ok();
 }
@@ -882,7 +882,7 @@ fn a_session_lists_each_programs_files_and_every_file_spliced_into_it() {
     let source = ShaderSource::Embedded;
     let files = &shaderlab::lab::NO_FILES;
     let mut session =
-        Session::open(labs::DISPLACEMENT, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("displacement opens");
+        Session::open(course::DISPLACEMENT, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("displacement opens");
     let programs = session.shader_files();
     assert_eq!(programs.len(), 1, "{programs:?}");
     let program = &programs[0];
@@ -908,7 +908,7 @@ fn a_session_given_the_command_lines_parameters_runs_its_clock_from_their_time()
     use shaderlab::shell::session::Session;
     let source = ShaderSource::Embedded;
     let files = &shaderlab::lab::NO_FILES;
-    let open = || Session::open(labs::WAVE, gpu(), &source, COLOR_FORMAT, files, 10.0, 2.0).expect("wave opens");
+    let open = || Session::open(course::WAVE, gpu(), &source, COLOR_FORMAT, files, 10.0, 2.0).expect("wave opens");
     let mut params = open().lab().params().clone();
     params.set("time", &[7.0]).unwrap();
     let mut session = open().with_params(params);
@@ -935,7 +935,7 @@ fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_on
     std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
     let source = ShaderSource::Dir(dir.clone());
     let files = &shaderlab::lab::NO_FILES;
-    let open = || Session::open(labs::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let open = || Session::open(course::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
     let (w, h) = (160, 90);
     let draw = |session: &mut Session| {
         let target = Offscreen::with_format(gpu(), w, h, COLOR_FORMAT);
@@ -976,7 +976,7 @@ fn the_offscreen_frame_and_the_sessions_are_one_checked_render() {
     std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
     let source = ShaderSource::Dir(dir.clone());
     let files = &shaderlab::lab::NO_FILES;
-    let mut session = Session::open(labs::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let mut session = Session::open(course::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
     let target = Offscreen::with_format(gpu(), 64, 48, COLOR_FORMAT);
     let log = shaderlab::render::DrawLog::new();
     let frame = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, Some(&log)).expect("phong draws");
@@ -1002,7 +1002,7 @@ fn a_session_inspects_its_frame_with_the_runner_it_is_handed() {
     use shaderlab::shell::session::Session;
     let source = ShaderSource::Embedded;
     let files = &shaderlab::lab::NO_FILES;
-    let mut session = Session::open(labs::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let mut session = Session::open(course::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
     let (w, h) = (96, 64);
     let (x, y) = (w / 2, h / 2);
     let draw = |session: &mut Session| {

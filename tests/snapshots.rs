@@ -369,7 +369,7 @@ fn path(name: &str) -> std::path::PathBuf {
 
 /// The port's picture of a row, at the lab's own size.
 fn render(lab: &str, state: &[(&str, &str)]) -> image::RgbImage {
-    let entry = shaderlab::labs::find(lab).unwrap_or_else(|| panic!("no lab {lab}"));
+    let entry = shaderlab::course::find(lab).unwrap_or_else(|| panic!("no lab {lab}"));
     common::render_state(entry, state)
 }
 
@@ -403,7 +403,7 @@ fn every_lab_is_unchanged() {
 /// Every lab has at least one row.
 #[test]
 fn every_lab_has_a_snapshot() {
-    for entry in shaderlab::labs::ALL {
+    for entry in shaderlab::course::ALL {
         let name = entry.info.name;
         assert!(ROWS.iter().any(|r| r.1 == name), "{name} has no snapshot row");
     }

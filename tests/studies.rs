@@ -7,7 +7,7 @@
 mod common;
 
 use image::RgbImage;
-use shaderlab::labs;
+use shaderlab::course;
 use shaderlab::metrics::box_downsample;
 use shaderlab::offscreen::to_rgb;
 
@@ -19,7 +19,7 @@ fn rmse(a: &RgbImage, b: &RgbImage) -> f64 {
 /// per-fragment picture approaches it as the mesh refines, level after level.
 #[test]
 fn lighting_reference_is_what_finer_meshes_approach() {
-    let at = |tess: &str| common::render_state(labs::PHONG_FRAGMENT, &[("object", "sphere"), ("tess", tess)]);
+    let at = |tess: &str| common::render_state(course::PHONG_FRAGMENT, &[("object", "sphere"), ("tess", tess)]);
     let reference = at("256");
     let errors: Vec<f64> = ["8", "24", "96", "192"]
         .iter()
@@ -37,7 +37,7 @@ fn lighting_reference_is_what_finer_meshes_approach() {
 #[test]
 fn suzanne_supersampled_reference_is_converged() {
     let gpu = common::gpu();
-    let mut lab = common::build(labs::SUZANNE_PHONG);
+    let mut lab = common::build(course::SUZANNE_PHONG);
     common::set_state(lab.as_mut(), &[("yangle", "40"), ("shading", "phong")]);
     let four = box_downsample(
         &to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), 2560, 1920).unwrap()),

@@ -7,9 +7,9 @@ mod common;
 
 use common::*;
 use glam::Vec3;
+use shaderlab::course;
+use shaderlab::course::seed000::geometry::{GeometryConfig, GlutGeometry, PARAMS_000};
 use shaderlab::exact::{silhouette_error, ExactScene, Shape};
-use shaderlab::labs;
-use shaderlab::labs::seed000::stage::{GlutGeometry, StageConfig, PARAMS_000};
 use shaderlab::metrics::mask;
 use shaderlab::params::Params;
 use shaderlab::Object;
@@ -18,7 +18,7 @@ const SS: u32 = 4;
 
 fn measured_error(object: Object, shape: Shape, level: u32, angles: [f32; 3], camera: [f32; 3]) -> f64 {
     let (w, h) = (640 * SS, 360 * SS);
-    let mut lab = lab(labs::PHONG);
+    let mut lab = lab(course::PHONG);
     lab.set_object(object);
     lab.set_angles(angles);
     lab.set("camera", &camera).expect("camera");
@@ -97,20 +97,20 @@ fn auto_torus_meets_the_budget_minimally() {
     check(Object::Torus, Shape::Torus, [0.0, 0.0, 12.0]);
 }
 
-/// The level the phong lab's stage draws for `object` seen from `camera` (`tess` -1 is auto).
+/// The level the phong lab's geometry draws for `object` seen from `camera` (`tess` -1 is auto).
 fn auto_level(object: Object, camera: [f32; 3], height: u32, tess: f64) -> u32 {
     let mut p = Params::new(PARAMS_000);
     p.set_str("object", object.name()).expect("object");
     p.set("tess", &[tess]).expect("tess");
-    let stage = GlutGeometry::new(
+    let geometry = GlutGeometry::new(
         gpu(),
         "test",
-        StageConfig {
+        GeometryConfig {
             perspective: (45.0, 1.0, 100.0),
             eye: Vec3::from_array(camera),
         },
     );
-    stage.level(&p, height, true)
+    geometry.level(&p, height, true)
 }
 
 #[test]

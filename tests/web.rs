@@ -53,7 +53,7 @@ const CASES: &[(&str, &[&str])] = &[
     ("specular_strip", &["yaw=20"]),
     ("suzanne_texture", &["yangle=40"]),
     ("texparams", &["min=1", "mag=1"]),
-    // Plus the uniforms seed 000's program gives lab 3 (labs::legacy::course_state).
+    // Plus the uniforms seed 000's program gives lab 3 (course::legacy::course_state).
     (
         "legacy",
         &["files=lab3.vert,lab3.frag", "object=torus", "xangle=30", "yangle=20"],
@@ -65,7 +65,7 @@ fn sets_of(name: &str, sets: &[&'static str]) -> Vec<String> {
     let mut all: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     if name == "legacy" {
         all.extend(
-            shaderlab::labs::legacy::course_state(3)
+            shaderlab::course::legacy::course_state(3)
                 .iter()
                 .map(|(k, v)| format!("{k}={v}")),
         );
@@ -293,7 +293,7 @@ fn open(server: &(u16, mpsc::Receiver<String>), backend: &str, query: &str) -> P
 
 /// The native picture of a case: the library's `--screenshot` path at the lab's size.
 fn native(name: &str, sets: &[&str]) -> RgbImage {
-    let entry = shaderlab::labs::find(name).unwrap();
+    let entry = shaderlab::course::find(name).unwrap();
     let mut files = UserFiles::default();
     let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
     let mut state = Vec::new();

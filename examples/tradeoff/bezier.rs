@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::screenshot;
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{measure_settings, sweep_chart, Point};
 use super::Summary;
@@ -35,7 +35,7 @@ pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow:
     let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     for (s, (name, state)) in STATES.iter().enumerate() {
-        let mut lab = (labs::SPECULAR_STRIP.new)(&cx)?;
+        let mut lab = (course::SPECULAR_STRIP.new)(&cx)?;
         for (k, v) in *state {
             lab.params_mut().set_str(k, v)?;
         }

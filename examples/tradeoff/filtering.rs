@@ -12,7 +12,7 @@ use plotters::prelude::*;
 use shaderlab::metrics::{box_downsample, rmse};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{axes, legend, pareto_line, MS_AXIS};
 use super::Summary;
@@ -45,7 +45,7 @@ fn top(image: &RgbImage, rows: u32) -> RgbImage {
 
 pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let cx = super::chart::context(gpu);
-    let mut lab = (labs::TEXPARAMS.new)(&cx)?;
+    let mut lab = (course::TEXPARAMS.new)(&cx)?;
     lab.params_mut().set_str("min", "nearest")?;
     lab.params_mut().set_str("mag", "nearest")?;
     eprintln!("filtering: drawing the {}x{} ground truth", W * SS, H * SS);

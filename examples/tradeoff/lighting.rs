@@ -11,7 +11,7 @@ use shaderlab::lab::LabEntry;
 use shaderlab::metrics::rmse;
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{axes, legend, MS_AXIS};
 use super::Summary;
@@ -33,9 +33,9 @@ struct Row {
 /// (lab, the lab whose formula per fragment is its reference).
 fn labs_compared() -> [(&'static LabEntry, &'static LabEntry); 3] {
     [
-        (labs::PHONG_VERTEX, labs::PHONG_FRAGMENT),
-        (labs::PHONG_FRAGMENT, labs::PHONG_FRAGMENT),
-        (labs::TOON, labs::TOON),
+        (course::PHONG_VERTEX, course::PHONG_FRAGMENT),
+        (course::PHONG_FRAGMENT, course::PHONG_FRAGMENT),
+        (course::TOON, course::TOON),
     ]
 }
 

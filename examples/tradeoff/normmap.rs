@@ -7,11 +7,11 @@
 use std::fmt::Write as _;
 
 use plotters::prelude::*;
-use shaderlab::labs::seed001::normmap::{with_cube, CUBE_SIZES};
+use shaderlab::course::seed001::normmap::{with_cube, CUBE_SIZES};
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{axes, legend};
 use super::Summary;
@@ -36,7 +36,7 @@ struct Row {
 
 pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow::Result<Summary> {
     let cx = super::chart::context(gpu);
-    let mut bump = (labs::BUMP.new)(&cx)?;
+    let mut bump = (course::BUMP.new)(&cx)?;
     let mut cubes = Vec::new();
     for size in CUBE_SIZES {
         let lab = with_cube(&cx, size).ok_or_else(|| anyhow::anyhow!("no cube of {size}"))??;

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 use shaderlab::metrics::{box_downsample, psnr, rmse};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{axes, legend, pareto_line, MS_AXIS};
 use super::Summary;
@@ -40,7 +40,7 @@ pub fn study(out: &mut super::chart::Outputs, frames: u32, gpu: &Gpu) -> anyhow:
     let cx = super::chart::context(gpu);
     let mut rows = Vec::new();
     for (s, (name, state)) in STATES.iter().enumerate() {
-        let mut lab = (labs::SUZANNE_PHONG.new)(&cx)?;
+        let mut lab = (course::SUZANNE_PHONG.new)(&cx)?;
         for (k, v) in *state {
             lab.params_mut().set_str(k, v)?;
         }

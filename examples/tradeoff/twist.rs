@@ -6,11 +6,11 @@
 
 use std::fmt::Write as _;
 
-use shaderlab::geometry::shapes::{indexed_quads, twist_grid_n};
+use shaderlab::mesh::shapes::{indexed_quads, twist_grid_n};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::{bench, screenshot};
 use shaderlab::study::twist::{auto_grid, exact_mask, grid_error_px, COURSE_GRID, DEFAULT_BUDGET_PX};
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{sweep_chart, Point};
 use super::Summary;
@@ -43,7 +43,7 @@ pub fn study(out: &mut super::chart::Outputs, frames: u32, quick: bool, gpu: &Gp
         &[2, 4, 6, 8, 12, 16, 24, 32, 48, 64, 100, 150, 200, 300, 400]
     };
     let cx = super::chart::context(gpu);
-    let mut lab = (labs::TWIST.new)(&cx)?;
+    let mut lab = (course::TWIST.new)(&cx)?;
     let mut rows = Vec::new();
     let total = TWISTINGS.len() * (grids.len() + 1);
     let bar = shaderlab::shell::progress_bar(total as u64, "configurations");

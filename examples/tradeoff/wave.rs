@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use shaderlab::metrics::{pixels_off, psnr};
 use shaderlab::offscreen::to_rgb;
 use shaderlab::shell::screenshot;
-use shaderlab::{labs, Gpu};
+use shaderlab::{course, Gpu};
 
 use super::chart::{measure_settings, sweep_chart, Point};
 use super::Summary;
@@ -45,7 +45,7 @@ pub fn study(out: &mut super::chart::Outputs, frames: u32, quick: bool, gpu: &Gp
     let mut rows = Vec::new();
     let bar = shaderlab::shell::progress_bar((STATES.len() * (subdivs.len() + 1)) as u64, "configurations");
     for (s, (name, state)) in STATES.iter().enumerate() {
-        let mut lab = (labs::WAVE.new)(&cx)?;
+        let mut lab = (course::WAVE.new)(&cx)?;
         for (k, v) in *state {
             lab.params_mut().set_str(k, v)?;
         }

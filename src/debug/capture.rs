@@ -26,7 +26,7 @@ pub struct TextureBinding {
 /// One draw with its data on the CPU: its setup (read through, as `draw.state`) and the
 /// bytes of what it read.
 #[derive(Clone)]
-pub struct Draw {
+pub struct CapturedDraw {
     /// Shaders, state, layout, range, as recorded.
     pub setup: DrawSetup,
     /// The vertex buffer's bytes.
@@ -42,7 +42,7 @@ pub struct Draw {
     pub(crate) positions: Arc<std::sync::OnceLock<Positions>>,
 }
 
-impl Draw {
+impl CapturedDraw {
     /// Whether the clip-space positions of its vertices came with the capture (computed by
     /// the GPU for a big draw, [`super::positions`]) rather than by the interpreter at the
     /// first replay.
@@ -51,7 +51,7 @@ impl Draw {
     }
 }
 
-impl std::ops::Deref for Draw {
+impl std::ops::Deref for CapturedDraw {
     type Target = DrawSetup;
 
     fn deref(&self) -> &DrawSetup {
@@ -72,7 +72,7 @@ pub struct Captured {
     /// bits), Mesa 22.3.6 (LLVM 15.0.6)`), for what the replay can promise about it.
     pub adapter: String,
     /// The draws, in order.
-    pub draws: Vec<Draw>,
+    pub draws: Vec<CapturedDraw>,
 }
 
 /// The buffers of a [`DrawLog`] being read back.
@@ -231,7 +231,7 @@ impl Pending {
                     Resource::Sampler(s) => samplers.push((binding.binding, s.desc)),
                 }
             }
-            draws.push(Draw {
+            draws.push(CapturedDraw {
                 setup: call.setup.clone(),
                 vertices: find(&call.vertices),
                 uniforms,

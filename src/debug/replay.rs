@@ -6,7 +6,7 @@
 
 use naga::{Binding, BuiltIn, Handle, Module, TypeInner};
 
-use super::capture::{Captured, Draw};
+use super::capture::{Captured, CapturedDraw};
 use super::error::Failure;
 use super::error::ReplayError;
 use super::interp::{Host, Lod, Run, Trace};
@@ -114,7 +114,7 @@ pub struct Replayed {
 /// Textures and samplers of a draw, for the interpreter.
 struct DrawHost<'a> {
     module: &'a Module,
-    draw: &'a Draw,
+    draw: &'a CapturedDraw,
 }
 
 impl DrawHost<'_> {
@@ -185,7 +185,7 @@ fn entry(shader: &CompiledShader, stage: naga::ShaderStage) -> Res<usize> {
 }
 
 /// The uniform blocks' values from the draw's buffers.
-fn uniforms(module: &Module, draw: &Draw) -> Vec<(Handle<naga::GlobalVariable>, Vec<Comp>)> {
+fn uniforms(module: &Module, draw: &CapturedDraw) -> Vec<(Handle<naga::GlobalVariable>, Vec<Comp>)> {
     let mut out = Vec::new();
     for (h, var) in module.global_variables.iter() {
         if var.space != naga::AddressSpace::Uniform {
@@ -349,7 +349,7 @@ struct VertexRun {
     undefined: Vec<(naga::Span, String)>,
 }
 
-fn run_vertices(draw: &Draw, ids: &[u32], traced: bool) -> Res<VertexRun> {
+fn run_vertices(draw: &CapturedDraw, ids: &[u32], traced: bool) -> Res<VertexRun> {
     let shader = &draw.vertex;
     let module = &shader.module;
     let ep = entry(shader, naga::ShaderStage::Vertex)?;
@@ -402,7 +402,7 @@ fn run_vertices(draw: &Draw, ids: &[u32], traced: bool) -> Res<VertexRun> {
 }
 
 /// Clip-space positions of vertices `ids`.
-fn positions(draw: &Draw, ids: &[u32]) -> Res<Vec<[f32; 4]>> {
+fn positions(draw: &CapturedDraw, ids: &[u32]) -> Res<Vec<[f32; 4]>> {
     let module = &draw.vertex.module;
     let ep = entry(&draw.vertex, naga::ShaderStage::Vertex)?;
     let slots = output_slots(module, ep);
@@ -431,7 +431,7 @@ struct Candidate {
     points: bool,
 }
 
-fn candidates(draw_index: usize, draw: &Draw, vp: Viewport, x: u32, y: u32) -> Res<Vec<Candidate>> {
+fn candidates(draw_index: usize, draw: &CapturedDraw, vp: Viewport, x: u32, y: u32) -> Res<Vec<Candidate>> {
     let whole: Vec<u32>;
     let sequence: &[u32] = match &draw.indices {
         Some(indices) => indices

@@ -190,7 +190,7 @@ impl KeyRow {
 }
 
 /// A lab's keys and mouse: rows that change parameters, and a sentence for what rows do not
-/// say (the mouse, a stage's object keys, a hand-written lab's keys).
+/// say (the mouse, a geometry's object keys, a hand-written lab's keys).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Keys {
     /// The rows.

@@ -10,7 +10,7 @@ mod keys;
 mod runner;
 
 pub use keys::{Act, Key, KeyRow, Keys, DOWN, LEFT, PAGE_DOWN, PAGE_UP, RIGHT, UP};
-pub use runner::{Derive, Draw, Geometry, Material, MaterialScene, Recipe, Runner, Scene, ShaderPair};
+pub use runner::{Derive, Geometry, Material, MaterialScene, PairChoice, Recipe, Runner, Scene, ShaderPair};
 
 use crate::error::Result;
 use crate::params::Params;
@@ -62,7 +62,7 @@ impl LabInfo {
 /// Which files named on the command line a lab draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FilesTaken {
-    /// `--model FILE.obj`: the labs built on the Suzanne stage (every `suzanne_*`).
+    /// `--model FILE.obj`: the labs built on the Suzanne geometry (every `suzanne_*`).
     pub model: bool,
     /// `--texture FILE`: the labs sampling a picture (004's textured Suzannes and
     /// `texparams`' floor, `legacy`'s first sampler2D).
@@ -165,7 +165,7 @@ pub fn params_title(info: &LabInfo, p: &Params) -> String {
     }
 }
 
-/// An entry of the one list of labs ([`crate::labs::ALL`]).
+/// An entry of the one list of labs ([`crate::course::ALL`]).
 pub struct LabEntry {
     /// Its name and size.
     pub info: &'static LabInfo,

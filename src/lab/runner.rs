@@ -18,7 +18,7 @@ use crate::render::{
 pub struct Recipe {
     /// Name, title, size, keys, files.
     pub info: LabInfo,
-    /// Its parameters, in groups (a stage's, then the effect's).
+    /// Its parameters, in groups (a geometry's, then the effect's).
     pub params: &'static [&'static [ParamSpec]],
     /// Whether a clock drives `time` in a window.
     pub animated: bool,
@@ -57,7 +57,7 @@ impl Recipe {
     }
 }
 
-/// The list entry of a described lab (`labs::register!` makes one per recipe).
+/// The list entry of a described lab (`course::register!` makes one per recipe).
 #[macro_export]
 macro_rules! entry {
     ($recipe:path) => {
@@ -70,7 +70,7 @@ macro_rules! entry {
 }
 
 /// What a recipe's scene does: draw for the parameters, hand out its programs, and take the
-/// input its rows do not (a stage's mouse and object keys).
+/// input its rows do not (a geometry's mouse and object keys).
 pub trait Scene: wgpu::WasmNotSend {
     /// Input no key row took; returns whether anything changed.
     fn input(&mut self, _p: &mut Params, _input: Input) -> bool {
@@ -98,7 +98,7 @@ impl Runner {
     /// Builds the recipe's lab.
     pub fn boxed(cx: &BuildContext, recipe: &'static Recipe) -> Result<Box<dyn Lab>> {
         let params = recipe.params();
-        let cx = cx.with_lab(recipe.info.name);
+        let cx = cx.named(recipe.info.name);
         let scene = (recipe.build)(&cx, &params)?;
         Ok(Box::new(Runner { recipe, params, scene }))
     }
@@ -199,7 +199,7 @@ impl ShaderPair {
 
 /// Which of a material's shader pairs a frame draws.
 #[derive(Clone, Copy, Debug)]
-pub enum Draw {
+pub enum PairChoice {
     /// Every pair, in order.
     All,
     /// The pair the choice parameter names (`shading`: flat, Gouraud, Phong).
@@ -214,9 +214,9 @@ pub type Derive = fn(&Params, &mut Derived);
 /// pairs, which of them a frame draws, the values it derives each frame, and the clear colour.
 pub struct Material {
     /// The shader pairs.
-    pub passes: &'static [ShaderPair],
+    pub pairs: &'static [ShaderPair],
     /// Which to draw.
-    pub draw: Draw,
+    pub choice: PairChoice,
     /// Values derived per frame (`None`: every member is a parameter).
     pub derive: Option<Derive>,
     /// `glClearColor`.
@@ -225,10 +225,10 @@ pub struct Material {
 
 impl Material {
     /// Every pair drawn in order on black, every block member a parameter.
-    pub const fn new(passes: &'static [ShaderPair]) -> Material {
+    pub const fn new(pairs: &'static [ShaderPair]) -> Material {
         Material {
-            passes,
-            draw: Draw::All,
+            pairs,
+            choice: PairChoice::All,
             derive: None,
             clear: [0.0; 3],
         }
@@ -245,7 +245,7 @@ impl Material {
     /// Drawing only the pair the choice `param` names.
     pub const fn chosen_by(self, param: &'static str) -> Material {
         Material {
-            draw: Draw::ChosenBy(param),
+            choice: PairChoice::ChosenBy(param),
             ..self
         }
     }
@@ -279,7 +279,7 @@ impl<G: Geometry> MaterialScene<G> {
         material: &'static Material,
         own: Vec<Bind>,
     ) -> Result<Box<dyn Scene>> {
-        let name = cx.lab;
+        let name = cx.name;
         let mut derived = Derived::default();
         if let Some(derive) = material.derive {
             derive(p, &mut derived);
@@ -288,8 +288,8 @@ impl<G: Geometry> MaterialScene<G> {
         let mut blocks: Vec<ParamBlock> = Vec::new();
         let mut given = geometry.binds();
         given.extend(own);
-        for (i, pair) in material.passes.iter().enumerate() {
-            let label = match (material.passes.len(), pair.name) {
+        for (i, pair) in material.pairs.iter().enumerate() {
+            let label = match (material.pairs.len(), pair.name) {
                 (1, _) => name.to_owned(),
                 (_, "") => format!("{name}.{i}"),
                 (_, pair) => format!("{name}.{pair}"),
@@ -349,9 +349,9 @@ impl<G: Geometry> Scene for MaterialScene<G> {
             block.fill(p, &self.derived)?;
             block.upload(frame.gpu);
         }
-        let which = match self.material.draw {
-            Draw::All => 0..self.programs.len(),
-            Draw::ChosenBy(choice) => {
+        let which = match self.material.choice {
+            PairChoice::All => 0..self.programs.len(),
+            PairChoice::ChosenBy(choice) => {
                 let i = p.index_of(choice).min(self.programs.len() - 1);
                 i..i + 1
             }

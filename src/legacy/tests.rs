@@ -635,8 +635,8 @@ fn hostile_shaders_are_errors_at_their_line() {
     );
 }
 
-/// Issue 17: the line map was quadratic in the file's length (16,000 comment lines took
-/// 4.6 s, 5 MB 80 s); one line index per file makes it linear.
+/// The line map is linear in the file's length (one line index per file), not quadratic
+/// (issue 17; figures in docs/speed.md).
 #[test]
 fn long_files_translate_in_linear_time() {
     let start = std::time::Instant::now();
@@ -654,8 +654,9 @@ fn long_files_translate_in_linear_time() {
     assert!(start.elapsed().as_secs_f64() < 8.0, "{:?}", start.elapsed());
 }
 
-/// Issue 17: `uniform float a[1000]` was copied whole into a private array on every
-/// invocation (20 s in lavapipe's compiler); its elements are now read from the block.
+/// `uniform float a[1000]` is read from the block element by element, not copied whole into
+/// a private array on every invocation (issue 17: lavapipe's compiler took far too long; figures
+/// in docs/speed.md).
 #[test]
 fn uniform_arrays_are_read_in_place() {
     let t = ok(

@@ -41,7 +41,7 @@ macro_rules! vertex_type {
 }
 
 // GLUT's meshes: gl_Vertex and gl_Normal, as seed 000's shaders name them.
-vertex_type!(crate::geometry::mesh::Vertex, {
+vertex_type!(crate::mesh::Vertex, {
     position: "vertex_position" => Float32x3,
     normal: "vertex_normal" => Float32x3,
 });

@@ -8,8 +8,8 @@ use crate::gpu::Gpu;
 use crate::shader::ShaderSource;
 
 /// What programs, textures and labs are built with: the device, where shader files come from,
-/// the colour format drawn into, the user's files, and the name of the lab being built (the
-/// prefix of its GPU objects' labels; set by [`crate::lab::Runner`] from the lab's registration).
+/// the colour format drawn into, the user's files, and the name that what is built is labelled
+/// with (set by [`crate::lab::Runner`] to the lab's name from its registration).
 /// Made by [`BuildContext::new`] only, so a new field has one place to get its default.
 #[derive(Clone, Copy)]
 #[non_exhaustive]
@@ -22,13 +22,14 @@ pub struct BuildContext<'a> {
     pub format: wgpu::TextureFormat,
     /// Files the user named for the lab to draw instead of its built-in data.
     pub files: &'a crate::user_files::UserFiles,
-    /// The lab's name, for labels (empty outside a lab).
-    pub lab: &'static str,
+    /// The name that the labels of what is built and the messages about it begin with (the
+    /// lab's name, `phong`; empty outside a lab).
+    pub name: &'static str,
 }
 
 impl<'a> BuildContext<'a> {
     /// What to build with on `gpu`, from `source`, drawing in `format`, with the user's `files`;
-    /// the lab's name is empty until [`BuildContext::with_lab`] names it.
+    /// its name is empty until [`BuildContext::named`] gives one.
     pub fn new(
         gpu: &'a Gpu,
         source: &'a ShaderSource,
@@ -40,13 +41,14 @@ impl<'a> BuildContext<'a> {
             source,
             format,
             files,
-            lab: "",
+            name: "",
         }
     }
 
-    /// The same, building the lab called `lab` (its name prefixes the labels of what it builds).
-    pub fn with_lab(self, lab: &'static str) -> Self {
-        BuildContext { lab, ..self }
+    /// The same, named `name`: the labels of what it builds and the messages about it begin
+    /// with `name` (a lab's name).
+    pub fn named(self, name: &'static str) -> Self {
+        BuildContext { name, ..self }
     }
 }
 

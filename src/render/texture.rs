@@ -12,7 +12,7 @@ use crate::gpu::Gpu;
 /// (`max_texture_dimension_2d`; a cube map's faces are 2D images of the same limit), so that a
 /// picture too large is an error naming the file (`path`), its size and the limit instead of a
 /// wgpu validation panic. Pictures read from files are already held to
-/// [`crate::geometry::images::MAX_IMAGE_SIDE`], the limit every device offers; this catches a
+/// [`crate::images::MAX_IMAGE_SIDE`], the limit every device offers; this catches a
 /// device with a smaller one.
 pub fn check_texture_size(gpu: &Gpu, path: &Path, width: u32, height: u32) -> Result<()> {
     texture_size_error(path, width, height, gpu.device.limits().max_texture_dimension_2d).map_or(Ok(()), Err)

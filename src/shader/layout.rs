@@ -723,8 +723,8 @@ mod layout_tests {
 
     #[test]
     fn every_lab_block_still_matches() {
-        use crate::labs::common::TransformUniforms;
-        use crate::labs::{DISPLACEMENT, PHONG};
+        use crate::course::common::TransformUniforms;
+        use crate::course::{DISPLACEMENT, PHONG};
         let block = |file: &str, name: &str| {
             let shader = ShaderSource::Embedded.compile(file).unwrap();
             shader

@@ -952,7 +952,7 @@ mod loader_tests {
 
     /// Issue 23: a moved checkout once embedded no file at all. Every file of the checkout's
     /// `shaders_glsl/` is embedded with its current text (that every shader name quoted in
-    /// `src/labs/` is among them, `build.rs` checks: the build fails otherwise).
+    /// `src/course/` is among them, `build.rs` checks: the build fails otherwise).
     #[test]
     fn every_shader_file_is_embedded_with_its_current_text() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));

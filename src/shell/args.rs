@@ -185,7 +185,7 @@ fn parse_tess(s: &str) -> Result<f64, String> {
         return Ok(-1.0);
     }
     match s.parse::<u32>() {
-        Ok(n) if (crate::geometry::tess::MIN_LEVEL..=crate::geometry::tess::MAX_LEVEL).contains(&n) => Ok(f64::from(n)),
+        Ok(n) if (crate::mesh::tess::MIN_LEVEL..=crate::mesh::tess::MAX_LEVEL).contains(&n) => Ok(f64::from(n)),
         _ => Err(format!("`{s}`: expected `auto` or a level from 3 to 512")),
     }
 }
@@ -345,7 +345,7 @@ impl Args {
         let name = entry.info.name;
         let taken = entry.info.files;
         let those = |which: fn(crate::lab::FilesTaken) -> bool| {
-            let names: Vec<&str> = crate::labs::ALL
+            let names: Vec<&str> = crate::course::ALL
                 .iter()
                 .filter(|e| which(e.info.files))
                 .map(|e| e.info.name)

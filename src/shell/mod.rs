@@ -91,10 +91,10 @@ macro_rules! lab_example {
 /// of labs when there is none.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn main_named(name: &str) -> ExitCode {
-    match crate::labs::find(name) {
+    match crate::course::find(name) {
         Some(entry) => main(entry),
         None => {
-            let names: Vec<&str> = crate::labs::ALL.iter().map(|e| e.info.name).collect();
+            let names: Vec<&str> = crate::course::ALL.iter().map(|e| e.info.name).collect();
             let _ = writeln!(
                 std::io::stderr(),
                 "no lab called `{name}`; the labs are: {}",

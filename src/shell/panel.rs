@@ -927,7 +927,7 @@ mod tests {
 
     #[test]
     fn every_labs_parameters_get_a_widget_of_their_kind_and_range() {
-        for entry in crate::labs::ALL {
+        for entry in crate::course::ALL {
             let params = (entry.params)();
             let widgets = widgets(params.specs());
             assert_eq!(widgets.len(), params.specs().len(), "{}", entry.info.name);
@@ -1036,7 +1036,7 @@ mod tests {
     #[test]
     fn controls_and_groups_follow_names_kinds_and_ranges() {
         let find = |lab: &str, name: &str| {
-            let params = (crate::labs::find(lab).unwrap().params)();
+            let params = (crate::course::find(lab).unwrap().params)();
             widgets(params.specs())
                 .into_iter()
                 .find(|w| w.spec.name == name)
@@ -1060,7 +1060,7 @@ mod tests {
         assert_eq!(find("twist", "twisting").control, Control::Slider);
         assert_eq!(find("phong_dir", "fixpos").control, Control::Check);
         // Groups come in order, whatever the declaration order.
-        let params = (crate::labs::PHONG.params)();
+        let params = (crate::course::PHONG.params)();
         let groups: Vec<Group> = widgets(params.specs()).iter().map(|w| w.group).collect();
         assert!(groups.windows(2).all(|g| g[0] <= g[1]), "{groups:?}");
     }

@@ -84,7 +84,7 @@ fn js_error(e: impl std::fmt::Display) -> JsValue {
 /// `height`, `keys` (the help text of its keys).
 #[wasm_bindgen]
 pub fn labs() -> String {
-    let items: Vec<serde_json::Value> = crate::labs::ALL
+    let items: Vec<serde_json::Value> = crate::course::ALL
         .iter()
         .map(|e| {
             let i = e.info;
@@ -113,7 +113,7 @@ pub fn course_state(vert: &str) -> String {
         .and_then(|rest| rest.strip_suffix(".vert"))
         .and_then(|n| n.parse().ok())
         .filter(|_| COURSE.iter().any(|(name, _)| *name == vert));
-    let state = lab.map(crate::labs::legacy::course_state).unwrap_or(&[]);
+    let state = lab.map(crate::course::legacy::course_state).unwrap_or(&[]);
     state
         .iter()
         .map(|(k, v)| format!("{k}={v}"))
@@ -212,8 +212,8 @@ impl WebApp {
     /// message per line ("" when all were taken); a lab that cannot be built is an error and
     /// the previous lab stays.
     pub fn open(&mut self, name: &str, sets: &str, paused: bool) -> Result<String, JsValue> {
-        let entry = crate::labs::find(name).ok_or_else(|| {
-            let names: Vec<&str> = crate::labs::ALL.iter().map(|e| e.info.name).collect();
+        let entry = crate::course::find(name).ok_or_else(|| {
+            let names: Vec<&str> = crate::course::ALL.iter().map(|e| e.info.name).collect();
             js_error(format!("no lab `{name}`; labs: {}", names.join(", ")))
         })?;
         let mut refused = Vec::new();
@@ -554,7 +554,7 @@ impl WebApp {
                 Ok(format!("{name}: a shader; legacy draws it with files=VERT,FRAG"))
             }
             "png" | "bmp" => {
-                let data = crate::geometry::images::decode_image(&path, bytes).map_err(js_error)?;
+                let data = crate::images::decode_image(&path, bytes).map_err(js_error)?;
                 self.files.texture = Some(UserFile { path, data });
                 Ok(format!(
                     "{name}: the texture of the labs that sample one (reopen the lab)"
@@ -567,7 +567,7 @@ impl WebApp {
                         e.utf8_error().valid_up_to()
                     ))
                 })?;
-                let data = crate::geometry::obj::parse_obj(name, &text).map_err(js_error)?;
+                let data = crate::mesh::obj::parse_obj(name, &text).map_err(js_error)?;
                 self.files.model = Some(UserFile { path, data });
                 Ok(format!("{name}: the model of the Suzanne labs (reopen the lab)"))
             }
@@ -639,8 +639,8 @@ impl WebApp {
             return Some(t.clone());
         }
         match name {
-            n if n == LEGACY_DEFAULT[0] => Some(crate::labs::legacy::DEFAULT_VERT.to_owned()),
-            n if n == LEGACY_DEFAULT[1] => Some(crate::labs::legacy::DEFAULT_FRAG.to_owned()),
+            n if n == LEGACY_DEFAULT[0] => Some(crate::course::legacy::DEFAULT_VERT.to_owned()),
+            n if n == LEGACY_DEFAULT[1] => Some(crate::course::legacy::DEFAULT_FRAG.to_owned()),
             n => embedded_source(n).map(str::to_owned),
         }
     }

@@ -7,4 +7,4 @@
 pub mod exact;
 pub mod metrics;
 pub mod noise;
-pub use crate::geometry::twist;
+pub use crate::mesh::twist;

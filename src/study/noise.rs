@@ -86,7 +86,7 @@ pub fn displace(position: Vec3, normal: Vec3, time: f32, displacement: f32) -> V
 
 /// The widest crack a displaced mesh opens: the largest distance between displaced copies of
 /// vertices that share a position (GLUT splits normals at the cube's edges and the teapot's seams).
-pub fn max_crack(mesh: &crate::geometry::mesh::Mesh, time: f32, displacement: f32) -> f32 {
+pub fn max_crack(mesh: &crate::mesh::Mesh, time: f32, displacement: f32) -> f32 {
     let mut by_position: std::collections::HashMap<[u32; 3], Vec<Vec3>> = std::collections::HashMap::new();
     for v in &mesh.vertices {
         let moved = displace(Vec3::from(v.position), Vec3::from(v.normal), time, displacement);

@@ -1,13 +1,13 @@
-//! `shaderlab bench` and `cargo run --release --example bench`: every lab of `labs::ALL` (on every object where it has
+//! `shaderlab bench` and `cargo run --release --example bench`: every lab of `course::ALL` (on every object where it has
 //! a choice of objects), offscreen at its default size, rotated 30/45 degrees where it has
 //! angles, N frames each (submit + wait per frame, like the originals' swap + glFinish; animated
 //! labs advance their time by 1/60 s per frame). Prints the port's milliseconds per frame only:
 //! a comparison with the original is measured side by side, alternating, with the originals'
 //! `bench-vs-original` script (see `docs/speed.md`), never against stored figures.
 
+use crate::course;
 use crate::gpu::Gpu;
 use crate::lab::BuildContext;
-use crate::labs;
 use crate::offscreen::COLOR_FORMAT;
 use crate::params::Kind;
 use crate::shader::ShaderSource;
@@ -53,8 +53,8 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
     say("|---|---|---|---|---|")?;
     let source = ShaderSource::Embedded;
     let cx = BuildContext::new(&gpu, &source, COLOR_FORMAT, &crate::lab::NO_FILES);
-    let bar = crate::shell::progress_bar(labs::ALL.len() as u64, "labs");
-    for entry in labs::ALL {
+    let bar = crate::shell::progress_bar(course::ALL.len() as u64, "labs");
+    for entry in course::ALL {
         bar.inc(1);
         if args
             .only
@@ -111,7 +111,7 @@ fn debugger(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
     say("|---|---|---|---|---|---|")?;
     let source = ShaderSource::Embedded;
     let cx = BuildContext::new(gpu, &source, COLOR_FORMAT, &crate::lab::NO_FILES);
-    for entry in labs::ALL {
+    for entry in course::ALL {
         if args
             .only
             .as_ref()

@@ -33,7 +33,7 @@
 //! window opens, `=reload` inside each live reload's compile, so that the tests can check
 //! what a panic looks like.
 
-mod capture;
+mod recording;
 mod screen;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 mod shm;
@@ -137,7 +137,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
     // the window manager or destroyed by another program, a signal, an error. Its frames are
     // drawn offscreen, so the window is not needed to finish it.
     if let Some(state) = app.state.as_mut() {
-        state.finish_capture();
+        state.finish_recording();
     }
     if crate::gpu::hung() {
         // A frame never ended: dropping the window's GPU objects would wait for it for ever.
@@ -323,7 +323,7 @@ struct WindowState {
     /// Screenshots and recordings named so far (`NAME-SECONDS-PID-N.EXT`).
     named: u32,
     /// F10's recording, while one runs.
-    capture: Option<capture::Capture>,
+    recording: Option<recording::Recording>,
     /// F1's parameter panel.
     panel: super::panel::Panel,
     /// Why drawing stopped for good: a frame did not finish within the watchdog (a shader that
@@ -483,7 +483,7 @@ impl App {
             fatal,
             lose_device_at,
             named: 0,
-            capture: None,
+            recording: None,
             panel,
             stuck: None,
             test_log: std::env::var_os("SHADERLAB_TEST_LOG").map(|_| TestLog::default()),
@@ -548,7 +548,7 @@ impl WindowState {
         if self.stuck.is_some() {
             title.push_str(" | GPU STUCK: a frame never finished (see terminal); Esc quits");
         }
-        if let Some(c) = &self.capture {
+        if let Some(c) = &self.recording {
             title.push_str(&format!(" | REC {} frames (F10 stops)", c.frames()));
         }
         self.window.set_title(&title);
@@ -743,15 +743,15 @@ impl WindowState {
     }
 
     /// F10: starts or stops recording what the window shows.
-    fn toggle_capture(&mut self) {
-        match self.capture.take() {
-            Some(capture) => report_capture(self.name(), capture),
+    fn toggle_recording(&mut self) {
+        match self.recording.take() {
+            Some(recording) => report_recording(self.name(), recording),
             None => {
                 let path = self.fresh_name("gif");
-                match capture::Capture::start(&path) {
-                    Ok(capture) => {
+                match recording::Recording::start(&path) {
+                    Ok(recording) => {
                         eprintln!("{}: recording to {} (F10 stops)", self.name(), path.display());
-                        self.capture = Some(capture);
+                        self.recording = Some(recording);
                         self.session.changed();
                     }
                     Err(e) => eprintln!("{}: cannot record: {e}", self.name()),
@@ -762,22 +762,24 @@ impl WindowState {
     }
 
     /// Finishes F10's recording if one runs, without touching the window (which may be gone).
-    fn finish_capture(&mut self) {
-        if let Some(capture) = self.capture.take() {
-            report_capture(self.name(), capture);
+    fn finish_recording(&mut self) {
+        if let Some(recording) = self.recording.take() {
+            report_recording(self.name(), recording);
         }
     }
 
     /// Adds the frame just shown to F10's recording.
-    fn capture_frame(&mut self) {
+    fn record_frame(&mut self) {
         if self.stuck.is_some() {
             return;
         }
-        let Some(capture) = self.capture.as_mut() else { return };
+        let Some(recording) = self.recording.as_mut() else {
+            return;
+        };
         let (w, h) = self.screen.size();
-        if let Err(e) = capture.add(&self.gpu, self.session.lab_mut(), w, h, self.screen.format()) {
+        if let Err(e) = recording.add(&self.gpu, self.session.lab_mut(), w, h, self.screen.format()) {
             eprintln!("{}: recording stopped: {e}", self.session.name());
-            self.capture = None;
+            self.recording = None;
         }
         self.update_title();
     }
@@ -820,7 +822,7 @@ impl WindowState {
             files,
             source,
             error: error.as_deref(),
-            recording: self.capture.as_ref().map(capture::Capture::frames),
+            recording: self.recording.as_ref().map(recording::Recording::frames),
         };
         let (inspecting, pixel, busy) = (
             self.session.inspecting(),
@@ -1018,7 +1020,7 @@ impl WindowState {
         match &event.logical_key {
             Key::Named(NamedKey::Escape) => event_loop.exit(),
             Key::Named(NamedKey::F12) => self.screenshot(),
-            Key::Named(NamedKey::F10) => self.toggle_capture(),
+            Key::Named(NamedKey::F10) => self.toggle_recording(),
             Key::Named(NamedKey::F2) => {
                 self.session.toggle_inspect();
                 self.window.request_redraw();
@@ -1064,9 +1066,9 @@ fn dom_key(event: &KeyEvent) -> Option<String> {
 }
 
 /// Finishes a recording and says where it is (or why it failed).
-fn report_capture(name: &str, capture: capture::Capture) {
-    let frames = capture.frames();
-    match capture.finish() {
+fn report_recording(name: &str, recording: recording::Recording) {
+    let frames = recording.frames();
+    match recording.finish() {
         Ok(path) => {
             let path = std::fs::canonicalize(&path).unwrap_or(path);
             let _ = super::cli::say(&format!("recording: {} ({frames} frames)", path.display()));
@@ -1184,7 +1186,7 @@ impl ApplicationHandler<Wake> for App {
                     self.error = Some(e);
                     event_loop.exit();
                 }
-                state.capture_frame();
+                state.record_frame();
             }
             _ => {}
         }

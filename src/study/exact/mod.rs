@@ -599,7 +599,7 @@ mod tests {
     #[test]
     fn defaults_are_the_phong_exercise() {
         // Test-only: the yardstick must describe the phong lab's defaults.
-        let p = (crate::labs::PHONG.params)();
+        let p = (crate::course::PHONG.params)();
         let s = ExactScene::default();
         let close = |a: &[f64], b: &[f32]| a.iter().zip(b).all(|(x, y)| (x - *y as f64).abs() < 1e-6);
         assert!(close(&s.light_position, &p.v3("lightPosition")));
