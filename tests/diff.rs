@@ -61,8 +61,14 @@ fn a_bug_planted_in_a_fragment_shader_is_found_at_its_line() {
     assert_ne!(worst["mine"], worst["reference"], "{v}");
     // The picture of the difference, with its legend under it.
     let picture = image::open(&png).expect("the difference picture").to_rgb8();
-    assert_eq!(picture.dimensions(), (640, 360 + shaderlab::debug::picture::LEGEND_HEIGHT));
-    let (x, y) = (worst["x"].as_u64().expect("x") as u32, worst["y"].as_u64().expect("y") as u32);
+    assert_eq!(
+        picture.dimensions(),
+        (640, 360 + shaderlab::debug::picture::LEGEND_HEIGHT)
+    );
+    let (x, y) = (
+        worst["x"].as_u64().expect("x") as u32,
+        worst["y"].as_u64().expect("y") as u32,
+    );
     assert_ne!(picture.get_pixel(x, y).0, [0, 0, 0], "the worst pixel is highlighted");
 }
 
@@ -89,7 +95,12 @@ fn a_bug_in_an_argument_or_in_the_vertex_shader_is_found_at_its_line() {
     assert_eq!(first["line"], line_of(&dir, "phong.vert", "* 1.1;"), "{v}");
     assert_eq!(first["name"], "v", "{v}");
     // Another lab: noise's time scaled.
-    let dir = copy_with("noise", "noise.frag", "position + time * speed", "position + time * speed * 2.0");
+    let dir = copy_with(
+        "noise",
+        "noise.frag",
+        "position + time * speed",
+        "position + time * speed * 2.0",
+    );
     let v = diff_json("noise", &dir, &["--set", "time=1.5"]);
     let first = &v["first_divergence"];
     assert!(first["file"].as_str().is_some_and(|f| f.ends_with("noise.frag")), "{v}");
@@ -119,7 +130,10 @@ fn a_broken_copy_a_copy_with_other_inputs_and_no_copy_get_one_clear_message() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     let line = line_of(&dir, "phong.frag", "nope");
-    assert!(err.contains(&format!("phong.frag:{line}:")) && err.contains("nope") && err.contains('^'), "{err}");
+    assert!(
+        err.contains(&format!("phong.frag:{line}:")) && err.contains("nope") && err.contains('^'),
+        "{err}"
+    );
     let dir = copy_with(
         "inputs",
         "transform.glsl",
@@ -136,7 +150,10 @@ fn a_broken_copy_a_copy_with_other_inputs_and_no_copy_get_one_clear_message() {
     let out = shaderlab(&["diff", "phong", "--shaders", dir.to_str().expect("utf-8")]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(err.contains("takes different inputs from the built-in shaders"), "{err}");
+    assert!(
+        err.contains("takes different inputs from the built-in shaders"),
+        "{err}"
+    );
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     let out = shaderlab(&["diff", "phong"]);
     assert_eq!(out.status.code(), Some(2));
@@ -165,5 +182,8 @@ fn a_diff_of_two_frames_with_its_traces_is_quick() {
         assert!(d.first_divergence.is_some());
     }
     times.sort_by(f64::total_cmp);
-    println!("diff of two 640x360 frames with two traces: median {:.1} ms (of {:?})", times[2], times);
+    println!(
+        "diff of two 640x360 frames with two traces: median {:.1} ms (of {:?})",
+        times[2], times
+    );
 }

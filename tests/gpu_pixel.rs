@@ -72,7 +72,10 @@ fn every_inspection_carries_the_screenshots_pixel() {
             checked += 1;
             let want = shot.get_pixel(x, y).0;
             if i.gpu_pixel != Some(want) {
-                misses.push(format!("{name} {x},{y}: gpu_pixel {:?}, screenshot {want:?}", i.gpu_pixel));
+                misses.push(format!(
+                    "{name} {x},{y}: gpu_pixel {:?}, screenshot {want:?}",
+                    i.gpu_pixel
+                ));
             }
             let json: serde_json::Value = serde_json::from_str(&i.json()).expect("JSON");
             assert_eq!(json["gpu_pixel"], serde_json::json!(i.gpu_pixel), "{name} {x},{y}");
@@ -110,11 +113,7 @@ fn the_debug_command_reports_the_screenshots_pixel() {
             let out = shaderlab(&["debug", name, "--pixel", &at, "--set", set, "--json"]);
             assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
             let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
-            assert_eq!(
-                v["gpu_pixel"],
-                serde_json::json!(shot.get_pixel(x, y).0),
-                "{name} {at}"
-            );
+            assert_eq!(v["gpu_pixel"], serde_json::json!(shot.get_pixel(x, y).0), "{name} {at}");
             assert!(v.get("gpu_disagrees").is_none(), "{name} {at}: {v}");
         }
     }
@@ -154,8 +153,13 @@ fn a_replay_that_departs_from_the_gpu_says_so() {
         Ok(i) => i,
         Err(e) => panic!("{e}"),
     };
-    let words = i.disagreement().unwrap_or_else(|| panic!("no disagreement:\n{}", i.text()));
-    assert!(words.contains("the GPU stored rgba(") && words.contains("the replay gives"), "{words}");
+    let words = i
+        .disagreement()
+        .unwrap_or_else(|| panic!("no disagreement:\n{}", i.text()));
+    assert!(
+        words.contains("the GPU stored rgba(") && words.contains("the replay gives"),
+        "{words}"
+    );
     let text = i.text();
     assert!(text.contains("warning: the GPU stored"), "{text}");
     let json: serde_json::Value = serde_json::from_str(&i.json()).expect("JSON");

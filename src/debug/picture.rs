@@ -181,8 +181,9 @@ pub fn values(
     let n = (width as usize) * (height as usize);
     let comps = components.clamp(1, 4);
     let shown = comps.min(3);
-    let at =
-        |k: usize| -> Option<&[f32]> { (k < values.len() && ran.get(k) == Some(&true)).then(|| &values[k][..comps]) };
+    let at = |k: usize| -> Option<&[f32]> {
+        (k < values.len() && ran.get(k) == Some(&true) && drawn.get(k) == Some(&true)).then(|| &values[k][..comps])
+    };
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for k in 0..n {
         if let Some(v) = at(k).filter(|v| special(v).is_none()) {
@@ -545,8 +546,8 @@ mod tests {
             ),
             (1, 1, 1, 1, 1)
         );
-        // The range leaves out what is not a number and what did not run.
-        assert_eq!((legend.min, legend.max), (0.7, 0.9));
+        // The range leaves out what is not a number, what did not run and what was not drawn.
+        assert_eq!((legend.min, legend.max), (f64::from(0.7f32), f64::from(0.7f32)));
         assert!(legend.text().contains("NaN 1"), "{}", legend.text());
     }
 
