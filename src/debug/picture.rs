@@ -154,9 +154,9 @@ pub fn short(v: f64) -> String {
 fn special(v: &[f32]) -> Option<(usize, [u8; 3])> {
     if v.iter().any(|x| x.is_nan()) {
         Some((0, NAN_COLOUR))
-    } else if v.iter().any(|x| *x == f32::INFINITY) {
+    } else if v.contains(&f32::INFINITY) {
         Some((1, INFINITE_COLOUR))
-    } else if v.iter().any(|x| *x == f32::NEG_INFINITY) {
+    } else if v.contains(&f32::NEG_INFINITY) {
         Some((2, INFINITE_COLOUR))
     } else {
         None
