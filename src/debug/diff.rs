@@ -308,6 +308,14 @@ pub fn diff(lab: &str, mine: &Captured, reference: &Captured) -> Result<Diff> {
                         _ => "the two traces at the worst pixel agree step by step: the pixels differ by what follows the shaders (blending, depth, another draw)".to_owned(),
                     });
                 }
+                if let (Some(a), Some(b)) = (&m.replayed.fragment, &r.replayed.fragment) {
+                    if (a.draw, a.primitive) != (b.draw, b.primitive) {
+                        notes.push(format!(
+                            "the worst pixel is covered by primitive {} of draw {} in the copy's frame and by primitive {} of draw {} in the reference's: their vertex shader steps are of different vertices",
+                            a.primitive, a.draw, b.primitive, b.draw
+                        ));
+                    }
+                }
                 if m.covered() != r.covered() {
                     notes.push(format!(
                         "the worst pixel is covered in {} frame only",
