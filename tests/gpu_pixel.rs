@@ -166,3 +166,42 @@ fn a_replay_that_departs_from_the_gpu_says_so() {
     assert_eq!(json["gpu_disagrees"], serde_json::json!(words));
     assert_eq!(json["gpu_pixel"], serde_json::json!(image.get_pixel(x, y).0));
 }
+
+/// `shaderlab debug` replays before it runs the frame: where the replay of the pixel ends but
+/// the frame never does (a loop taken only right of the pixel), the report still comes, with
+/// `gpu_pixel` null and a note saying why, and the run ends at the watchdog.
+#[test]
+fn a_frame_that_never_ends_still_gets_its_report() {
+    let dir = common::output_dir().join("gpu_pixel_endless");
+    let _ = std::fs::remove_dir_all(&dir);
+    common::copy_shaders(&dir);
+    let path = dir.join("phong.frag");
+    let heavy = "k = k + sin(k) * cos(k) + sin(k + 1.0) * cos(k + 2.0) + sin(k + 3.0) * cos(k + 4.0);";
+    let text = std::fs::read_to_string(&path).expect("phong.frag").replacen(
+        "    frag_color = ",
+        &format!(
+            "    float k = gl_FragCoord.x;\n    if (gl_FragCoord.x > 330.0) {{ for (int i = 0; i < 1000000000; i++) {{ {heavy} }} }}\n    frag_color = min(k, 1.0) * "
+        ),
+        1,
+    );
+    std::fs::write(&path, text).expect("write phong.frag");
+    let start = std::time::Instant::now();
+    let out = shaderlab(&[
+        "debug",
+        "phong",
+        "--pixel",
+        "320,180",
+        "--shaders",
+        dir.to_str().expect("utf-8"),
+        "--timeout",
+        "2",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+    assert_eq!(v["covered"], serde_json::Value::Bool(true), "{v}");
+    assert_eq!(v["gpu_pixel"], serde_json::Value::Null, "{v}");
+    let caveats = v["caveats"].to_string();
+    assert!(caveats.contains("the pixel the GPU stores is not known"), "{caveats}");
+}
