@@ -187,3 +187,28 @@ fn a_diff_of_two_frames_with_its_traces_is_quick() {
         times[2], times
     );
 }
+
+/// The library refuses to compare frames whose shaders take different inputs (here two labs'),
+/// naming the first difference, and compares a frame with itself as identical.
+#[test]
+fn frames_of_shaders_with_other_inputs_are_refused_by_the_library() {
+    let files = UserFiles::default();
+    let open = |name: &str| {
+        let entry = shaderlab::labs::find(name).expect("a lab");
+        Session::open_lab(entry, gpu(), &ShaderSource::Embedded, COLOR_FORMAT, &files).expect("the lab builds")
+    };
+    let (mut phong, mut noise) = (open("phong"), open("noise"));
+    let (_, a) = shaderlab::debug::capture_lab(gpu(), phong.as_mut(), 320, 180, true).expect("phong");
+    let (_, b) = shaderlab::debug::capture_lab(gpu(), noise.as_mut(), 320, 180, true).expect("noise");
+    let err = shaderlab::debug::diff::diff("phong", &a, &b).expect_err("other inputs");
+    assert!(
+        err.to_string().contains("take different inputs from the reference's"),
+        "{err}"
+    );
+    let same = shaderlab::debug::diff::diff("phong", &a, &a).expect("the same frame");
+    assert_eq!(
+        (same.differing, same.psnr, same.worst.clone()),
+        (0, f64::INFINITY, None)
+    );
+    assert!(same.text().contains("identical"), "{}", same.text());
+}
