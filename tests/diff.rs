@@ -155,6 +155,9 @@ fn a_broken_copy_a_copy_with_other_inputs_and_no_copy_get_one_clear_message() {
         "{err}"
     );
     assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let out = shaderlab(&["diff", "--help"]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("Usage: shaderlab diff NAME --shaders DIR"));
     let out = shaderlab(&["diff", "phong"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("which copy?"));
