@@ -23,6 +23,10 @@ Usage:
   shaderlab debug NAME --pixel X,Y [--json] [FLAGS…]
                                       why pixel X,Y has its colour: the covering triangle,
                                       the shaders line by line with their values
+  shaderlab diff NAME --shaders DIR [--out FILE.png] [--json] [FLAGS…]
+                                      where a copy of the lab's shaders draws differently
+                                      from the built-in ones: PSNR, the pixels that differ,
+                                      the worst one, and the first line whose value departs
   shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
   shaderlab --version
@@ -42,6 +46,16 @@ fn verb_help(verb: &str) -> String {
              NAME.webm (through ffmpeg), a PNG sequence (frames-%04d.png) or a directory",
             "shaderlab record NAME OUT --frames N [--fps F] [--from T] [FLAGS…]",
             "",
+        ),
+        "diff" => (
+            "draw a lab with the copy of its shaders in DIR and with the built-in ones, at the same\n\
+             state, and compare: the difference as a picture (--out), PSNR, the pixels that differ,\n\
+             the worst one, and there the first line, in the order the shaders ran, whose value\n\
+             departs from the built-in shader's (file, line, name, both values)",
+            shaderlab::shell::diff::USAGE,
+            "\n  --shaders DIR  the copy of the lab's shaders (same file names as shaders_glsl/)\n  \
+             --out FILE.png the difference as a picture, with its legend\n  \
+             --json         print one JSON object (psnr, differing, worst, first_divergence)",
         ),
         _ => (
             "why pixel X,Y of a lab's picture has its colour: the triangle that covers it, the vertex\n\
@@ -96,12 +110,12 @@ fn main() -> ExitCode {
             lines.push(String::new());
             print(&lines.join("\n"))
         }
-        Some(verb @ ("run" | "record" | "debug"))
+        Some(verb @ ("run" | "record" | "debug" | "diff"))
             if matches!(words.get(2).map(String::as_str), Some("--help" | "-h")) =>
         {
             print(&verb_help(verb))
         }
-        Some(verb @ ("run" | "record" | "legacy" | "debug")) => {
+        Some(verb @ ("run" | "record" | "legacy" | "debug" | "diff")) => {
             let (name, rest) = if verb == "legacy" {
                 (Some("legacy"), 2)
             } else {
@@ -142,6 +156,8 @@ fn main() -> ExitCode {
             }
             if verb == "debug" {
                 shaderlab::shell::debug_main_from(entry, args)
+            } else if verb == "diff" {
+                shaderlab::shell::diff::diff_main_from(entry, args)
             } else {
                 shaderlab::shell::main_from(entry, args)
             }

@@ -73,6 +73,10 @@ pub struct Captured {
     pub adapter: String,
     /// The draws, in order.
     pub draws: Vec<CapturedDraw>,
+    /// The picture the GPU drew when it ran the recorded frame (8-bit RGBA, top row first),
+    /// where the capture ran it ([`super::capture_start`], [`super::Capture::draw`]): what
+    /// each inspection's replayed pixel is checked against.
+    pub picture: Option<Arc<image::RgbaImage>>,
 }
 
 /// The buffers of a [`DrawLog`] being read back.
@@ -90,6 +94,9 @@ pub struct Pending {
     mapped: Arc<AtomicUsize>,
     /// Why a buffer could not be mapped, if one could not.
     failed: Arc<Mutex<Option<String>>>,
+    /// The frame's target being read back after the frame ran ([`Pending::draw`]), and
+    /// whether its mapping finished (either way).
+    picture: Option<(crate::offscreen::Offscreen, Arc<std::sync::atomic::AtomicBool>)>,
 }
 
 impl Pending {
@@ -155,13 +162,30 @@ impl Pending {
             shared,
             mapped,
             failed,
+            picture: None,
         }
+    }
+
+    /// Runs the recorded `frame` (after the read-back's copies, on the same queue) and starts
+    /// reading back `target`, which it draws into: [`Pending::finish`] then brings the picture
+    /// the GPU stored ([`Captured::picture`]).
+    pub fn draw(mut self, gpu: &Gpu, target: crate::offscreen::Offscreen, frame: wgpu::CommandBuffer) -> Pending {
+        gpu.queue.submit([frame]);
+        let done = Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let flag = done.clone();
+        target.request_read(gpu, move |_| flag.store(true, Ordering::SeqCst));
+        self.picture = Some((target, done));
+        self
     }
 
     /// Whether every buffer is mapped (or failed).
     pub fn ready(&self) -> bool {
         let positions: usize = self.jobs.iter().map(|j| j.staging.len()).sum();
-        self.mapped.load(Ordering::SeqCst) >= self.buffers.len() + positions
+        let picture = self
+            .picture
+            .as_ref()
+            .is_none_or(|(_, done)| done.load(Ordering::SeqCst));
+        self.mapped.load(Ordering::SeqCst) >= self.buffers.len() + positions && picture
     }
 
     /// Blocks until the buffers are mapped, then [`Pending::finish`].
@@ -265,10 +289,18 @@ impl Pending {
                 }
             }
         }
+        // A picture that could not be read back is left out: the inspections then say that
+        // the GPU's pixel is not known, and nothing else is lost.
+        let picture = self
+            .picture
+            .as_ref()
+            .and_then(|(target, _)| target.mapped_rgba().ok())
+            .map(Arc::new);
         Ok(Captured {
             passes: self.passes,
             adapter: self.adapter,
             draws,
+            picture,
         })
     }
 }

@@ -16,9 +16,11 @@
 //! the user's file and under the user's names.
 
 pub mod capture;
+pub mod diff;
 pub mod error;
 pub mod interp;
 mod math;
+pub mod picture;
 pub mod positions;
 pub mod raster;
 pub mod replay;
@@ -31,7 +33,7 @@ use crate::shader::CompiledShader;
 
 pub use capture::{Captured, Pending};
 pub use replay::{replay, Fragment, Named, Replayed};
-pub use report::{caveats, json_number, Dropped, Inspection, Row, Stage, TraceStep};
+pub use report::{caveats, json_number, Dropped, Inspection, Row, Stage, TraceStep, GPU_TOLERANCE};
 
 /// The file and line of a span of `shader`'s source (through its includes or source map).
 pub fn locate(shader: &CompiledShader, span: naga::Span) -> Option<(String, u32)> {
@@ -79,22 +81,59 @@ fn record_logged(
 }
 
 /// Starts a capture of `lab`'s frame at `size` in the screen's `format` (the window's and the
-/// page's inspector): recorded again offscreen with its draws written down, never run, its
-/// buffers read back while the shell goes on ([`Pending::ready`], then [`Pending::finish`]).
-/// The same state draws the same frame, so this is the frame on screen.
+/// page's inspector): recorded again offscreen with its draws written down, its buffers read
+/// back while the shell goes on ([`Pending::ready`], then [`Pending::finish`]), and the frame
+/// then run offscreen for the picture the GPU stores ([`Captured::picture`], each inspection's
+/// `gpu_pixel`). The same state draws the same frame, so this is the frame on screen.
 pub fn capture_start(
     gpu: &crate::gpu::Gpu,
     lab: &mut dyn crate::lab::Lab,
     size: (u32, u32),
     format: wgpu::TextureFormat,
 ) -> Result<Pending> {
-    record_logged(gpu, lab, size, format).map(|(_, _, pending)| pending)
+    let (target, frame, pending) = record_logged(gpu, lab, size, format)?;
+    Ok(pending.draw(gpu, target, frame))
+}
+
+/// A frame of a lab recorded with its draws written down and brought to the CPU, not yet
+/// run: a shader that never ends can be replayed before the GPU is asked to draw it.
+#[cfg(not(target_arch = "wasm32"))]
+pub struct Capture {
+    /// The frame's draws on the CPU.
+    pub captured: Captured,
+    target: crate::offscreen::Offscreen,
+    frame: wgpu::CommandBuffer,
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl Capture {
+    /// Records one frame of `lab` at `width` × `height` with its draws written down and brings
+    /// them to the CPU, without running it.
+    pub fn record(gpu: &crate::gpu::Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<Capture> {
+        let (target, frame, pending) = record_logged(gpu, lab, (width, height), crate::offscreen::COLOR_FORMAT)?;
+        let captured = pending.wait(gpu)?;
+        Ok(Capture {
+            captured,
+            target,
+            frame,
+        })
+    }
+
+    /// Runs the recorded frame and reads back what the GPU drew (as `--screenshot` writes
+    /// it), kept in [`Captured::picture`] too; a frame that never ends is the watchdog's
+    /// [`crate::error::Error::Hang`].
+    pub fn draw(mut self, gpu: &crate::gpu::Gpu) -> Result<(image::RgbaImage, Captured)> {
+        gpu.queue.submit([self.frame]);
+        let image = self.target.read(gpu)?;
+        self.captured.picture = Some(std::sync::Arc::new(image.clone()));
+        Ok((image, self.captured))
+    }
 }
 
 /// Records one frame of `lab` at `width` × `height` with its draws written down and brings
-/// them to the CPU, without running the frame on the GPU (so that a shader that never ends
-/// can still be debugged); with `picture`, then runs it and reads back what the GPU drew (as
-/// `--screenshot` would write it).
+/// them to the CPU before running the frame on the GPU (so that a shader that never ends can
+/// still be captured); with `picture`, then runs it and reads back what the GPU drew (as
+/// `--screenshot` would write it, and in [`Captured::picture`]).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn capture_lab(
     gpu: &crate::gpu::Gpu,
@@ -103,11 +142,10 @@ pub fn capture_lab(
     height: u32,
     picture: bool,
 ) -> Result<(Option<image::RgbaImage>, Captured)> {
-    let (target, frame, pending) = record_logged(gpu, lab, (width, height), crate::offscreen::COLOR_FORMAT)?;
-    let captured = pending.wait(gpu)?;
+    let capture = Capture::record(gpu, lab, width, height)?;
     if !picture {
-        return Ok((None, captured));
+        return Ok((None, capture.captured));
     }
-    gpu.queue.submit([frame]);
-    Ok((Some(target.read(gpu)?), captured))
+    let (image, captured) = capture.draw(gpu)?;
+    Ok((Some(image), captured))
 }

@@ -30,7 +30,7 @@ impl Stage {
 }
 
 /// One step of the trace, placed in the user's file.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TraceStep {
     /// The stage.
     pub stage: Stage,
@@ -130,7 +130,15 @@ pub struct Inspection {
     pub dropped: Vec<Dropped>,
     /// What the replay cannot promise for the adapter that drew the frame ([`caveats`]).
     pub caveats: Vec<String>,
+    /// The RGBA bytes the GPU stored at the pixel in the frame that was captured
+    /// ([`Captured::picture`]), beside the replay's ([`Replayed::pixel`]); none where the
+    /// frame was not run.
+    pub gpu_pixel: Option<[u8; 4]>,
 }
+
+/// How far the replay's stored byte may be from the GPU's, per channel, before an inspection
+/// says that the two disagree.
+pub const GPU_TOLERANCE: u8 = 2;
 
 /// The replay follows llvmpipe's rules (Mesa 22.3, the same through 24.0): what it cannot
 /// promise about a frame drawn by `adapter` (name and driver, as [`Captured::adapter`]), with
@@ -264,6 +272,10 @@ impl Inspection {
                 }
             }
         }
+        let gpu_pixel = captured
+            .picture
+            .as_ref()
+            .and_then(|p| (x < p.width() && y < p.height()).then(|| p.get_pixel(x, y).0));
         Ok(Inspection {
             lab: lab.to_owned(),
             x,
@@ -274,7 +286,35 @@ impl Inspection {
             steps,
             dropped,
             caveats,
+            gpu_pixel,
         })
+    }
+
+    /// Where the GPU stored a pixel more than [`GPU_TOLERANCE`] from the replay's in any
+    /// channel: the two in words (the replay does not follow this GPU's rules there).
+    pub fn disagreement(&self) -> Option<String> {
+        let gpu = self.gpu_pixel?;
+        let cpu = self.replayed.pixel;
+        let off = (0..4).map(|k| cpu[k].abs_diff(gpu[k])).max().unwrap_or(0);
+        (off > GPU_TOLERANCE).then(|| {
+            format!(
+                "the GPU stored rgba({}, {}, {}, {}) at this pixel but the replay gives rgba({}, {}, {}, {}) ({off}/255 apart, more than {GPU_TOLERANCE}/255): the replay does not follow what this GPU did here, so its values may not be the GPU's",
+                gpu[0], gpu[1], gpu[2], gpu[3], cpu[0], cpu[1], cpu[2], cpu[3]
+            )
+        })
+    }
+
+    /// The GPU's byte beside the replay's, for the report's last lines: `; the GPU stored
+    /// rgba(…)`, then the disagreement on its own line where there is one.
+    fn gpu_words(&self) -> String {
+        let Some(g) = self.gpu_pixel else {
+            return String::new();
+        };
+        let mut out = format!("; the GPU stored rgba({}, {}, {}, {})", g[0], g[1], g[2], g[3]);
+        if let Some(words) = self.disagreement() {
+            let _ = write!(out, "\nwarning: {words}");
+        }
+        out
     }
 
     /// How many steps were left out of [`Inspection::steps`] (one per corner at a vertex step).
@@ -301,14 +341,15 @@ impl Inspection {
             let c = r.clear;
             let _ = writeln!(
                 out,
-                "no triangle covers this pixel: the clear colour ({}, {}, {}) shows, stored as rgba({}, {}, {}, {})",
+                "no triangle covers this pixel: the clear colour ({}, {}, {}) shows, stored as rgba({}, {}, {}, {}){}",
                 num(c[0]),
                 num(c[1]),
                 num(c[2]),
                 r.pixel[0],
                 r.pixel[1],
                 r.pixel[2],
-                r.pixel[3]
+                r.pixel[3],
+                self.gpu_words()
             );
             return out;
         };
@@ -358,12 +399,13 @@ impl Inspection {
         let c = r.color;
         let _ = writeln!(
             out,
-            "\ncolour {} → stored rgba({}, {}, {}, {})",
+            "\ncolour {} → stored rgba({}, {}, {}, {}){}",
             vector(&c.map(f64::from)),
             r.pixel[0],
             r.pixel[1],
             r.pixel[2],
-            r.pixel[3]
+            r.pixel[3],
+            self.gpu_words()
         );
         for caveat in &self.caveats {
             let _ = writeln!(out, "note: {caveat}");
@@ -448,7 +490,8 @@ impl Inspection {
     }
 
     /// The report for programs: one JSON object with `pixel` (the stored RGBA bytes),
-    /// `covered`, and `trace` (steps with `stage`, `file`, `line`, `name`, `value`), and the
+    /// `gpu_pixel` (the GPU's, or null where the frame was not run; with `gpu_disagrees`, in
+    /// words, where they differ by more than [`GPU_TOLERANCE`]), `covered`, and `trace` (steps with `stage`, `file`, `line`, `name`, `value`), and the
     /// covering draw, corners, inputs, the listing by line and the caveats. A step's `more`
     /// counts its value's components left out; `dropped` lists the steps left out, by line.
     /// Numbers JSON cannot hold are the strings `"NaN"`, `"Infinity"` and `"-Infinity"`.
@@ -490,8 +533,11 @@ impl Inspection {
             "lab": self.lab, "x": self.x, "y": self.y, "width": self.width, "height": self.height,
             "pixel": r.pixel, "covered": self.covered(), "color": floats(&r.color), "clear": value(&r.clear),
             "listing": {"vertex": listing(Stage::Vertex), "fragment": listing(Stage::Fragment)},
-            "caveats": self.caveats, "trace": trace,
+            "caveats": self.caveats, "trace": trace, "gpu_pixel": self.gpu_pixel,
         });
+        if let Some(words) = self.disagreement() {
+            o["gpu_disagrees"] = json!(words);
+        }
         if !self.dropped.is_empty() {
             o["dropped"] = self
                 .dropped

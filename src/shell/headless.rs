@@ -92,9 +92,24 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
             ))
             .into());
         }
-        let picture = args.screenshot.is_some();
-        let (image, captured) = crate::debug::capture_lab(&gpu, lab.as_mut(), width, height, picture)?;
-        let inspection = crate::debug::Inspection::new(entry.info.name, &captured, x, y)?;
+        // The replay first, the frame after: a shader that never ends is explained by the
+        // replay's error before the GPU is asked to run it.
+        let capture = crate::debug::Capture::record(&gpu, lab.as_mut(), width, height)?;
+        let mut inspection = crate::debug::Inspection::new(entry.info.name, &capture.captured, x, y)?;
+        let image = match capture.draw(&gpu) {
+            Ok((image, _)) => Some(image),
+            // The replay stands without the GPU's pixel; the report says why it has none.
+            Err(Error::Hang(why)) if args.screenshot.is_none() => {
+                inspection
+                    .caveats
+                    .push(format!("the pixel the GPU stores is not known: {why}"));
+                None
+            }
+            Err(e) => return Err(e.into()),
+        };
+        if let Some(image) = &image {
+            inspection.gpu_pixel = Some(image.get_pixel(x, y).0);
+        }
         if let (Some(path), Some(image)) = (&args.screenshot, &image) {
             save_png(image, path)?;
             eprintln!("wrote {}", path.display());
@@ -103,6 +118,10 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
             say(&inspection.json())?;
         } else {
             super::cli::print(&inspection.text())?;
+        }
+        if crate::gpu::hung() {
+            // The driver still runs the frame that never ends: end without waiting for it.
+            crate::fsutil::signals::exit_now(0);
         }
         return Ok(());
     }

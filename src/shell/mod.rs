@@ -22,6 +22,8 @@ mod args;
 mod cli;
 pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
+pub mod diff;
+#[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod inspector;
 pub mod panel;

@@ -529,10 +529,16 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
                 "stored rgba({}, {}, {}, {})",
                 r.pixel[0], r.pixel[1], r.pixel[2], r.pixel[3]
             ));
+            if let Some(g) = i.gpu_pixel {
+                ui.monospace(format!("the GPU stored rgba({}, {}, {}, {})", g[0], g[1], g[2], g[3]));
+            }
             let c = r.color;
             ui.monospace(format!("colour ({:.4}, {:.4}, {:.4}, {:.4})", c[0], c[1], c[2], c[3]));
         });
     });
+    if let Some(words) = i.disagreement() {
+        ui.colored_label(egui::Color32::LIGHT_RED, format!("Warning: {words}."));
+    }
     for caveat in &i.caveats {
         ui.colored_label(egui::Color32::from_rgb(230, 190, 90), format!("Note: {caveat}."));
     }

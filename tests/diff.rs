@@ -1,0 +1,217 @@
+//! `shaderlab diff NAME --shaders DIR`: a copy with a planted bug is found at the bug's file
+//! and line (in either stage, and through a function's argument), an identical copy differs
+//! nowhere, and a copy that does not compile or takes other inputs gets one clear message.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::gpu;
+use shaderlab::lab::UserFiles;
+use shaderlab::offscreen::COLOR_FORMAT;
+use shaderlab::shader::ShaderSource;
+use shaderlab::shell::session::Session;
+
+/// The built-in shaders in a folder, `file` changed by replacing `from` with `to`.
+fn copy_with(tag: &str, file: &str, from: &str, to: &str) -> PathBuf {
+    let dir = common::output_dir().join(format!("diff_{tag}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    common::copy_shaders(&dir);
+    let path = dir.join(file);
+    let text = std::fs::read_to_string(&path).expect("the shader");
+    assert!(text.contains(from), "{file} has `{from}`");
+    std::fs::write(&path, text.replacen(from, to, 1)).expect("write the copy");
+    dir
+}
+
+/// The 1-based line of `file` in `dir` that holds `what`.
+fn line_of(dir: &Path, file: &str, what: &str) -> u64 {
+    let text = std::fs::read_to_string(dir.join(file)).expect("the shader");
+    text.lines().position(|l| l.contains(what)).expect("the line") as u64 + 1
+}
+
+fn shaderlab(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .args(args)
+        .output()
+        .expect("shaderlab runs")
+}
+
+fn diff_json(name: &str, dir: &Path, more: &[&str]) -> serde_json::Value {
+    let mut args = vec!["diff", name, "--shaders", dir.to_str().expect("utf-8"), "--json"];
+    args.extend_from_slice(more);
+    let out = shaderlab(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+#[test]
+fn a_bug_planted_in_a_fragment_shader_is_found_at_its_line() {
+    let dir = copy_with("frag", "phong.frag", "max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)");
+    let png = common::output_dir().join("diff_frag.png");
+    let v = diff_json("phong", &dir, &["--out", png.to_str().expect("utf-8")]);
+    let first = &v["first_divergence"];
+    assert!(first["file"].as_str().is_some_and(|f| f.ends_with("phong.frag")), "{v}");
+    assert_eq!(first["line"], line_of(&dir, "phong.frag", "max(dot(N, L), 0.5)"), "{v}");
+    assert_eq!(first["name"], "Idiff", "{v}");
+    assert_ne!(first["mine"], first["reference"], "{v}");
+    assert!(v["differing"].as_u64().is_some_and(|n| n > 100), "{v}");
+    assert!(v["psnr"].as_f64().is_some_and(|p| p.is_finite() && p > 0.0), "{v}");
+    let worst = &v["worst"];
+    assert_ne!(worst["mine"], worst["reference"], "{v}");
+    // The picture of the difference, with its legend under it.
+    let picture = image::open(&png).expect("the difference picture").to_rgb8();
+    assert_eq!(
+        picture.dimensions(),
+        (640, 360 + shaderlab::debug::picture::LEGEND_HEIGHT)
+    );
+    let (x, y) = (
+        worst["x"].as_u64().expect("x") as u32,
+        worst["y"].as_u64().expect("y") as u32,
+    );
+    assert_ne!(picture.get_pixel(x, y).0, [0, 0, 0], "the worst pixel is highlighted");
+}
+
+#[test]
+fn a_bug_in_an_argument_or_in_the_vertex_shader_is_found_at_its_line() {
+    // The eye vector's sign flipped inside a call: the call's line, the argument named.
+    let dir = copy_with("argument", "phong.frag", "safe_normalize(-v)", "safe_normalize(v) ");
+    let v = diff_json("phong", &dir, &[]);
+    let first = &v["first_divergence"];
+    assert!(first["file"].as_str().is_some_and(|f| f.ends_with("phong.frag")), "{v}");
+    assert_eq!(first["line"], line_of(&dir, "phong.frag", "safe_normalize(v) "), "{v}");
+    assert!(first["name"].as_str().is_some_and(|n| n.contains("argument v")), "{v}");
+    // The vertex stage: the position in eye space moved.
+    let dir = copy_with(
+        "vertex",
+        "phong.vert",
+        "v = vec3(modelview * vertex);",
+        "v = vec3(modelview * vertex) * 1.1;",
+    );
+    let v = diff_json("phong", &dir, &[]);
+    let first = &v["first_divergence"];
+    assert_eq!(first["stage"], "vertex", "{v}");
+    assert!(first["file"].as_str().is_some_and(|f| f.ends_with("phong.vert")), "{v}");
+    assert_eq!(first["line"], line_of(&dir, "phong.vert", "* 1.1;"), "{v}");
+    assert_eq!(first["name"], "v", "{v}");
+    // Another lab: noise's time scaled.
+    let dir = copy_with(
+        "noise",
+        "noise.frag",
+        "position + time * speed",
+        "position + time * speed * 2.0",
+    );
+    let v = diff_json("noise", &dir, &["--set", "time=1.5"]);
+    let first = &v["first_divergence"];
+    assert!(first["file"].as_str().is_some_and(|f| f.ends_with("noise.frag")), "{v}");
+    assert_eq!(first["line"], line_of(&dir, "noise.frag", "* 2.0"), "{v}");
+    assert_eq!(first["name"], "v", "{v}");
+}
+
+#[test]
+fn an_identical_copy_differs_nowhere_and_says_so() {
+    let dir = common::output_dir().join("diff_same");
+    let _ = std::fs::remove_dir_all(&dir);
+    common::copy_shaders(&dir);
+    let v = diff_json("phong", &dir, &["--set", "object=torus"]);
+    assert_eq!(v["differing"], 0, "{v}");
+    assert_eq!(v["psnr"], "Infinity", "{v}");
+    assert_eq!(v["worst"], serde_json::Value::Null, "{v}");
+    assert_eq!(v["first_divergence"], serde_json::Value::Null, "{v}");
+    let out = shaderlab(&["diff", "phong", "--shaders", dir.to_str().expect("utf-8")]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("the pictures are identical"), "{text}");
+}
+
+#[test]
+fn a_broken_copy_a_copy_with_other_inputs_and_no_copy_get_one_clear_message() {
+    let dir = copy_with("broken", "phong.frag", "    frag_color = ", "    frag_color = nope + ");
+    let out = shaderlab(&["diff", "phong", "--shaders", dir.to_str().expect("utf-8")]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let line = line_of(&dir, "phong.frag", "nope");
+    assert!(
+        err.contains(&format!("phong.frag:{line}:")) && err.contains("nope") && err.contains('^'),
+        "{err}"
+    );
+    let dir = copy_with(
+        "inputs",
+        "transform.glsl",
+        "layout(location = 1) in vec3 vertex_normal;",
+        "layout(location = 1) in vec4 vertex_normal;",
+    );
+    std::fs::write(
+        dir.join("phong.vert"),
+        std::fs::read_to_string(dir.join("phong.vert"))
+            .expect("phong.vert")
+            .replace("normal_matrix * vertex_normal", "normal_matrix * vertex_normal.xyz"),
+    )
+    .expect("write phong.vert");
+    let out = shaderlab(&["diff", "phong", "--shaders", dir.to_str().expect("utf-8")]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("takes different inputs from the built-in shaders"),
+        "{err}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let out = shaderlab(&["diff", "--help"]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("Usage: shaderlab diff NAME --shaders DIR"));
+    let out = shaderlab(&["diff", "phong"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("which copy?"));
+    let out = shaderlab(&["diff", "phong", "--shaders", "/nonexistent-shaderlab-dir"]);
+    assert_ne!(out.status.code(), Some(0));
+}
+
+/// A benchmark, not a timed test: a diff of two 640×360 frames with its two traces, from
+/// the labs built to the comparison (`cargo test --release --test diff -- --nocapture`).
+#[test]
+fn a_diff_of_two_frames_with_its_traces_is_quick() {
+    let dir = copy_with("bench", "phong.frag", "max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)");
+    let entry = shaderlab::course::find("phong").expect("phong");
+    let files = UserFiles::default();
+    let copy = ShaderSource::dir(&dir).expect("the copy");
+    let mut mine = Session::open_lab(entry, gpu(), &copy, COLOR_FORMAT, &files).expect("the copy builds");
+    let mut reference =
+        Session::open_lab(entry, gpu(), &ShaderSource::Embedded, COLOR_FORMAT, &files).expect("phong builds");
+    let mut times = Vec::new();
+    for _ in 0..5 {
+        let start = std::time::Instant::now();
+        let d = shaderlab::debug::diff::diff_labs(gpu(), "phong", mine.as_mut(), reference.as_mut(), (640, 360))
+            .expect("a diff");
+        times.push(start.elapsed().as_secs_f64() * 1000.0);
+        assert!(d.first_divergence.is_some());
+    }
+    times.sort_by(f64::total_cmp);
+    println!(
+        "diff of two 640x360 frames with two traces: median {:.1} ms (of {:?})",
+        times[2], times
+    );
+}
+
+/// The library refuses to compare frames whose shaders take different inputs (here two labs'),
+/// naming the first difference, and compares a frame with itself as identical.
+#[test]
+fn frames_of_shaders_with_other_inputs_are_refused_by_the_library() {
+    let files = UserFiles::default();
+    let open = |name: &str| {
+        let entry = shaderlab::course::find(name).expect("a lab");
+        Session::open_lab(entry, gpu(), &ShaderSource::Embedded, COLOR_FORMAT, &files).expect("the lab builds")
+    };
+    let (mut phong, mut noise) = (open("phong"), open("noise"));
+    let (_, a) = shaderlab::debug::capture_lab(gpu(), phong.as_mut(), 320, 180, true).expect("phong");
+    let (_, b) = shaderlab::debug::capture_lab(gpu(), noise.as_mut(), 320, 180, true).expect("noise");
+    let err = shaderlab::debug::diff::diff("phong", &a, &b).expect_err("other inputs");
+    assert!(
+        err.to_string().contains("take different inputs from the reference's"),
+        "{err}"
+    );
+    let same = shaderlab::debug::diff::diff("phong", &a, &a).expect("the same frame");
+    assert_eq!(
+        (same.differing, same.psnr, same.worst.clone()),
+        (0, f64::INFINITY, None)
+    );
+    assert!(same.text().contains("identical"), "{}", same.text());
+}
