@@ -468,6 +468,16 @@ impl Params {
         }
     }
 
+    /// The parameters away from their defaults, in declaration order, as `(name, text)`: the
+    /// state a title shows and a link keeps.
+    pub fn changed(&self) -> impl Iterator<Item = (&'static str, String)> + '_ {
+        self.specs
+            .iter()
+            .zip(&self.values)
+            .filter(|(s, v)| v.as_slice() != s.default)
+            .map(|(s, v)| (s.name, format_value(s, v)))
+    }
+
     /// The value of `name` as text (a choice's name, or numbers).
     pub fn text(&self, name: &str) -> String {
         match self.index(name) {
@@ -570,6 +580,18 @@ mod tests {
             e.contains("unknown parameter `nope`") && e.contains("ka, light, object, fixpos"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn changed_lists_what_is_away_from_its_default_in_order() {
+        let mut p = Params::new(SPECS);
+        assert_eq!(p.changed().count(), 0);
+        p.set_str("object", "torus").unwrap();
+        p.set_str("ka", "0.5").unwrap();
+        let changed: Vec<(&str, String)> = p.changed().collect();
+        assert_eq!(changed, [("ka", "0.5".to_owned()), ("object", "torus".to_owned())]);
+        p.set_str("ka", "0.2").unwrap();
+        assert_eq!(p.changed().map(|(n, _)| n).collect::<Vec<_>>(), ["object"]);
     }
 
     #[test]

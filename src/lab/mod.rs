@@ -152,12 +152,7 @@ pub trait Lab: wgpu::WasmNotSend {
 /// The default window title: the original's title and the lab's label, then every parameter
 /// that differs from its default (`ref002 2D twisting | twisting=4.5`).
 pub fn params_title(info: &LabInfo, p: &Params) -> String {
-    let state: Vec<String> = p
-        .specs()
-        .iter()
-        .filter(|s| p.get(s.name) != Some(s.default))
-        .map(|s| format!("{}={}", s.name, p.text(s.name)))
-        .collect();
+    let state: Vec<String> = p.changed().map(|(name, text)| format!("{name}={text}")).collect();
     if state.is_empty() {
         format!("{} {}", info.original_title, info.label)
     } else {

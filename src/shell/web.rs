@@ -473,10 +473,9 @@ impl WebApp {
         let p = open.lab().params();
         let running = open.animated();
         let mut lines: Vec<String> = p
-            .specs()
-            .iter()
-            .filter(|s| p.get(s.name) != Some(s.default) && !(running && s.name == "time"))
-            .map(|s| format!("{}={}", s.name, p.text(s.name)))
+            .changed()
+            .filter(|(name, _)| !(running && *name == "time"))
+            .map(|(name, text)| format!("{name}={text}"))
             .collect();
         if open.entry().info.files.named_textures && !self.files.inputs.is_empty() {
             let names: Vec<String> = self

@@ -511,10 +511,9 @@ impl Lab for LegacyLab {
     fn title(&self) -> String {
         let p = &self.params;
         let changed: Vec<String> = p
-            .specs()
-            .iter()
-            .filter(|s| s.name != "object" && p.get(s.name) != Some(s.default))
-            .map(|s| format!("{}={}", s.name, p.text(s.name)))
+            .changed()
+            .filter(|(name, _)| *name != "object")
+            .map(|(name, text)| format!("{name}={text}"))
             .collect();
         let mut title = format!(
             "{} {} | {} | {}",
