@@ -17,6 +17,7 @@
 
 pub mod capture;
 pub mod error;
+pub mod instrument;
 pub mod interp;
 mod math;
 pub mod positions;
@@ -25,6 +26,7 @@ pub mod replay;
 mod report;
 pub mod sample;
 pub mod value;
+pub mod view;
 
 use crate::error::Result;
 use crate::shader::CompiledShader;

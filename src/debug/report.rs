@@ -130,6 +130,9 @@ pub struct Inspection {
     pub dropped: Vec<Dropped>,
     /// What the replay cannot promise for the adapter that drew the frame ([`caveats`]).
     pub caveats: Vec<String>,
+    /// The steps the fragment shader's trace lists (kept and left out): the pixel's cost, as
+    /// a cost view ([`super::view`]) counts it on the GPU.
+    pub cost: usize,
 }
 
 /// The replay follows llvmpipe's rules (Mesa 22.3, the same through 24.0): what it cannot
@@ -264,7 +267,14 @@ impl Inspection {
                 }
             }
         }
+        let cost = steps.iter().filter(|s| s.stage == Stage::Fragment).count()
+            + dropped
+                .iter()
+                .filter(|d| d.stage == Stage::Fragment)
+                .map(|d| d.steps)
+                .sum::<usize>();
         Ok(Inspection {
+            cost,
             lab: lab.to_owned(),
             x,
             y,
@@ -346,6 +356,7 @@ impl Inspection {
         }
         let _ = writeln!(out, "\nfragment shader {}:", f.fragment.path);
         self.listing(&mut out, Stage::Fragment, &f.fragment);
+        let _ = writeln!(out, "\ncost: {} steps of the fragment shader", self.cost);
         let dropped = self.steps_dropped();
         if dropped > 0 {
             let _ = writeln!(
@@ -490,7 +501,7 @@ impl Inspection {
             "lab": self.lab, "x": self.x, "y": self.y, "width": self.width, "height": self.height,
             "pixel": r.pixel, "covered": self.covered(), "color": floats(&r.color), "clear": value(&r.clear),
             "listing": {"vertex": listing(Stage::Vertex), "fragment": listing(Stage::Fragment)},
-            "caveats": self.caveats, "trace": trace,
+            "caveats": self.caveats, "trace": trace, "cost": self.cost,
         });
         if !self.dropped.is_empty() {
             o["dropped"] = self
