@@ -752,15 +752,25 @@ fn validate(module: &Module) -> Result<(), String> {
         .map_err(|e| format!("the instrumented shader does not validate: {}", e.emit_to_string("")))
 }
 
-/// `fragment`'s module rewritten to count its steps and return, at location 0, the value of
-/// `site`'s assignment (or, with `varying = Some(l)`, the value arriving at locations `l` and
-/// `l + 1` from a vertex shader rewritten by [`vertex`] with `components`) and at location 1
-/// `(ran, steps, components, 0)`; its depth output kept. Also the component counts of the
-/// probed assignments found.
+/// The bit of a view's info word saying the line ran; the component count sits in the three
+/// bits above it and the step count in the bits above those ([`COST_SHIFT`]).
+pub const RAN_BIT: u32 = 1;
+/// Where the step count starts in a view's info word.
+pub const COST_SHIFT: u32 = 4;
+/// The largest step count an info word holds (more reads as this).
+pub const COST_MAX: u32 = u32::MAX >> COST_SHIFT;
+
+/// `fragment`'s module rewritten to count its steps and return the view's outputs instead of
+/// its colours: with `value`, at location 0 the value of `site`'s assignment as `vec4<f32>` (or,
+/// with `varying = Some((l, n))`, the value of `n` components arriving at location `l`, and
+/// whether it ran at `l + 1`, from a vertex shader rewritten by [`vertex`]); then, at the next
+/// location, the info word `steps << COST_SHIFT | components << 1 | ran` as `u32`. Its depth
+/// output is kept. Also the component counts of the probed assignments found.
 pub fn fragment(
     fragment: &CompiledShader,
     site: Option<&Site>,
     varying: Option<(u32, u32)>,
+    value: bool,
 ) -> Result<(Module, Vec<u32>), String> {
     let Rewritten {
         mut module,
@@ -771,10 +781,19 @@ pub fn fragment(
     let kept = builtins(&module, module.entry_points[0].function.result.as_ref());
     let vec4f = globals.vec4f;
     let f32t = scalar_type(&mut module, naga::Scalar::F32);
-    let mut members = vec![
-        ("value".to_owned(), vec4f, Some(location(0, false))),
-        ("info".to_owned(), vec4f, Some(location(1, false))),
-    ];
+    let u32t = scalar_type(&mut module, naga::Scalar::U32);
+    let output = |l: u32| Binding::Location {
+        location: l,
+        interpolation: None,
+        sampling: None,
+        blend_src: None,
+        per_primitive: false,
+    };
+    let mut members = Vec::new();
+    if value {
+        members.push(("value".to_owned(), vec4f, Some(output(0))));
+    }
+    members.push(("info".to_owned(), u32t, Some(output(u32::from(value)))));
     for (k, (_, ty, b)) in kept.iter().enumerate() {
         members.push((format!("builtin{k}"), *ty, Some(b.clone())));
     }
@@ -805,56 +824,65 @@ pub fn fragment(
     });
     let returned = |v: Option<Handle<Expression>>, exprs: &mut naga::Arena<Expression>| {
         let s = Span::UNDEFINED;
+        let lit = |exprs: &mut naga::Arena<Expression>, l| exprs.append(Expression::Literal(l), s);
         let gv = exprs.append(Expression::GlobalVariable(globals.value), s);
         let gr = exprs.append(Expression::GlobalVariable(globals.ran), s);
         let gc = exprs.append(Expression::GlobalVariable(globals.components), s);
         let gn = exprs.append(Expression::GlobalVariable(globals.cost), s);
-        let zero = exprs.append(Expression::Literal(Literal::F32(0.0)), s);
-        let vc = exprs.append(
-            Expression::Literal(Literal::F32(vertex_components.unwrap_or(0) as f32)),
-            s,
-        );
+        // A vertex line's `ran` arrives interpolated: it ran where it ran at every corner.
+        let threshold = lit(exprs, Literal::F32(if varying.is_some() { 0.999 } else { 0.5 }));
+        let vc = lit(exprs, Literal::U32(vertex_components.unwrap_or(0)));
+        let one = lit(exprs, Literal::U32(RAN_BIT));
+        let zero = lit(exprs, Literal::U32(0));
+        let most = lit(exprs, Literal::U32(COST_MAX));
+        let shift = lit(exprs, Literal::U32(COST_SHIFT));
         let va = value_arg.map(|a| exprs.append(Expression::FunctionArgument(a), s));
         let ra = ran_arg.map(|a| exprs.append(Expression::FunctionArgument(a), s));
         let start = exprs.len();
-        let value = va.unwrap_or_else(|| exprs.append(Expression::Load { pointer: gv }, s));
-        let ran = ra.unwrap_or_else(|| exprs.append(Expression::Load { pointer: gr }, s));
+        let mut add = |e: Expression| exprs.append(e, s);
+        let bin = |op, left, right| Expression::Binary { op, left, right };
+        let probed = va.unwrap_or_else(|| add(Expression::Load { pointer: gv }));
+        let ran = ra.unwrap_or_else(|| add(Expression::Load { pointer: gr }));
+        let ran = add(bin(naga::BinaryOperator::GreaterEqual, ran, threshold));
+        let ran = add(Expression::Select {
+            condition: ran,
+            accept: one,
+            reject: zero,
+        });
         let components = if varying.is_some() {
             vc
         } else {
-            exprs.append(Expression::Load { pointer: gc }, s)
-        };
-        let cost = exprs.append(Expression::Load { pointer: gn }, s);
-        let cost = exprs.append(
-            Expression::As {
-                expr: cost,
-                kind: ScalarKind::Float,
+            let c = add(Expression::Load { pointer: gc });
+            add(Expression::As {
+                expr: c,
+                kind: ScalarKind::Uint,
                 convert: Some(4),
-            },
-            s,
-        );
-        let info = exprs.append(
-            Expression::Compose {
-                ty: vec4f,
-                components: vec![ran, cost, components, zero],
-            },
-            s,
-        );
-        let mut parts = vec![value, info];
+            })
+        };
+        let cost = add(Expression::Load { pointer: gn });
+        let cost = add(Expression::Math {
+            fun: naga::MathFunction::Min,
+            arg: cost,
+            arg1: Some(most),
+            arg2: None,
+            arg3: None,
+        });
+        let cost = add(bin(naga::BinaryOperator::ShiftLeft, cost, shift));
+        let components = add(bin(naga::BinaryOperator::ShiftLeft, components, one));
+        let info = add(bin(naga::BinaryOperator::InclusiveOr, cost, components));
+        let info = add(bin(naga::BinaryOperator::InclusiveOr, info, ran));
+        let mut parts = if value { vec![probed, info] } else { vec![info] };
         for (k, _, _) in &kept {
             match (k, v) {
-                (Some(k), Some(v)) => parts.push(exprs.append(Expression::AccessIndex { base: v, index: *k }, s)),
+                (Some(k), Some(v)) => parts.push(add(Expression::AccessIndex { base: v, index: *k })),
                 (None, Some(v)) => parts.push(v),
                 _ => {}
             }
         }
-        let out = exprs.append(
-            Expression::Compose {
-                ty: out_ty,
-                components: parts,
-            },
-            s,
-        );
+        let out = add(Expression::Compose {
+            ty: out_ty,
+            components: parts,
+        });
         let mut block = naga::Block::new();
         block.push(Statement::Emit(exprs.range_from(start)), s);
         block.push(Statement::Return { value: Some(out) }, s);

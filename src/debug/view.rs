@@ -366,6 +366,7 @@ const KEPT: usize = 32;
 #[derive(Default)]
 pub struct ViewDrawer {
     built: Vec<Built>,
+    targets: Option<Targets>,
     indices: Vec<(Weak<Vec<u32>>, wgpu::Buffer)>,
 }
 
@@ -403,12 +404,12 @@ impl ViewDrawer {
                 let (v, found) = instrument::vertex(&setup.vertex, Some(&r.site), at).map_err(refused(&setup.vertex.path))?;
                 let n = found.into_iter().max().unwrap_or(0);
                 let (f, _) =
-                    instrument::fragment(&setup.fragment, None, Some((at, n))).map_err(refused(&setup.fragment.path))?;
+                    instrument::fragment(&setup.fragment, None, Some((at, n)), true).map_err(refused(&setup.fragment.path))?;
                 (Some(v), f, n)
             }
             _ => {
                 let site = resolved.map(|r| &r.site);
-                let (f, found) = instrument::fragment(&setup.fragment, site, None).map_err(refused(&setup.fragment.path))?;
+                let (f, found) = instrument::fragment(&setup.fragment, site, None, site.is_some()).map_err(refused(&setup.fragment.path))?;
                 (None, f, found.into_iter().max().unwrap_or(0))
             }
         };
@@ -434,11 +435,17 @@ impl ViewDrawer {
                 step_mode: wgpu::VertexStepMode::Vertex,
                 attributes: &setup.attributes,
             })];
-            let target = Some(wgpu::ColorTargetState {
-                format: wgpu::TextureFormat::Rgba32Float,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            });
+            let target = |format| {
+                Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })
+            };
+            let value = target(VALUE_FORMAT);
+            let info = target(INFO_FORMAT);
+            let both = [value, info.clone()];
+            let one = [info];
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&format!("{label}.pipeline")),
                 layout: Some(&call.layout),
@@ -452,7 +459,7 @@ impl ViewDrawer {
                     module: &fs,
                     entry_point: Some("main"),
                     compilation_options: Default::default(),
-                    targets: &[target.clone(), target],
+                    targets: if resolved.is_some() { &both } else { &one },
                 }),
                 primitive: wgpu::PrimitiveState {
                     topology: setup.state.topology,
@@ -545,80 +552,48 @@ impl ViewDrawer {
             pipelines.push((p, indices));
         }
         let label = "shaderlab.debug.view";
-        let device = &gpu.device;
         let (w, h) = (width.max(1), height.max(1));
-        let stride = crate::offscreen::padded_row(16, w);
-        let (commands, staging) = gpu.checked(label, || {
-            let target = |name: &str| {
-                device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(&format!("{label}.{name}")),
-                    size: wgpu::Extent3d {
-                        width: w,
-                        height: h,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Rgba32Float,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                    view_formats: &[],
-                })
-            };
-            let textures = [target("value"), target("info")];
-            let views = textures.each_ref().map(|t| {
-                t.create_view(&wgpu::TextureViewDescriptor {
-                    label: Some(&format!("{label}.target_view")),
-                    ..Default::default()
-                })
-            });
-            let depth = device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("{label}.depth")),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: crate::offscreen::DEPTH_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            });
-            let depth_view = depth.create_view(&wgpu::TextureViewDescriptor {
-                label: Some(&format!("{label}.depth_view")),
-                ..Default::default()
-            });
+        let fits = |t: &Targets| t.device == gpu.device && (t.width, t.height) == (w, h);
+        if !self.targets.as_ref().is_some_and(fits) {
+            self.targets = Some(gpu.checked(label, || Targets::new(&gpu.device, w, h))?);
+        }
+        let targets = self.targets.as_ref().expect("made above");
+        let value = resolved.is_some();
+        let device = &gpu.device;
+        let commands = gpu.checked(label, || {
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some(&format!("{label}.encoder")),
             });
-            // Before any pass, as a frame without passes leaves them.
-            let first_clear = |k: usize| k == 0;
+            let views: Vec<&wgpu::TextureView> = if value {
+                vec![&targets.value.1, &targets.info.1]
+            } else {
+                vec![&targets.info.1]
+            };
             for (k, (load, _, _)) in passes.iter().enumerate() {
+                // A first pass that keeps what was there starts from nothing drawn.
                 let (color, depth_load) = match load {
-                    Load::Clear(_) => (wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), wgpu::LoadOp::Clear(1.0)),
-                    Load::Keep if first_clear(k) => {
-                        (wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), wgpu::LoadOp::Clear(1.0))
-                    }
-                    Load::Keep => (wgpu::LoadOp::Load, wgpu::LoadOp::Load),
+                    Load::Keep if k > 0 => (wgpu::LoadOp::Load, wgpu::LoadOp::Load),
+                    _ => (wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), wgpu::LoadOp::Clear(1.0)),
                 };
-                let attachments = views.each_ref().map(|v| {
-                    Some(wgpu::RenderPassColorAttachment {
-                        view: v,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: color,
-                            store: wgpu::StoreOp::Store,
-                        },
+                let attachments: Vec<_> = views
+                    .iter()
+                    .map(|v| {
+                        Some(wgpu::RenderPassColorAttachment {
+                            view: v,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: color,
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })
                     })
-                });
+                    .collect();
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some(&format!("{label}.pass")),
                     color_attachments: &attachments,
                     depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &depth_view,
+                        view: &targets.depth,
                         depth_ops: Some(wgpu::Operations {
                             load: depth_load,
                             store: wgpu::StoreOp::Store,
@@ -667,17 +642,16 @@ impl ViewDrawer {
                     });
                 }
             }
-            let staging = textures.each_ref().map(|t| {
-                let b = crate::offscreen::readback_buffer(device, &format!("{label}.staging"), stride, h);
+            let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
                 encoder.copy_texture_to_buffer(
                     wgpu::TexelCopyTextureInfo {
-                        texture: t,
+                        texture,
                         mip_level: 0,
                         origin: wgpu::Origin3d::ZERO,
                         aspect: wgpu::TextureAspect::All,
                     },
                     wgpu::TexelCopyBufferInfo {
-                        buffer: &b,
+                        buffer,
                         layout: wgpu::TexelCopyBufferLayout {
                             offset: 0,
                             bytes_per_row: Some(stride),
@@ -690,51 +664,140 @@ impl ViewDrawer {
                         depth_or_array_layers: 1,
                     },
                 );
-                b
-            });
-            (encoder.finish(), staging)
+            };
+            if value {
+                copy(&targets.value.0, &targets.value.2, targets.value_stride);
+            }
+            copy(&targets.info.0, &targets.info.2, targets.info_stride);
+            encoder.finish()
         })?;
         gpu.queue.submit([commands]);
+        let staging: Vec<&wgpu::Buffer> = if value {
+            vec![&targets.value.2, &targets.info.2]
+        } else {
+            vec![&targets.info.2]
+        };
         for b in &staging {
             b.slice(..).map_async(wgpu::MapMode::Read, |_| {});
         }
-        gpu.wait()?;
-        let read = |b: &wgpu::Buffer| -> Result<Vec<[f32; 4]>> {
+        let waited = gpu.wait();
+        let read = |b: &wgpu::Buffer, stride: u32, words: usize| -> Result<Vec<u32>> {
             let data = b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
                 context: "reading a view back".into(),
                 message: e.to_string(),
             })?;
-            let mut out = Vec::with_capacity((w * h) as usize);
-            for y in 0..h {
-                let row = &data[(y * stride) as usize..];
-                for x in 0..w as usize {
-                    out.push([0, 1, 2, 3].map(|k| {
-                        let at = x * 16 + k * 4;
-                        f32::from_le_bytes([row[at], row[at + 1], row[at + 2], row[at + 3]])
-                    }));
-                }
+            let mut out = Vec::with_capacity((w * h) as usize * words);
+            for y in 0..h as usize {
+                let row = &data[y * stride as usize..][..w as usize * words * 4];
+                out.extend(row.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])));
             }
             Ok(out)
         };
-        let values = read(&staging[0])?;
-        let info = read(&staging[1])?;
+        let read_all = || -> Result<(Vec<u32>, Vec<u32>)> {
+            waited?;
+            let values = if value {
+                read(&targets.value.2, targets.value_stride, 4)?
+            } else {
+                Vec::new()
+            };
+            let info = read(&targets.info.2, targets.info_stride, 1)?;
+            Ok((values, info))
+        };
+        let result = read_all();
         for b in &staging {
             b.unmap();
-            b.destroy();
         }
+        let (values, info) = result?;
+        let values = if value {
+            values
+                .chunks_exact(4)
+                .map(|c| [0, 1, 2, 3].map(|k| f32::from_bits(c[k])))
+                .collect()
+        } else {
+            vec![[0.0; 4]; info.len()]
+        };
         let vertex = resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex);
         Ok(ValueFrame {
             width: w,
             height: h,
             components,
             values,
-            // A vertex line's `ran` is interpolated: it ran at the pixel where it ran at every
-            // corner.
-            ran: info.iter().map(|i| if vertex { i[0] >= 0.999 } else { i[0] > 0.5 }).collect(),
-            cost: info.iter().map(|i| i[1] as u32).collect(),
+            ran: info.iter().map(|i| i & instrument::RAN_BIT != 0).collect(),
+            cost: info.iter().map(|i| i >> instrument::COST_SHIFT).collect(),
             vertex,
             resolved,
         })
+    }
+}
+
+/// The format of a view's value target.
+const VALUE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The format of a view's info target ([`instrument::fragment`]'s info word).
+const INFO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+
+/// A view's targets, depth and read-back buffers, kept while the size stays: each target with
+/// its view and staging buffer.
+struct Targets {
+    device: wgpu::Device,
+    width: u32,
+    height: u32,
+    value: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
+    info: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
+    value_stride: u32,
+    info_stride: u32,
+    depth: wgpu::TextureView,
+}
+
+impl Targets {
+    fn new(device: &wgpu::Device, width: u32, height: u32) -> Targets {
+        let label = "shaderlab.debug.view";
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        let texture = |name: &str, format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&format!("{label}.{name}")),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let target = |name: &str, format, stride| {
+            let t = texture(
+                name,
+                format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            );
+            let v = t.create_view(&wgpu::TextureViewDescriptor {
+                label: Some(&format!("{label}.{name}_view")),
+                ..Default::default()
+            });
+            let b = crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height);
+            (t, v, b)
+        };
+        let value_stride = crate::offscreen::padded_row(16, width);
+        let info_stride = crate::offscreen::padded_row(4, width);
+        let depth = texture("depth", crate::offscreen::DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT)
+            .create_view(&wgpu::TextureViewDescriptor {
+                label: Some(&format!("{label}.depth_view")),
+                ..Default::default()
+            });
+        Targets {
+            device: device.clone(),
+            width,
+            height,
+            value: target("value", VALUE_FORMAT, value_stride),
+            info: target("info", INFO_FORMAT, info_stride),
+            value_stride,
+            info_stride,
+            depth,
+        }
     }
 }
 
