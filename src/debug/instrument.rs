@@ -27,6 +27,8 @@ pub struct Assignment {
     pub name: String,
     /// The variable it assigns (part of): `color` for `color.x`.
     pub root: String,
+    /// The components of the value a view shows (its first four).
+    pub components: u32,
 }
 
 impl Assignment {
@@ -166,6 +168,7 @@ pub fn assignments(shader: &CompiledShader) -> Vec<Assignment> {
                     line,
                     name: n.clone(),
                     root: n,
+                    components: count(&module.types, &module.types[local.ty].inner),
                 });
             }
         }
@@ -183,16 +186,18 @@ fn stores(
 ) {
     for (statement, span) in block.span_iter() {
         match statement {
-            Statement::Store { pointer, .. } => {
+            Statement::Store { pointer, value } => {
                 let Some((file, line)) = locate(shader, *span) else { continue };
                 let Some((name, root)) = pointer_name(&shader.module, function, info, *pointer) else {
                     continue;
                 };
+                let types = &shader.module.types;
                 out.push(Assignment {
                     file,
                     line,
                     name: user_name(shader, &name),
                     root: user_name(shader, &root),
+                    components: count(types, info[*value].ty.inner_with(types)),
                 });
             }
             Statement::Block(b) => stores(shader, function, info, b, out),
@@ -310,6 +315,7 @@ impl Rewrite<'_> {
             line,
             name: user_name(self.shader, name),
             root: user_name(self.shader, root),
+            components: 0,
         };
         a.file == site.file && a.line == site.line && site.name.as_deref().is_none_or(|n| a.named(n))
     }
@@ -453,6 +459,26 @@ impl Rewrite<'_> {
         }
         out
     }
+}
+
+/// How many of a value of type `inner`'s components a view shows: its scalars, at most four.
+fn count(types: &naga::UniqueArena<Type>, inner: &TypeInner) -> u32 {
+    let n = match *inner {
+        TypeInner::Scalar(_) => 1,
+        TypeInner::Vector { size, .. } => size as u32,
+        TypeInner::Matrix { columns, rows, .. } => columns as u32 * rows as u32,
+        TypeInner::Array {
+            base,
+            size: naga::ArraySize::Constant(n),
+            ..
+        } => count(types, &types[base].inner).saturating_mul(n.get()),
+        TypeInner::Struct { ref members, .. } => members
+            .iter()
+            .map(|m| count(types, &types[m.ty].inner))
+            .fold(0u32, u32::saturating_add),
+        _ => 0,
+    };
+    n.min(4)
 }
 
 /// The first four scalar components of `value` (of type `inner`) as `f32` expressions

@@ -117,6 +117,8 @@ pub struct Resolved {
     pub stage: Stage,
     /// The file, line and name.
     pub site: Site,
+    /// The value's components a view shows (at most 4).
+    pub components: u32,
 }
 
 /// A view read back: per pixel (rows top first, like a screenshot) the value, whether the line
@@ -277,8 +279,15 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
             }
         }
     };
+    let components = here
+        .iter()
+        .filter(|a| chosen.as_deref().is_none_or(|n| a.named(n)))
+        .map(|a| a.components)
+        .max()
+        .unwrap_or(0);
     Ok(Some(Resolved {
         stage,
+        components,
         site: Site {
             file: file.clone(),
             line,
@@ -442,7 +451,7 @@ impl ViewDrawer {
                     write_mask: wgpu::ColorWrites::ALL,
                 })
             };
-            let value = target(VALUE_FORMAT);
+            let value = target(value_format(resolved.map_or(0, |r| r.components)));
             let info = target(INFO_FORMAT);
             let both = [value, info.clone()];
             let one = [info];
@@ -553,9 +562,10 @@ impl ViewDrawer {
         }
         let label = "shaderlab.debug.view";
         let (w, h) = (width.max(1), height.max(1));
-        let fits = |t: &Targets| t.device == gpu.device && (t.width, t.height) == (w, h);
+        let format = value_format(resolved.as_ref().map_or(0, |r| r.components));
+        let fits = |t: &Targets| t.device == gpu.device && (t.width, t.height, t.format) == (w, h, format);
         if !self.targets.as_ref().is_some_and(fits) {
-            self.targets = Some(gpu.checked(label, || Targets::new(&gpu.device, w, h))?);
+            self.targets = Some(gpu.checked(label, || Targets::new(&gpu.device, w, h, format))?);
         }
         let targets = self.targets.as_ref().expect("made above");
         let value = resolved.is_some();
@@ -681,26 +691,45 @@ impl ViewDrawer {
             b.slice(..).map_async(wgpu::MapMode::Read, |_| {});
         }
         let waited = gpu.wait();
-        let read = |b: &wgpu::Buffer, stride: u32, words: usize| -> Result<Vec<u32>> {
-            let data = b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
+        let mapped = |b: &wgpu::Buffer| {
+            b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
                 context: "reading a view back".into(),
                 message: e.to_string(),
-            })?;
-            let mut out = Vec::with_capacity((w * h) as usize * words);
-            for y in 0..h as usize {
-                let row = &data[y * stride as usize..][..w as usize * words * 4];
-                out.extend(row.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])));
-            }
-            Ok(out)
+            })
         };
-        let read_all = || -> Result<(Vec<u32>, Vec<u32>)> {
+        let read_all = || -> Result<(Vec<[f32; 4]>, Vec<u32>)> {
             waited?;
-            let values = if value {
-                read(&targets.value.2, targets.value_stride, 4)?
+            let n = (w * h) as usize;
+            let mut values = Vec::with_capacity(n);
+            if value {
+                let data = mapped(&targets.value.2)?;
+                let k = texel_words(format);
+                for y in 0..h as usize {
+                    let row = &data[y * targets.value_stride as usize..][..w as usize * k * 4];
+                    match (k, bytemuck::try_cast_slice::<u8, f32>(row)) {
+                        (4, Ok(texels)) => values.extend(texels.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]])),
+                        (1, Ok(texels)) => values.extend(texels.iter().map(|&x| [x, 0.0, 0.0, 0.0])),
+                        _ => values.extend(row.chunks_exact(k * 4).map(|t| {
+                            let mut v = [0.0f32; 4];
+                            for (c, b) in v.iter_mut().zip(t.chunks_exact(4)) {
+                                *c = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                            }
+                            v
+                        })),
+                    }
+                }
             } else {
-                Vec::new()
-            };
-            let info = read(&targets.info.2, targets.info_stride, 1)?;
+                values.resize(n, [0.0; 4]);
+            }
+            let data = mapped(&targets.info.2)?;
+            let mut info = Vec::with_capacity(n);
+            for y in 0..h as usize {
+                let row = &data[y * targets.info_stride as usize..][..w as usize * 4];
+                match bytemuck::try_cast_slice::<u8, u32>(row) {
+                    Ok(words) => info.extend_from_slice(words),
+                    Err(_) => info.extend(row.chunks_exact(4).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+                }
+            }
             Ok((values, info))
         };
         let result = read_all();
@@ -708,14 +737,6 @@ impl ViewDrawer {
             b.unmap();
         }
         let (values, info) = result?;
-        let values = if value {
-            values
-                .chunks_exact(4)
-                .map(|c| [0, 1, 2, 3].map(|k| f32::from_bits(c[k])))
-                .collect()
-        } else {
-            vec![[0.0; 4]; info.len()]
-        };
         let vertex = resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex);
         Ok(ValueFrame {
             width: w,
@@ -730,8 +751,24 @@ impl ViewDrawer {
     }
 }
 
-/// The format of a view's value target.
-const VALUE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The format of a view's value target for a value of `components` components: as few
+/// 32-bit floats a texel as hold them, since reading back is most of a view's time.
+fn value_format(components: u32) -> wgpu::TextureFormat {
+    match components {
+        0 | 1 => wgpu::TextureFormat::R32Float,
+        2 => wgpu::TextureFormat::Rg32Float,
+        _ => wgpu::TextureFormat::Rgba32Float,
+    }
+}
+
+/// The 32-bit words of a texel of `format` (a value format).
+fn texel_words(format: wgpu::TextureFormat) -> usize {
+    match format {
+        wgpu::TextureFormat::R32Float => 1,
+        wgpu::TextureFormat::Rg32Float => 2,
+        _ => 4,
+    }
+}
 /// The format of a view's info target ([`instrument::fragment`]'s info word).
 const INFO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
@@ -741,6 +778,8 @@ struct Targets {
     device: wgpu::Device,
     width: u32,
     height: u32,
+    /// The value target's format.
+    format: wgpu::TextureFormat,
     value: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
     info: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
     value_stride: u32,
@@ -749,7 +788,7 @@ struct Targets {
 }
 
 impl Targets {
-    fn new(device: &wgpu::Device, width: u32, height: u32) -> Targets {
+    fn new(device: &wgpu::Device, width: u32, height: u32, format: wgpu::TextureFormat) -> Targets {
         let label = "shaderlab.debug.view";
         let size = wgpu::Extent3d {
             width,
@@ -781,7 +820,7 @@ impl Targets {
             let b = crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height);
             (t, v, b)
         };
-        let value_stride = crate::offscreen::padded_row(16, width);
+        let value_stride = crate::offscreen::padded_row(4 * texel_words(format) as u32, width);
         let info_stride = crate::offscreen::padded_row(4, width);
         let depth = texture("depth", crate::offscreen::DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT)
             .create_view(&wgpu::TextureViewDescriptor {
@@ -792,7 +831,8 @@ impl Targets {
             device: device.clone(),
             width,
             height,
-            value: target("value", VALUE_FORMAT, value_stride),
+            format,
+            value: target("value", format, value_stride),
             info: target("info", INFO_FORMAT, info_stride),
             value_stride,
             info_stride,
