@@ -79,6 +79,10 @@ pub enum Error {
     /// interpreter does not run (named, with its file and line), a shader past the step budget.
     #[error("{0}")]
     Debug(String),
+    /// A whole-frame view cannot be drawn: a line that assigns nothing, a file the lab does
+    /// not draw, a name the line does not assign, a stage to choose.
+    #[error(transparent)]
+    View(#[from] crate::debug::view::ViewError),
     /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
     #[error("{0}")]
     Hang(String),

@@ -18,6 +18,7 @@
 pub mod capture;
 pub mod diff;
 pub mod error;
+pub mod instrument;
 pub mod interp;
 mod math;
 pub mod picture;
@@ -27,6 +28,7 @@ pub mod replay;
 mod report;
 pub mod sample;
 pub mod value;
+pub mod view;
 
 use crate::error::Result;
 use crate::shader::CompiledShader;

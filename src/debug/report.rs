@@ -134,6 +134,9 @@ pub struct Inspection {
     /// ([`Captured::picture`]), beside the replay's ([`Replayed::pixel`]); none where the
     /// frame was not run.
     pub gpu_pixel: Option<[u8; 4]>,
+    /// The steps the fragment shader's trace lists (kept and left out): the pixel's cost, as
+    /// a cost view ([`super::view`]) counts it on the GPU.
+    pub cost: usize,
 }
 
 /// How far the replay's stored byte may be from the GPU's, per channel, before an inspection
@@ -276,7 +279,14 @@ impl Inspection {
             .picture
             .as_ref()
             .and_then(|p| (x < p.width() && y < p.height()).then(|| p.get_pixel(x, y).0));
+        let cost = steps.iter().filter(|s| s.stage == Stage::Fragment).count()
+            + dropped
+                .iter()
+                .filter(|d| d.stage == Stage::Fragment)
+                .map(|d| d.steps)
+                .sum::<usize>();
         Ok(Inspection {
+            cost,
             lab: lab.to_owned(),
             x,
             y,
@@ -387,6 +397,7 @@ impl Inspection {
         }
         let _ = writeln!(out, "\nfragment shader {}:", f.fragment.path);
         self.listing(&mut out, Stage::Fragment, &f.fragment);
+        let _ = writeln!(out, "\ncost: {} steps of the fragment shader", self.cost);
         let dropped = self.steps_dropped();
         if dropped > 0 {
             let _ = writeln!(
@@ -533,7 +544,7 @@ impl Inspection {
             "lab": self.lab, "x": self.x, "y": self.y, "width": self.width, "height": self.height,
             "pixel": r.pixel, "covered": self.covered(), "color": floats(&r.color), "clear": value(&r.clear),
             "listing": {"vertex": listing(Stage::Vertex), "fragment": listing(Stage::Fragment)},
-            "caveats": self.caveats, "trace": trace, "gpu_pixel": self.gpu_pixel,
+            "caveats": self.caveats, "trace": trace, "gpu_pixel": self.gpu_pixel, "cost": self.cost,
         });
         if let Some(words) = self.disagreement() {
             o["gpu_disagrees"] = json!(words);

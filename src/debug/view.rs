@@ -1,0 +1,890 @@
+//! Whole-frame views drawn on the GPU: the value a line of a shader assigns at every pixel (a
+//! line view), or how many steps the fragment shader's trace lists there (a cost view).
+//!
+//! A frame written down in a [`DrawLog`] is drawn again, draw by draw, with the draws' own
+//! layouts, bind groups, buffers, culling and depth test and the frame's passes and clears, but
+//! with each draw's fragment shader rewritten by [`super::instrument`] to return the probed
+//! value and the step count into two `Rgba32Float` targets, read back as a [`ValueFrame`].
+//! Draws whose shaders do not hold the line draw too (with `ran` false), so occlusion is as in
+//! the frame. A vertex-shader line travels to the fragment shader as an extra varying: the
+//! value at the three corners interpolated as any varying is.
+
+use std::sync::{Arc, Weak};
+
+use super::instrument::{self, Assignment, Site};
+use super::Stage;
+use crate::error::Result;
+use crate::gpu::Gpu;
+use crate::render::{DrawCall, DrawLog, Load};
+use crate::shader::CompiledShader;
+
+/// What a view shows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Probe {
+    /// The value line `line` of `file` assigns (`name`, where it assigns several things), in
+    /// `stage` (needed only for a file both stages include).
+    Line {
+        /// The file as the lab shows it (its display path).
+        file: String,
+        /// The 1-based line.
+        line: u32,
+        /// The name assigned, where the line assigns more than one.
+        name: Option<String>,
+        /// The stage, where both include the file.
+        stage: Option<Stage>,
+    },
+    /// The steps the fragment shader's trace lists at each pixel.
+    Cost,
+}
+
+/// Why a view cannot be drawn.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ViewError {
+    /// No shader the frame draws holds the file (in the stage asked for).
+    #[error("{file} is not a file of {what} this lab draws; its files are {files}")]
+    NotDrawn {
+        /// The file asked for.
+        file: String,
+        /// `a shader`, `a vertex shader`, `a fragment shader`.
+        what: String,
+        /// The files it draws, comma-separated.
+        files: String,
+    },
+    /// The line assigns nothing the trace shows.
+    #[error("{file}:{line} assigns nothing{near}")]
+    Nothing {
+        /// The file.
+        file: String,
+        /// The line.
+        line: u32,
+        /// The nearest lines that do, in words (`; the nearest lines that assign are 12 (L) and 15 (E)`).
+        near: String,
+    },
+    /// The line does not assign the name asked for.
+    #[error("{file}:{line} does not assign `{name}`; it assigns {names}")]
+    NoSuchName {
+        /// The file.
+        file: String,
+        /// The line.
+        line: u32,
+        /// The name asked for.
+        name: String,
+        /// The names it assigns.
+        names: String,
+    },
+    /// The line assigns several things and none was chosen.
+    #[error("{file}:{line} assigns {names}: choose one by its name")]
+    Ambiguous {
+        /// The file.
+        file: String,
+        /// The line.
+        line: u32,
+        /// The names it assigns.
+        names: String,
+    },
+    /// The file is included by both stages and the line assigns in both.
+    #[error("{file} is included by both the vertex and the fragment shader, and line {line} assigns in both: choose the stage")]
+    BothStages {
+        /// The file.
+        file: String,
+        /// The line.
+        line: u32,
+    },
+    /// The frame's passes are not of the view's size.
+    #[error("the frame was recorded at {recorded}, not at the view's {width}x{height}")]
+    Size {
+        /// The passes' sizes.
+        recorded: String,
+        /// The view's width.
+        width: u32,
+        /// Its height.
+        height: u32,
+    },
+    /// The rewritten shader was refused.
+    #[error("{path}: {message}")]
+    Instrument {
+        /// The shader.
+        path: String,
+        /// Why.
+        message: String,
+    },
+}
+
+/// A probe resolved against a frame's shaders: the stage and the assignment's site.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Resolved {
+    /// The stage the line runs in.
+    pub stage: Stage,
+    /// The file, line and name.
+    pub site: Site,
+    /// The value's components a view shows (at most 4).
+    pub components: u32,
+}
+
+/// A view read back: per pixel (rows top first, like a screenshot) the value, whether the line
+/// ran there and the steps the fragment shader took.
+#[derive(Clone, Debug)]
+pub struct ValueFrame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// The value's components (at most 4; 0 for a cost view).
+    pub components: u32,
+    /// The value's first components (the rest 0); the last assignment where the line ran
+    /// several times.
+    pub values: Vec<[f32; 4]>,
+    /// Whether the line ran at the pixel (for a vertex line: at all three corners).
+    pub ran: Vec<bool>,
+    /// The steps the fragment shader's trace lists at the pixel (0 where nothing was drawn).
+    pub cost: Vec<u32>,
+    /// The line is the vertex shader's: its value at the corners, interpolated as a varying.
+    pub vertex: bool,
+    /// What was probed (none for a cost view).
+    pub resolved: Option<Resolved>,
+}
+
+impl ValueFrame {
+    /// The index of pixel (x, y).
+    pub fn at(&self, x: u32, y: u32) -> usize {
+        (y * self.width + x) as usize
+    }
+}
+
+/// The distinct shaders of `draws` of one stage.
+fn shaders(draws: &[DrawCall], stage: Stage) -> Vec<Arc<CompiledShader>> {
+    let mut out: Vec<Arc<CompiledShader>> = Vec::new();
+    for d in draws {
+        let s = match stage {
+            Stage::Vertex => &d.setup.vertex,
+            Stage::Fragment => &d.setup.fragment,
+        };
+        if !out.iter().any(|o| Arc::ptr_eq(o, s)) {
+            out.push(s.clone());
+        }
+    }
+    out
+}
+
+fn holds(shaders: &[Arc<CompiledShader>], file: &str) -> bool {
+    shaders.iter().any(|s| s.source.files.iter().any(|(p, _)| p == file))
+}
+
+fn names(list: &[&Assignment]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for a in list {
+        if !out.contains(&a.name) {
+            out.push(a.name.clone());
+        }
+    }
+    out
+}
+
+fn quoted(names: &[String]) -> String {
+    names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+}
+
+/// Resolves a line probe against the shaders `draws` draw with.
+pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<Resolved>, ViewError> {
+    let Probe::Line {
+        file,
+        line,
+        name,
+        stage,
+    } = probe
+    else {
+        return Ok(None);
+    };
+    let line = *line;
+    let by_stage = [Stage::Vertex, Stage::Fragment].map(|s| (s, shaders(draws, s)));
+    let assigns = |s: Stage| -> Vec<Assignment> {
+        let list = &by_stage.iter().find(|(k, _)| *k == s).expect("both stages").1;
+        let mut out: Vec<Assignment> = Vec::new();
+        for shader in list {
+            for a in instrument::assignments(shader) {
+                if a.file == *file && !out.contains(&a) {
+                    out.push(a);
+                }
+            }
+        }
+        out
+    };
+    let has = |s: Stage| holds(&by_stage.iter().find(|(k, _)| *k == s).expect("both stages").1, file);
+    let stage = match stage {
+        Some(s) if !has(*s) => {
+            return Err(not_drawn(draws, file, *s));
+        }
+        Some(s) => *s,
+        None => match (has(Stage::Vertex), has(Stage::Fragment)) {
+            (false, false) => {
+                return Err(not_drawn(draws, file, Stage::Fragment).generic());
+            }
+            (true, false) => Stage::Vertex,
+            (false, true) => Stage::Fragment,
+            (true, true) => {
+                let v = assigns(Stage::Vertex).iter().any(|a| a.line == line);
+                let f = assigns(Stage::Fragment).iter().any(|a| a.line == line);
+                match (v, f) {
+                    (true, true) => {
+                        return Err(ViewError::BothStages {
+                            file: file.clone(),
+                            line,
+                        })
+                    }
+                    (true, false) => Stage::Vertex,
+                    _ => Stage::Fragment,
+                }
+            }
+        },
+    };
+    let all = assigns(stage);
+    let here: Vec<&Assignment> = all.iter().filter(|a| a.line == line).collect();
+    if here.is_empty() {
+        return Err(ViewError::Nothing {
+            file: file.clone(),
+            line,
+            near: nearest(&all, line),
+        });
+    }
+    let chosen = match name {
+        Some(n) => {
+            if !here.iter().any(|a| a.named(n)) {
+                return Err(ViewError::NoSuchName {
+                    file: file.clone(),
+                    line,
+                    name: n.clone(),
+                    names: quoted(&names(&here)),
+                });
+            }
+            Some(n.clone())
+        }
+        None => {
+            let all_names = names(&here);
+            let mut roots: Vec<&str> = Vec::new();
+            for a in &here {
+                if a.root != super::interp::TEMPORARY && !roots.contains(&a.root.as_str()) {
+                    roots.push(&a.root);
+                }
+            }
+            match roots.as_slice() {
+                [] => None,
+                [one] => Some((*one).to_owned()),
+                _ => {
+                    return Err(ViewError::Ambiguous {
+                        file: file.clone(),
+                        line,
+                        names: quoted(&all_names),
+                    })
+                }
+            }
+        }
+    };
+    let components = here
+        .iter()
+        .filter(|a| chosen.as_deref().is_none_or(|n| a.named(n)))
+        .map(|a| a.components)
+        .max()
+        .unwrap_or(0);
+    Ok(Some(Resolved {
+        stage,
+        components,
+        site: Site {
+            file: file.clone(),
+            line,
+            name: chosen,
+        },
+    }))
+}
+
+impl ViewError {
+    /// The same error, said of any stage.
+    fn generic(self) -> Self {
+        match self {
+            ViewError::NotDrawn { file, files, .. } => ViewError::NotDrawn {
+                file,
+                what: "a shader".into(),
+                files,
+            },
+            other => other,
+        }
+    }
+}
+
+fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
+    let mut files: Vec<String> = Vec::new();
+    for s in shaders(draws, Stage::Vertex)
+        .iter()
+        .chain(&shaders(draws, Stage::Fragment))
+    {
+        for (p, _) in &s.source.files {
+            if !files.contains(p) {
+                files.push(p.clone());
+            }
+        }
+    }
+    ViewError::NotDrawn {
+        file: file.to_owned(),
+        what: match stage {
+            Stage::Vertex => "a vertex shader".into(),
+            Stage::Fragment => "a fragment shader".into(),
+        },
+        files: if files.is_empty() {
+            "none (the frame draws nothing)".into()
+        } else {
+            files.join(", ")
+        },
+    }
+}
+
+/// The lines nearest `line` (one before, one after) among `all`, in words.
+fn nearest(all: &[Assignment], line: u32) -> String {
+    let before = all.iter().filter(|a| a.line < line).map(|a| a.line).max();
+    let after = all.iter().filter(|a| a.line > line).map(|a| a.line).min();
+    let say = |l: u32| {
+        let here: Vec<&Assignment> = all.iter().filter(|a| a.line == l).collect();
+        let n = names(&here);
+        format!("{l} ({})", n.join(", "))
+    };
+    match (before, after) {
+        (Some(b), Some(a)) => format!("; the nearest lines that do are {} and {}", say(b), say(a)),
+        (Some(l), None) | (None, Some(l)) => format!("; the nearest line that does is {}", say(l)),
+        (None, None) => "; no line of this file assigns anything".into(),
+    }
+}
+
+/// One draw's pipeline for a view, and what it was built from.
+struct Built {
+    device: wgpu::Device,
+    vertex: Weak<CompiledShader>,
+    fragment: Weak<CompiledShader>,
+    resolved: Option<Resolved>,
+    layout: wgpu::PipelineLayout,
+    stride: u64,
+    attributes: Vec<wgpu::VertexAttribute>,
+    topology: wgpu::PrimitiveTopology,
+    front_face: wgpu::FrontFace,
+    cull: Option<wgpu::Face>,
+    depth_test: bool,
+    pipeline: wgpu::RenderPipeline,
+    /// The probed value's components in this draw's shader (0: the line is not in it).
+    components: u32,
+}
+
+/// The most pipelines a [`ViewDrawer`] keeps.
+const KEPT: usize = 32;
+
+/// Draws views, keeping the pipelines (one per draw's program, culling and probe) and index
+/// buffers it built, so that a view drawn again each frame builds nothing.
+#[derive(Default)]
+pub struct ViewDrawer {
+    built: Vec<Built>,
+    targets: Option<Targets>,
+    indices: Vec<(Weak<Vec<u32>>, wgpu::Buffer)>,
+}
+
+impl ViewDrawer {
+    /// A drawer with nothing built.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn pipeline(
+        &mut self,
+        gpu: &Gpu,
+        call: &DrawCall,
+        resolved: Option<&Resolved>,
+    ) -> Result<(wgpu::RenderPipeline, u32)> {
+        let setup = &call.setup;
+        let same = |b: &Built| {
+            b.device == gpu.device
+                && b.vertex.upgrade().is_some_and(|v| Arc::ptr_eq(&v, &setup.vertex))
+                && b.fragment.upgrade().is_some_and(|v| Arc::ptr_eq(&v, &setup.fragment))
+                && b.resolved.as_ref() == resolved
+                && b.layout == call.layout
+                && b.stride == setup.stride
+                && b.attributes == setup.attributes
+                && b.topology == setup.state.topology
+                && b.front_face == setup.state.front_face
+                && b.cull == setup.cull
+                && b.depth_test == setup.state.depth_test
+        };
+        if let Some(b) = self.built.iter().find(|b| same(b)) {
+            return Ok((b.pipeline.clone(), b.components));
+        }
+        let refused = |path: &str| {
+            let path = path.to_owned();
+            move |message: String| ViewError::Instrument { path, message }
+        };
+        let (vertex, fragment, components) = match resolved {
+            Some(r) if r.stage == Stage::Vertex => {
+                let at = instrument::free_location(&setup.vertex, &setup.fragment);
+                let (v, found) =
+                    instrument::vertex(&setup.vertex, Some(&r.site), at).map_err(refused(&setup.vertex.path))?;
+                let n = found.into_iter().max().unwrap_or(0);
+                let (f, _) = instrument::fragment(&setup.fragment, None, Some((at, n)), true)
+                    .map_err(refused(&setup.fragment.path))?;
+                (Some(v), f, n)
+            }
+            _ => {
+                let site = resolved.map(|r| &r.site);
+                let (f, found) = instrument::fragment(&setup.fragment, site, None, site.is_some())
+                    .map_err(refused(&setup.fragment.path))?;
+                (None, f, found.into_iter().max().unwrap_or(0))
+            }
+        };
+        let label = format!("shaderlab.debug.view.{}", setup.label);
+        let device = &gpu.device;
+        let pipeline = gpu.checked(&label, || {
+            let vs = match vertex {
+                Some(v) => device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(&format!("{label}.vertex")),
+                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(v)),
+                }),
+                None => device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(&format!("{label}.vertex")),
+                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(setup.vertex.module.clone())),
+                }),
+            };
+            let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&format!("{label}.fragment")),
+                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(fragment)),
+            });
+            let buffers = [Some(wgpu::VertexBufferLayout {
+                array_stride: setup.stride,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &setup.attributes,
+            })];
+            let target = |format| {
+                Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })
+            };
+            let value = target(value_format(resolved.map_or(0, |r| r.components)));
+            let info = target(INFO_FORMAT);
+            let both = [value, info.clone()];
+            let one = [info];
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&format!("{label}.pipeline")),
+                layout: Some(&call.layout),
+                vertex: wgpu::VertexState {
+                    module: &vs,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    buffers: if setup.attributes.is_empty() { &[] } else { &buffers },
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &fs,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    targets: if resolved.is_some() { &both } else { &one },
+                }),
+                primitive: wgpu::PrimitiveState {
+                    topology: setup.state.topology,
+                    front_face: setup.state.front_face,
+                    cull_mode: setup.cull,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: crate::offscreen::DEPTH_FORMAT,
+                    depth_write_enabled: Some(setup.state.depth_test),
+                    depth_compare: Some(if setup.state.depth_test {
+                        wgpu::CompareFunction::Less
+                    } else {
+                        wgpu::CompareFunction::Always
+                    }),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        self.built
+            .retain(|b| b.vertex.strong_count() > 0 && b.fragment.strong_count() > 0);
+        if self.built.len() >= KEPT {
+            self.built.remove(0);
+        }
+        self.built.push(Built {
+            device: gpu.device.clone(),
+            vertex: Arc::downgrade(&setup.vertex),
+            fragment: Arc::downgrade(&setup.fragment),
+            resolved: resolved.cloned(),
+            layout: call.layout.clone(),
+            stride: setup.stride,
+            attributes: setup.attributes.clone(),
+            topology: setup.state.topology,
+            front_face: setup.state.front_face,
+            cull: setup.cull,
+            depth_test: setup.state.depth_test,
+            pipeline: pipeline.clone(),
+            components,
+        });
+        Ok((pipeline, components))
+    }
+
+    /// The index buffer holding `indices` (uploaded once per list).
+    fn index_buffer(&mut self, gpu: &Gpu, indices: &Arc<Vec<u32>>) -> wgpu::Buffer {
+        if let Some((_, b)) = self
+            .indices
+            .iter()
+            .find(|(w, _)| w.upgrade().is_some_and(|i| Arc::ptr_eq(&i, indices)))
+        {
+            return b.clone();
+        }
+        self.indices.retain(|(w, _)| w.strong_count() > 0);
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shaderlab.debug.view.indices"),
+            size: (indices.len().max(1) * 4) as u64,
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        gpu.queue.write_buffer(&buffer, 0, &bytes);
+        self.indices.push((Arc::downgrade(indices), buffer.clone()));
+        buffer
+    }
+
+    /// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`, the size
+    /// it was recorded at) and reads it back.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn draw(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
+        let draws = log.draws();
+        let passes = log.passes();
+        if passes.iter().any(|p| (p.1, p.2) != (width, height)) {
+            let recorded: Vec<String> = passes.iter().map(|p| format!("{}x{}", p.1, p.2)).collect();
+            return Err(ViewError::Size {
+                recorded: recorded.join(", "),
+                width,
+                height,
+            }
+            .into());
+        }
+        let resolved = resolve(&draws, probe)?;
+        let mut pipelines = Vec::with_capacity(draws.len());
+        let mut components = 0;
+        for call in &draws {
+            let (p, n) = self.pipeline(gpu, call, resolved.as_ref())?;
+            components = components.max(n);
+            let indices = call.setup.indices.as_ref().map(|i| self.index_buffer(gpu, i));
+            pipelines.push((p, indices));
+        }
+        let label = "shaderlab.debug.view";
+        let (w, h) = (width.max(1), height.max(1));
+        let format = value_format(resolved.as_ref().map_or(0, |r| r.components));
+        let fits = |t: &Targets| t.device == gpu.device && (t.width, t.height, t.format) == (w, h, format);
+        if !self.targets.as_ref().is_some_and(fits) {
+            self.targets = Some(gpu.checked(label, || Targets::new(&gpu.device, w, h, format))?);
+        }
+        let targets = self.targets.as_ref().expect("made above");
+        let value = resolved.is_some();
+        let device = &gpu.device;
+        let commands = gpu.checked(label, || {
+            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some(&format!("{label}.encoder")),
+            });
+            let views: Vec<&wgpu::TextureView> = if value {
+                vec![&targets.value.1, &targets.info.1]
+            } else {
+                vec![&targets.info.1]
+            };
+            for (k, (load, _, _)) in passes.iter().enumerate() {
+                // A first pass that keeps what was there starts from nothing drawn.
+                let (color, depth_load) = match load {
+                    Load::Keep if k > 0 => (wgpu::LoadOp::Load, wgpu::LoadOp::Load),
+                    _ => (wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), wgpu::LoadOp::Clear(1.0)),
+                };
+                let attachments: Vec<_> = views
+                    .iter()
+                    .map(|v| {
+                        Some(wgpu::RenderPassColorAttachment {
+                            view: v,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: color,
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })
+                    })
+                    .collect();
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(&format!("{label}.pass")),
+                    color_attachments: &attachments,
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &targets.depth,
+                        depth_ops: Some(wgpu::Operations {
+                            load: depth_load,
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                for (call, (pipeline, indices)) in draws.iter().zip(&pipelines) {
+                    if call.setup.pass != k {
+                        continue;
+                    }
+                    pass.set_pipeline(pipeline);
+                    if let Some(group) = &call.bind_group {
+                        pass.set_bind_group(0, group, &[]);
+                    }
+                    pass.set_vertex_buffer(0, call.vertices.slice(..));
+                    match indices {
+                        Some(b) => {
+                            pass.set_index_buffer(b.slice(..), wgpu::IndexFormat::Uint32);
+                            pass.draw_indexed(call.setup.range.clone(), 0, 0..1);
+                        }
+                        None => pass.draw(call.setup.range.clone(), 0..1),
+                    }
+                }
+            }
+            if passes.is_empty() {
+                for v in &views {
+                    let _ = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some(&format!("{label}.clear")),
+                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                            view: v,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })],
+                        depth_stencil_attachment: None,
+                        timestamp_writes: None,
+                        occlusion_query_set: None,
+                        multiview_mask: None,
+                    });
+                }
+            }
+            let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
+                encoder.copy_texture_to_buffer(
+                    wgpu::TexelCopyTextureInfo {
+                        texture,
+                        mip_level: 0,
+                        origin: wgpu::Origin3d::ZERO,
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    wgpu::TexelCopyBufferInfo {
+                        buffer,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset: 0,
+                            bytes_per_row: Some(stride),
+                            rows_per_image: Some(h),
+                        },
+                    },
+                    wgpu::Extent3d {
+                        width: w,
+                        height: h,
+                        depth_or_array_layers: 1,
+                    },
+                );
+            };
+            if value {
+                copy(&targets.value.0, &targets.value.2, targets.value_stride);
+            }
+            copy(&targets.info.0, &targets.info.2, targets.info_stride);
+            encoder.finish()
+        })?;
+        gpu.queue.submit([commands]);
+        let staging: Vec<&wgpu::Buffer> = if value {
+            vec![&targets.value.2, &targets.info.2]
+        } else {
+            vec![&targets.info.2]
+        };
+        for b in &staging {
+            b.slice(..).map_async(wgpu::MapMode::Read, |_| {});
+        }
+        let waited = gpu.wait();
+        let mapped = |b: &wgpu::Buffer| {
+            b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
+                context: "reading a view back".into(),
+                message: e.to_string(),
+            })
+        };
+        let read_all = || -> Result<(Vec<[f32; 4]>, Vec<u32>)> {
+            waited?;
+            let n = (w * h) as usize;
+            let mut values = Vec::with_capacity(n);
+            if value {
+                let data = mapped(&targets.value.2)?;
+                let k = texel_words(format);
+                for y in 0..h as usize {
+                    let row = &data[y * targets.value_stride as usize..][..w as usize * k * 4];
+                    match (k, bytemuck::try_cast_slice::<u8, f32>(row)) {
+                        (4, Ok(texels)) => values.extend(texels.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]])),
+                        (1, Ok(texels)) => values.extend(texels.iter().map(|&x| [x, 0.0, 0.0, 0.0])),
+                        _ => values.extend(row.chunks_exact(k * 4).map(|t| {
+                            let mut v = [0.0f32; 4];
+                            for (c, b) in v.iter_mut().zip(t.chunks_exact(4)) {
+                                *c = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                            }
+                            v
+                        })),
+                    }
+                }
+            } else {
+                values.resize(n, [0.0; 4]);
+            }
+            let data = mapped(&targets.info.2)?;
+            let mut info = Vec::with_capacity(n);
+            for y in 0..h as usize {
+                let row = &data[y * targets.info_stride as usize..][..w as usize * 4];
+                match bytemuck::try_cast_slice::<u8, u32>(row) {
+                    Ok(words) => info.extend_from_slice(words),
+                    Err(_) => info.extend(
+                        row.chunks_exact(4)
+                            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+                    ),
+                }
+            }
+            Ok((values, info))
+        };
+        let result = read_all();
+        for b in &staging {
+            b.unmap();
+        }
+        let (values, info) = result?;
+        let vertex = resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex);
+        Ok(ValueFrame {
+            width: w,
+            height: h,
+            components,
+            values,
+            ran: info.iter().map(|i| i & instrument::RAN_BIT != 0).collect(),
+            cost: info.iter().map(|i| i >> instrument::COST_SHIFT).collect(),
+            vertex,
+            resolved,
+        })
+    }
+}
+
+/// The format of a view's value target for a value of `components` components: as few
+/// 32-bit floats a texel as hold them, since reading back is most of a view's time.
+fn value_format(components: u32) -> wgpu::TextureFormat {
+    match components {
+        0 | 1 => wgpu::TextureFormat::R32Float,
+        2 => wgpu::TextureFormat::Rg32Float,
+        _ => wgpu::TextureFormat::Rgba32Float,
+    }
+}
+
+/// The 32-bit words of a texel of `format` (a value format).
+fn texel_words(format: wgpu::TextureFormat) -> usize {
+    match format {
+        wgpu::TextureFormat::R32Float => 1,
+        wgpu::TextureFormat::Rg32Float => 2,
+        _ => 4,
+    }
+}
+/// The format of a view's info target ([`instrument::fragment`]'s info word).
+const INFO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+
+/// A view's targets, depth and read-back buffers, kept while the size stays: each target with
+/// its view and staging buffer.
+struct Targets {
+    device: wgpu::Device,
+    width: u32,
+    height: u32,
+    /// The value target's format.
+    format: wgpu::TextureFormat,
+    value: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
+    info: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
+    value_stride: u32,
+    info_stride: u32,
+    depth: wgpu::TextureView,
+}
+
+impl Targets {
+    fn new(device: &wgpu::Device, width: u32, height: u32, format: wgpu::TextureFormat) -> Targets {
+        let label = "shaderlab.debug.view";
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        let texture = |name: &str, format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&format!("{label}.{name}")),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let target = |name: &str, format, stride| {
+            let t = texture(
+                name,
+                format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            );
+            let v = t.create_view(&wgpu::TextureViewDescriptor {
+                label: Some(&format!("{label}.{name}_view")),
+                ..Default::default()
+            });
+            let b = crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height);
+            (t, v, b)
+        };
+        let value_stride = crate::offscreen::padded_row(4 * texel_words(format) as u32, width);
+        let info_stride = crate::offscreen::padded_row(4, width);
+        let depth = texture(
+            "depth",
+            crate::offscreen::DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+        .create_view(&wgpu::TextureViewDescriptor {
+            label: Some(&format!("{label}.depth_view")),
+            ..Default::default()
+        });
+        Targets {
+            device: device.clone(),
+            width,
+            height,
+            format,
+            value: target("value", format, value_stride),
+            info: target("info", INFO_FORMAT, info_stride),
+            value_stride,
+            info_stride,
+            depth,
+        }
+    }
+}
+
+/// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`) with a drawer
+/// of its own; see [`ViewDrawer`] to draw views again and again.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn draw_view(gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
+    ViewDrawer::new().draw(gpu, log, probe, width, height)
+}
+
+/// Records one frame of `lab` at `width` × `height` with its draws written down, without
+/// running it: what a view draws again.
+pub fn record(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<DrawLog> {
+    let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
+    let log = DrawLog::new();
+    let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    Ok(log)
+}
+
+/// Records one frame of `lab` with its draws written down and brings them to the CPU: the log
+/// a view draws from and the capture the debugger replays, of the same frame.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn capture(
+    gpu: &Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    width: u32,
+    height: u32,
+) -> Result<(DrawLog, super::Captured)> {
+    let log = record(gpu, lab, width, height)?;
+    let captured = super::Pending::start(gpu, &log).wait(gpu)?;
+    Ok((log, captured))
+}

@@ -1,0 +1,432 @@
+//! Whole-frame views agree with the debugger: a line view's value at a pixel is the value the
+//! debugger's trace gives that line's last assignment there (within 1e-3, relative), a pixel
+//! where the trace never reaches the line is one where the view says it did not run, and a cost
+//! view's count is the debugger's `cost` exactly; across labs, both stages, a course GLSL 1.10
+//! file, a branch and loops. Bad probes get their messages.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use common::gpu;
+use shaderlab::debug::view::{self, Probe, ValueFrame, ViewDrawer, ViewError};
+use shaderlab::debug::{Captured, Inspection, Stage};
+use shaderlab::lab::{BuildContext, Lab, UserFiles};
+use shaderlab::offscreen::COLOR_FORMAT;
+use shaderlab::render::DrawLog;
+use shaderlab::shader::ShaderSource;
+
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 180;
+
+fn build(name: &str, source: ShaderSource, files: &UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
+    let entry = shaderlab::course::find(name).expect("a lab");
+    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, files);
+    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
+    for (k, v) in set {
+        lab.params_mut()
+            .set_str(k, v)
+            .unwrap_or_else(|e| panic!("{name} --set {k}={v}: {e}"));
+    }
+    lab
+}
+
+fn lab(name: &str, set: &[(&str, &str)]) -> Box<dyn Lab> {
+    build(name, ShaderSource::Embedded, &UserFiles::default(), set)
+}
+
+/// A lab drawing with the built-in shaders but for `edits` (file name → text).
+fn edited(name: &str, edits: &[(&str, &str)], set: &[(&str, &str)]) -> Box<dyn Lab> {
+    let map: BTreeMap<String, String> = edits.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect();
+    build(name, ShaderSource::Edited(Arc::new(map)), &UserFiles::default(), set)
+}
+
+fn course(lab: u32) -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
+    vec![dir.join(format!("lab{lab}.vert")), dir.join(format!("lab{lab}.frag"))]
+}
+
+/// The legacy runner with the course's exercise `n` (GLSL 1.10, translated).
+fn legacy(n: u32) -> Box<dyn Lab> {
+    let files = UserFiles {
+        inputs: course(n),
+        ..UserFiles::default()
+    };
+    build("legacy", ShaderSource::Embedded, &files, &[("object", "teapot")])
+}
+
+fn frame(lab: &mut dyn Lab) -> (DrawLog, Captured) {
+    view::capture(gpu(), lab, WIDTH, HEIGHT).unwrap_or_else(|e| panic!("capture: {e}"))
+}
+
+/// The file (as the lab shows it) whose path ends with `suffix`, and the first line of it
+/// holding `needle`.
+fn line_of(captured: &Captured, suffix: &str, needle: &str) -> (String, u32) {
+    for d in &captured.draws {
+        for shader in [&d.vertex, &d.fragment] {
+            for (path, text) in &shader.source.files {
+                if path.ends_with(suffix) {
+                    if let Some(k) = text.lines().position(|l| l.contains(needle)) {
+                        return (path.clone(), k as u32 + 1);
+                    }
+                }
+            }
+        }
+    }
+    panic!("no file ending {suffix} holds {needle:?}");
+}
+
+fn probe(file: &str, line: u32, name: Option<&str>) -> Probe {
+    Probe::Line {
+        file: file.to_owned(),
+        line,
+        name: name.map(str::to_owned),
+        stage: None,
+    }
+}
+
+/// Up to `n` pixels where `pick` holds, spread evenly over them in scan order.
+fn spread(frame: &ValueFrame, n: usize, pick: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
+    let all: Vec<usize> = (0..frame.values.len()).filter(|&i| pick(i)).collect();
+    if all.is_empty() {
+        return Vec::new();
+    }
+    let step = (all.len() / n).max(1);
+    all.iter()
+        .skip(step / 2)
+        .step_by(step)
+        .take(n)
+        .map(|&i| (i as u32 % frame.width, i as u32 / frame.width))
+        .collect()
+}
+
+/// The last value the trace gives `name` at `file:line` in `stage` (the pixel's fragment, or a
+/// vertex corner's), if the trace reaches the line.
+fn traced(ins: &Inspection, stage: Stage, file: &str, line: u32, name: &str) -> Vec<Vec<f64>> {
+    ins.steps
+        .iter()
+        .filter(|s| s.stage == stage && s.file == file && s.line == line)
+        .filter(|s| {
+            s.name == name || s.name.starts_with(&format!("{name}.")) || s.name.starts_with(&format!("{name}["))
+        })
+        .map(|s| s.value.clone())
+        .collect()
+}
+
+fn close(gpu: f32, cpu: f64) -> bool {
+    let (a, b) = (f64::from(gpu), cpu);
+    (a - b).abs() <= 1e-3 * b.abs().max(1.0) || (a.is_nan() && b.is_nan())
+}
+
+/// Checks a fragment line view of `lab` against the debugger at `n` pixels where it ran (and
+/// at pixels drawn where it did not); returns the frame.
+fn agrees(label: &str, lab: &mut dyn Lab, suffix: &str, needle: &str, name: Option<&str>, n: usize) -> ValueFrame {
+    let (log, captured) = frame(lab);
+    let (file, line) = line_of(&captured, suffix, needle);
+    let view = view::draw_view(gpu(), &log, &probe(&file, line, name), WIDTH, HEIGHT)
+        .unwrap_or_else(|e| panic!("{label}: view of {file}:{line}: {e}"));
+    let resolved = view.resolved.clone().expect("a line view");
+    let name = resolved.site.name.clone().expect("a name");
+    assert!(!view.vertex, "{label}: {file}:{line} is a fragment line");
+    assert!(view.components >= 1, "{label}: the value has components");
+    let ran = spread(&view, n, |i| view.ran[i]);
+    assert!(
+        ran.len() >= n.min(4),
+        "{label}: {file}:{line} ran at {} pixels",
+        ran.len()
+    );
+    for &(x, y) in &ran {
+        let ins = Inspection::new(label, &captured, x, y).unwrap_or_else(|e| panic!("{label} {x},{y}: {e}"));
+        let values = traced(&ins, Stage::Fragment, &file, line, &name);
+        let last = values
+            .last()
+            .unwrap_or_else(|| panic!("{label} {x},{y}: the view ran {file}:{line} but the trace never reaches it"));
+        let got = view.values[view.at(x, y)];
+        let k = last.len().min(4);
+        assert_eq!(k as u32, view.components, "{label} {x},{y}: components of `{name}`");
+        for c in 0..k {
+            assert!(
+                close(got[c], last[c]),
+                "{label} pixel {x},{y}: {file}:{line} `{name}` component {c}: view {}, debugger {} (view {:?}, trace {:?})",
+                got[c],
+                last[c],
+                got,
+                last
+            );
+        }
+    }
+    // Drawn pixels where the view says the line did not run: the trace does not reach it.
+    for (x, y) in spread(&view, 4, |i| !view.ran[i] && view.cost[i] > 0) {
+        let ins = Inspection::new(label, &captured, x, y).unwrap_or_else(|e| panic!("{label} {x},{y}: {e}"));
+        assert!(
+            traced(&ins, Stage::Fragment, &file, line, &name).is_empty(),
+            "{label} pixel {x},{y}: the view says {file}:{line} did not run, the trace has it"
+        );
+    }
+    view
+}
+
+/// Checks a cost view of `lab` against the debugger's `cost` at `n` drawn pixels and a few
+/// undrawn ones; returns the costs seen.
+fn costs_agree(label: &str, lab: &mut dyn Lab, n: usize) -> Vec<u32> {
+    let (log, captured) = frame(lab);
+    let view = view::draw_view(gpu(), &log, &Probe::Cost, WIDTH, HEIGHT).unwrap_or_else(|e| panic!("{label}: {e}"));
+    let mut pixels = spread(&view, n, |i| view.cost[i] > 0);
+    assert!(
+        pixels.len() >= n.min(4),
+        "{label}: the cost view draws {} pixels",
+        pixels.len()
+    );
+    pixels.extend(spread(&view, 2, |i| view.cost[i] == 0));
+    let mut seen = Vec::new();
+    for (x, y) in pixels {
+        let ins = Inspection::new(label, &captured, x, y).unwrap_or_else(|e| panic!("{label} {x},{y}: {e}"));
+        let gpu_cost = view.cost[view.at(x, y)];
+        assert_eq!(
+            gpu_cost as usize, ins.cost,
+            "{label} pixel {x},{y}: the cost view counts {gpu_cost} steps, the debugger {}",
+            ins.cost
+        );
+        seen.push(gpu_cost);
+    }
+    seen
+}
+
+#[test]
+fn a_line_view_shows_the_value_the_debugger_traces() {
+    // Phong: N·L (the diffuse term) and L, computed through a function of an included file.
+    let mut phong = lab("phong", &[("object", "teapot")]);
+    let v = agrees("phong", phong.as_mut(), "phong.frag", "max(dot(N, L), 0.0)", None, 8);
+    assert_eq!(v.components, 4, "Idiff is a vec4");
+    agrees(
+        "phong",
+        phong.as_mut(),
+        "phong.frag",
+        "vec3 L = safe_normalize",
+        None,
+        6,
+    );
+    let mut torus = lab("phong", &[("object", "torus"), ("xangle", "30"), ("yangle", "40")]);
+    agrees("phong torus", torus.as_mut(), "phong.frag", "vec3 R = ", Some("R"), 6);
+    let mut normal = lab("normal_rgb", &[("object", "sphere")]);
+    agrees(
+        "normal_rgb",
+        normal.as_mut(),
+        "normal_rgb.frag",
+        "frag_color = vec4(normal",
+        None,
+        8,
+    );
+    let mut noise = lab("noise", &[("object", "sphere"), ("time", "2.5")]);
+    agrees("noise", noise.as_mut(), "noise.frag", "vec3 v = position", None, 6);
+}
+
+#[test]
+fn a_line_view_of_a_course_glsl_110_file_uses_the_users_names() {
+    let mut lab3 = legacy(3);
+    agrees("legacy lab3", lab3.as_mut(), "lab3.frag", "vec3 L = normalize", None, 6);
+    let v = agrees("legacy lab3", lab3.as_mut(), "lab3.frag", "gl_FragColor = Ka", None, 6);
+    let name = v.resolved.and_then(|r| r.site.name).expect("a name");
+    assert_eq!(name, "gl_FragColor", "the user's name, not the translator's");
+}
+
+/// A loop whose passes differ from pixel to pixel, in a copy of noise.frag.
+const LOOPING_NOISE: &str = "#version 450
+#include \"noise_params.glsl\"
+#include \"noise.glsl\"
+
+layout(location = 0) in vec3 position;
+layout(location = 0) out vec4 frag_color;
+
+void main() {
+    vec3 v = position + time;
+    float sum = 0.0;
+    int n = 1 + int(abs(position.x) * 6.0);
+    for (int i = 0; i < n; i++) {
+        sum += snoise(v * float(i + 1));
+        if (sum > 0.5) {
+            sum -= 0.25;
+        }
+    }
+    frag_color = vec4(shade * abs(sum), 1.0);
+}
+";
+
+#[test]
+fn a_line_view_in_a_loop_shows_the_last_value_and_a_branch_not_taken_does_not_run() {
+    let mut noise = edited(
+        "noise",
+        &[("noise.frag", LOOPING_NOISE)],
+        &[("object", "sphere"), ("time", "1.5")],
+    );
+    agrees("looping noise", noise.as_mut(), "noise.frag", "sum += snoise", None, 6);
+    let branch = agrees("looping noise", noise.as_mut(), "noise.frag", "sum -= 0.25", None, 6);
+    let drawn = branch.cost.iter().filter(|&&c| c > 0).count();
+    let ran = branch.ran.iter().filter(|&&r| r).count();
+    assert!(
+        ran > 0 && ran < drawn,
+        "the branch runs at some drawn pixels, not all: {ran} of {drawn}"
+    );
+    // uniform_arrays: the first band of an if/else chain runs only in the highlight.
+    let mut bands = lab("uniform_arrays", &[]);
+    let v = agrees(
+        "uniform_arrays",
+        bands.as_mut(),
+        "uniform_arrays.frag",
+        "frag_color = colors[2]",
+        None,
+        4,
+    );
+    let drawn = v.cost.iter().filter(|&&c| c > 0).count();
+    let ran = v.ran.iter().filter(|&&r| r).count();
+    assert!(ran < drawn, "the last band is not everywhere: {ran} of {drawn}");
+}
+
+#[test]
+fn a_vertex_line_view_is_the_value_interpolated_as_a_varying() {
+    let mut phong = lab("phong", &[("object", "teapot")]);
+    let (log, captured) = frame(phong.as_mut());
+    let (file, line) = line_of(&captured, "phong.vert", "v = vec3(modelview * vertex)");
+    let view = view::draw_view(gpu(), &log, &probe(&file, line, None), WIDTH, HEIGHT).expect("the view");
+    assert!(view.vertex, "a vertex-shader line");
+    assert_eq!(view.components, 3);
+    let pixels = spread(&view, 8, |i| view.ran[i]);
+    assert!(pixels.len() >= 8);
+    for (x, y) in pixels {
+        let ins = Inspection::new("phong", &captured, x, y).expect("inspection");
+        let f = ins.replayed.fragment.as_ref().expect("covered");
+        // The vertex shader writes `v` to the varying of the same name: the view at the pixel
+        // is that varying as the fragment shader receives it.
+        let input = f.inputs.iter().find(|n| n.name == "v").expect("the input v");
+        let got = view.values[view.at(x, y)];
+        for c in 0..3 {
+            assert!(
+                close(got[c], input.value[c]),
+                "phong pixel {x},{y}: vertex line v component {c}: view {got:?}, interpolated input {:?}",
+                input.value
+            );
+        }
+        // And each corner's traced value of the line is the corner's output.
+        let corners = traced(&ins, Stage::Vertex, &file, line, "v");
+        assert_eq!(corners.len(), 3, "the line ran at the three corners");
+    }
+}
+
+#[test]
+fn a_cost_view_counts_the_steps_the_debugger_counts() {
+    let mut phong = lab("phong", &[("object", "teapot")]);
+    costs_agree("phong", phong.as_mut(), 8);
+    let mut bands = lab("uniform_arrays", &[]);
+    costs_agree("uniform_arrays", bands.as_mut(), 8);
+    let mut lab3 = legacy(3);
+    costs_agree("legacy lab3", lab3.as_mut(), 6);
+    let mut noise = edited(
+        "noise",
+        &[("noise.frag", LOOPING_NOISE)],
+        &[("object", "sphere"), ("time", "1.5")],
+    );
+    let seen = costs_agree("looping noise", noise.as_mut(), 12);
+    let (lo, hi) = (
+        seen.iter().filter(|&&c| c > 0).min().copied().unwrap_or(0),
+        seen.iter().max().copied().unwrap_or(0),
+    );
+    assert!(hi > lo + 20, "the loop's cost differs from pixel to pixel: {lo}..{hi}");
+}
+
+#[test]
+fn a_view_drawn_again_builds_nothing_and_draws_the_same() {
+    let mut phong = lab("phong", &[("object", "teapot")]);
+    let (log, captured) = frame(phong.as_mut());
+    let (file, line) = line_of(&captured, "phong.frag", "max(dot(N, L), 0.0)");
+    let mut drawer = ViewDrawer::new();
+    let p = probe(&file, line, None);
+    let a = drawer.draw(gpu(), &log, &p, WIDTH, HEIGHT).expect("first");
+    let b = drawer.draw(gpu(), &log, &p, WIDTH, HEIGHT).expect("again");
+    assert_eq!(a.values, b.values);
+    assert_eq!(a.cost, b.cost);
+}
+
+/// The error `probe` gets on `lab`'s frame.
+fn refused(lab: &mut dyn Lab, probe: &Probe) -> ViewError {
+    let (log, _) = frame(lab);
+    match view::resolve(&log.draws(), probe) {
+        Err(e) => e,
+        Ok(r) => panic!("{probe:?} resolved to {r:?}"),
+    }
+}
+
+#[test]
+fn bad_probes_get_clear_messages() {
+    let mut phong = lab("phong", &[("object", "teapot")]);
+    let (_, captured) = frame(phong.as_mut());
+    let (file, comment) = line_of(&captured, "phong.frag", "// The course's lines");
+    let e = refused(phong.as_mut(), &probe(&file, comment, None));
+    assert!(matches!(e, ViewError::Nothing { .. }), "{e}");
+    let said = e.to_string();
+    assert!(
+        said.contains("assigns nothing") && said.contains("nearest line") && said.contains("13 (L)"),
+        "{said}"
+    );
+    let e = refused(phong.as_mut(), &probe("nowhere.frag", 3, None));
+    assert!(matches!(e, ViewError::NotDrawn { .. }), "{e}");
+    assert!(e.to_string().contains("phong.frag"), "it lists the files drawn: {e}");
+    let (_, l) = line_of(&captured, "phong.frag", "vec3 L = safe_normalize");
+    let e = refused(phong.as_mut(), &probe(&file, l, Some("Q")));
+    assert!(matches!(e, ViewError::NoSuchName { .. }), "{e}");
+    assert!(e.to_string().contains("`L`"), "it lists the names assigned: {e}");
+    // A line past the end of the file.
+    let e = refused(phong.as_mut(), &probe(&file, 9999, None));
+    assert!(matches!(e, ViewError::Nothing { .. }), "{e}");
+}
+
+/// An include used by both of phong's stages, with a line that assigns.
+const SHARED: &str = "vec3 twice(vec3 x) {
+    vec3 y = x * 2.0;
+    return y * 0.5;
+}
+";
+
+#[test]
+fn a_line_of_an_include_both_stages_use_asks_for_the_stage() {
+    let vert = common_text("phong.vert").replace(
+        "#include \"transform.glsl\"",
+        "#include \"transform.glsl\"\n#include \"shared.glsl\"",
+    );
+    let vert = vert
+        .replace("N = normalize(", "N = twice(normalize(")
+        .replace("vertex_normal);", "vertex_normal));");
+    let frag = common_text("phong.frag").replace(
+        "#include \"safe_math.glsl\"",
+        "#include \"safe_math.glsl\"\n#include \"shared.glsl\"",
+    );
+    let frag = frag.replace("vec3 E = safe_normalize(-v);", "vec3 E = twice(safe_normalize(-v));");
+    let mut phong = edited(
+        "phong",
+        &[("phong.vert", &vert), ("phong.frag", &frag), ("shared.glsl", SHARED)],
+        &[("object", "sphere")],
+    );
+    let (log, captured) = frame(phong.as_mut());
+    let (file, line) = line_of(&captured, "shared.glsl", "vec3 y = x * 2.0;");
+    let e = view::resolve(&log.draws(), &probe(&file, line, None)).expect_err("both stages");
+    assert!(matches!(e, ViewError::BothStages { .. }), "{e}");
+    assert!(e.to_string().contains("choose the stage"), "{e}");
+    for stage in [Stage::Vertex, Stage::Fragment] {
+        let p = Probe::Line {
+            file: file.clone(),
+            line,
+            name: None,
+            stage: Some(stage),
+        };
+        let v = view::draw_view(gpu(), &log, &p, WIDTH, HEIGHT).expect("with the stage chosen");
+        assert_eq!(v.vertex, stage == Stage::Vertex);
+        assert!(v.ran.iter().any(|&r| r), "{stage:?}: the line ran");
+    }
+}
+
+fn common_text(name: &str) -> String {
+    shaderlab::shader::embedded_source(name)
+        .expect("an embedded shader")
+        .to_owned()
+}
