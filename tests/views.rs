@@ -108,7 +108,9 @@ fn traced(ins: &Inspection, stage: Stage, file: &str, line: u32, name: &str) -> 
     ins.steps
         .iter()
         .filter(|s| s.stage == stage && s.file == file && s.line == line)
-        .filter(|s| s.name == name || s.name.starts_with(&format!("{name}.")) || s.name.starts_with(&format!("{name}[")))
+        .filter(|s| {
+            s.name == name || s.name.starts_with(&format!("{name}.")) || s.name.starts_with(&format!("{name}["))
+        })
         .map(|s| s.value.clone())
         .collect()
 }
@@ -130,7 +132,11 @@ fn agrees(label: &str, lab: &mut dyn Lab, suffix: &str, needle: &str, name: Opti
     assert!(!view.vertex, "{label}: {file}:{line} is a fragment line");
     assert!(view.components >= 1, "{label}: the value has components");
     let ran = spread(&view, n, |i| view.ran[i]);
-    assert!(ran.len() >= n.min(4), "{label}: {file}:{line} ran at {} pixels", ran.len());
+    assert!(
+        ran.len() >= n.min(4),
+        "{label}: {file}:{line} ran at {} pixels",
+        ran.len()
+    );
     for &(x, y) in &ran {
         let ins = Inspection::new(label, &captured, x, y).unwrap_or_else(|e| panic!("{label} {x},{y}: {e}"));
         let values = traced(&ins, Stage::Fragment, &file, line, &name);
@@ -168,7 +174,11 @@ fn costs_agree(label: &str, lab: &mut dyn Lab, n: usize) -> Vec<u32> {
     let (log, captured) = frame(lab);
     let view = view::draw_view(gpu(), &log, &Probe::Cost, WIDTH, HEIGHT).unwrap_or_else(|e| panic!("{label}: {e}"));
     let mut pixels = spread(&view, n, |i| view.cost[i] > 0);
-    assert!(pixels.len() >= n.min(4), "{label}: the cost view draws {} pixels", pixels.len());
+    assert!(
+        pixels.len() >= n.min(4),
+        "{label}: the cost view draws {} pixels",
+        pixels.len()
+    );
     pixels.extend(spread(&view, 2, |i| view.cost[i] == 0));
     let mut seen = Vec::new();
     for (x, y) in pixels {
@@ -190,11 +200,37 @@ fn a_line_view_shows_the_value_the_debugger_traces() {
     let mut phong = lab("phong", &[("object", "teapot")]);
     let v = agrees("phong", phong.as_mut(), "phong.frag", "max(dot(N, L), 0.0)", None, 8);
     assert_eq!(v.components, 4, "Idiff is a vec4");
-    agrees("phong", phong.as_mut(), "phong.frag", "vec3 L = safe_normalize", None, 6);
+    agrees(
+        "phong",
+        phong.as_mut(),
+        "phong.frag",
+        "vec3 L = safe_normalize",
+        None,
+        6,
+    );
     let mut torus = lab("phong", &[("object", "torus"), ("xangle", "30"), ("yangle", "40")]);
     agrees("phong torus", torus.as_mut(), "phong.frag", "vec3 R = ", Some("R"), 6);
+    // phong_dir: the scalar N·L, and the colour it adds to.
+    let mut dir = lab("phong_dir", &[]);
+    let v = agrees("phong_dir", dir.as_mut(), "phong_dir.frag", "float cos_theta", None, 8);
+    assert_eq!(v.components, 1, "cos_theta is a float");
+    agrees(
+        "phong_dir",
+        dir.as_mut(),
+        "phong_dir.frag",
+        "color += light_intensity * material_diffuse",
+        None,
+        6,
+    );
     let mut normal = lab("normal_rgb", &[("object", "sphere")]);
-    agrees("normal_rgb", normal.as_mut(), "normal_rgb.frag", "frag_color = vec4(normal", None, 8);
+    agrees(
+        "normal_rgb",
+        normal.as_mut(),
+        "normal_rgb.frag",
+        "frag_color = vec4(normal",
+        None,
+        8,
+    );
     let mut noise = lab("noise", &[("object", "sphere"), ("time", "2.5")]);
     agrees("noise", noise.as_mut(), "noise.frag", "vec3 v = position", None, 6);
 }
@@ -241,10 +277,36 @@ fn a_line_view_in_a_loop_shows_the_last_value_and_a_branch_not_taken_does_not_ru
     let branch = agrees("looping noise", noise.as_mut(), "noise.frag", "sum -= 0.25", None, 6);
     let drawn = branch.cost.iter().filter(|&&c| c > 0).count();
     let ran = branch.ran.iter().filter(|&&r| r).count();
-    assert!(ran > 0 && ran < drawn, "the branch runs at some drawn pixels, not all: {ran} of {drawn}");
+    assert!(
+        ran > 0 && ran < drawn,
+        "the branch runs at some drawn pixels, not all: {ran} of {drawn}"
+    );
+    // phong_dir: the specular term is added only where the light reflects towards the eye.
+    let mut dir = lab("phong_dir", &[]);
+    let v = agrees(
+        "phong_dir",
+        dir.as_mut(),
+        "phong_dir.frag",
+        "material_specular * pow",
+        None,
+        6,
+    );
+    let drawn = v.cost.iter().filter(|&&c| c > 0).count();
+    let ran = v.ran.iter().filter(|&&r| r).count();
+    assert!(
+        ran > 0 && ran < drawn,
+        "the highlight's branch runs at some drawn pixels: {ran} of {drawn}"
+    );
     // uniform_arrays: the first band of an if/else chain runs only in the highlight.
     let mut bands = lab("uniform_arrays", &[]);
-    let v = agrees("uniform_arrays", bands.as_mut(), "uniform_arrays.frag", "frag_color = colors[2]", None, 4);
+    let v = agrees(
+        "uniform_arrays",
+        bands.as_mut(),
+        "uniform_arrays.frag",
+        "frag_color = colors[2]",
+        None,
+        4,
+    );
     let drawn = v.cost.iter().filter(|&&c| c > 0).count();
     let ran = v.ran.iter().filter(|&&r| r).count();
     assert!(ran < drawn, "the last band is not everywhere: {ran} of {drawn}");
@@ -288,6 +350,13 @@ fn a_cost_view_counts_the_steps_the_debugger_counts() {
     costs_agree("uniform_arrays", bands.as_mut(), 8);
     let mut lab3 = legacy(3);
     costs_agree("legacy lab3", lab3.as_mut(), 6);
+    // `discard`: a step of its own, and the fragment behind shows.
+    let holes = common_text("normal_rgb.frag").replace(
+        "frag_color = vec4(normal, 1.0);",
+        "if (fract(normal.x * 4.0) > 0.6) {\n        discard;\n    }\n    frag_color = vec4(normal, 1.0);",
+    );
+    let mut normal = edited("normal_rgb", &[("normal_rgb.frag", &holes)], &[("object", "torus")]);
+    costs_agree("normal_rgb with discard", normal.as_mut(), 10);
     let mut noise = edited(
         "noise",
         &[("noise.frag", LOOPING_NOISE)],
@@ -342,6 +411,13 @@ fn bad_probes_get_clear_messages() {
     let e = refused(phong.as_mut(), &probe(&file, l, Some("Q")));
     assert!(matches!(e, ViewError::NoSuchName { .. }), "{e}");
     assert!(e.to_string().contains("`L`"), "it lists the names assigned: {e}");
+    // A file named by its name alone is the one file of that name.
+    let p = probe("phong.frag", l, None);
+    let (log, _) = frame(phong.as_mut());
+    let r = view::resolve(&log.draws(), &p)
+        .expect("phong.frag by its name")
+        .expect("a line");
+    assert_eq!(r.site.file, file);
     // A line past the end of the file.
     let e = refused(phong.as_mut(), &probe(&file, 9999, None));
     assert!(matches!(e, ViewError::Nothing { .. }), "{e}");
@@ -360,10 +436,9 @@ fn a_line_of_an_include_both_stages_use_asks_for_the_stage() {
         "#include \"transform.glsl\"",
         "#include \"transform.glsl\"\n#include \"shared.glsl\"",
     );
-    let vert = vert.replace("N = normalize(", "N = twice(normalize(").replace(
-        "vertex_normal);",
-        "vertex_normal));",
-    );
+    let vert = vert
+        .replace("N = normalize(", "N = twice(normalize(")
+        .replace("vertex_normal);", "vertex_normal));");
     let frag = common_text("phong.frag").replace(
         "#include \"safe_math.glsl\"",
         "#include \"safe_math.glsl\"\n#include \"shared.glsl\"",

@@ -8,9 +8,7 @@
 //! then returns them at locations 0 and 1 instead of its colour. A vertex shader's value
 //! travels to the fragment shader as two extra varyings at a location neither uses.
 
-use naga::{
-    Binding, Expression, Function, Handle, Literal, Module, ScalarKind, Span, Statement, Type, TypeInner,
-};
+use naga::{Binding, Expression, Function, Handle, Literal, Module, ScalarKind, Span, Statement, Type, TypeInner};
 
 use super::{locate, user_name, value::part_name};
 use crate::shader::CompiledShader;
@@ -187,7 +185,9 @@ fn stores(
     for (statement, span) in block.span_iter() {
         match statement {
             Statement::Store { pointer, value } => {
-                let Some((file, line)) = locate(shader, *span) else { continue };
+                let Some((file, line)) = locate(shader, *span) else {
+                    continue;
+                };
                 let Some((name, root)) = pointer_name(&shader.module, function, info, *pointer) else {
                     continue;
                 };
@@ -371,7 +371,13 @@ impl Rewrite<'_> {
         );
         out.push(Statement::Emit(exprs.range_from(start)), s);
         out.push(Statement::Store { pointer: gv, value: v }, s);
-        out.push(Statement::Store { pointer: gr, value: one }, s);
+        out.push(
+            Statement::Store {
+                pointer: gr,
+                value: one,
+            },
+            s,
+        );
         let nc = exprs.append(Expression::Literal(Literal::F32(n as f32)), s);
         out.push(Statement::Store { pointer: gc, value: nc }, s);
     }
@@ -619,7 +625,7 @@ fn rewrite(shader: &CompiledShader, stage: naga::ShaderStage, site: Option<&Site
 }
 
 /// An entry-point result struct of `members` (name, type, binding), laid out.
-fn io_struct(module: &mut Module, name: &str, members: Vec<(String, Handle<Type>, Option<Binding>)>) -> Handle<Type> {
+fn io_struct(module: &mut Module, name: &str, members: Vec<Member>) -> Handle<Type> {
     let mut layouter = naga::proc::Layouter::default();
     let _ = layouter.update(module.to_ctx());
     let mut offset = 0u32;
@@ -662,13 +668,15 @@ fn location(location: u32, flat: bool) -> Binding {
     }
 }
 
+/// What a `return v` (`None`: a return without a value) becomes: a block ending in a return.
+type Returned<'a> = dyn Fn(Option<Handle<Expression>>, &mut naga::Arena<Expression>) -> naga::Block + 'a;
+
+/// An entry-point output: its name, type and binding.
+type Member = (String, Handle<Type>, Option<Binding>);
+
 /// Replaces every `return v` of `block` by what `returned(v)` builds (a block ending in a
 /// return).
-fn returns(
-    block: naga::Block,
-    exprs: &mut naga::Arena<Expression>,
-    returned: &dyn Fn(Option<Handle<Expression>>, &mut naga::Arena<Expression>) -> naga::Block,
-) -> naga::Block {
+fn returns(block: naga::Block, exprs: &mut naga::Arena<Expression>, returned: &Returned) -> naga::Block {
     let mut out = naga::Block::with_capacity(block.len());
     for (statement, span) in block.span_into_iter() {
         let s = match statement {
@@ -946,18 +954,23 @@ pub fn vertex(vertex: &CompiledShader, site: Option<&Site>, at: u32) -> Result<(
         .clone()
         .ok_or_else(|| format!("{}'s entry point returns nothing", vertex.path))?;
     // The original outputs, each as a member: from the struct, or the result itself.
-    let (members, whole): (Vec<(String, Handle<Type>, Option<Binding>)>, bool) =
-        match (&result.binding, &module.types[result.ty].inner) {
-            (None, TypeInner::Struct { members, .. }) => (
-                members
-                    .iter()
-                    .enumerate()
-                    .map(|(k, m)| (m.name.clone().unwrap_or_else(|| format!("member{k}")), m.ty, m.binding.clone()))
-                    .collect(),
-                false,
-            ),
-            (b, _) => (vec![("position".to_owned(), result.ty, b.clone())], true),
-        };
+    let (members, whole): (Vec<Member>, bool) = match (&result.binding, &module.types[result.ty].inner) {
+        (None, TypeInner::Struct { members, .. }) => (
+            members
+                .iter()
+                .enumerate()
+                .map(|(k, m)| {
+                    (
+                        m.name.clone().unwrap_or_else(|| format!("member{k}")),
+                        m.ty,
+                        m.binding.clone(),
+                    )
+                })
+                .collect(),
+            false,
+        ),
+        (b, _) => (vec![("position".to_owned(), result.ty, b.clone())], true),
+    };
     let original = members.len() as u32;
     let mut all = members;
     all.push(("shaderlab_view_value".into(), vec4f, Some(location(at, false))));

@@ -9,6 +9,9 @@
 //! the frame. A vertex-shader line travels to the fragment shader as an extra varying: the
 //! value at the three corners interpolated as any varying is.
 
+// The browser reads a view back asynchronously; what draws and reads one here is native.
+#![cfg_attr(target_arch = "wasm32", allow(dead_code))]
+
 use std::sync::{Arc, Weak};
 
 use super::instrument::{self, Assignment, Site};
@@ -197,6 +200,7 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
     };
     let line = *line;
     let by_stage = [Stage::Vertex, Stage::Fragment].map(|s| (s, shaders(draws, s)));
+    let file = &full_path(draws, file);
     let assigns = |s: Stage| -> Vec<Assignment> {
         let list = &by_stage.iter().find(|(k, _)| *k == s).expect("both stages").1;
         let mut out: Vec<Assignment> = Vec::new();
@@ -310,15 +314,39 @@ impl ViewError {
     }
 }
 
-fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
+/// The files of the shaders `draws` draw with (display paths), in order.
+fn files(draws: &[DrawCall]) -> Vec<String> {
     let mut files: Vec<String> = Vec::new();
-    for s in shaders(draws, Stage::Vertex).iter().chain(&shaders(draws, Stage::Fragment)) {
+    for s in shaders(draws, Stage::Vertex)
+        .iter()
+        .chain(&shaders(draws, Stage::Fragment))
+    {
         for (p, _) in &s.source.files {
             if !files.contains(p) {
                 files.push(p.clone());
             }
         }
     }
+    files
+}
+
+/// `file` as the draws' shaders name it: itself, or the one file whose path ends with it
+/// (`phong.frag` for `shaders_glsl/phong.frag`).
+fn full_path(draws: &[DrawCall], file: &str) -> String {
+    let all = files(draws);
+    if all.iter().any(|p| p == file) {
+        return file.to_owned();
+    }
+    let tail = format!("/{}", file.trim_start_matches("./"));
+    let ends: Vec<&String> = all.iter().filter(|p| p.ends_with(&tail)).collect();
+    match ends.as_slice() {
+        [one] => (*one).clone(),
+        _ => file.to_owned(),
+    }
+}
+
+fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
+    let files = files(draws);
     ViewError::NotDrawn {
         file: file.to_owned(),
         what: match stage {
@@ -385,7 +413,12 @@ impl ViewDrawer {
         Self::default()
     }
 
-    fn pipeline(&mut self, gpu: &Gpu, call: &DrawCall, resolved: Option<&Resolved>) -> Result<(wgpu::RenderPipeline, u32)> {
+    fn pipeline(
+        &mut self,
+        gpu: &Gpu,
+        call: &DrawCall,
+        resolved: Option<&Resolved>,
+    ) -> Result<(wgpu::RenderPipeline, u32)> {
         let setup = &call.setup;
         let same = |b: &Built| {
             b.device == gpu.device
@@ -410,15 +443,17 @@ impl ViewDrawer {
         let (vertex, fragment, components) = match resolved {
             Some(r) if r.stage == Stage::Vertex => {
                 let at = instrument::free_location(&setup.vertex, &setup.fragment);
-                let (v, found) = instrument::vertex(&setup.vertex, Some(&r.site), at).map_err(refused(&setup.vertex.path))?;
+                let (v, found) =
+                    instrument::vertex(&setup.vertex, Some(&r.site), at).map_err(refused(&setup.vertex.path))?;
                 let n = found.into_iter().max().unwrap_or(0);
-                let (f, _) =
-                    instrument::fragment(&setup.fragment, None, Some((at, n)), true).map_err(refused(&setup.fragment.path))?;
+                let (f, _) = instrument::fragment(&setup.fragment, None, Some((at, n)), true)
+                    .map_err(refused(&setup.fragment.path))?;
                 (Some(v), f, n)
             }
             _ => {
                 let site = resolved.map(|r| &r.site);
-                let (f, found) = instrument::fragment(&setup.fragment, site, None, site.is_some()).map_err(refused(&setup.fragment.path))?;
+                let (f, found) = instrument::fragment(&setup.fragment, site, None, site.is_some())
+                    .map_err(refused(&setup.fragment.path))?;
                 (None, f, found.into_iter().max().unwrap_or(0))
             }
         };
@@ -492,7 +527,8 @@ impl ViewDrawer {
                 cache: None,
             })
         })?;
-        self.built.retain(|b| b.vertex.strong_count() > 0 && b.fragment.strong_count() > 0);
+        self.built
+            .retain(|b| b.vertex.strong_count() > 0 && b.fragment.strong_count() > 0);
         if self.built.len() >= KEPT {
             self.built.remove(0);
         }
@@ -727,7 +763,10 @@ impl ViewDrawer {
                 let row = &data[y * targets.info_stride as usize..][..w as usize * 4];
                 match bytemuck::try_cast_slice::<u8, u32>(row) {
                     Ok(words) => info.extend_from_slice(words),
-                    Err(_) => info.extend(row.chunks_exact(4).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+                    Err(_) => info.extend(
+                        row.chunks_exact(4)
+                            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+                    ),
                 }
             }
             Ok((values, info))
@@ -822,11 +861,15 @@ impl Targets {
         };
         let value_stride = crate::offscreen::padded_row(4 * texel_words(format) as u32, width);
         let info_stride = crate::offscreen::padded_row(4, width);
-        let depth = texture("depth", crate::offscreen::DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT)
-            .create_view(&wgpu::TextureViewDescriptor {
-                label: Some(&format!("{label}.depth_view")),
-                ..Default::default()
-            });
+        let depth = texture(
+            "depth",
+            crate::offscreen::DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+        .create_view(&wgpu::TextureViewDescriptor {
+            label: Some(&format!("{label}.depth_view")),
+            ..Default::default()
+        });
         Targets {
             device: device.clone(),
             width,
@@ -860,7 +903,12 @@ pub fn record(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32)
 /// Records one frame of `lab` with its draws written down and brings them to the CPU: the log
 /// a view draws from and the capture the debugger replays, of the same frame.
 #[cfg(not(target_arch = "wasm32"))]
-pub fn capture(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<(DrawLog, super::Captured)> {
+pub fn capture(
+    gpu: &Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    width: u32,
+    height: u32,
+) -> Result<(DrawLog, super::Captured)> {
     let log = record(gpu, lab, width, height)?;
     let captured = super::Pending::start(gpu, &log).wait(gpu)?;
     Ok((log, captured))
