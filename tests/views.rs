@@ -189,6 +189,18 @@ fn costs_agree(label: &str, lab: &mut dyn Lab, n: usize) -> Vec<u32> {
             "{label} pixel {x},{y}: the cost view counts {gpu_cost} steps, the debugger {}",
             ins.cost
         );
+        let json: serde_json::Value = serde_json::from_str(&ins.json()).expect("the inspection's JSON");
+        assert_eq!(
+            json["cost"],
+            serde_json::json!(ins.cost),
+            "{label} {x},{y}: the JSON's cost"
+        );
+        assert!(
+            ins.text()
+                .contains(&format!("cost: {} steps of the fragment shader", ins.cost))
+                || ins.cost == 0,
+            "{label} {x},{y}: the text says the cost"
+        );
         seen.push(gpu_cost);
     }
     seen
@@ -350,7 +362,8 @@ fn a_cost_view_counts_the_steps_the_debugger_counts() {
     costs_agree("uniform_arrays", bands.as_mut(), 8);
     let mut lab3 = legacy(3);
     costs_agree("legacy lab3", lab3.as_mut(), 6);
-    // `discard`: a step of its own, and the fragment behind shows.
+    // `discard`: where a fragment is discarded, the one behind it (or the clear) shows, with its
+    // own cost, in the view as in the debugger.
     let holes = common_text("normal_rgb.frag").replace(
         "frag_color = vec4(normal, 1.0);",
         "if (fract(normal.x * 4.0) > 0.6) {\n        discard;\n    }\n    frag_color = vec4(normal, 1.0);",
