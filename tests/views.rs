@@ -485,3 +485,18 @@ fn common_text(name: &str) -> String {
         .expect("an embedded shader")
         .to_owned()
 }
+
+#[test]
+fn a_probe_is_file_colon_line_or_cost() {
+    assert_eq!("cost".parse::<Probe>(), Ok(Probe::Cost));
+    assert_eq!("phong.frag:17".parse::<Probe>(), Ok(probe("phong.frag", 17, None)));
+    assert_eq!(
+        "C:/x/phong.frag:3".parse::<Probe>(),
+        Ok(probe("C:/x/phong.frag", 3, None))
+    );
+    for bad in ["phong.frag", "phong.frag:0", "phong.frag:x", ":3", "phong.frag:-2", ""] {
+        let e = bad.parse::<Probe>().expect_err(bad);
+        assert!(matches!(e, ViewError::BadProbe { .. }), "{bad}: {e}");
+        assert!(e.to_string().contains("expected FILE:LINE"), "{e}");
+    }
+}

@@ -40,9 +40,42 @@ pub enum Probe {
     Cost,
 }
 
+impl std::str::FromStr for Probe {
+    type Err = ViewError;
+
+    /// `cost`, or `FILE:LINE` (the line 1-based; a Windows path's drive colon is kept): what
+    /// the command's `--line` and the page's `&view=` name.
+    fn from_str(given: &str) -> std::result::Result<Probe, ViewError> {
+        let given = given.trim();
+        if given == "cost" {
+            return Ok(Probe::Cost);
+        }
+        let bad = || ViewError::BadProbe {
+            given: given.to_owned(),
+        };
+        let (file, line) = given.rsplit_once(':').ok_or_else(bad)?;
+        let line: u32 = line.parse().map_err(|_| bad())?;
+        if file.is_empty() || line == 0 {
+            return Err(bad());
+        }
+        Ok(Probe::Line {
+            file: file.to_owned(),
+            line,
+            name: None,
+            stage: None,
+        })
+    }
+}
+
 /// Why a view cannot be drawn.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ViewError {
+    /// A probe that is neither `FILE:LINE` nor `cost`.
+    #[error("`{given}`: expected FILE:LINE (a line of a shader, from 1) or `cost`")]
+    BadProbe {
+        /// What was given.
+        given: String,
+    },
     /// No shader the frame draws holds the file (in the stage asked for).
     #[error("{file} is not a file of {what} this lab draws; its files are {files}")]
     NotDrawn {
