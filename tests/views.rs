@@ -128,7 +128,8 @@ fn agrees(label: &str, lab: &mut dyn Lab, suffix: &str, needle: &str, name: Opti
     let view = view::draw_view(gpu(), &log, &probe(&file, line, name), WIDTH, HEIGHT)
         .unwrap_or_else(|e| panic!("{label}: view of {file}:{line}: {e}"));
     let resolved = view.resolved.clone().expect("a line view");
-    let name = resolved.site.name.clone().expect("a name");
+    // A line assigning only what the compiler made (a `?:`'s result) has no name to choose.
+    let name = resolved.site.name.clone().unwrap_or_else(|| "(temporary)".into());
     assert!(!view.vertex, "{label}: {file}:{line} is a fragment line");
     assert!(view.components >= 1, "{label}: the value has components");
     let ran = spread(&view, n, |i| view.ran[i]);
@@ -217,6 +218,15 @@ fn a_line_view_shows_the_value_the_debugger_traces() {
         phong.as_mut(),
         "phong.frag",
         "vec3 L = safe_normalize",
+        None,
+        6,
+    );
+    // A function called three times (L, E, R): its line shows the last call's value.
+    agrees(
+        "phong",
+        phong.as_mut(),
+        "safe_math.glsl",
+        "return dot(v, v) > 0.0",
         None,
         6,
     );
