@@ -5,8 +5,9 @@
 //!
 //! The rewrite adds private globals (the value as `vec4<f32>`, whether the line ran, its
 //! component count, the step count) and statements that fill them; the fragment entry point
-//! then returns them at locations 0 and 1 instead of its colour. A vertex shader's value
-//! travels to the fragment shader as two extra varyings at a location neither uses.
+//! then returns the value and an info word packing the rest instead of its colours. A vertex
+//! shader's value travels to the fragment shader as two extra varyings at a location neither
+//! uses.
 
 use naga::{Binding, Expression, Function, Handle, Literal, Module, ScalarKind, Span, Statement, Type, TypeInner};
 

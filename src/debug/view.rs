@@ -4,7 +4,9 @@
 //! A frame written down in a [`DrawLog`] is drawn again, draw by draw, with the draws' own
 //! layouts, bind groups, buffers, culling and depth test and the frame's passes and clears, but
 //! with each draw's fragment shader rewritten by [`super::instrument`] to return the probed
-//! value and the step count into two `Rgba32Float` targets, read back as a [`ValueFrame`].
+//! value (a float target as narrow as the value) and an info word (whether the line ran, the
+//! value's components, the steps: `R32Uint`), read back as a [`ValueFrame`]; a cost view draws
+//! the info word alone.
 //! Draws whose shaders do not hold the line draw too (with `ran` false), so occlusion is as in
 //! the frame. A vertex-shader line travels to the fragment shader as an extra varying: the
 //! value at the three corners interpolated as any varying is.
@@ -584,25 +586,29 @@ impl ViewDrawer {
     }
 
     /// The index buffer holding `indices` (uploaded once per list).
-    fn index_buffer(&mut self, gpu: &Gpu, indices: &Arc<Vec<u32>>) -> wgpu::Buffer {
+    fn index_buffer(&mut self, gpu: &Gpu, indices: &Arc<Vec<u32>>) -> Result<wgpu::Buffer> {
         if let Some((_, b)) = self
             .indices
             .iter()
             .find(|(w, _)| w.upgrade().is_some_and(|i| Arc::ptr_eq(&i, indices)))
         {
-            return b.clone();
+            return Ok(b.clone());
         }
         self.indices.retain(|(w, _)| w.strong_count() > 0);
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("shaderlab.debug.view.indices"),
-            size: (indices.len().max(1) * 4) as u64,
-            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
-        gpu.queue.write_buffer(&buffer, 0, &bytes);
+        let label = "shaderlab.debug.view.indices";
+        let buffer = gpu.checked(label, || {
+            let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (indices.len().max(1) * 4) as u64,
+                usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            gpu.queue
+                .write_buffer(&buffer, 0, bytemuck::cast_slice(indices.as_slice()));
+            buffer
+        })?;
         self.indices.push((Arc::downgrade(indices), buffer.clone()));
-        buffer
+        Ok(buffer)
     }
 
     /// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`, the size
@@ -626,7 +632,10 @@ impl ViewDrawer {
         for call in &draws {
             let (p, n) = self.pipeline(gpu, call, resolved.as_ref())?;
             components = components.max(n);
-            let indices = call.setup.indices.as_ref().map(|i| self.index_buffer(gpu, i));
+            let indices = match &call.setup.indices {
+                Some(i) => Some(self.index_buffer(gpu, i)?),
+                None => None,
+            };
             pipelines.push((p, indices));
         }
         let label = "shaderlab.debug.view";
