@@ -510,3 +510,93 @@ fn a_probe_is_file_colon_line_or_cost() {
         assert!(e.to_string().contains("expected FILE:LINE"), "{e}");
     }
 }
+
+/// Every lab at its defaults: the cost view equals the debugger's cost, the fragment shader's
+/// last assignment in its own file shows the traced value, and the vertex shader's first one
+/// shows a value between its three corners' (an interpolation is a weighted mean of them).
+#[test]
+fn every_lab_agrees_with_the_debugger() {
+    let mut failures = Vec::new();
+    let (mut labs, mut checked) = (0, [0usize; 2]);
+    for entry in shaderlab::labs::ALL {
+        let name = entry.info.name;
+        if name == "legacy" {
+            continue;
+        }
+        let set: &[(&str, &str)] = if name == "particles" { &[("time", "2")] } else { &[] };
+        let mut lab = lab(name, set);
+        costs_agree(name, lab.as_mut(), 4);
+        labs += 1;
+        let (log, captured) = frame(lab.as_mut());
+        let Some(draw) = captured.draws.first() else { continue };
+        let last = |shader: &shaderlab::shader::CompiledShader, first: bool| {
+            let mine: Vec<_> = shaderlab::debug::instrument::assignments(shader)
+                .into_iter()
+                .filter(|a| a.file == shader.path && a.root != "(temporary)")
+                .collect();
+            if first {
+                mine.first().cloned()
+            } else {
+                mine.last().cloned()
+            }
+        };
+        for (stage, a) in [
+            (Stage::Fragment, last(&draw.fragment, false)),
+            (Stage::Vertex, last(&draw.vertex, true)),
+        ] {
+            let Some(a) = a else { continue };
+            let p = Probe::Line {
+                file: a.file.clone(),
+                line: a.line,
+                name: Some(a.name.clone()),
+                stage: Some(stage),
+            };
+            let view = match view::draw_view(gpu(), &log, &p, WIDTH, HEIGHT) {
+                Ok(v) => v,
+                Err(e) => {
+                    failures.push(format!("{name} {}:{} `{}`: {e}", a.file, a.line, a.name));
+                    continue;
+                }
+            };
+            for (x, y) in spread(&view, 3, |i| view.ran[i]) {
+                let ins = Inspection::new(name, &captured, x, y).expect("inspection");
+                let got = view.values[view.at(x, y)];
+                let values = traced(&ins, stage, &a.file, a.line, &a.name);
+                checked[usize::from(stage == Stage::Vertex)] += 1;
+                let ok = match stage {
+                    Stage::Fragment => values
+                        .last()
+                        .is_some_and(|v| (0..v.len().min(4)).all(|c| close(got[c], v[c]))),
+                    Stage::Vertex => {
+                        // The last value at each corner (one for a point): the trace lists
+                        // corners in turn.
+                        let n = ins.replayed.fragment.as_ref().map_or(3, |f| f.corners.len());
+                        let corners: Vec<&Vec<f64>> = values.iter().rev().take(n).collect();
+                        corners.len() == n
+                            && (0..corners[0].len().min(4)).all(|c| {
+                                let lo = corners.iter().map(|v| v[c]).fold(f64::INFINITY, f64::min);
+                                let hi = corners.iter().map(|v| v[c]).fold(f64::NEG_INFINITY, f64::max);
+                                let slack = 1e-3 * lo.abs().max(hi.abs()).max(1.0);
+                                f64::from(got[c]) >= lo - slack && f64::from(got[c]) <= hi + slack
+                            })
+                    }
+                };
+                if !ok {
+                    failures.push(format!(
+                        "{name} pixel {x},{y} {stage:?} {}:{} `{}`: view {got:?}, trace {values:?}",
+                        a.file, a.line, a.name
+                    ));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    eprintln!(
+        "{labs} labs; line views checked at {} fragment and {} vertex pixels",
+        checked[0], checked[1]
+    );
+    assert!(
+        checked[0] >= 2 * labs && checked[1] >= 2 * labs,
+        "most labs' lines were checked: {checked:?} of {labs} labs"
+    );
+}
