@@ -441,6 +441,10 @@ fn bad_probes_get_clear_messages() {
         .expect("phong.frag by its name")
         .expect("a line");
     assert_eq!(r.site.file, file);
+    // A view of another size than the frame's.
+    let (log, _) = frame(phong.as_mut());
+    let e = view::draw_view(gpu(), &log, &Probe::Cost, WIDTH * 2, HEIGHT).expect_err("another size");
+    assert!(e.to_string().contains("not at the view's 640x180"), "{e}");
     // A line past the end of the file.
     let e = refused(phong.as_mut(), &probe(&file, 9999, None));
     assert!(matches!(e, ViewError::Nothing { .. }), "{e}");
@@ -518,13 +522,41 @@ fn a_probe_is_file_colon_line_or_cost() {
 fn every_lab_agrees_with_the_debugger() {
     let mut failures = Vec::new();
     let (mut labs, mut checked) = (0, [0usize; 2]);
+    let mut all: Vec<(String, Box<dyn Lab>)> = Vec::new();
     for entry in shaderlab::labs::ALL {
         let name = entry.info.name;
         if name == "legacy" {
             continue;
         }
         let set: &[(&str, &str)] = if name == "particles" { &[("time", "2")] } else { &[] };
-        let mut lab = lab(name, set);
+        all.push((name.to_owned(), lab(name, set)));
+    }
+    // The course's five GLSL 1.10 pairs (seed 000; exercises 4 and 5 as mended to compile).
+    for n in 1..=5 {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course");
+        let pick = |f: String| {
+            if f == "lab4.frag" || f == "lab5.vert" {
+                dir.join(format!("seed000-mended/{f}"))
+            } else {
+                dir.join(format!("seed000/{f}"))
+            }
+        };
+        let files = UserFiles {
+            inputs: vec![pick(format!("lab{n}.vert")), pick(format!("lab{n}.frag"))],
+            ..UserFiles::default()
+        };
+        let set: &[(&str, &str)] = if n >= 4 {
+            &[("object", "teapot"), ("shade", "1,0.8,0.5"), ("time", "1.7")]
+        } else {
+            &[("object", "teapot")]
+        };
+        all.push((
+            format!("legacy lab{n}"),
+            build("legacy", ShaderSource::Embedded, &files, set),
+        ));
+    }
+    for (name, mut lab) in all {
+        let name = name.as_str();
         costs_agree(name, lab.as_mut(), 4);
         labs += 1;
         let (log, captured) = frame(lab.as_mut());
