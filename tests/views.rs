@@ -632,3 +632,35 @@ fn every_lab_agrees_with_the_debugger() {
         "most labs' lines were checked: {checked:?} of {labs} labs"
     );
 }
+
+#[test]
+fn a_line_assigning_two_variables_asks_for_one_and_shows_the_one_named() {
+    let two = common_text("normal_rgb.frag").replace(
+        "frag_color = vec4(normal, 1.0);",
+        "vec3 a = normal; vec3 b = -normal;\n    frag_color = vec4(a + 0.25 * b, 1.0);",
+    );
+    let mut normal = edited("normal_rgb", &[("normal_rgb.frag", &two)], &[("object", "sphere")]);
+    let (log, captured) = frame(normal.as_mut());
+    let (file, line) = line_of(&captured, "normal_rgb.frag", "vec3 a = normal;");
+    let e = view::resolve(&log.draws(), &probe(&file, line, None)).expect_err("two names");
+    assert!(matches!(e, ViewError::Ambiguous { .. }), "{e}");
+    assert!(e.to_string().contains("`a`, `b`"), "it lists both: {e}");
+    let v = agrees(
+        "normal_rgb a and b",
+        normal.as_mut(),
+        "normal_rgb.frag",
+        "vec3 a = normal;",
+        Some("b"),
+        6,
+    );
+    let i = v.ran.iter().position(|&r| r).expect("a pixel ran");
+    let a = agrees(
+        "normal_rgb a and b",
+        normal.as_mut(),
+        "normal_rgb.frag",
+        "vec3 a = normal;",
+        Some("a"),
+        6,
+    );
+    assert_eq!(v.values[i][0], -a.values[i][0], "b is -a");
+}
