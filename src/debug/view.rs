@@ -494,72 +494,75 @@ impl ViewDrawer {
         };
         let label = format!("shaderlab.debug.view.{}", setup.label);
         let device = &gpu.device;
-        let pipeline = gpu.checked(&label, || {
-            let vs = match vertex {
-                Some(v) => device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(&format!("{label}.vertex")),
-                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(v)),
-                }),
-                None => device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(&format!("{label}.vertex")),
-                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(setup.vertex.module.clone())),
-                }),
-            };
-            let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(&format!("{label}.fragment")),
-                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(fragment)),
-            });
-            let buffers = [Some(wgpu::VertexBufferLayout {
-                array_stride: setup.stride,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &setup.attributes,
-            })];
-            let target = |format| {
-                Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })
-            };
-            let value = target(value_format(resolved.map_or(0, |r| r.components)));
-            let info = target(INFO_FORMAT);
-            let both = [value, info.clone()];
-            let one = [info];
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&format!("{label}.pipeline")),
-                layout: Some(&call.layout),
-                vertex: wgpu::VertexState {
-                    module: &vs,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    buffers: if setup.attributes.is_empty() { &[] } else { &buffers },
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &fs,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    targets: if resolved.is_some() { &both } else { &one },
-                }),
-                primitive: wgpu::PrimitiveState {
-                    topology: setup.state.topology,
-                    front_face: setup.state.front_face,
-                    cull_mode: setup.cull,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: crate::offscreen::DEPTH_FORMAT,
-                    depth_write_enabled: Some(setup.state.depth_test),
-                    depth_compare: Some(if setup.state.depth_test {
-                        wgpu::CompareFunction::Less
-                    } else {
-                        wgpu::CompareFunction::Always
+        // The driver compiles the shaders here: bounded as a lab's own pipelines are.
+        let pipeline = gpu.compiling(&label, || {
+            gpu.checked(&label, || {
+                let vs = match vertex {
+                    Some(v) => device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(&format!("{label}.vertex")),
+                        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(v)),
                     }),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                multiview_mask: None,
-                cache: None,
+                    None => device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(&format!("{label}.vertex")),
+                        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(setup.vertex.module.clone())),
+                    }),
+                };
+                let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(&format!("{label}.fragment")),
+                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(fragment)),
+                });
+                let buffers = [Some(wgpu::VertexBufferLayout {
+                    array_stride: setup.stride,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &setup.attributes,
+                })];
+                let target = |format| {
+                    Some(wgpu::ColorTargetState {
+                        format,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })
+                };
+                let value = target(value_format(resolved.map_or(0, |r| r.components)));
+                let info = target(INFO_FORMAT);
+                let both = [value, info.clone()];
+                let one = [info];
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(&format!("{label}.pipeline")),
+                    layout: Some(&call.layout),
+                    vertex: wgpu::VertexState {
+                        module: &vs,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        buffers: if setup.attributes.is_empty() { &[] } else { &buffers },
+                    },
+                    fragment: Some(wgpu::FragmentState {
+                        module: &fs,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        targets: if resolved.is_some() { &both } else { &one },
+                    }),
+                    primitive: wgpu::PrimitiveState {
+                        topology: setup.state.topology,
+                        front_face: setup.state.front_face,
+                        cull_mode: setup.cull,
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: crate::offscreen::DEPTH_FORMAT,
+                        depth_write_enabled: Some(setup.state.depth_test),
+                        depth_compare: Some(if setup.state.depth_test {
+                            wgpu::CompareFunction::Less
+                        } else {
+                            wgpu::CompareFunction::Always
+                        }),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    multiview_mask: None,
+                    cache: None,
+                })
             })
         })?;
         self.built
