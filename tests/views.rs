@@ -128,7 +128,8 @@ fn agrees(label: &str, lab: &mut dyn Lab, suffix: &str, needle: &str, name: Opti
     let view = view::draw_view(gpu(), &log, &probe(&file, line, name), WIDTH, HEIGHT)
         .unwrap_or_else(|e| panic!("{label}: view of {file}:{line}: {e}"));
     let resolved = view.resolved.clone().expect("a line view");
-    let name = resolved.site.name.clone().expect("a name");
+    // A line assigning only what the compiler made (a `?:`'s result) has no name to choose.
+    let name = resolved.site.name.clone().unwrap_or_else(|| "(temporary)".into());
     assert!(!view.vertex, "{label}: {file}:{line} is a fragment line");
     assert!(view.components >= 1, "{label}: the value has components");
     let ran = spread(&view, n, |i| view.ran[i]);
@@ -189,6 +190,18 @@ fn costs_agree(label: &str, lab: &mut dyn Lab, n: usize) -> Vec<u32> {
             "{label} pixel {x},{y}: the cost view counts {gpu_cost} steps, the debugger {}",
             ins.cost
         );
+        let json: serde_json::Value = serde_json::from_str(&ins.json()).expect("the inspection's JSON");
+        assert_eq!(
+            json["cost"],
+            serde_json::json!(ins.cost),
+            "{label} {x},{y}: the JSON's cost"
+        );
+        assert!(
+            ins.text()
+                .contains(&format!("cost: {} steps of the fragment shader", ins.cost))
+                || ins.cost == 0,
+            "{label} {x},{y}: the text says the cost"
+        );
         seen.push(gpu_cost);
     }
     seen
@@ -208,8 +221,29 @@ fn a_line_view_shows_the_value_the_debugger_traces() {
         None,
         6,
     );
+    // A function called three times (L, E, R): its line shows the last call's value.
+    agrees(
+        "phong",
+        phong.as_mut(),
+        "safe_math.glsl",
+        "return dot(v, v) > 0.0",
+        None,
+        6,
+    );
     let mut torus = lab("phong", &[("object", "torus"), ("xangle", "30"), ("yangle", "40")]);
     agrees("phong torus", torus.as_mut(), "phong.frag", "vec3 R = ", Some("R"), 6);
+    // phong_dir: the scalar N·L, and the colour it adds to.
+    let mut dir = lab("phong_dir", &[]);
+    let v = agrees("phong_dir", dir.as_mut(), "phong_dir.frag", "float cos_theta", None, 8);
+    assert_eq!(v.components, 1, "cos_theta is a float");
+    agrees(
+        "phong_dir",
+        dir.as_mut(),
+        "phong_dir.frag",
+        "color += light_intensity * material_diffuse",
+        None,
+        6,
+    );
     let mut normal = lab("normal_rgb", &[("object", "sphere")]);
     agrees(
         "normal_rgb",
@@ -269,6 +303,22 @@ fn a_line_view_in_a_loop_shows_the_last_value_and_a_branch_not_taken_does_not_ru
         ran > 0 && ran < drawn,
         "the branch runs at some drawn pixels, not all: {ran} of {drawn}"
     );
+    // phong_dir: the specular term is added only where the light reflects towards the eye.
+    let mut dir = lab("phong_dir", &[]);
+    let v = agrees(
+        "phong_dir",
+        dir.as_mut(),
+        "phong_dir.frag",
+        "material_specular * pow",
+        None,
+        6,
+    );
+    let drawn = v.cost.iter().filter(|&&c| c > 0).count();
+    let ran = v.ran.iter().filter(|&&r| r).count();
+    assert!(
+        ran > 0 && ran < drawn,
+        "the highlight's branch runs at some drawn pixels: {ran} of {drawn}"
+    );
     // uniform_arrays: the first band of an if/else chain runs only in the highlight.
     let mut bands = lab("uniform_arrays", &[]);
     let v = agrees(
@@ -322,6 +372,14 @@ fn a_cost_view_counts_the_steps_the_debugger_counts() {
     costs_agree("uniform_arrays", bands.as_mut(), 8);
     let mut lab3 = legacy(3);
     costs_agree("legacy lab3", lab3.as_mut(), 6);
+    // `discard`: where a fragment is discarded, the one behind it (or the clear) shows, with its
+    // own cost, in the view as in the debugger.
+    let holes = common_text("normal_rgb.frag").replace(
+        "frag_color = vec4(normal, 1.0);",
+        "if (fract(normal.x * 4.0) > 0.6) {\n        discard;\n    }\n    frag_color = vec4(normal, 1.0);",
+    );
+    let mut normal = edited("normal_rgb", &[("normal_rgb.frag", &holes)], &[("object", "torus")]);
+    costs_agree("normal_rgb with discard", normal.as_mut(), 10);
     let mut noise = edited(
         "noise",
         &[("noise.frag", LOOPING_NOISE)],
@@ -376,6 +434,17 @@ fn bad_probes_get_clear_messages() {
     let e = refused(phong.as_mut(), &probe(&file, l, Some("Q")));
     assert!(matches!(e, ViewError::NoSuchName { .. }), "{e}");
     assert!(e.to_string().contains("`L`"), "it lists the names assigned: {e}");
+    // A file named by its name alone is the one file of that name.
+    let p = probe("phong.frag", l, None);
+    let (log, _) = frame(phong.as_mut());
+    let r = view::resolve(&log.draws(), &p)
+        .expect("phong.frag by its name")
+        .expect("a line");
+    assert_eq!(r.site.file, file);
+    // A view of another size than the frame's.
+    let (log, _) = frame(phong.as_mut());
+    let e = view::draw_view(gpu(), &log, &Probe::Cost, WIDTH * 2, HEIGHT).expect_err("another size");
+    assert!(e.to_string().contains("not at the view's 640x180"), "{e}");
     // A line past the end of the file.
     let e = refused(phong.as_mut(), &probe(&file, 9999, None));
     assert!(matches!(e, ViewError::Nothing { .. }), "{e}");
@@ -429,4 +498,169 @@ fn common_text(name: &str) -> String {
     shaderlab::shader::embedded_source(name)
         .expect("an embedded shader")
         .to_owned()
+}
+
+#[test]
+fn a_probe_is_file_colon_line_or_cost() {
+    assert_eq!("cost".parse::<Probe>(), Ok(Probe::Cost));
+    assert_eq!("phong.frag:17".parse::<Probe>(), Ok(probe("phong.frag", 17, None)));
+    assert_eq!(
+        "C:/x/phong.frag:3".parse::<Probe>(),
+        Ok(probe("C:/x/phong.frag", 3, None))
+    );
+    for bad in ["phong.frag", "phong.frag:0", "phong.frag:x", ":3", "phong.frag:-2", ""] {
+        let e = bad.parse::<Probe>().expect_err(bad);
+        assert!(matches!(e, ViewError::BadProbe { .. }), "{bad}: {e}");
+        assert!(e.to_string().contains("expected FILE:LINE"), "{e}");
+    }
+}
+
+/// Every lab at its defaults: the cost view equals the debugger's cost, the fragment shader's
+/// last assignment in its own file shows the traced value, and the vertex shader's first one
+/// shows a value between its three corners' (an interpolation is a weighted mean of them).
+#[test]
+fn every_lab_agrees_with_the_debugger() {
+    let mut failures = Vec::new();
+    let (mut labs, mut checked) = (0, [0usize; 2]);
+    let mut all: Vec<(String, Box<dyn Lab>)> = Vec::new();
+    for entry in shaderlab::course::ALL {
+        let name = entry.info.name;
+        if name == "legacy" {
+            continue;
+        }
+        let set: &[(&str, &str)] = if name == "particles" { &[("time", "2")] } else { &[] };
+        all.push((name.to_owned(), lab(name, set)));
+    }
+    // The course's five GLSL 1.10 pairs (seed 000; exercises 4 and 5 as mended to compile).
+    for n in 1..=5 {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course");
+        let pick = |f: String| {
+            if f == "lab4.frag" || f == "lab5.vert" {
+                dir.join(format!("seed000-mended/{f}"))
+            } else {
+                dir.join(format!("seed000/{f}"))
+            }
+        };
+        let files = UserFiles {
+            inputs: vec![pick(format!("lab{n}.vert")), pick(format!("lab{n}.frag"))],
+            ..UserFiles::default()
+        };
+        let set: &[(&str, &str)] = if n >= 4 {
+            &[("object", "teapot"), ("shade", "1,0.8,0.5"), ("time", "1.7")]
+        } else {
+            &[("object", "teapot")]
+        };
+        all.push((
+            format!("legacy lab{n}"),
+            build("legacy", ShaderSource::Embedded, &files, set),
+        ));
+    }
+    for (name, mut lab) in all {
+        let name = name.as_str();
+        costs_agree(name, lab.as_mut(), 4);
+        labs += 1;
+        let (log, captured) = frame(lab.as_mut());
+        let Some(draw) = captured.draws.first() else { continue };
+        let last = |shader: &shaderlab::shader::CompiledShader, first: bool| {
+            let mine: Vec<_> = shaderlab::debug::instrument::assignments(shader)
+                .into_iter()
+                .filter(|a| a.file == shader.path && a.root != "(temporary)")
+                .collect();
+            if first {
+                mine.first().cloned()
+            } else {
+                mine.last().cloned()
+            }
+        };
+        for (stage, a) in [
+            (Stage::Fragment, last(&draw.fragment, false)),
+            (Stage::Vertex, last(&draw.vertex, true)),
+        ] {
+            let Some(a) = a else { continue };
+            let p = Probe::Line {
+                file: a.file.clone(),
+                line: a.line,
+                name: Some(a.name.clone()),
+                stage: Some(stage),
+            };
+            let view = match view::draw_view(gpu(), &log, &p, WIDTH, HEIGHT) {
+                Ok(v) => v,
+                Err(e) => {
+                    failures.push(format!("{name} {}:{} `{}`: {e}", a.file, a.line, a.name));
+                    continue;
+                }
+            };
+            for (x, y) in spread(&view, 3, |i| view.ran[i]) {
+                let ins = Inspection::new(name, &captured, x, y).expect("inspection");
+                let got = view.values[view.at(x, y)];
+                let values = traced(&ins, stage, &a.file, a.line, &a.name);
+                checked[usize::from(stage == Stage::Vertex)] += 1;
+                let ok = match stage {
+                    Stage::Fragment => values
+                        .last()
+                        .is_some_and(|v| (0..v.len().min(4)).all(|c| close(got[c], v[c]))),
+                    Stage::Vertex => {
+                        // The last value at each corner (one for a point): the trace lists
+                        // corners in turn.
+                        let n = ins.replayed.fragment.as_ref().map_or(3, |f| f.corners.len());
+                        let corners: Vec<&Vec<f64>> = values.iter().rev().take(n).collect();
+                        corners.len() == n
+                            && (0..corners[0].len().min(4)).all(|c| {
+                                let lo = corners.iter().map(|v| v[c]).fold(f64::INFINITY, f64::min);
+                                let hi = corners.iter().map(|v| v[c]).fold(f64::NEG_INFINITY, f64::max);
+                                let slack = 1e-3 * lo.abs().max(hi.abs()).max(1.0);
+                                f64::from(got[c]) >= lo - slack && f64::from(got[c]) <= hi + slack
+                            })
+                    }
+                };
+                if !ok {
+                    failures.push(format!(
+                        "{name} pixel {x},{y} {stage:?} {}:{} `{}`: view {got:?}, trace {values:?}",
+                        a.file, a.line, a.name
+                    ));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    eprintln!(
+        "{labs} labs; line views checked at {} fragment and {} vertex pixels",
+        checked[0], checked[1]
+    );
+    assert!(
+        checked[0] >= 2 * labs && checked[1] >= 2 * labs,
+        "most labs' lines were checked: {checked:?} of {labs} labs"
+    );
+}
+
+#[test]
+fn a_line_assigning_two_variables_asks_for_one_and_shows_the_one_named() {
+    let two = common_text("normal_rgb.frag").replace(
+        "frag_color = vec4(normal, 1.0);",
+        "vec3 a = normal; vec3 b = -normal;\n    frag_color = vec4(a + 0.25 * b, 1.0);",
+    );
+    let mut normal = edited("normal_rgb", &[("normal_rgb.frag", &two)], &[("object", "sphere")]);
+    let (log, captured) = frame(normal.as_mut());
+    let (file, line) = line_of(&captured, "normal_rgb.frag", "vec3 a = normal;");
+    let e = view::resolve(&log.draws(), &probe(&file, line, None)).expect_err("two names");
+    assert!(matches!(e, ViewError::Ambiguous { .. }), "{e}");
+    assert!(e.to_string().contains("`a`, `b`"), "it lists both: {e}");
+    let v = agrees(
+        "normal_rgb a and b",
+        normal.as_mut(),
+        "normal_rgb.frag",
+        "vec3 a = normal;",
+        Some("b"),
+        6,
+    );
+    let i = v.ran.iter().position(|&r| r).expect("a pixel ran");
+    let a = agrees(
+        "normal_rgb a and b",
+        normal.as_mut(),
+        "normal_rgb.frag",
+        "vec3 a = normal;",
+        Some("a"),
+        6,
+    );
+    assert_eq!(v.values[i][0], -a.values[i][0], "b is -a");
 }

@@ -5,8 +5,9 @@
 //!
 //! The rewrite adds private globals (the value as `vec4<f32>`, whether the line ran, its
 //! component count, the step count) and statements that fill them; the fragment entry point
-//! then returns them at locations 0 and 1 instead of its colour. A vertex shader's value
-//! travels to the fragment shader as two extra varyings at a location neither uses.
+//! then returns the value and an info word packing the rest instead of its colours. A vertex
+//! shader's value travels to the fragment shader as two extra varyings at a location neither
+//! uses.
 
 use naga::{Binding, Expression, Function, Handle, Literal, Module, ScalarKind, Span, Statement, Type, TypeInner};
 
@@ -625,7 +626,7 @@ fn rewrite(shader: &CompiledShader, stage: naga::ShaderStage, site: Option<&Site
 }
 
 /// An entry-point result struct of `members` (name, type, binding), laid out.
-fn io_struct(module: &mut Module, name: &str, members: Vec<(String, Handle<Type>, Option<Binding>)>) -> Handle<Type> {
+fn io_struct(module: &mut Module, name: &str, members: Vec<Member>) -> Handle<Type> {
     let mut layouter = naga::proc::Layouter::default();
     let _ = layouter.update(module.to_ctx());
     let mut offset = 0u32;
@@ -668,13 +669,15 @@ fn location(location: u32, flat: bool) -> Binding {
     }
 }
 
+/// What a `return v` (`None`: a return without a value) becomes: a block ending in a return.
+type Returned<'a> = dyn Fn(Option<Handle<Expression>>, &mut naga::Arena<Expression>) -> naga::Block + 'a;
+
+/// An entry-point output: its name, type and binding.
+type Member = (String, Handle<Type>, Option<Binding>);
+
 /// Replaces every `return v` of `block` by what `returned(v)` builds (a block ending in a
 /// return).
-fn returns(
-    block: naga::Block,
-    exprs: &mut naga::Arena<Expression>,
-    returned: &dyn Fn(Option<Handle<Expression>>, &mut naga::Arena<Expression>) -> naga::Block,
-) -> naga::Block {
+fn returns(block: naga::Block, exprs: &mut naga::Arena<Expression>, returned: &Returned) -> naga::Block {
     let mut out = naga::Block::with_capacity(block.len());
     for (statement, span) in block.span_into_iter() {
         let s = match statement {
@@ -952,24 +955,23 @@ pub fn vertex(vertex: &CompiledShader, site: Option<&Site>, at: u32) -> Result<(
         .clone()
         .ok_or_else(|| format!("{}'s entry point returns nothing", vertex.path))?;
     // The original outputs, each as a member: from the struct, or the result itself.
-    let (members, whole): (Vec<(String, Handle<Type>, Option<Binding>)>, bool) =
-        match (&result.binding, &module.types[result.ty].inner) {
-            (None, TypeInner::Struct { members, .. }) => (
-                members
-                    .iter()
-                    .enumerate()
-                    .map(|(k, m)| {
-                        (
-                            m.name.clone().unwrap_or_else(|| format!("member{k}")),
-                            m.ty,
-                            m.binding.clone(),
-                        )
-                    })
-                    .collect(),
-                false,
-            ),
-            (b, _) => (vec![("position".to_owned(), result.ty, b.clone())], true),
-        };
+    let (members, whole): (Vec<Member>, bool) = match (&result.binding, &module.types[result.ty].inner) {
+        (None, TypeInner::Struct { members, .. }) => (
+            members
+                .iter()
+                .enumerate()
+                .map(|(k, m)| {
+                    (
+                        m.name.clone().unwrap_or_else(|| format!("member{k}")),
+                        m.ty,
+                        m.binding.clone(),
+                    )
+                })
+                .collect(),
+            false,
+        ),
+        (b, _) => (vec![("position".to_owned(), result.ty, b.clone())], true),
+    };
     let original = members.len() as u32;
     let mut all = members;
     all.push(("shaderlab_view_value".into(), vec4f, Some(location(at, false))));

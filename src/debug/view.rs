@@ -4,10 +4,15 @@
 //! A frame written down in a [`DrawLog`] is drawn again, draw by draw, with the draws' own
 //! layouts, bind groups, buffers, culling and depth test and the frame's passes and clears, but
 //! with each draw's fragment shader rewritten by [`super::instrument`] to return the probed
-//! value and the step count into two `Rgba32Float` targets, read back as a [`ValueFrame`].
+//! value (a float target as narrow as the value) and an info word (whether the line ran, the
+//! value's components, the steps: `R32Uint`), read back as a [`ValueFrame`]; a cost view draws
+//! the info word alone.
 //! Draws whose shaders do not hold the line draw too (with `ran` false), so occlusion is as in
 //! the frame. A vertex-shader line travels to the fragment shader as an extra varying: the
 //! value at the three corners interpolated as any varying is.
+
+// The browser reads a view back asynchronously; what draws and reads one here is native.
+#![cfg_attr(target_arch = "wasm32", allow(dead_code))]
 
 use std::sync::{Arc, Weak};
 
@@ -37,9 +42,42 @@ pub enum Probe {
     Cost,
 }
 
+impl std::str::FromStr for Probe {
+    type Err = ViewError;
+
+    /// `cost`, or `FILE:LINE` (the line 1-based; a Windows path's drive colon is kept): what
+    /// the command's `--line` and the page's `&view=` name.
+    fn from_str(given: &str) -> std::result::Result<Probe, ViewError> {
+        let given = given.trim();
+        if given == "cost" {
+            return Ok(Probe::Cost);
+        }
+        let bad = || ViewError::BadProbe {
+            given: given.to_owned(),
+        };
+        let (file, line) = given.rsplit_once(':').ok_or_else(bad)?;
+        let line: u32 = line.parse().map_err(|_| bad())?;
+        if file.is_empty() || line == 0 {
+            return Err(bad());
+        }
+        Ok(Probe::Line {
+            file: file.to_owned(),
+            line,
+            name: None,
+            stage: None,
+        })
+    }
+}
+
 /// Why a view cannot be drawn.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ViewError {
+    /// A probe that is neither `FILE:LINE` nor `cost`.
+    #[error("`{given}`: expected FILE:LINE (a line of a shader, from 1) or `cost`")]
+    BadProbe {
+        /// What was given.
+        given: String,
+    },
     /// No shader the frame draws holds the file (in the stage asked for).
     #[error("{file} is not a file of {what} this lab draws; its files are {files}")]
     NotDrawn {
@@ -197,6 +235,7 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
     };
     let line = *line;
     let by_stage = [Stage::Vertex, Stage::Fragment].map(|s| (s, shaders(draws, s)));
+    let file = &full_path(draws, file);
     let assigns = |s: Stage| -> Vec<Assignment> {
         let list = &by_stage.iter().find(|(k, _)| *k == s).expect("both stages").1;
         let mut out: Vec<Assignment> = Vec::new();
@@ -310,7 +349,8 @@ impl ViewError {
     }
 }
 
-fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
+/// The files of the shaders `draws` draw with (display paths), in order.
+fn files(draws: &[DrawCall]) -> Vec<String> {
     let mut files: Vec<String> = Vec::new();
     for s in shaders(draws, Stage::Vertex)
         .iter()
@@ -322,6 +362,26 @@ fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
             }
         }
     }
+    files
+}
+
+/// `file` as the draws' shaders name it: itself, or the one file whose path ends with it
+/// (`phong.frag` for `shaders_glsl/phong.frag`).
+fn full_path(draws: &[DrawCall], file: &str) -> String {
+    let all = files(draws);
+    if all.iter().any(|p| p == file) {
+        return file.to_owned();
+    }
+    let tail = format!("/{}", file.trim_start_matches("./"));
+    let ends: Vec<&String> = all.iter().filter(|p| p.ends_with(&tail)).collect();
+    match ends.as_slice() {
+        [one] => (*one).clone(),
+        _ => file.to_owned(),
+    }
+}
+
+fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
+    let files = files(draws);
     ViewError::NotDrawn {
         file: file.to_owned(),
         what: match stage {
@@ -434,72 +494,75 @@ impl ViewDrawer {
         };
         let label = format!("shaderlab.debug.view.{}", setup.label);
         let device = &gpu.device;
-        let pipeline = gpu.checked(&label, || {
-            let vs = match vertex {
-                Some(v) => device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(&format!("{label}.vertex")),
-                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(v)),
-                }),
-                None => device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(&format!("{label}.vertex")),
-                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(setup.vertex.module.clone())),
-                }),
-            };
-            let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(&format!("{label}.fragment")),
-                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(fragment)),
-            });
-            let buffers = [Some(wgpu::VertexBufferLayout {
-                array_stride: setup.stride,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &setup.attributes,
-            })];
-            let target = |format| {
-                Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })
-            };
-            let value = target(value_format(resolved.map_or(0, |r| r.components)));
-            let info = target(INFO_FORMAT);
-            let both = [value, info.clone()];
-            let one = [info];
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&format!("{label}.pipeline")),
-                layout: Some(&call.layout),
-                vertex: wgpu::VertexState {
-                    module: &vs,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    buffers: if setup.attributes.is_empty() { &[] } else { &buffers },
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &fs,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    targets: if resolved.is_some() { &both } else { &one },
-                }),
-                primitive: wgpu::PrimitiveState {
-                    topology: setup.state.topology,
-                    front_face: setup.state.front_face,
-                    cull_mode: setup.cull,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: crate::offscreen::DEPTH_FORMAT,
-                    depth_write_enabled: Some(setup.state.depth_test),
-                    depth_compare: Some(if setup.state.depth_test {
-                        wgpu::CompareFunction::Less
-                    } else {
-                        wgpu::CompareFunction::Always
+        // The driver compiles the shaders here: bounded as a lab's own pipelines are.
+        let pipeline = gpu.compiling(&label, || {
+            gpu.checked(&label, || {
+                let vs = match vertex {
+                    Some(v) => device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(&format!("{label}.vertex")),
+                        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(v)),
                     }),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                multiview_mask: None,
-                cache: None,
+                    None => device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(&format!("{label}.vertex")),
+                        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(setup.vertex.module.clone())),
+                    }),
+                };
+                let fs = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(&format!("{label}.fragment")),
+                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(fragment)),
+                });
+                let buffers = [Some(wgpu::VertexBufferLayout {
+                    array_stride: setup.stride,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &setup.attributes,
+                })];
+                let target = |format| {
+                    Some(wgpu::ColorTargetState {
+                        format,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })
+                };
+                let value = target(value_format(resolved.map_or(0, |r| r.components)));
+                let info = target(INFO_FORMAT);
+                let both = [value, info.clone()];
+                let one = [info];
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(&format!("{label}.pipeline")),
+                    layout: Some(&call.layout),
+                    vertex: wgpu::VertexState {
+                        module: &vs,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        buffers: if setup.attributes.is_empty() { &[] } else { &buffers },
+                    },
+                    fragment: Some(wgpu::FragmentState {
+                        module: &fs,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        targets: if resolved.is_some() { &both } else { &one },
+                    }),
+                    primitive: wgpu::PrimitiveState {
+                        topology: setup.state.topology,
+                        front_face: setup.state.front_face,
+                        cull_mode: setup.cull,
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: crate::offscreen::DEPTH_FORMAT,
+                        depth_write_enabled: Some(setup.state.depth_test),
+                        depth_compare: Some(if setup.state.depth_test {
+                            wgpu::CompareFunction::Less
+                        } else {
+                            wgpu::CompareFunction::Always
+                        }),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    multiview_mask: None,
+                    cache: None,
+                })
             })
         })?;
         self.built
@@ -526,25 +589,29 @@ impl ViewDrawer {
     }
 
     /// The index buffer holding `indices` (uploaded once per list).
-    fn index_buffer(&mut self, gpu: &Gpu, indices: &Arc<Vec<u32>>) -> wgpu::Buffer {
+    fn index_buffer(&mut self, gpu: &Gpu, indices: &Arc<Vec<u32>>) -> Result<wgpu::Buffer> {
         if let Some((_, b)) = self
             .indices
             .iter()
             .find(|(w, _)| w.upgrade().is_some_and(|i| Arc::ptr_eq(&i, indices)))
         {
-            return b.clone();
+            return Ok(b.clone());
         }
         self.indices.retain(|(w, _)| w.strong_count() > 0);
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("shaderlab.debug.view.indices"),
-            size: (indices.len().max(1) * 4) as u64,
-            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
-        gpu.queue.write_buffer(&buffer, 0, &bytes);
+        let label = "shaderlab.debug.view.indices";
+        let buffer = gpu.checked(label, || {
+            let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (indices.len().max(1) * 4) as u64,
+                usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            gpu.queue
+                .write_buffer(&buffer, 0, bytemuck::cast_slice(indices.as_slice()));
+            buffer
+        })?;
         self.indices.push((Arc::downgrade(indices), buffer.clone()));
-        buffer
+        Ok(buffer)
     }
 
     /// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`, the size
@@ -568,7 +635,10 @@ impl ViewDrawer {
         for call in &draws {
             let (p, n) = self.pipeline(gpu, call, resolved.as_ref())?;
             components = components.max(n);
-            let indices = call.setup.indices.as_ref().map(|i| self.index_buffer(gpu, i));
+            let indices = match &call.setup.indices {
+                Some(i) => Some(self.index_buffer(gpu, i)?),
+                None => None,
+            };
             pipelines.push((p, indices));
         }
         let label = "shaderlab.debug.view";
