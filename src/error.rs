@@ -81,8 +81,8 @@ pub enum Error {
     Debug(String),
     /// A whole-frame view cannot be drawn: a line that assigns nothing, a file the lab does
     /// not draw, a name the line does not assign, a stage to choose.
-    #[error(transparent)]
-    View(#[from] crate::debug::view::ViewError),
+    #[error("{0}")]
+    View(String),
     /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
     #[error("{0}")]
     Hang(String),

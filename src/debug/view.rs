@@ -148,6 +148,12 @@ pub enum ViewError {
     },
 }
 
+impl From<ViewError> for crate::error::Error {
+    fn from(e: ViewError) -> Self {
+        crate::error::Error::View(e.to_string())
+    }
+}
+
 /// A probe resolved against a frame's shaders: the stage and the assignment's site.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Resolved {
