@@ -180,8 +180,7 @@ fn the_view_command_writes_the_librarys_picture_and_the_debuggers_values() {
         let traced = ins
             .steps
             .iter()
-            .filter(|s| s.stage == Stage::Fragment && s.file == file && s.line == line && s.name == "Idiff")
-            .next_back()
+            .rfind(|s| s.stage == Stage::Fragment && s.file == file && s.line == line && s.name == "Idiff")
             .unwrap_or_else(|| panic!("{x},{y}: the array has a value, the trace never reaches the line"));
         for c in 0..4 {
             let got = values[i * 4 + c];

@@ -95,6 +95,11 @@ impl Plan {
             (None, true) => Probe::Cost,
             (None, false) => return Ok(None),
         };
+        if args.gpu_time {
+            return Err(Error::Param(
+                "`--gpu-time` times the plain frame's pass: leave out --line and --cost to use it".into(),
+            ));
+        }
         let asked = args.screenshot.is_some() || args.npy.is_some() || args.json || args.bench.is_some();
         let out = match &args.screenshot {
             Some(path) => Some(path.clone()),
@@ -152,8 +157,8 @@ impl Plan {
                 String::new()
             };
             say(&format!(
-                "effect={name}{object} size={width}x{height} frames={frames} view={} ms_per_frame={ms:.3}",
-                probe_words(&probe, &frame).replace(' ', "_")
+                "effect={name}{object} size={width}x{height} frames={frames} {} ms_per_frame={ms:.3}",
+                probe_words(&frame)
             ))?;
         }
         let (image, legend) = picture_of(&frame);
@@ -319,17 +324,18 @@ fn stage_name(stage: Stage) -> &'static str {
     }
 }
 
-/// `phong.frag:17 Idiff (fragment)`, `cost`.
-fn probe_words(probe: &Probe, frame: &ValueFrame) -> String {
-    match (&frame.resolved, probe) {
-        (Some(r), _) => format!(
-            "{}:{} {} ({})",
+/// The view in a benchmark's words: `view=line file=… line=17 name=Idiff stage=fragment`, or
+/// `view=cost`.
+fn probe_words(frame: &ValueFrame) -> String {
+    match &frame.resolved {
+        Some(r) => format!(
+            "view=line file={} line={} name={} stage={}",
             r.site.file,
             r.site.line,
             r.site.name.as_deref().unwrap_or("?"),
             stage_name(r.stage)
         ),
-        (None, _) => "cost".into(),
+        None => "view=cost".into(),
     }
 }
 
