@@ -108,7 +108,7 @@ pub struct Args {
     #[arg(long, value_name = "STAGE", value_parser = ["vertex", "fragment"], requires = "line")]
     pub stage: Option<String>,
     /// Show, at every pixel, how many statements the fragment shader ran there (the count
-    /// `--debug X,Y --json` reports as `cost`), drawn on the GPU; outputs as --line's.
+    /// the debugger reports as `cost` for a pixel), drawn on the GPU; outputs as --line's.
     #[arg(long, conflicts_with_all = ["record", "debug", "diff"])]
     pub cost: bool,
     /// With --line or --cost: also write the raw values as a NumPy array (height x width x
