@@ -568,3 +568,75 @@ fn a_cost_view_of_a_shader_that_never_ends_meets_the_watchdog() {
     );
     assert!(started.elapsed().as_secs() < 45, "{:?}", started.elapsed());
 }
+
+#[test]
+fn a_course_glsl_110_file_is_viewed_with_the_users_lines_and_names() {
+    let dir = test_dir("course");
+    let course = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
+    for file in ["lab3.vert", "lab3.frag"] {
+        std::fs::copy(course.join(file), dir.join(file)).expect("the course's file");
+    }
+    let text = std::fs::read_to_string(dir.join("lab3.frag")).expect("lab3.frag");
+    let line = text.lines().position(|l| l.contains("vec4 Idiff =")).expect("the line") as u32 + 1;
+    let at = format!("lab3.frag:{line}");
+    let out = shaderlab_in(
+        &dir,
+        &[
+            "view",
+            "legacy",
+            "lab3.vert",
+            "lab3.frag",
+            "--set",
+            "object=teapot",
+            "--line",
+            &at,
+            "--size",
+            SIZE,
+            "--json",
+            "--npy",
+            "v.npy",
+        ],
+    );
+    let v: serde_json::Value = serde_json::from_str(&ok(&out)).expect("one JSON object");
+    assert!(v["file"].as_str().is_some_and(|f| f.ends_with("lab3.frag")), "{v}");
+    assert_eq!(v["line"], line, "{v}");
+    assert_eq!(v["name"], "Idiff", "the user's name: {v}");
+    assert_eq!(v["components"], 4, "{v}");
+    assert!(v["drawn"].as_u64().is_some_and(|n| n > 1000), "{v}");
+    let (shape, values) = read_npy(&dir.join("v.npy"));
+    assert_eq!(shape, vec![HEIGHT as usize, WIDTH as usize, 4]);
+    // Alpha is 1 wherever the line ran: the value is the course's vec4(…, 1.0).
+    let ran: Vec<f32> = values
+        .chunks_exact(4)
+        .filter(|p| !p[0].is_nan())
+        .map(|p| p[3])
+        .collect();
+    assert_eq!(ran.len() as u64, v["drawn"].as_u64().expect("drawn"));
+    assert!(ran.iter().all(|&a| a == 1.0));
+}
+
+#[test]
+fn the_view_command_is_listed_and_has_help() {
+    let dir = test_dir("help");
+    let usage = ok(&shaderlab_in(&dir, &["--help"]));
+    assert!(usage.contains("shaderlab view NAME --line FILE:LINE"), "{usage}");
+    assert!(usage.contains("shaderlab view NAME --cost"), "{usage}");
+    let help = ok(&shaderlab_in(&dir, &["view", "--help"]));
+    for needle in [
+        "Usage: shaderlab view NAME",
+        "--line FILE:LINE",
+        "--npy FILE.npy",
+        "default NAME-view.png",
+    ] {
+        assert!(help.contains(needle), "{needle}: {help}");
+    }
+    let lab = ok(&shaderlab_in(&dir, &["view", "phong", "--help"]));
+    for needle in ["--line <FILE:LINE>", "--cost", "--npy <FILE.npy>", "--diff <DIR>"] {
+        assert!(lab.contains(needle), "{needle}: {lab}");
+    }
+    // Without an output asked for, the picture goes to NAME-cost.png here.
+    let text = ok(&shaderlab_in(&dir, &["view", "phong", "--cost", "--size", SIZE]));
+    assert!(text.starts_with("cost: "), "{text}");
+    let png = image::open(dir.join("phong-cost.png")).expect("the default picture");
+    assert_eq!(png.height(), HEIGHT + picture::LEGEND_HEIGHT);
+}
