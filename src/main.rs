@@ -27,6 +27,12 @@ Usage:
                                       where a copy of the lab's shaders draws differently
                                       from the built-in ones: PSNR, the pixels that differ,
                                       the worst one, and the first line whose value departs
+  shaderlab view NAME --line FILE:LINE [--name VAR] [--stage vertex|fragment] [FLAGS…]
+  shaderlab view NAME --cost [FLAGS…]
+                                      a line's value, or the statements the fragment shader
+                                      ran, at every pixel, drawn on the GPU: --out FILE.png
+                                      (default NAME-view.png, NAME-cost.png), --npy FILE.npy,
+                                      --json, --bench N
   shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
   shaderlab --version
@@ -56,6 +62,23 @@ fn verb_help(verb: &str) -> String {
             "\n  --shaders DIR  the copy of the lab's shaders (same file names as shaders_glsl/)\n  \
              --out FILE.png the difference as a picture, with its legend\n  \
              --json         print one JSON object (psnr, differing, worst, first_divergence)",
+        ),
+        "view" => (
+            "show a value over the whole frame, drawn on the GPU by an instrumented copy of the\n\
+             lab's own shaders: the value line LINE of FILE assigns at every pixel (--line), or how\n\
+             many statements the fragment shader ran there (--cost, the `cost` of shaderlab debug)",
+            shaderlab::shell::view::USAGE,
+            "\n  --line FILE:LINE   a line of one of the lab's shader files (phong.frag:17); a vertex\n                     \
+             shader line shows its value at the corners, interpolated as a varying\n  \
+             --name VAR         the name to show, where the line assigns several things\n  \
+             --stage STAGE      vertex or fragment, where both shaders include the file\n  \
+             --cost             the statements the fragment shader ran at each pixel\n  \
+             --out FILE.png     the picture, with its legend (default NAME-view.png or\n                     \
+             NAME-cost.png here, unless --npy, --json or --bench is given)\n  \
+             --npy FILE.npy     the raw values: height x width x components, float32, NaN where\n                     \
+             the line did not run\n  \
+             --json             print one JSON object (range, counts; cost min, max, mean)\n  \
+             --bench N          time N views (each: the frame, the view, read back)",
         ),
         _ => (
             "why pixel X,Y of a lab's picture has its colour: the triangle that covers it, the vertex\n\
@@ -110,12 +133,12 @@ fn main() -> ExitCode {
             lines.push(String::new());
             print(&lines.join("\n"))
         }
-        Some(verb @ ("run" | "record" | "debug" | "diff"))
+        Some(verb @ ("run" | "record" | "debug" | "diff" | "view"))
             if matches!(words.get(2).map(String::as_str), Some("--help" | "-h")) =>
         {
             print(&verb_help(verb))
         }
-        Some(verb @ ("run" | "record" | "legacy" | "debug" | "diff")) => {
+        Some(verb @ ("run" | "record" | "legacy" | "debug" | "diff" | "view")) => {
             let (name, rest) = if verb == "legacy" {
                 (Some("legacy"), 2)
             } else {
@@ -156,6 +179,8 @@ fn main() -> ExitCode {
             }
             if verb == "debug" {
                 shaderlab::shell::debug_main_from(entry, args)
+            } else if verb == "view" {
+                shaderlab::shell::view::view_main_from(entry, args)
             } else if verb == "diff" {
                 shaderlab::shell::diff::diff_main_from(entry, args)
             } else {

@@ -92,9 +92,34 @@ pub struct Args {
     /// fragment shader line by line with every value, and the stored colour. No window.
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true, conflicts_with_all = ["record", "bench"])]
     pub debug: Option<(u32, u32)>,
-    /// With --debug: print one JSON object (pixel, covered, trace, ...) instead of the text.
-    #[arg(long, requires = "debug")]
+    /// With --debug: print one JSON object (pixel, covered, trace, ...) instead of the text;
+    /// with --line or --cost: the view's summary (range, counts) as one JSON object.
+    #[arg(long)]
     pub json: bool,
+    /// Show, at every pixel, the value line LINE of FILE (a shader file of the lab, by its name)
+    /// assigns, drawn on the GPU: written to --screenshot's PNG (default NAME-view.png) with a
+    /// legend, to --npy's array, or timed with --bench. No window.
+    #[arg(long, value_name = "FILE:LINE", value_parser = parse_line, conflicts_with_all = ["record", "debug", "cost", "diff"])]
+    pub line: Option<(String, u32)>,
+    /// With --line: the name to show, where the line assigns more than one thing.
+    #[arg(long, value_name = "VAR", requires = "line")]
+    pub name: Option<String>,
+    /// With --line: the stage (vertex or fragment), where both shaders include the file.
+    #[arg(long, value_name = "STAGE", value_parser = ["vertex", "fragment"], requires = "line")]
+    pub stage: Option<String>,
+    /// Show, at every pixel, how many statements the fragment shader ran there (the count
+    /// the debugger reports as `cost` for a pixel), drawn on the GPU; outputs as --line's.
+    #[arg(long, conflicts_with_all = ["record", "debug", "diff"])]
+    pub cost: bool,
+    /// With --line or --cost: also write the raw values as a NumPy array (height x width x
+    /// components, float32; NaN where the line did not run or no fragment ran).
+    #[arg(long, value_name = "FILE.npy")]
+    pub npy: Option<PathBuf>,
+    /// Compare with the copy of the shaders in DIR, as `shaderlab diff NAME --shaders DIR`:
+    /// PSNR, the pixels that differ, the worst one and the first line whose value departs
+    /// (the picture of the difference to --screenshot; --json for one JSON object).
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["record", "debug", "bench", "shaders"])]
+    pub diff: Option<PathBuf>,
     /// The flag the pixel was given with, for messages.
     #[arg(skip)]
     pub pixel_flag: PixelFlag,
@@ -227,6 +252,20 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     };
     let (x, y) = s.split_once(',').ok_or_else(bad)?;
     Ok((number(x)?, number(y)?))
+}
+
+/// `FILE:LINE`: a file name (any text, `:` included) and a 1-based line after the last `:`.
+fn parse_line(s: &str) -> Result<(String, u32), String> {
+    let bad = || format!("`{s}`: expected FILE:LINE, a shader file of the lab and a line from 1, e.g. phong.frag:17");
+    let (file, line) = s.rsplit_once(':').ok_or_else(bad)?;
+    let line = line.trim();
+    if file.is_empty() || line.is_empty() || !line.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(bad());
+    }
+    match line.parse::<u32>() {
+        Ok(n) if n >= 1 => Ok((file.to_owned(), n)),
+        _ => Err(bad()),
+    }
 }
 
 fn parse_set(s: &str) -> Result<(String, String), String> {

@@ -19,9 +19,11 @@ use crate::shader::ShaderSource;
 pub const USAGE: &str = "shaderlab diff NAME --shaders DIR [--out FILE.png] [--json] [FLAGS…]";
 
 /// What `diff` takes besides the lab's flags.
-struct Own {
-    out: Option<PathBuf>,
-    json: bool,
+pub(super) struct Own {
+    /// The picture of the difference.
+    pub(super) out: Option<PathBuf>,
+    /// One JSON object instead of the text.
+    pub(super) json: bool,
 }
 
 /// Takes `--out FILE`, `--out=FILE` and `--json` out of `argv` (the lab's flags stay).
@@ -80,7 +82,7 @@ pub fn diff_main_from(entry: &'static LabEntry, argv: Vec<OsString>) -> ExitCode
     }
 }
 
-fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<(), Failure> {
+pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<(), Failure> {
     for (flag, given) in [
         ("--screenshot", args.screenshot.is_some()),
         ("--bench", args.bench.is_some()),

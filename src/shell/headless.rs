@@ -40,6 +40,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         }
         None => None,
     };
+    let view = super::view::Plan::of(entry, args)?;
     let mut gpu = Gpu::headless()?;
     gpu.watchdog = args.watchdog();
     gpu.bounded_compiles = true;
@@ -55,6 +56,10 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     }
     *lab.params_mut() = params;
     let (width, height) = args.size(entry);
+    if let Some(view) = &view {
+        view.check_inputs()?;
+        return view.run(&gpu, lab.as_mut(), entry.info.name, width, height);
+    }
     if let Some(frames) = args.bench {
         let result = bench(&gpu, lab.as_mut(), frames, width, height, args.gpu_time)?;
         say(&result.line(entry.info.name, lab.params(), width, height, frames))?;

@@ -33,6 +33,8 @@ pub mod session;
 pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod tools;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod view;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 #[cfg(not(target_arch = "wasm32"))]
@@ -134,14 +136,20 @@ pub fn debug_main_from(entry: &'static LabEntry, argv: Vec<std::ffi::OsString>) 
 #[cfg(not(target_arch = "wasm32"))]
 fn main_parsed(entry: &'static LabEntry, args: Args) -> ExitCode {
     let name = entry.info.name;
-    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() || args.debug.is_some() {
+    if args.screenshot.is_some()
+        || args.bench.is_some()
+        || args.record.is_some()
+        || args.debug.is_some()
+        || offscreen_view(&args)
+    {
         cli::skip_display_device_select();
     }
     let result = run(entry, args);
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            let hint = if failure.code == 2 {
+            // A view's probe that does not fit the shaders says all there is in its one line.
+            let hint = if failure.code == 2 && !matches!(failure.error, Error::View(_)) {
                 "\n\nFor more information, try '--help'."
             } else {
                 ""
@@ -174,16 +182,42 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
             }
         }
     }
+    if args.json && args.debug.is_none() && !offscreen_view(&args) {
+        return Err(
+            Error::Param("`--json` goes with --debug X,Y, --line FILE:LINE, --cost or --diff DIR".into()).into(),
+        );
+    }
+    if args.npy.is_some() && args.line.is_none() && !args.cost {
+        return Err(Error::Param("`--npy` writes a view's values: add --line FILE:LINE or --cost".into()).into());
+    }
     let params = args.params(entry)?;
     if let Some(path) = &args.screenshot {
         headless::check_png_path(path)?;
+    }
+    if let Some(dir) = &args.diff {
+        // `--diff DIR` is `shaderlab diff NAME --shaders DIR`, the picture to --screenshot.
+        let own = diff::Own {
+            out: args.screenshot.clone(),
+            json: args.json,
+        };
+        let args = Args {
+            shaders: Some(dir.clone()),
+            screenshot: None,
+            ..args
+        };
+        return diff::run(entry, &args, &own);
     }
     if let Some(path) = &args.record {
         record::Output::parse(path, entry.info.name)?;
     }
     args.shader_source()?;
     let files = args.files(entry)?;
-    if args.screenshot.is_some() || args.bench.is_some() || args.record.is_some() || args.debug.is_some() {
+    if args.screenshot.is_some()
+        || args.bench.is_some()
+        || args.record.is_some()
+        || args.debug.is_some()
+        || offscreen_view(&args)
+    {
         headless::run(entry, &args, params, &files)
     } else if !window::has_display() {
         // No display: still do something useful.
@@ -202,6 +236,12 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     } else {
         window::run(entry, &args, params, files).map_err(Failure::from)
     }
+}
+
+/// A view (`--line`, `--cost`) or a comparison (`--diff`): drawn offscreen, never in a window.
+#[cfg(not(target_arch = "wasm32"))]
+fn offscreen_view(args: &Args) -> bool {
+    args.line.is_some() || args.cost || args.diff.is_some()
 }
 
 /// The parameters of a lab at their defaults (for tests and `--help`).
