@@ -29,7 +29,15 @@ fn listed() -> Vec<String> {
 fn the_package_holds_what_the_command_needs_and_nothing_else() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let files = listed();
-    for needed in ["Cargo.toml", "Cargo.lock", "LICENSE", "README.md", "build.rs", "src/main.rs", "src/lib.rs"] {
+    for needed in [
+        "Cargo.toml",
+        "Cargo.lock",
+        "LICENSE",
+        "README.md",
+        "build.rs",
+        "src/main.rs",
+        "src/lib.rs",
+    ] {
         assert!(files.iter().any(|f| f == needed), "{needed} is not in the package");
     }
     // Every shader build.rs embeds, and every asset the sources include.
@@ -66,5 +74,9 @@ fn the_licence_is_the_one_the_manifest_names() {
     let manifest = std::fs::read_to_string(root.join("Cargo.toml")).unwrap();
     assert!(manifest.contains("license = \"MIT\""));
     let licence = std::fs::read_to_string(root.join("LICENSE")).unwrap();
-    assert!(licence.starts_with("MIT License"), "{}", &licence[..40.min(licence.len())]);
+    assert!(
+        licence.starts_with("MIT License"),
+        "{}",
+        &licence[..40.min(licence.len())]
+    );
 }
