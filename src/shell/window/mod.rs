@@ -32,6 +32,8 @@
 //! around live reload's compile of the Nth save. `SHADERLAB_TEST_PANIC=init` panics while the
 //! window opens, `=reload` inside each live reload's compile, so that the tests can check
 //! what a panic looks like.
+//! `SHADERLAB_TEST_PANEL=1` opens with F1's panel shown, for a display the tests cannot send
+//! keys to (a headless Wayland compositor).
 
 mod recording;
 mod screen;
@@ -77,18 +79,23 @@ pub fn frame_interval(refresh_millihertz: Option<u32>) -> Duration {
     Duration::from_secs_f64(1.0 / (hz * 1.1))
 }
 
-/// Whether a window can be opened: this build talks X11 (also through XWayland), so a
-/// display must be named in `DISPLAY`.
+/// Whether a window can be opened: a Wayland compositor named in `WAYLAND_DISPLAY` or an X
+/// server named in `DISPLAY` (winit prefers Wayland when both are set).
 pub fn has_display() -> bool {
-    std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty())
+    let named = |var: &str| std::env::var_os(var).is_some_and(|d| !d.is_empty());
+    named("WAYLAND_DISPLAY") || named("DISPLAY")
 }
 
 /// Why [`has_display`] is false, in words a user can act on.
 pub fn no_display_reason() -> &'static str {
-    if std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| !d.is_empty()) {
-        "WAYLAND_DISPLAY is set but DISPLAY is not; shaderlab windows use X11, so start XWayland or set DISPLAY"
-    } else {
-        "DISPLAY is unset"
+    "neither WAYLAND_DISPLAY nor DISPLAY is set"
+}
+
+/// The display the window opens on, for messages: `WAYLAND_DISPLAY=…` or `DISPLAY=…`.
+fn display_named() -> String {
+    match std::env::var("WAYLAND_DISPLAY") {
+        Ok(d) if !d.is_empty() => format!("WAYLAND_DISPLAY={d}"),
+        _ => format!("DISPLAY={}", std::env::var("DISPLAY").unwrap_or_default()),
     }
 }
 
@@ -103,8 +110,8 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
             None => &message,
         };
         Error::Surface(format!(
-            "cannot open a window on DISPLAY={}: {}",
-            std::env::var("DISPLAY").unwrap_or_default(),
+            "cannot open a window on {}: {}",
+            display_named(),
             reason.lines().next().unwrap_or("")
         ))
     })?;
@@ -452,7 +459,8 @@ impl App {
             .map(|d| Instant::now() + d);
         let refresh_millihertz = window.current_monitor().and_then(|m| m.refresh_rate_millihertz());
         window.set_title(&session.title());
-        let panel = super::panel::Panel::new(&window);
+        let mut panel = super::panel::Panel::new(&window);
+        panel.shown = std::env::var_os("SHADERLAB_TEST_PANEL").is_some();
         let now = Instant::now();
         Ok(WindowState {
             gpu: Arc::new(gpu),
