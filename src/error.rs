@@ -81,8 +81,14 @@ pub enum Error {
     Debug(String),
     /// A whole-frame view cannot be drawn: a line that assigns nothing, a file the lab does
     /// not draw, a name the line does not assign, a stage to choose.
-    #[error("{0}")]
-    View(String),
+    #[error("{message}")]
+    View {
+        /// The view's error in words.
+        message: String,
+        /// Whether the probe does not fit the lab's shaders (a usage error), rather than a
+        /// rewritten shader the GPU refused or a frame of another size.
+        usage: bool,
+    },
     /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
     #[error("{0}")]
     Hang(String),

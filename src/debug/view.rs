@@ -148,9 +148,20 @@ pub enum ViewError {
     },
 }
 
+impl ViewError {
+    /// Whether the probe does not fit the frame's shaders (the user's to change), rather than
+    /// a rewritten shader refused or a frame of another size.
+    pub fn is_usage(&self) -> bool {
+        !matches!(self, ViewError::Size { .. } | ViewError::Instrument { .. })
+    }
+}
+
 impl From<ViewError> for crate::error::Error {
     fn from(e: ViewError) -> Self {
-        crate::error::Error::View(e.to_string())
+        crate::error::Error::View {
+            message: e.to_string(),
+            usage: e.is_usage(),
+        }
     }
 }
 

@@ -149,7 +149,7 @@ fn main_parsed(entry: &'static LabEntry, args: Args) -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
             // A view's probe that does not fit the shaders says all there is in its one line.
-            let hint = if failure.code == 2 && !matches!(failure.error, Error::View(_)) {
+            let hint = if failure.code == 2 && !matches!(failure.error, Error::View { .. }) {
                 "\n\nFor more information, try '--help'."
             } else {
                 ""

@@ -12,7 +12,7 @@ use std::time::Instant;
 use super::args::Args;
 use super::cli::{say, Failure};
 use crate::debug::picture::{self, Legend, Scale};
-use crate::debug::view::{self, Probe, ValueFrame, ViewDrawer, ViewError};
+use crate::debug::view::{self, Probe, ValueFrame, ViewDrawer};
 use crate::debug::Stage;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
@@ -182,16 +182,7 @@ impl Plan {
 /// A view error is the user's probe that does not fit the lab's shaders (status 2), but for a
 /// rewritten shader the GPU refused or a frame of another size (status 1).
 fn failure(e: Error) -> Failure {
-    let usage = matches!(
-        &e,
-        Error::View(
-            ViewError::NotDrawn { .. }
-                | ViewError::Nothing { .. }
-                | ViewError::NoSuchName { .. }
-                | ViewError::Ambiguous { .. }
-                | ViewError::BothStages { .. }
-        )
-    );
+    let usage = matches!(&e, Error::View { usage: true, .. });
     Failure {
         code: if usage { 2 } else { 1 },
         error: e,
