@@ -35,6 +35,9 @@ Usage:
                                       --json, --bench N
   shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
+  shaderlab completions bash|zsh|fish|elvish|powershell
+                                      the shell's completion script (lab names, verbs, flags)
+  shaderlab man                       the manual page (roff: shaderlab man > shaderlab.1)
   shaderlab --version
 
 Each lab is also an example: cargo run --release --example NAME -- [FLAGS…]";
@@ -104,6 +107,80 @@ fn print(text: &str) -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let _ = writeln!(std::io::stderr(), "shaderlab: error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// The command line as clap describes it, for completion scripts and the manual page: the
+/// verbs, each lab's name, and the labs' own flags (the same definitions `--help` prints). The
+/// verbs themselves are dispatched by hand below, since each hands the rest of its command line
+/// to a lab's or tool's own parser.
+fn described() -> clap::Command {
+    use clap::{Arg, Command, CommandFactory};
+    let names: Vec<&'static str> = course::ALL.iter().map(|e| e.info.name).collect();
+    let lab = || {
+        Arg::new("NAME")
+            .required(true)
+            .help("the lab")
+            .value_parser(clap::builder::PossibleValuesParser::new(names.clone()))
+    };
+    let flags: Vec<Arg> = shaderlab::shell::Args::command()
+        .get_arguments()
+        .filter(|a| a.get_id() != "files")
+        .cloned()
+        .collect();
+    let with_flags =
+        |name: &'static str, about: &'static str| Command::new(name).about(about).arg(lab()).args(flags.clone());
+    Command::new("shaderlab")
+        .version(env!("CARGO_PKG_VERSION"))
+        .about("the GLSL course labs on wgpu: 32 labs in a window or offscreen, a course's own GLSL 1.10 files, and a GLSL debugger")
+        .subcommand_required(true)
+        .subcommand(Command::new("list").about("every lab, by lecture"))
+        .subcommand(with_flags("run", "run a lab in a window, or offscreen with --screenshot, --bench, --record or --debug"))
+        .subcommand(
+            with_flags("record", "record a lab's frames offscreen into OUT (GIF, MP4, WebM, PNGs)")
+                .arg(Arg::new("OUT").required(true).index(2).value_hint(clap::ValueHint::FilePath)),
+        )
+        .subcommand(
+            Command::new("legacy")
+                .about("a course's own GLSL 1.10/1.20 pair")
+                .arg(Arg::new("VERT").value_hint(clap::ValueHint::FilePath))
+                .arg(Arg::new("FRAG").value_hint(clap::ValueHint::FilePath))
+                .args(flags.clone()),
+        )
+        .subcommand(with_flags("debug", "why a pixel has its colour, line by line"))
+        .subcommand(with_flags("diff", "where a copy of the lab's shaders (--shaders DIR) draws differently, and from which line"))
+        .subcommand(with_flags("view", "a line's value (--line FILE:LINE) or the fragment shader's cost (--cost) at every pixel"))
+        .subcommand(Command::new("glsl2wgsl").about("translate GLSL to WGSL (shaderlab glsl2wgsl --help)"))
+        .subcommand(Command::new("bench").about("time every lab offscreen (shaderlab bench --help)"))
+        .subcommand(
+            Command::new("completions")
+                .about("the shell's completion script")
+                .arg(Arg::new("SHELL").required(true).value_parser(clap::value_parser!(clap_complete::Shell))),
+        )
+        .subcommand(Command::new("man").about("the manual page, in roff"))
+}
+
+/// `shaderlab completions SHELL`: the completion script on stdout.
+fn completions(shell: Option<&str>) -> ExitCode {
+    let shell = shell.and_then(|s| <clap_complete::Shell as clap::ValueEnum>::from_str(s, true).ok());
+    let Some(shell) = shell else {
+        eprintln!("shaderlab completions: which shell? bash, zsh, fish, elvish or powershell\n\nUsage: shaderlab completions SHELL");
+        return ExitCode::from(2);
+    };
+    let mut script = Vec::new();
+    clap_complete::generate(shell, &mut described(), "shaderlab", &mut script);
+    print(&String::from_utf8_lossy(&script))
+}
+
+/// `shaderlab man`: the manual page (roff) on stdout.
+fn man() -> ExitCode {
+    let mut page = Vec::new();
+    match clap_mangen::Man::new(described()).render(&mut page) {
+        Ok(()) => print(&String::from_utf8_lossy(&page)),
+        Err(e) => {
+            let _ = writeln!(std::io::stderr(), "shaderlab man: {e}");
             ExitCode::from(1)
         }
     }
@@ -187,6 +264,8 @@ fn main() -> ExitCode {
                 shaderlab::shell::main_from(entry, args)
             }
         }
+        Some("completions") => completions(words.get(2).map(String::as_str)),
+        Some("man") => man(),
         Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),
         Some("bench") => shaderlab::shell::tool_exit("shaderlab bench", bench::run(argv.drain(1..))),
         Some(other) => {
