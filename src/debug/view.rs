@@ -875,6 +875,21 @@ pub fn record(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32)
     Ok(log)
 }
 
+/// Records one frame of `lab` as [`record`] does, for a lab whose pipelines draw in `format`
+/// (a window's lab draws in its surface's format).
+pub fn record_in(
+    gpu: &Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+) -> Result<DrawLog> {
+    let target = crate::offscreen::Offscreen::with_format(gpu, width, height, format);
+    let log = DrawLog::new();
+    let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    Ok(log)
+}
+
 /// Records one frame of `lab` with its draws written down and brings them to the CPU: the log
 /// a view draws from and the capture the debugger replays, of the same frame.
 #[cfg(not(target_arch = "wasm32"))]

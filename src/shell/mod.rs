@@ -33,6 +33,7 @@ pub mod session;
 pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod tools;
+pub mod views;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 #[cfg(not(target_arch = "wasm32"))]
