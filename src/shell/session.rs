@@ -217,9 +217,9 @@ impl Session {
         self.clock.tick(self.lab.as_mut(), now);
     }
 
-    /// Whether a frame should be drawn now.
+    /// Whether a frame should be drawn now (a view being read back is moved on by frames too).
     pub fn wants_frame(&self) -> bool {
-        self.animated() || self.dirty > 0
+        self.animated() || self.dirty > 0 || self.views.busy()
     }
 
     /// Frames still to draw after the last change.
@@ -568,6 +568,21 @@ impl Session {
     #[cfg(not(target_arch = "wasm32"))]
     pub fn view_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
         self.views.update(gpu, self.lab.as_mut(), self.version, size, format)
+    }
+
+    /// Moves the view asked for on without blocking ([`super::views::Views::poll`], the page's
+    /// way): returns whether a new picture (or error) was made; then draw again.
+    pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+        let made = self.views.poll(gpu, self.lab.as_mut(), self.version, size, format);
+        if made {
+            self.changed();
+        }
+        made
+    }
+
+    /// Whether a view is being read back.
+    pub fn view_busy(&self) -> bool {
+        self.views.busy()
     }
 
     /// Records the view's picture into `color` (of `format`) in place of the lab's frame;

@@ -12,7 +12,7 @@
 
 use image::RgbaImage;
 
-use crate::debug::view::{Probe, ViewDrawer};
+use crate::debug::view::{PendingView, Probe, ViewDrawer};
 use crate::debug::{picture, Stage};
 use crate::gpu::Gpu;
 use crate::lab::Lab;
@@ -87,6 +87,10 @@ impl Wanted {
     }
 }
 
+/// Why a diff has nothing to compare.
+const NOTHING_TO_COMPARE: &str =
+    "the lab draws with its built-in shaders: there is nothing to compare (edit a shader, or run it with --shaders DIR)";
+
 /// A view's picture and what it says in words (the legend, the diff's findings).
 pub struct Picture {
     /// The picture with its legend strip, the surface's size.
@@ -107,6 +111,10 @@ pub struct Views {
     /// The lab drawn with its built-in shaders, for the diff.
     reference: Option<Box<dyn Lab>>,
     blit: Option<Blit>,
+    /// The view being read back without blocking ([`Views::poll`], the page's way).
+    pending: Option<PendingView>,
+    /// The diff's two frames being read back without blocking: the lab's and the reference's.
+    pending_diff: Option<(crate::debug::Pending, crate::debug::Pending)>,
 }
 
 impl Views {
@@ -131,6 +139,104 @@ impl Views {
         self.reference = reference;
         self.taken = None;
         self.shown = None;
+        self.pending = None;
+        self.pending_diff = None;
+    }
+
+    /// Whether a view is being read back ([`Views::poll`]).
+    pub fn busy(&self) -> bool {
+        self.pending.is_some() || self.pending_diff.is_some()
+    }
+
+    /// Moves the view on without blocking (the page, which cannot wait for the GPU): values
+    /// that are back become the picture; otherwise, when the lab's state (`version`) or `size`
+    /// changed since the last picture, the view is drawn again and its read-back starts.
+    /// Returns whether a new picture (or error) was made. A diff's two frames are read back
+    /// the same way, then compared at once.
+    pub fn poll(
+        &mut self,
+        gpu: &Gpu,
+        lab: &mut dyn Lab,
+        version: u64,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+    ) -> bool {
+        let Some(wanted) = self.wanted.clone() else {
+            return false;
+        };
+        if let Some((mine, reference)) = &self.pending_diff {
+            let _ = gpu.device.poll(wgpu::PollType::Poll);
+            if !(mine.ready() && reference.ready()) {
+                return false;
+            }
+            let (mine, reference) = self.pending_diff.take().expect("checked above");
+            let name = lab.info().name;
+            let made = mine
+                .finish()
+                .and_then(|mine| Ok((mine, reference.finish()?)))
+                .and_then(|(mine, reference)| crate::debug::diff::diff(name, &mine, &reference))
+                .map(|diff| Picture {
+                    text: diff.text(),
+                    image: diff.picture,
+                })
+                .map_err(|e| e.to_string());
+            self.shown = Some(made);
+            return true;
+        }
+        if let Some(pending) = &self.pending {
+            let _ = gpu.device.poll(wgpu::PollType::Poll);
+            if !pending.ready() {
+                return false;
+            }
+            let pending = self.pending.take().expect("checked above");
+            self.shown = Some(
+                self.drawer
+                    .finish(pending)
+                    .map(|frame| picture_of(&wanted, &frame))
+                    .map_err(|e| e.to_string()),
+            );
+            return true;
+        }
+        if self.taken == Some((version, size)) {
+            return false;
+        }
+        self.taken = Some((version, size));
+        let (w, h) = view_size(size);
+        if wanted == Wanted::Diff {
+            let Some(reference) = self.reference.as_mut() else {
+                self.shown = Some(Err(NOTHING_TO_COMPARE.into()));
+                return true;
+            };
+            carry_params(lab, reference.as_mut());
+            let started = crate::debug::capture_start(gpu, lab, (w, h), format).and_then(|mine| {
+                Ok((
+                    mine,
+                    crate::debug::capture_start(gpu, reference.as_mut(), (w, h), format)?,
+                ))
+            });
+            match started {
+                Ok(both) => {
+                    self.pending_diff = Some(both);
+                    return false;
+                }
+                Err(e) => {
+                    self.shown = Some(Err(e.to_string()));
+                    return true;
+                }
+            }
+        }
+        match crate::debug::view::record_in(gpu, lab, w, h, format)
+            .and_then(|log| self.drawer.start(gpu, &log, &wanted.probe(), w, h))
+        {
+            Ok(pending) => {
+                self.pending = Some(pending);
+                false
+            }
+            Err(e) => {
+                self.shown = Some(Err(e.to_string()));
+                true
+            }
+        }
     }
 
     /// The last picture, or why there is none; `None` while no view is asked for.
@@ -184,10 +290,7 @@ impl Views {
         format: wgpu::TextureFormat,
     ) -> Result<Picture, String> {
         let Some(reference) = self.reference.as_mut() else {
-            return Err(
-                "the lab draws with its built-in shaders: there is nothing to compare (run it with --shaders DIR)"
-                    .into(),
-            );
+            return Err(NOTHING_TO_COMPARE.into());
         };
         carry_params(lab, reference.as_mut());
         let name = lab.info().name;
