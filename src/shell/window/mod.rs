@@ -1,7 +1,9 @@
 //! The window: winit's events turned into the [`Session`]'s (the lab, its clock, keys and
 //! mouse, written once for the window and the page), a `Screen` the frames reach (the
 //! swapchain or X shared memory), and what only a desktop window has: F12 screenshots, F10
-//! recordings, the F1 panel drawn with egui, live shader reload from files, pacing near the
+//! recordings, the F1 panel drawn with egui, whole-frame views in place of the picture (a line
+//! clicked in F2's listing, F3 cost, F4 diff: [`super::views`]), live shader reload from
+//! files, pacing near the
 //! monitor's refresh rate, and signals. Labs never see winit.
 //!
 //! Nothing is drawn when nothing changes: a lab that is not animated is redrawn after input,
@@ -29,7 +31,10 @@
 //! it has then been handled), `shaderlab-test: idle` when the window has nothing more to
 //! draw after one of those, `shaderlab-test: inspected X,Y rgba(R, G, B, A)` when F2's
 //! inspector has a new result, and `shaderlab-test: compile N started` / `compile N ended`
-//! around live reload's compile of the Nth save. `SHADERLAB_TEST_PANIC=init` panics while the
+//! around live reload's compile of the Nth save, `shaderlab-test: view WxH` (or `view error:
+//! …`) when a whole-frame view has a new picture. `SHADERLAB_TEST_VIEW=FILE:LINE` chooses that
+//! line's view when the first inspection arrives, as a click on it in the inspector's listing
+//! does. `SHADERLAB_TEST_PANIC=init` panics while the
 //! window opens, `=reload` inside each live reload's compile, so that the tests can check
 //! what a panic looks like.
 
