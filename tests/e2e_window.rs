@@ -2602,3 +2602,88 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
     assert!(!lab.stderr().contains("view error"), "{}", lab.stderr());
     lab.escape();
 }
+
+/// Issue 41: with `--shaders DIR`, F4 compares the lab with its built-in shaders: the window
+/// shows the library's diff picture of the same state (a bug planted in the copy's line 17
+/// shows where it changes the picture), and a saved fix draws the diff again, now of two
+/// equal pictures.
+#[test]
+fn f4_diffs_a_copy_against_the_built_in_shaders_and_follows_saved_shaders() {
+    let x = Xvfb::start("view_diff");
+    let (shaders, frag, original) = phong_shaders(&x);
+    let planted = original.replacen("max(dot(N, L), 0.0)", "max(dot(N, L), 0.0) * 0.5", 1);
+    assert_ne!(planted, original, "phong.frag changed: update this test");
+    std::fs::write(&frag, &planted).expect("write phong.frag");
+    let dir = shaders.to_str().expect("utf-8 path");
+    let mut lab = x.launch("phong", &["--shaders", dir, "--set", "object=torus"], &[]);
+    lab.first_frame();
+    lab.idle();
+    let (_, _, w, h) = lab.geometry();
+    let library_diff = |copy: &str| -> RgbImage {
+        let files = shaderlab::lab::UserFiles::default();
+        let build = |source: shaderlab::shader::ShaderSource| {
+            let cx =
+                shaderlab::lab::BuildContext::new(common::gpu(), &source, shaderlab::offscreen::COLOR_FORMAT, &files);
+            let mut lab = (course::find("phong").expect("phong").new)(&cx).expect("phong builds");
+            lab.params_mut().set_str("object", "torus").expect("a torus");
+            lab
+        };
+        let copy_dir = x.dir.join("library-copy");
+        common::copy_shaders(&copy_dir);
+        std::fs::write(copy_dir.join("phong.frag"), copy).expect("write the copy");
+        let mut mine = build(shaderlab::shader::ShaderSource::Dir(copy_dir));
+        let mut reference = build(shaderlab::shader::ShaderSource::Embedded);
+        let diff = shaderlab::debug::diff::diff_labs(
+            common::gpu(),
+            "phong",
+            mine.as_mut(),
+            reference.as_mut(),
+            (w, h - picture::LEGEND_HEIGHT),
+        )
+        .expect("the library diffs");
+        image::DynamicImage::ImageRgba8(diff.picture).to_rgb8()
+    };
+    let f12 = |n: usize| -> RgbImage {
+        lab.keys(&["F12"]);
+        let line = poll(PATIENCE, || {
+            let out = lab.stdout();
+            let lines: Vec<String> = out
+                .lines()
+                .filter(|l| l.starts_with("screenshot: "))
+                .map(str::to_owned)
+                .collect();
+            (lines.len() >= n).then(|| lines[n - 1].clone())
+        })
+        .unwrap_or_else(|| panic!("no screenshot {n}; stderr:\n{}", lab.stderr()));
+        image::open(line.trim_start_matches("screenshot: ").trim())
+            .expect("a PNG")
+            .to_rgb8()
+    };
+    lab.keys(&["F4"]);
+    poll(PATIENCE, || (lab.said("view ") >= 1).then_some(()))
+        .unwrap_or_else(|| panic!("no view; stderr:\n{}", lab.stderr()));
+    assert!(lab.said(&format!("view {w}x{h}")) == 1, "{}", lab.stderr());
+    lab.wait_title_contains("| VIEW diff");
+    let want = library_diff(&planted);
+    let written = f12(1);
+    lab.save(&written, "diff_planted");
+    let db = psnr(&written, &want).unwrap_or(f64::INFINITY);
+    println!("diff of the planted bug: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the window's diff is not the library's: {db:.1} dB");
+    // The fix is saved: the lab reloads, and the diff is drawn again, of equal pictures.
+    let compiles = lab.said("compile 1 ended");
+    std::fs::write(&frag, &original).expect("write phong.frag");
+    poll(PATIENCE, || (lab.said("compile 1 ended") > compiles).then_some(()))
+        .unwrap_or_else(|| panic!("no reload; stderr:\n{}", lab.stderr()));
+    poll(PATIENCE, || (lab.said("view ") >= 2).then_some(()))
+        .unwrap_or_else(|| panic!("no second view; stderr:\n{}", lab.stderr()));
+    lab.idle();
+    let fixed = library_diff(&original);
+    assert_ne!(fixed, want, "the fix changes the diff");
+    let written = f12(2);
+    let db = psnr(&written, &fixed).unwrap_or(f64::INFINITY);
+    println!("diff after the fix: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the diff did not follow the saved shader: {db:.1} dB");
+    assert!(!lab.stderr().contains("view error"), "{}", lab.stderr());
+    lab.escape();
+}
