@@ -581,9 +581,10 @@ fn a_click_in_inspect_mode_inspects_that_pixel_and_puts_it_in_the_link() {
 }
 
 /// The picture of view `probe` of `name` at `sets` as the native build draws it at the lab's
-/// size (the view at the width and the height less the legend strip, then its legend), and
-/// the file the lab's fragment shader `suffix` is read from as the lab shows it.
-fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> view::Probe, suffix: &str) -> RgbImage {
+/// size (the view at the width and the height less the legend strip, then its legend); `probe`
+/// is given the file the lab's fragment shader `suffix` is read from as the lab shows it, and
+/// `None` from it is the diff with the built-in shaders.
+fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> Option<view::Probe>, suffix: &str) -> RgbImage {
     let entry = shaderlab::course::find(name).unwrap();
     let gpu = common::gpu();
     let files = UserFiles::default();
@@ -598,7 +599,14 @@ fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> view::Probe, s
         .flat_map(|d| d.setup.fragment.source.files.iter().map(|(p, _)| p.clone()))
         .find(|p| p.ends_with(suffix))
         .unwrap_or_else(|| panic!("{name} draws no {suffix}"));
-    let probe = probe(&file);
+    let Some(probe) = probe(&file) else {
+        // The diff with the built-in shaders, of a lab that draws with them.
+        let mut reference = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
+        common::set_state(reference.as_mut(), &state);
+        let diff = shaderlab::debug::diff::diff_labs(gpu, name, lab.as_mut(), reference.as_mut(), (w, vh))
+            .expect("the library diffs");
+        return image::DynamicImage::ImageRgba8(diff.picture).to_rgb8();
+    };
     let frame = view::draw_view(gpu, &log, &probe, w, vh).expect("the view draws");
     let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
     let image = match probe {
@@ -608,9 +616,9 @@ fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> view::Probe, s
     image::DynamicImage::ImageRgba8(image).to_rgb8()
 }
 
-/// Issue 41: a link with `&view=cost` or `&view=FILE:LINE` opens the page showing that view on
-/// the canvas, with its legend: the picture the native build draws of the same view (within
-/// the page's usual agreement), on WebGL2 and WebGPU.
+/// Issue 41: a link with `&view=cost`, `&view=FILE:LINE` or `&view=diff` opens the page showing
+/// that view on the canvas, with its legend: the picture the native build draws of the same
+/// view (within the page's usual agreement), on WebGL2 and WebGPU.
 #[test]
 #[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
 fn a_view_in_the_link_shows_the_native_views_picture() {
@@ -619,14 +627,18 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
     let mut failures = Vec::new();
     let mut table = Vec::new();
     // `vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0);`
-    let line = |file: &str| view::Probe::Line {
-        file: file.to_owned(),
-        line: 17,
-        name: None,
-        stage: None,
+    let line = |file: &str| {
+        Some(view::Probe::Line {
+            file: file.to_owned(),
+            line: 17,
+            name: None,
+            stage: None,
+        })
     };
-    let cost = |_: &str| view::Probe::Cost;
-    let cases: [(&str, &dyn Fn(&str) -> view::Probe); 2] = [("cost", &cost), ("phong.frag:17", &line)];
+    let cost = |_: &str| Some(view::Probe::Cost);
+    let diff = |_: &str| None;
+    let cases: [(&str, &dyn Fn(&str) -> Option<view::Probe>); 3] =
+        [("cost", &cost), ("phong.frag:17", &line), ("diff", &diff)];
     for backend in ["webgl2", "webgpu"] {
         for (link, probe) in cases {
             let want = native_view("phong", &sets, probe, "phong.frag");
@@ -645,8 +657,9 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
             };
             let text = page.get("capture.viewText");
             let db = psnr(&web, &want).unwrap_or(0.0);
+            let api = page.get("capture.backend");
             table.push(format!(
-                "| {link} | {backend} | {db:.1} dB | {} |",
+                "| {link} | {backend} ({api}) | {db:.1} dB | {} |",
                 text.lines().next().unwrap_or("")
             ));
             if db < MIN_DB {
@@ -660,7 +673,7 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
                 ));
             }
             let shown = page.get("capture.view");
-            if !(shown == "cost" && link == "cost" || shown.ends_with(link)) {
+            if !shown.ends_with(link) {
                 failures.push(format!("{link} {backend}: the page shows view `{shown}`"));
             }
         }
