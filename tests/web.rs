@@ -684,3 +684,38 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Issue 41: in the page, Inspect, a click on the picture and then a click on a line of the
+/// inspector's listing (DOM events, as a user's) show that line's value at every pixel on the
+/// canvas, the native build's picture of the same view, with the line marked and the view in
+/// the link.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_click_on_a_listed_line_shows_its_view_and_puts_it_in_the_link() {
+    let server = serve(site());
+    let page = open(
+        &server,
+        "webgl2",
+        &format!("{}&check=click&click=300,200&line=17", query("phong", &[])),
+    );
+    let text = page.get("capture-view-click.text");
+    let Some(web) = page.image("capture-view-click") else {
+        panic!("the page drew no view: `{text}`");
+    };
+    let line = |file: &str| {
+        Some(view::Probe::Line {
+            file: file.to_owned(),
+            line: 17,
+            name: None,
+            stage: None,
+        })
+    };
+    let want = native_view("phong", &[], line, "phong.frag");
+    let db = psnr(&web, &want).unwrap_or(0.0);
+    println!("a clicked line's view against the native view: {db:.1} dB; legend `{text}`");
+    assert!(db >= MIN_DB, "{db:.1} dB; the page said `{text}`");
+    assert!(text.contains("phong.frag:17"), "the legend: {text}");
+    assert_eq!(page.get("capture-view-click.chosen"), "1", "the line is marked");
+    let url = page.get("capture-view-click.url");
+    assert!(url.contains("phong.frag%3A17"), "the link: {url}");
+}
