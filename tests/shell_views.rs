@@ -153,3 +153,33 @@ fn a_view_that_cannot_be_drawn_says_why_and_the_picture_stays() {
         assert!(shown(&mut s) == plain, "{wanted:?}: the lab's picture stays");
     }
 }
+
+/// On the page a view asked for while another is read back waits for that read-back (the
+/// drawer's buffers are its until then), then is drawn: the picture is the new view's.
+#[test]
+fn a_view_asked_for_during_a_read_back_is_drawn_after_it() {
+    let mut s = session();
+    let file = phong_frag(&mut s);
+    let line = Wanted::from_link(&format!("{file}:17")).expect("a line");
+    s.set_view(Some(Wanted::Cost), None);
+    assert!(!s.view_poll(gpu(), SIZE, COLOR_FORMAT), "the read-back starts");
+    assert!(s.view_busy());
+    // The same view again (the same buffers), then another.
+    s.set_view(Some(Wanted::Cost), None);
+    s.set_view(Some(line.clone()), None);
+    let mut polls = 0;
+    while !s.view_poll(gpu(), SIZE, COLOR_FORMAT) {
+        polls += 1;
+        assert!(polls < 100_000, "the view never came back");
+        std::thread::yield_now();
+    }
+    let probe = view::Probe::Line {
+        file,
+        line: 17,
+        name: None,
+        stage: None,
+    };
+    let want = library(&mut s, &probe);
+    assert!(shown(&mut s) == want, "the picture is the line's");
+    assert!(matches!(s.view_shown(), Some(Ok(p)) if p.text.contains(":17")));
+}

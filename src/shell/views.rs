@@ -111,8 +111,10 @@ pub struct Views {
     /// The lab drawn with its built-in shaders, for the diff.
     reference: Option<Box<dyn Lab>>,
     blit: Option<Blit>,
-    /// The view being read back without blocking ([`Views::poll`], the page's way).
-    pending: Option<PendingView>,
+    /// The view being read back without blocking ([`Views::poll`], the page's way), and the
+    /// view it is of. It is finished even when another view is asked for meanwhile: the
+    /// drawer's read-back buffers are its until then.
+    pending: Option<(PendingView, Wanted)>,
     /// The diff's two frames being read back without blocking: the lab's and the reference's.
     pending_diff: Option<(crate::debug::Pending, crate::debug::Pending)>,
 }
@@ -139,7 +141,6 @@ impl Views {
         self.reference = reference;
         self.taken = None;
         self.shown = None;
-        self.pending = None;
         self.pending_diff = None;
     }
 
@@ -161,6 +162,19 @@ impl Views {
         size: (u32, u32),
         format: wgpu::TextureFormat,
     ) -> bool {
+        if let Some((pending, _)) = &self.pending {
+            let _ = gpu.device.poll(wgpu::PollType::Poll);
+            if !pending.ready() {
+                return false;
+            }
+            let (pending, of) = self.pending.take().expect("checked above");
+            let made = self.drawer.finish(pending);
+            // A view asked for since the read-back started is drawn next.
+            if self.wanted.as_ref() == Some(&of) {
+                self.shown = Some(made.map(|frame| picture_of(&of, &frame)).map_err(|e| e.to_string()));
+                return true;
+            }
+        }
         let Some(wanted) = self.wanted.clone() else {
             return false;
         };
@@ -181,20 +195,6 @@ impl Views {
                 })
                 .map_err(|e| e.to_string());
             self.shown = Some(made);
-            return true;
-        }
-        if let Some(pending) = &self.pending {
-            let _ = gpu.device.poll(wgpu::PollType::Poll);
-            if !pending.ready() {
-                return false;
-            }
-            let pending = self.pending.take().expect("checked above");
-            self.shown = Some(
-                self.drawer
-                    .finish(pending)
-                    .map(|frame| picture_of(&wanted, &frame))
-                    .map_err(|e| e.to_string()),
-            );
             return true;
         }
         if self.taken == Some((version, size)) {
@@ -229,7 +229,7 @@ impl Views {
             .and_then(|log| self.drawer.start(gpu, &log, &wanted.probe(), w, h))
         {
             Ok(pending) => {
-                self.pending = Some(pending);
+                self.pending = Some((pending, wanted));
                 false
             }
             Err(e) => {
