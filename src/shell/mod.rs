@@ -13,7 +13,7 @@
 //! with 1.
 //!
 //! In the browser build (wasm32) the page's shell (`web`) takes the window's place, with
-//! [`session`], [`inspector`], [`surface`], [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
+//! [`session`], [`inspector`], [`views`], [`surface`], [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
 //! the native window need processes, files, a terminal and blocking on the GPU.
 
 #[cfg(not(target_arch = "wasm32"))]
