@@ -19,7 +19,15 @@ fn shaderlab(args: &[&str]) -> (Option<i32>, String, String) {
 fn completion_scripts_know_the_verbs_the_labs_and_their_flags() {
     let (code, bash, err) = shaderlab(&["completions", "bash"]);
     assert_eq!(code, Some(0), "{err}");
-    for word in ["complete -F _shaderlab", "phong", "suzanne_flat", "--screenshot", "--line", "view", "diff"] {
+    for word in [
+        "complete -F _shaderlab",
+        "phong",
+        "suzanne_flat",
+        "--screenshot",
+        "--line",
+        "view",
+        "diff",
+    ] {
         assert!(bash.contains(word), "the bash script lacks {word}");
     }
     let path = std::env::temp_dir().join(format!("shaderlab-completion-{}.bash", std::process::id()));
@@ -39,7 +47,18 @@ fn the_manual_page_names_every_verb() {
     let (code, page, err) = shaderlab(&["man"]);
     assert_eq!(code, Some(0), "{err}");
     assert!(page.contains(".TH shaderlab 1"), "{}", &page[..200.min(page.len())]);
-    for verb in ["list", "run", "record", "legacy", "debug", "diff", "view", "glsl2wgsl", "bench", "completions"] {
+    for verb in [
+        "list",
+        "run",
+        "record",
+        "legacy",
+        "debug",
+        "diff",
+        "view",
+        "glsl2wgsl",
+        "bench",
+        "completions",
+    ] {
         assert!(page.contains(&format!("shaderlab\\-{verb}")), "the page lacks {verb}");
     }
 }

@@ -27,6 +27,7 @@ use std::time::{Duration, Instant};
 
 use image::RgbImage;
 use shaderlab::course;
+use shaderlab::debug::{picture, view};
 use shaderlab::metrics::{bounding_box, coverage, highlight, luma_stats, mask, mean_color, mse, psnr};
 
 mod common;
@@ -2453,5 +2454,236 @@ fn the_inspected_pixel_stays_visible_and_clickable_beside_the_panels() {
     click((100, 200));
     lab.idle();
     inspect((700, 500), "1280x720, after a click on the inspector");
+    lab.escape();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Whole-frame views (issue 41)
+// ---------------------------------------------------------------------------------------------
+
+/// The picture `probe` gives of `lab` at a window of `size` (the view drawn at the window's
+/// width and its height less the legend strip), made by the library alone.
+fn library_view(lab: &mut dyn shaderlab::lab::Lab, probe: &view::Probe, (w, h): (u32, u32)) -> image::RgbaImage {
+    let vh = h - picture::LEGEND_HEIGHT;
+    let log = view::record(common::gpu(), lab, w, vh).expect("the frame records");
+    let frame = view::draw_view(common::gpu(), &log, probe, w, vh).expect("the view draws");
+    let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
+    match probe {
+        view::Probe::Cost => picture::cost(w, vh, &frame.cost, &drawn).0,
+        _ => picture::values(w, vh, frame.components as usize, &frame.values, &frame.ran, &drawn).0,
+    }
+}
+
+/// The file the phong lab's fragment shader is read from, as the lab shows it.
+fn phong_fragment_file(lab: &mut dyn shaderlab::lab::Lab) -> String {
+    let log = view::record(common::gpu(), lab, 64, 64).expect("the frame records");
+    let files: Vec<String> = (log.draws().iter())
+        .flat_map(|d| d.setup.fragment.source.files.iter().map(|(p, _)| p.clone()))
+        .collect();
+    files
+        .iter()
+        .find(|p| p.ends_with("phong.frag"))
+        .cloned()
+        .unwrap_or_else(|| panic!("no phong.frag among {files:?}"))
+}
+
+/// Issue 41: in the window, F2 and a line chosen in the inspector's listing show that line's
+/// value at every pixel in place of the picture, with the legend, the very picture the
+/// library draws of the same state (F12 writes it, the screen shows it); a key that changes
+/// the lab draws the view again; F3 shows the cost view, and F3 again the lab's picture, as
+/// it was. (`SHADERLAB_TEST_VIEW` chooses the line as a click on it in the listing does.)
+#[test]
+fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
+    // The window reads the checkout's shaders_glsl/ (live reload); so does this lab.
+    let files = shaderlab::lab::UserFiles::default();
+    let source = shaderlab::shader::ShaderSource::Dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl"));
+    let cx = shaderlab::lab::BuildContext::new(common::gpu(), &source, shaderlab::offscreen::COLOR_FORMAT, &files);
+    let mut lab_ref = (course::find("phong").expect("phong is a lab").new)(&cx).expect("phong builds");
+    lab_ref.params_mut().set_str("object", "torus").expect("a torus");
+    let file = phong_fragment_file(lab_ref.as_mut());
+    // `vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0);`
+    let line = 17;
+    let x = Xvfb::start("views");
+    let mut lab = x.launch(
+        "phong",
+        &["--set", "object=torus"],
+        &[("SHADERLAB_TEST_VIEW", &format!("{file}:{line}"))],
+    );
+    lab.first_frame();
+    let plain = lab.settled();
+    let (_, _, w, h) = lab.geometry();
+    let view_said = |n: usize| {
+        poll(PATIENCE, || (lab.said("view ") >= n).then_some(()))
+            .unwrap_or_else(|| panic!("no view {n}; stderr:\n{}", lab.stderr()));
+        let err = lab.stderr();
+        let last = err
+            .lines()
+            .filter(|l| l.starts_with("shaderlab-test: view "))
+            .nth(n - 1)
+            .unwrap_or("")
+            .to_owned();
+        assert_eq!(last, format!("shaderlab-test: view {w}x{h}"), "{err}");
+    };
+    let f12 = |n: usize| -> image::RgbImage {
+        lab.keys(&["F12"]);
+        let line = poll(PATIENCE, || {
+            let out = lab.stdout();
+            let lines: Vec<String> = out
+                .lines()
+                .filter(|l| l.starts_with("screenshot: "))
+                .map(str::to_owned)
+                .collect();
+            (lines.len() >= n).then(|| lines[n - 1].clone())
+        })
+        .unwrap_or_else(|| panic!("no screenshot {n}; stderr:\n{}", lab.stderr()));
+        image::open(line.trim_start_matches("screenshot: ").trim())
+            .expect("a PNG")
+            .to_rgb8()
+    };
+    let rgb = |i: &image::RgbaImage| image::DynamicImage::ImageRgba8(i.clone()).to_rgb8();
+    // F2, then the first inspection chooses the line.
+    lab.keys(&["F2"]);
+    lab.idle();
+    lab.x
+        .xdotool(&["mousemove", "--window", &lab.window, "300", "150", "click", "1"]);
+    view_said(1);
+    assert!(lab.wait_title_contains("| VIEW phong.frag:17").contains("VIEW"));
+    let probe = view::Probe::Line {
+        file: file.clone(),
+        line,
+        name: None,
+        stage: None,
+    };
+    let want = rgb(&library_view(lab_ref.as_mut(), &probe, (w, h)));
+    let written = f12(1);
+    lab.save(&written, "line_f12");
+    want.save(lab.x.dir.join("line_library.png")).expect("saved");
+    assert_eq!(written.dimensions(), want.dimensions());
+    let db = psnr(&written, &want).unwrap_or(f64::INFINITY);
+    println!("line view: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the window's line view is not the library's: {db:.1} dB");
+    // F2 off: the screen shows the view itself (no inspector over it).
+    lab.keys(&["F2"]);
+    let shown = lab.settled();
+    lab.save(&shown, "line_window");
+    let db = psnr(&shown, &want).unwrap_or(f64::INFINITY);
+    println!("line view: the window against the library: {db:.1} dB");
+    assert!(db >= 40.0, "the window does not show the line view: {db:.1} dB");
+    // A key moves the light: the view is drawn again, and it is the library's at the new state.
+    for _ in 0..8 {
+        lab_ref.input(shaderlab::lab::Input::Key('X'));
+    }
+    lab.key_n("X", 8);
+    lab.idle();
+    let moved = rgb(&library_view(lab_ref.as_mut(), &probe, (w, h)));
+    assert_ne!(moved, want, "the light moved");
+    let written = f12(2);
+    let db = psnr(&written, &moved).unwrap_or(f64::INFINITY);
+    println!("line view after X×8: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the line view did not follow the lab: {db:.1} dB");
+    // F3: the cost view.
+    let before = lab.said("view ");
+    lab.keys(&["F3"]);
+    view_said(before + 1);
+    lab.wait_title_contains("| VIEW cost");
+    let cost = rgb(&library_view(lab_ref.as_mut(), &view::Probe::Cost, (w, h)));
+    let written = f12(3);
+    lab.save(&written, "cost_f12");
+    let db = psnr(&written, &cost).unwrap_or(f64::INFINITY);
+    println!("cost view: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the window's cost view is not the library's: {db:.1} dB");
+    // F3 again: the lab's picture, as a plain window shows it at that state.
+    lab.keys(&["F3"]);
+    let back = lab.settled();
+    assert!(!lab.title().contains("VIEW"), "{}", lab.title());
+    lab.save(&back, "back");
+    assert!(psnr(&back, &cost).unwrap_or(f64::INFINITY) < 30.0, "the view is gone");
+    assert_ne!(back, plain, "the light moved since the first picture");
+    assert!(!lab.stderr().contains("view error"), "{}", lab.stderr());
+    lab.escape();
+}
+
+/// Issue 41: with `--shaders DIR`, F4 compares the lab with its built-in shaders: the window
+/// shows the library's diff picture of the same state (a bug planted in the copy's line 17
+/// shows where it changes the picture), and a saved fix draws the diff again, now of two
+/// equal pictures.
+#[test]
+fn f4_diffs_a_copy_against_the_built_in_shaders_and_follows_saved_shaders() {
+    let x = Xvfb::start("view_diff");
+    let (shaders, frag, original) = phong_shaders(&x);
+    let planted = original.replacen("max(dot(N, L), 0.0)", "max(dot(N, L), 0.0) * 0.5", 1);
+    assert_ne!(planted, original, "phong.frag changed: update this test");
+    std::fs::write(&frag, &planted).expect("write phong.frag");
+    let dir = shaders.to_str().expect("utf-8 path");
+    let mut lab = x.launch("phong", &["--shaders", dir, "--set", "object=torus"], &[]);
+    lab.first_frame();
+    lab.idle();
+    let (_, _, w, h) = lab.geometry();
+    let library_diff = |copy: &str| -> RgbImage {
+        let files = shaderlab::lab::UserFiles::default();
+        let build = |source: shaderlab::shader::ShaderSource| {
+            let cx =
+                shaderlab::lab::BuildContext::new(common::gpu(), &source, shaderlab::offscreen::COLOR_FORMAT, &files);
+            let mut lab = (course::find("phong").expect("phong").new)(&cx).expect("phong builds");
+            lab.params_mut().set_str("object", "torus").expect("a torus");
+            lab
+        };
+        let copy_dir = x.dir.join("library-copy");
+        common::copy_shaders(&copy_dir);
+        std::fs::write(copy_dir.join("phong.frag"), copy).expect("write the copy");
+        let mut mine = build(shaderlab::shader::ShaderSource::Dir(copy_dir));
+        let mut reference = build(shaderlab::shader::ShaderSource::Embedded);
+        let diff = shaderlab::debug::diff::diff_labs(
+            common::gpu(),
+            "phong",
+            mine.as_mut(),
+            reference.as_mut(),
+            (w, h - picture::LEGEND_HEIGHT),
+        )
+        .expect("the library diffs");
+        image::DynamicImage::ImageRgba8(diff.picture).to_rgb8()
+    };
+    let f12 = |n: usize| -> RgbImage {
+        lab.keys(&["F12"]);
+        let line = poll(PATIENCE, || {
+            let out = lab.stdout();
+            let lines: Vec<String> = out
+                .lines()
+                .filter(|l| l.starts_with("screenshot: "))
+                .map(str::to_owned)
+                .collect();
+            (lines.len() >= n).then(|| lines[n - 1].clone())
+        })
+        .unwrap_or_else(|| panic!("no screenshot {n}; stderr:\n{}", lab.stderr()));
+        image::open(line.trim_start_matches("screenshot: ").trim())
+            .expect("a PNG")
+            .to_rgb8()
+    };
+    lab.keys(&["F4"]);
+    poll(PATIENCE, || (lab.said("view ") >= 1).then_some(()))
+        .unwrap_or_else(|| panic!("no view; stderr:\n{}", lab.stderr()));
+    assert!(lab.said(&format!("view {w}x{h}")) == 1, "{}", lab.stderr());
+    lab.wait_title_contains("| VIEW diff");
+    let want = library_diff(&planted);
+    let written = f12(1);
+    lab.save(&written, "diff_planted");
+    let db = psnr(&written, &want).unwrap_or(f64::INFINITY);
+    println!("diff of the planted bug: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the window's diff is not the library's: {db:.1} dB");
+    // The fix is saved: the lab reloads, and the diff is drawn again, of equal pictures.
+    let compiles = lab.said("compile 1 ended");
+    std::fs::write(&frag, &original).expect("write phong.frag");
+    poll(PATIENCE, || (lab.said("compile 1 ended") > compiles).then_some(()))
+        .unwrap_or_else(|| panic!("no reload; stderr:\n{}", lab.stderr()));
+    poll(PATIENCE, || (lab.said("view ") >= 2).then_some(()))
+        .unwrap_or_else(|| panic!("no second view; stderr:\n{}", lab.stderr()));
+    lab.idle();
+    let fixed = library_diff(&original);
+    assert_ne!(fixed, want, "the fix changes the diff");
+    let written = f12(2);
+    let db = psnr(&written, &fixed).unwrap_or(f64::INFINITY);
+    println!("diff after the fix: F12 against the library: {db:.1} dB");
+    assert!(db >= 50.0, "the diff did not follow the saved shader: {db:.1} dB");
+    assert!(!lab.stderr().contains("view error"), "{}", lab.stderr());
     lab.escape();
 }

@@ -18,6 +18,7 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use image::RgbImage;
+use shaderlab::debug::{picture, view};
 use shaderlab::lab::{BuildContext, UserFiles};
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
@@ -577,4 +578,144 @@ fn a_click_in_inspect_mode_inspects_that_pixel_and_puts_it_in_the_link() {
         shown.contains("Pixel 300,200") && shown.contains("frag_color = clamp("),
         "the inspector: {shown}"
     );
+}
+
+/// The picture of view `probe` of `name` at `sets` as the native build draws it at the lab's
+/// size (the view at the width and the height less the legend strip, then its legend); `probe`
+/// is given the file the lab's fragment shader `suffix` is read from as the lab shows it, and
+/// `None` from it is the diff with the built-in shaders.
+fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> Option<view::Probe>, suffix: &str) -> RgbImage {
+    let entry = shaderlab::course::find(name).unwrap();
+    let gpu = common::gpu();
+    let files = UserFiles::default();
+    let cx = BuildContext::new(gpu, &ShaderSource::Embedded, COLOR_FORMAT, &files);
+    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let state: Vec<(&str, &str)> = sets.iter().map(|s| s.split_once('=').unwrap()).collect();
+    common::set_state(lab.as_mut(), &state);
+    let (w, h) = entry.info.size;
+    let vh = h - picture::LEGEND_HEIGHT;
+    let log = view::record(gpu, lab.as_mut(), w, vh).expect("the frame records");
+    let file = (log.draws().iter())
+        .flat_map(|d| d.setup.fragment.source.files.iter().map(|(p, _)| p.clone()))
+        .find(|p| p.ends_with(suffix))
+        .unwrap_or_else(|| panic!("{name} draws no {suffix}"));
+    let Some(probe) = probe(&file) else {
+        // The diff with the built-in shaders, of a lab that draws with them.
+        let mut reference = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
+        common::set_state(reference.as_mut(), &state);
+        let diff = shaderlab::debug::diff::diff_labs(gpu, name, lab.as_mut(), reference.as_mut(), (w, vh))
+            .expect("the library diffs");
+        return image::DynamicImage::ImageRgba8(diff.picture).to_rgb8();
+    };
+    let frame = view::draw_view(gpu, &log, &probe, w, vh).expect("the view draws");
+    let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
+    let image = match probe {
+        view::Probe::Cost => picture::cost(w, vh, &frame.cost, &drawn).0,
+        _ => picture::values(w, vh, frame.components as usize, &frame.values, &frame.ran, &drawn).0,
+    };
+    image::DynamicImage::ImageRgba8(image).to_rgb8()
+}
+
+/// Issue 41: a link with `&view=cost`, `&view=FILE:LINE` or `&view=diff` opens the page showing
+/// that view on the canvas, with its legend: the picture the native build draws of the same
+/// view (within the page's usual agreement), on WebGL2 and WebGPU.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_view_in_the_link_shows_the_native_views_picture() {
+    let server = serve(site());
+    let sets = ["object=torus", "Ka=0.2"];
+    let mut failures = Vec::new();
+    let mut table = Vec::new();
+    // `vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0);`
+    let line = |file: &str| {
+        Some(view::Probe::Line {
+            file: file.to_owned(),
+            line: 17,
+            name: None,
+            stage: None,
+        })
+    };
+    let cost = |_: &str| Some(view::Probe::Cost);
+    let diff = |_: &str| None;
+    let cases: [(&str, &dyn Fn(&str) -> Option<view::Probe>); 3] =
+        [("cost", &cost), ("phong.frag:17", &line), ("diff", &diff)];
+    for backend in ["webgl2", "webgpu"] {
+        for (link, probe) in cases {
+            let want = native_view("phong", &sets, probe, "phong.frag");
+            let q = format!("{}&view={}", query("phong", &sets), encode(link));
+            let page = open(&server, backend, &q);
+            let Some(web) = page.image("capture") else {
+                if backend == "webgpu" && page.get("capture.backend").is_empty() {
+                    table.push(format!("| {link} | {backend} | no adapter |"));
+                    break;
+                }
+                failures.push(format!(
+                    "{link} {backend}: the page drew nothing ({})",
+                    page.get("capture.error")
+                ));
+                continue;
+            };
+            let text = page.get("capture.viewText");
+            let db = psnr(&web, &want).unwrap_or(0.0);
+            let api = page.get("capture.backend");
+            table.push(format!(
+                "| {link} | {backend} ({api}) | {db:.1} dB | {} |",
+                text.lines().next().unwrap_or("")
+            ));
+            if db < MIN_DB {
+                let dir = common::output_dir().join("web");
+                std::fs::create_dir_all(&dir).unwrap();
+                let tag = link.replace([':', '.'], "_");
+                web.save(dir.join(format!("view-{tag}-{backend}.png"))).unwrap();
+                want.save(dir.join(format!("view-{tag}-native.png"))).unwrap();
+                failures.push(format!(
+                    "{link} {backend}: {db:.1} dB against the native view; the page said `{text}`"
+                ));
+            }
+            let shown = page.get("capture.view");
+            if !shown.ends_with(link) {
+                failures.push(format!("{link} {backend}: the page shows view `{shown}`"));
+            }
+        }
+    }
+    println!(
+        "Views in the link against the native views:\n| view | API | PSNR | legend |\n|---|---|---|---|\n{}",
+        table.join("\n")
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Issue 41: in the page, Inspect, a click on the picture and then a click on a line of the
+/// inspector's listing (DOM events, as a user's) show that line's value at every pixel on the
+/// canvas, the native build's picture of the same view, with the line marked and the view in
+/// the link.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_click_on_a_listed_line_shows_its_view_and_puts_it_in_the_link() {
+    let server = serve(site());
+    let page = open(
+        &server,
+        "webgl2",
+        &format!("{}&check=click&click=300,200&line=17", query("phong", &[])),
+    );
+    let text = page.get("capture-view-click.text");
+    let Some(web) = page.image("capture-view-click") else {
+        panic!("the page drew no view: `{text}`");
+    };
+    let line = |file: &str| {
+        Some(view::Probe::Line {
+            file: file.to_owned(),
+            line: 17,
+            name: None,
+            stage: None,
+        })
+    };
+    let want = native_view("phong", &[], line, "phong.frag");
+    let db = psnr(&web, &want).unwrap_or(0.0);
+    println!("a clicked line's view against the native view: {db:.1} dB; legend `{text}`");
+    assert!(db >= MIN_DB, "{db:.1} dB; the page said `{text}`");
+    assert!(text.contains("phong.frag:17"), "the legend: {text}");
+    assert_eq!(page.get("capture-view-click.chosen"), "1", "the line is marked");
+    let url = page.get("capture-view-click.url");
+    assert!(url.contains("phong.frag%3A17"), "the link: {url}");
 }

@@ -635,6 +635,16 @@ impl ViewDrawer {
     /// it was recorded at) and reads it back.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn draw(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
+        let pending = self.start(gpu, log, probe, width, height)?;
+        let waited = gpu.wait();
+        self.read(pending, waited)
+    }
+
+    /// Draws the view as [`ViewDrawer::draw`] does and starts reading it back without waiting
+    /// (the page cannot block): [`PendingView::ready`] says when the values are back, then
+    /// [`ViewDrawer::finish`] brings them. The drawer's read-back buffers are the pending
+    /// view's until then.
+    pub fn start(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<PendingView> {
         let draws = log.draws();
         let passes = log.passes();
         if passes.iter().any(|p| (p.1, p.2) != (width, height)) {
@@ -785,10 +795,62 @@ impl ViewDrawer {
         } else {
             vec![&targets.info.2]
         };
+        let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let failed = Arc::new(std::sync::atomic::AtomicBool::new(false));
         for b in &staging {
-            b.slice(..).map_async(wgpu::MapMode::Read, |_| {});
+            let (mapped, failed) = (mapped.clone(), failed.clone());
+            b.slice(..).map_async(wgpu::MapMode::Read, move |r| match r {
+                Ok(()) => {
+                    mapped.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                }
+                Err(_) => failed.store(true, std::sync::atomic::Ordering::SeqCst),
+            });
         }
-        let waited = gpu.wait();
+        Ok(PendingView {
+            resolved,
+            components,
+            value,
+            format,
+            size: (w, h),
+            buffers: staging.len(),
+            mapped,
+            failed,
+        })
+    }
+
+    /// The values of the view `pending` ([`ViewDrawer::start`]) once [`PendingView::ready`].
+    pub fn finish(&mut self, pending: PendingView) -> Result<ValueFrame> {
+        let waited = if pending.failed.load(std::sync::atomic::Ordering::SeqCst) {
+            Err(crate::error::Error::Wgpu {
+                context: "reading a view back".into(),
+                message: "the browser could not map the view's values".into(),
+            })
+        } else {
+            Ok(())
+        };
+        self.read(pending, waited)
+    }
+
+    /// Reads the values of `pending` back from the mapped buffers (`waited`: whether the GPU
+    /// got there) and unmaps them.
+    fn read(&mut self, pending: PendingView, waited: Result<()>) -> Result<ValueFrame> {
+        let PendingView {
+            resolved,
+            components,
+            value,
+            format,
+            size: (w, h),
+            ..
+        } = pending;
+        let targets = self.targets.as_ref().ok_or_else(|| crate::error::Error::Wgpu {
+            context: "reading a view back".into(),
+            message: "the view's targets are gone".into(),
+        })?;
+        let staging: Vec<&wgpu::Buffer> = if value {
+            vec![&targets.value.2, &targets.info.2]
+        } else {
+            vec![&targets.info.2]
+        };
         let mapped = |b: &wgpu::Buffer| {
             b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
                 context: "reading a view back".into(),
@@ -849,6 +911,28 @@ impl ViewDrawer {
             vertex,
             resolved,
         })
+    }
+}
+
+/// A view drawn and being read back ([`ViewDrawer::start`]).
+pub struct PendingView {
+    resolved: Option<Resolved>,
+    components: u32,
+    value: bool,
+    format: wgpu::TextureFormat,
+    size: (u32, u32),
+    /// The read-back buffers, and how many of them are mapped so far.
+    buffers: usize,
+    mapped: Arc<std::sync::atomic::AtomicUsize>,
+    failed: Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl PendingView {
+    /// Whether the values are back (or their mapping failed): [`ViewDrawer::finish`] then
+    /// takes them without waiting. Poll the device meanwhile where the backend maps on a poll.
+    pub fn ready(&self) -> bool {
+        use std::sync::atomic::Ordering;
+        self.failed.load(Ordering::SeqCst) || self.mapped.load(Ordering::SeqCst) >= self.buffers
     }
 }
 
@@ -957,6 +1041,21 @@ pub fn draw_view(gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u3
 /// running it: what a view draws again.
 pub fn record(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<DrawLog> {
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
+    let log = DrawLog::new();
+    let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    Ok(log)
+}
+
+/// Records one frame of `lab` as [`record`] does, for a lab whose pipelines draw in `format`
+/// (a window's lab draws in its surface's format).
+pub fn record_in(
+    gpu: &Gpu,
+    lab: &mut dyn crate::lab::Lab,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+) -> Result<DrawLog> {
+    let target = crate::offscreen::Offscreen::with_format(gpu, width, height, format);
     let log = DrawLog::new();
     let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
     Ok(log)

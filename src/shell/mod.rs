@@ -13,7 +13,7 @@
 //! with 1.
 //!
 //! In the browser build (wasm32) the page's shell (`web`) takes the window's place, with
-//! [`session`], [`inspector`], [`surface`], [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
+//! [`session`], [`inspector`], [`views`], [`surface`], [`clock`], [`panel`] and [`defaults`]: the command line, the offscreen paths, recording and
 //! the native window need processes, files, a terminal and blocking on the GPU.
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -35,6 +35,7 @@ pub mod surface;
 pub mod tools;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod view;
+pub mod views;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 #[cfg(not(target_arch = "wasm32"))]

@@ -158,13 +158,22 @@ pub struct Status<'a> {
     pub error: Option<&'a str>,
     /// Frames recorded so far by F10, while it records.
     pub recording: Option<u32>,
+    /// The whole-frame view shown, in words (what it is, its legend or why it failed).
+    pub view: Option<String>,
+    /// Whether the lab draws with shaders other than its built-in ones (a diff is offered).
+    pub can_diff: bool,
 }
 
 /// What the user asked of the window through the panel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Request {
     /// Write the built-in shaders to a folder and reload from it.
     WriteShaders,
+    /// Show a whole-frame view in place of the picture, or the picture again when it is the
+    /// view shown (a line clicked in the inspector, the cost or diff button).
+    View(crate::shell::views::Wanted),
+    /// Show the lab's picture again.
+    Picture,
 }
 
 /// The panel's contents for `lab`; returns whether a parameter changed, and a request.
@@ -208,7 +217,31 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
                 for line in info.keys.help().split(";\n") {
                     ui.label(line);
                 }
-                ui.label("F1 panel · F2 inspect a pixel · F10 record · F12 screenshot · Esc quits");
+                ui.label(KEYS);
+            });
+        egui::CollapsingHeader::new("Views")
+            .default_open(status.view.is_some())
+            .show(ui, |ui| {
+                ui.label("Click a line in the inspector (F2) to see its value at every pixel.");
+                if ui.button("Cost: statements run per pixel (F3)").clicked() {
+                    request = Some(Request::View(crate::shell::views::Wanted::Cost));
+                }
+                if ui
+                    .add_enabled(
+                        status.can_diff,
+                        egui::Button::new("Compare with the built-in shaders (F4)"),
+                    )
+                    .on_disabled_hover_text("Run the lab with --shaders DIR to compare a copy with them.")
+                    .clicked()
+                {
+                    request = Some(Request::View(crate::shell::views::Wanted::Diff));
+                }
+                if let Some(view) = &status.view {
+                    if ui.button("Back to the picture").clicked() {
+                        request = Some(Request::Picture);
+                    }
+                    ui.label(view);
+                }
             });
         egui::CollapsingHeader::new("Shaders")
             .default_open(status.error.is_some())
@@ -230,6 +263,9 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
     });
     (changed, request)
 }
+
+/// The window's own keys, as the panel lists them.
+pub const KEYS: &str = "F1 panel · F2 inspect a pixel (click a line: its view) · F3 cost view · F4 diff with the built-in shaders · F10 record · F12 screenshot · Esc quits";
 
 /// One parameter's row: its control(s), a reset button, its help on hover.
 fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
@@ -316,6 +352,10 @@ pub struct InspectView<'a> {
     pub result: Option<&'a Result<crate::debug::Inspection, String>>,
     /// Whether a capture or replay is under way.
     pub busy: bool,
+    /// The line whose view is shown (file, line), to mark in the listing.
+    pub line: Option<(String, u32)>,
+    /// The view shown, in words (what it is, its legend or why it failed).
+    pub view: Option<String>,
 }
 
 /// The narrowest F1's panel gets on the right beside an inspected pixel before it moves to the
@@ -496,8 +536,9 @@ fn panel_in<R>(ui: &mut egui::Ui, id: &str, rect: egui::Rect, add_contents: impl
 /// The inspector: the pixel's colour, what covers it, the fragment shader line by line with
 /// each line's values to its right, the inputs at the pixel, the vertex shader at the
 /// triangle's corners.
-pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
+pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
     use crate::debug::Stage;
+    let mut request = None;
     ui.horizontal(|ui| {
         ui.heading(match view.pixel {
             Some((x, y)) => format!("Pixel {x},{y}"),
@@ -507,15 +548,23 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
             ui.spinner();
         }
     });
+    if let Some(words) = &view.view {
+        ui.horizontal(|ui| {
+            if ui.button("Back to the picture").clicked() {
+                request = Some(Request::Picture);
+            }
+            ui.label(words);
+        });
+    }
     let Some(result) = view.result else {
         ui.label("Click a pixel of the picture to see why it has its colour (F2 turns this off).");
-        return;
+        return request;
     };
     let i = match result {
         Ok(i) => i,
         Err(e) => {
             ui.colored_label(egui::Color32::LIGHT_RED, e);
-            return;
+            return request;
         }
     };
     let r = &i.replayed;
@@ -548,7 +597,7 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
             "No triangle covers this pixel: the clear colour ({:.3}, {:.3}, {:.3}) shows.",
             c[0], c[1], c[2]
         ));
-        return;
+        return request;
     };
     ui.label(format!(
         "{} {} of draw {} ({}), {}, depth {:.5}{}",
@@ -565,6 +614,8 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
         }
     ));
     ui.separator();
+    ui.label("Click a line to see its value over the whole picture.");
+    let clicked = std::cell::Cell::new(None);
     egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
         let listing = |ui: &mut egui::Ui, stage: Stage, id: &str| {
             // A line gets under half the width, its values the rest (the line whole on hover).
@@ -580,7 +631,16 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
                         ui.strong(file_name(&row.file)).on_hover_text(&row.file);
                         ui.end_row();
                     }
-                    ui.monospace(format!("{:>4}", row.line));
+                    let chosen = view
+                        .line
+                        .as_ref()
+                        .is_some_and(|(f, l)| *f == row.file && *l == row.line);
+                    let number = egui::RichText::new(format!("{:>4}", row.line)).monospace();
+                    let number = if chosen {
+                        number.color(egui::Color32::YELLOW).strong()
+                    } else {
+                        number
+                    };
                     // The line, cut to leave room for its values; whole on hover.
                     let short: String = if row.text.chars().count() > chars {
                         let cut: String = row.text.chars().take(chars - 1).collect();
@@ -588,7 +648,17 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
                     } else {
                         row.text.clone()
                     };
-                    ui.monospace(short).on_hover_text(&row.text);
+                    let a = ui.add(egui::Label::new(number).sense(egui::Sense::click()));
+                    let b = ui
+                        .add(egui::Label::new(egui::RichText::new(short).monospace()).sense(egui::Sense::click()))
+                        .on_hover_text(&row.text);
+                    if a.clicked() || b.clicked() {
+                        clicked.set(Some(crate::shell::views::Wanted::Line {
+                            file: row.file.clone(),
+                            line: row.line,
+                            stage: Some(stage),
+                        }));
+                    }
                     ui.label(
                         egui::RichText::new(&row.values)
                             .monospace()
@@ -645,6 +715,7 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) {
                 listing(ui, Stage::Vertex, "inspector.vertex");
             });
     });
+    clicked.take().map(Request::View).or(request)
 }
 
 /// Characters of a shader line shown beside its values, at least: enough to know the line
@@ -844,7 +915,9 @@ impl Panel {
                 drawn.push(rect);
             }
             if let (Some(view), Some(rect)) = (inspect, inspector_rect) {
-                panel_in(ui, "shaderlab.inspector", rect, |ui| inspector(ui, view));
+                if let Some(asked) = panel_in(ui, "shaderlab.inspector", rect, |ui| inspector(ui, view)) {
+                    result.1 = Some(asked);
+                }
                 drawn.push(rect);
                 if let Some((x, y)) = view.pixel {
                     // A frame around the inspected pixel.

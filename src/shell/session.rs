@@ -19,6 +19,7 @@
 
 use super::clock::Clock;
 use super::inspector::{Inspector, Job, Shown};
+use super::views::{Picture, Views, Wanted};
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 use crate::lab::{Input, Lab, LabEntry, Special, UserFiles};
@@ -75,6 +76,8 @@ pub struct Session {
     inspect: Inspect,
     /// The inspector's capture and replay in flight, and its last result.
     inspector: Inspector,
+    /// The whole-frame view asked for, and its last picture.
+    views: Views,
 }
 
 /// The pixel inspector's state: whether clicks pick a pixel (F2 in the window, the page's
@@ -151,6 +154,7 @@ impl Session {
             version: 0,
             inspect: Inspect::default(),
             inspector: Inspector::default(),
+            views: Views::default(),
         }
     }
 
@@ -213,9 +217,9 @@ impl Session {
         self.clock.tick(self.lab.as_mut(), now);
     }
 
-    /// Whether a frame should be drawn now.
+    /// Whether a frame should be drawn now (a view being read back is moved on by frames too).
     pub fn wants_frame(&self) -> bool {
-        self.animated() || self.dirty > 0
+        self.animated() || self.dirty > 0 || self.views.busy()
     }
 
     /// Frames still to draw after the last change.
@@ -532,5 +536,64 @@ impl Session {
         let error = self.record(gpu, &mut encoder, color, depth, size);
         gpu.queue.submit([encoder.finish()]);
         error
+    }
+
+    /// The whole-frame view asked for (none: the lab's picture shows).
+    pub fn view(&self) -> Option<&Wanted> {
+        self.views.wanted()
+    }
+
+    /// Shows `wanted` in place of the lab's picture, or the picture again when it is the view
+    /// shown; `reference` is the lab built from its built-in shaders, for a diff.
+    pub fn toggle_view(&mut self, wanted: Wanted, reference: Option<Box<dyn Lab>>) {
+        self.views.toggle(wanted, reference);
+        self.changed();
+    }
+
+    /// Shows `wanted` in place of the lab's picture (none: the picture again).
+    pub fn set_view(&mut self, wanted: Option<Wanted>, reference: Option<Box<dyn Lab>>) {
+        self.views.set(wanted, reference);
+        self.changed();
+    }
+
+    /// The view's last picture, or why there is none; `None` while no view is asked for.
+    pub fn view_shown(&self) -> Option<&std::result::Result<Picture, String>> {
+        self.views.shown()
+    }
+
+    /// Draws the view asked for again at `size` (the surface's, in whose `format` the lab draws)
+    /// when the lab changed since its
+    /// last picture (parameters, input, the clock, a reload) or the size did; returns whether
+    /// a new picture (or error) was made. Blocks until the view's values are back.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn view_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+        self.views.update(gpu, self.lab.as_mut(), self.version, size, format)
+    }
+
+    /// Moves the view asked for on without blocking ([`super::views::Views::poll`], the page's
+    /// way): returns whether a new picture (or error) was made; then draw again.
+    pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+        let made = self.views.poll(gpu, self.lab.as_mut(), self.version, size, format);
+        if made {
+            self.changed();
+        }
+        made
+    }
+
+    /// Whether a view is being read back.
+    pub fn view_busy(&self) -> bool {
+        self.views.busy()
+    }
+
+    /// Records the view's picture into `color` (of `format`) in place of the lab's frame;
+    /// returns whether there was one (otherwise record the lab's frame, [`Session::record`]).
+    pub fn record_view(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+        format: wgpu::TextureFormat,
+    ) -> bool {
+        self.views.record(gpu, encoder, color, format)
     }
 }

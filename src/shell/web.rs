@@ -36,6 +36,7 @@ use crate::shader::{embedded_source, ShaderSource};
 use super::panel::{widgets, Control};
 use super::session::{Button, Session};
 use super::surface::{Acquired, Swapchain};
+use super::views::Wanted;
 
 /// The course's seed-000 GLSL 1.10 files (the five exercises of Lab05, as the tests run them:
 /// the two syntax errors of the printed course mended, `assets/course/seed000-mended`), for
@@ -303,7 +304,9 @@ impl WebApp {
             ..Default::default()
         });
         let size = self.screen.size();
-        let error = open.draw(&self.gpu, "web.frame", &view, self.screen.depth(), size);
+        let format = self.screen.format();
+        open.view_poll(&self.gpu, size, format);
+        let error = draw_shown(open, &self.gpu, "web.frame", &view, self.screen.depth(), size, format);
         self.gpu.queue.present(frame);
         if let Some(e) = error {
             self.error = Some(e.to_string());
@@ -585,8 +588,9 @@ impl WebApp {
         let target = Offscreen::with_format(&self.gpu, width, height, self.screen.format());
         let size = (target.width, target.height);
         // As on the canvas: an error is shown once ([`WebApp::take_error`]) and the picture
-        // is what the frame drew.
-        if let Some(e) = open.draw(&self.gpu, "web.read", &target.color, &target.depth, size) {
+        // is what the frame drew (the view's, while one is shown).
+        let format = self.screen.format();
+        if let Some(e) = draw_shown(open, &self.gpu, "web.read", &target.color, &target.depth, size, format) {
             self.error = Some(e.to_string());
         }
         let done = Rc::new(RefCell::new(None));
@@ -621,10 +625,114 @@ impl WebApp {
         }
     }
 
+    /// Shows the view `text` names in place of the picture (a link's `view=`, a line clicked in
+    /// the inspector's listing, the Cost and Compare buttons): `FILE:LINE` (the file as the
+    /// inspector lists it, or its name alone where one file of the lab's has it), `cost`,
+    /// `diff` (with the built-in shaders); "" shows the picture again. Returns why the text
+    /// names no view ("" when it does).
+    pub fn view_set(&mut self, text: &str) -> String {
+        let files = self.file_names();
+        let Some(open) = self.open.as_mut() else {
+            return "no lab is open".into();
+        };
+        if text.is_empty() {
+            open.set_view(None, None);
+            return String::new();
+        }
+        let Some(mut wanted) = Wanted::from_link(text) else {
+            return format!("`{text}` names no view: write FILE:LINE, cost or diff");
+        };
+        if let Wanted::Line { file, .. } = &mut wanted {
+            // The page names files without the built-in folder; the lab shows them with it.
+            let spliced: Vec<String> = open.shader_files().into_iter().flat_map(|p| p.spliced).collect();
+            if !spliced.contains(file) {
+                let tail = format!("/{file}");
+                let found: Vec<&String> = spliced.iter().filter(|p| p.ends_with(&tail)).collect();
+                if let [one] = found.as_slice() {
+                    *file = (*one).clone();
+                } else if found.is_empty() {
+                    return format!(
+                        "{file} is not a file of this lab's shaders; its files are {}",
+                        files.join(", ")
+                    );
+                }
+            }
+        }
+        let reference = if wanted == Wanted::Diff {
+            match Session::open_lab(
+                open.entry(),
+                &self.gpu,
+                &ShaderSource::Embedded,
+                self.screen.format(),
+                &self.files,
+            ) {
+                Ok(lab) => Some(lab),
+                Err(e) => return format!("cannot build the lab with its built-in shaders: {e}"),
+            }
+        } else {
+            None
+        };
+        open.set_view(Some(wanted), reference);
+        String::new()
+    }
+
+    /// The view shown as the link writes it (`FILE:LINE`, `cost`, `diff`), "" for the picture.
+    pub fn view(&self) -> String {
+        self.open
+            .as_ref()
+            .and_then(Session::view)
+            .map(Wanted::link)
+            .unwrap_or_default()
+    }
+
+    /// Moves the view on (its values read back, or drawn again after a change) without
+    /// drawing the canvas; returns whether its picture is there (or its error).
+    pub fn view_poll(&mut self) -> bool {
+        let (size, format) = (self.screen.size(), self.screen.format());
+        let Some(open) = self.open.as_mut() else {
+            return false;
+        };
+        open.view_poll(&self.gpu, size, format);
+        open.view_shown().is_some() && !open.view_busy()
+    }
+
+    /// The view shown, in words: its legend, the diff's findings, or why it could not be
+    /// drawn ("" for the picture, or while its first picture is drawn).
+    pub fn view_text(&self) -> String {
+        match self.open.as_ref().and_then(Session::view_shown) {
+            Some(Ok(p)) => p.text.clone(),
+            Some(Err(e)) => e.clone(),
+            None => String::new(),
+        }
+    }
+
     /// The last error found while drawing, once ("" when none).
     pub fn take_error(&mut self) -> String {
         self.error.take().unwrap_or_default()
     }
+}
+
+/// Records what the session shows, the view's picture or else the lab's frame, into `color`
+/// (of `format`, `size` pixels, with its `depth`) and submits it; returns the error to show.
+fn draw_shown(
+    open: &mut Session,
+    gpu: &Gpu,
+    label: &str,
+    color: &wgpu::TextureView,
+    depth: &wgpu::TextureView,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+) -> Option<crate::error::Error> {
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+    let error = if open.record_view(gpu, &mut encoder, color, format) {
+        None
+    } else {
+        open.record(gpu, &mut encoder, color, depth, size)
+    };
+    gpu.queue.submit([encoder.finish()]);
+    error
 }
 
 impl WebApp {

@@ -1,7 +1,9 @@
 //! The window: winit's events turned into the [`Session`]'s (the lab, its clock, keys and
 //! mouse, written once for the window and the page), a `Screen` the frames reach (the
 //! swapchain or X shared memory), and what only a desktop window has: F12 screenshots, F10
-//! recordings, the F1 panel drawn with egui, live shader reload from files, pacing near the
+//! recordings, the F1 panel drawn with egui, whole-frame views in place of the picture (a line
+//! clicked in F2's listing, F3 cost, F4 diff: [`super::views`]), live shader reload from
+//! files, pacing near the
 //! monitor's refresh rate, and signals. Labs never see winit.
 //!
 //! Nothing is drawn when nothing changes: a lab that is not animated is redrawn after input,
@@ -29,7 +31,10 @@
 //! it has then been handled), `shaderlab-test: idle` when the window has nothing more to
 //! draw after one of those, `shaderlab-test: inspected X,Y rgba(R, G, B, A)` when F2's
 //! inspector has a new result, and `shaderlab-test: compile N started` / `compile N ended`
-//! around live reload's compile of the Nth save. `SHADERLAB_TEST_PANIC=init` panics while the
+//! around live reload's compile of the Nth save, `shaderlab-test: view WxH` (or `view error:
+//! …`) when a whole-frame view has a new picture. `SHADERLAB_TEST_VIEW=FILE:LINE` chooses that
+//! line's view when the first inspection arrives, as a click on it in the inspector's listing
+//! does. `SHADERLAB_TEST_PANIC=init` panics while the
 //! window opens, `=reload` inside each live reload's compile, so that the tests can check
 //! what a panic looks like.
 //! `SHADERLAB_TEST_PANEL=1` opens with F1's panel shown, for a display the tests cannot send
@@ -338,6 +343,9 @@ struct WindowState {
     stuck: Option<String>,
     /// `SHADERLAB_TEST_LOG`'s signals.
     test_log: Option<TestLog>,
+    /// `SHADERLAB_TEST_VIEW`'s line (`FILE:LINE`), chosen as a click on it in the inspector's
+    /// listing would when the first inspection arrives.
+    test_view: Option<String>,
 }
 
 /// The window's signals for tests (see the module docs).
@@ -495,6 +503,7 @@ impl App {
             panel,
             stuck: None,
             test_log: std::env::var_os("SHADERLAB_TEST_LOG").map(|_| TestLog::default()),
+            test_view: std::env::var("SHADERLAB_TEST_VIEW").ok(),
         })
     }
 }
@@ -558,6 +567,12 @@ impl WindowState {
         }
         if let Some(c) = &self.recording {
             title.push_str(&format!(" | REC {} frames (F10 stops)", c.frames()));
+        }
+        if let Some(view) = self.session.view() {
+            title.push_str(&format!(" | VIEW {}", view.words()));
+            if let Some(Err(_)) = self.session.view_shown() {
+                title.push_str(" failed (see the panel)");
+            }
         }
         self.window.set_title(&title);
     }
@@ -824,6 +839,7 @@ impl WindowState {
             (ShaderSource::Edited(_), _) => "edited in memory".to_owned(),
         };
         let error = self.session.shader_error().map(str::to_owned);
+        let words = self.view_words();
         let status = super::panel::Status {
             frame_ms: (self.session.animated() || self.pacing.unpaced).then_some(self.pacing.frame_ms),
             draw_ms,
@@ -831,14 +847,26 @@ impl WindowState {
             source,
             error: error.as_deref(),
             recording: self.recording.as_ref().map(recording::Recording::frames),
+            view: words.clone(),
+            can_diff: !matches!(self.sources.source, ShaderSource::Embedded),
         };
         let (inspecting, pixel, busy) = (
             self.session.inspecting(),
             self.session.inspected(),
             self.session.inspect_busy(),
         );
+        let line = match self.session.view() {
+            Some(super::views::Wanted::Line { file, line, .. }) => Some((file.clone(), *line)),
+            _ => None,
+        };
         let (lab, result) = self.session.lab_and_inspection();
-        let inspect = inspecting.then_some(super::panel::InspectView { pixel, result, busy });
+        let inspect = inspecting.then_some(super::panel::InspectView {
+            pixel,
+            result,
+            busy,
+            line,
+            view: words,
+        });
         let (changed, request) = self.panel.draw(
             &self.gpu,
             &self.window,
@@ -857,9 +885,57 @@ impl WindowState {
         if self.panel.repaint {
             self.session.changed();
         }
-        if request == Some(super::panel::Request::WriteShaders) {
-            self.write_shaders();
+        match request {
+            Some(super::panel::Request::WriteShaders) => self.write_shaders(),
+            Some(super::panel::Request::View(wanted)) => self.toggle_view(wanted),
+            Some(super::panel::Request::Picture) => {
+                self.session.set_view(None, None);
+                self.update_title();
+            }
+            None => {}
         }
+    }
+
+    /// The view shown, in words: what it is, then its legend or why it failed.
+    fn view_words(&self) -> Option<String> {
+        let wanted = self.session.view()?;
+        Some(match self.session.view_shown() {
+            None => format!("{} (drawing)", wanted.words()),
+            Some(Ok(p)) => p.text.clone(),
+            Some(Err(e)) => format!("{}: {e}", wanted.words()),
+        })
+    }
+
+    /// Shows `wanted` in place of the picture (F3, F4, a line clicked in the inspector), or
+    /// the picture again when it is the view shown; a diff builds the lab from its built-in
+    /// shaders to compare with.
+    fn toggle_view(&mut self, wanted: super::views::Wanted) {
+        let mut reference = None;
+        if wanted == super::views::Wanted::Diff && self.session.view() != Some(&wanted) {
+            if matches!(self.sources.source, ShaderSource::Embedded) {
+                eprintln!(
+                    "{}: the lab draws with its built-in shaders; run it with --shaders DIR to compare a copy with them",
+                    self.name()
+                );
+                return;
+            }
+            match Session::open_lab(
+                self.session.entry(),
+                &self.gpu,
+                &ShaderSource::Embedded,
+                self.screen.format(),
+                &self.sources.files,
+            ) {
+                Ok(lab) => reference = Some(lab),
+                Err(e) => {
+                    eprintln!("{}: cannot build the lab with its built-in shaders: {e}", self.name());
+                    return;
+                }
+            }
+        }
+        self.session.toggle_view(wanted, reference);
+        self.update_title();
+        self.window.request_redraw();
     }
 
     /// The panel's button: the built-in shaders into `./NAME-shaders/` (a fresh name), then
@@ -907,6 +983,18 @@ impl WindowState {
         }
         let path = self.fresh_name("png");
         let (w, h) = self.screen.size();
+        if let Some(image) = self.session.view_shown().and_then(|s| s.as_ref().ok()) {
+            // A view shows: its picture is what the window shows.
+            let image = image::imageops::crop_imm(&image.image, 0, 0, w, h).to_image();
+            match save_png(&image, &path) {
+                Ok(()) => {
+                    let path = std::fs::canonicalize(&path).unwrap_or(path);
+                    let _ = super::cli::say(&format!("screenshot: {}", path.display()));
+                }
+                Err(e) => eprintln!("{}: screenshot failed: {e}", self.name()),
+            }
+            return;
+        }
         // Drawn by the window's own pipelines (its format), read back as RGB.
         let target = Offscreen::with_format(&self.gpu, w, h, self.screen.format());
         match crate::lab::frame::render_into(&self.gpu, self.session.lab_mut(), &target)
@@ -961,9 +1049,22 @@ impl WindowState {
             label: Some("window.frame"),
         });
         let ((w, h), format) = (target.size, target.format);
-        let error = self
-            .session
-            .record(&self.gpu, &mut encoder, &target.view, &target.depth, (w, h));
+        if self.session.view_frame(&self.gpu, (w, h), format) {
+            self.update_title();
+            if let Some(log) = self.test_log.as_mut() {
+                log.say(&match self.session.view_shown() {
+                    Some(Ok(p)) => format!("view {}x{}", p.image.width(), p.image.height()),
+                    Some(Err(e)) => format!("view error: {}", e.lines().next().unwrap_or("")),
+                    None => "view none".into(),
+                });
+            }
+        }
+        let error = if self.session.record_view(&self.gpu, &mut encoder, &target.view, format) {
+            None
+        } else {
+            self.session
+                .record(&self.gpu, &mut encoder, &target.view, &target.depth, (w, h))
+        };
         if let Some(e) = error {
             // A lab may rebuild a program while drawing (a shading model chosen by key); a
             // broken shader file leaves the previous one in place, and the error is shown once.
@@ -1033,6 +1134,8 @@ impl WindowState {
                 self.session.toggle_inspect();
                 self.window.request_redraw();
             }
+            Key::Named(NamedKey::F3) => self.toggle_view(super::views::Wanted::Cost),
+            Key::Named(NamedKey::F4) => self.toggle_view(super::views::Wanted::Diff),
             Key::Named(NamedKey::F1) => {
                 self.panel.shown = !self.panel.shown;
                 self.session.changed();
@@ -1212,6 +1315,10 @@ impl ApplicationHandler<Wake> for App {
                     }
                     Err(e) => format!("inspected error: {}", e.lines().next().unwrap_or("")),
                 });
+            }
+            // The test hook's line, chosen once as a click in the listing would.
+            if let Some(wanted) = state.test_view.take().and_then(|t| super::views::Wanted::from_link(&t)) {
+                state.toggle_view(wanted);
             }
         }
         let drawing = !state.paused() && (state.pacing.unpaced || state.session.wants_frame());

@@ -1,0 +1,185 @@
+//! Issue 41 in the shells' shared core: a session's whole-frame view is the library's picture
+//! of the lab's state whether it is drawn at once (the window's `Session::view_frame`) or read
+//! back over polls (the page's `Session::view_poll`), is drawn again when the lab changes, fills
+//! the surface with its legend, and a view that cannot be drawn leaves its reason and the lab's
+//! picture.
+
+mod common;
+
+use common::gpu;
+use shaderlab::debug::{picture, view};
+use shaderlab::lab::{Input, UserFiles};
+use shaderlab::offscreen::{Offscreen, COLOR_FORMAT};
+use shaderlab::shader::ShaderSource;
+use shaderlab::shell::session::Session;
+use shaderlab::shell::views::Wanted;
+
+const SIZE: (u32, u32) = (320, 196);
+
+fn session() -> Session {
+    let entry = shaderlab::course::find("phong").expect("phong");
+    let s = Session::open(
+        entry,
+        gpu(),
+        &ShaderSource::Embedded,
+        COLOR_FORMAT,
+        &UserFiles::default(),
+        0.0,
+        1.0,
+    )
+    .expect("phong opens");
+    let mut s = s;
+    s.set("object", "torus").expect("a torus");
+    s
+}
+
+/// The library's picture of `probe` for the session's lab now.
+fn library(s: &mut Session, probe: &view::Probe) -> image::RgbaImage {
+    let (w, h) = (SIZE.0, SIZE.1 - picture::LEGEND_HEIGHT);
+    let log = view::record(gpu(), s.lab_mut(), w, h).expect("records");
+    let f = view::draw_view(gpu(), &log, probe, w, h).expect("draws");
+    let drawn: Vec<bool> = f.cost.iter().map(|&c| c > 0).collect();
+    match probe {
+        view::Probe::Cost => picture::cost(w, h, &f.cost, &drawn).0,
+        _ => picture::values(w, h, f.components as usize, &f.values, &f.ran, &drawn).0,
+    }
+}
+
+fn phong_frag(s: &mut Session) -> String {
+    (s.shader_files().into_iter().flat_map(|p| p.spliced))
+        .find(|f| f.ends_with("phong.frag"))
+        .expect("phong.frag")
+}
+
+/// What the session shows on a surface of `SIZE`, read back.
+fn shown(s: &mut Session) -> image::RgbaImage {
+    let target = Offscreen::with_format(gpu(), SIZE.0, SIZE.1, COLOR_FORMAT);
+    let mut encoder = gpu().device.create_command_encoder(&Default::default());
+    if !s.record_view(gpu(), &mut encoder, &target.color, COLOR_FORMAT) {
+        assert!(s
+            .record(gpu(), &mut encoder, &target.color, &target.depth, SIZE)
+            .is_none());
+    }
+    gpu().queue.submit([encoder.finish()]);
+    target.read(gpu()).expect("reads back")
+}
+
+#[test]
+fn a_view_drawn_at_once_or_over_polls_is_the_librarys_picture_and_follows_the_lab() {
+    for polled in [false, true] {
+        let mut s = session();
+        let file = phong_frag(&mut s);
+        for (wanted, probe) in [
+            (Wanted::Cost, view::Probe::Cost),
+            (
+                Wanted::from_link(&format!("{file}:17")).expect("a line"),
+                view::Probe::Line {
+                    file: file.clone(),
+                    line: 17,
+                    name: None,
+                    stage: None,
+                },
+            ),
+        ] {
+            s.set_view(Some(wanted.clone()), None);
+            let draw = |s: &mut Session| {
+                if polled {
+                    let mut polls = 0;
+                    while !s.view_poll(gpu(), SIZE, COLOR_FORMAT) {
+                        polls += 1;
+                        assert!(polls < 100_000, "the view never came back");
+                        std::thread::yield_now();
+                    }
+                    assert!(!s.view_busy());
+                } else {
+                    assert!(s.view_frame(gpu(), SIZE, COLOR_FORMAT), "a new picture");
+                    assert!(
+                        !s.view_frame(gpu(), SIZE, COLOR_FORMAT),
+                        "nothing changed: nothing drawn"
+                    );
+                }
+            };
+            draw(&mut s);
+            let want = library(&mut s, &probe);
+            assert_eq!(want.dimensions(), SIZE, "the view and its legend fill the surface");
+            let got = shown(&mut s);
+            assert!(
+                got == want,
+                "{wanted:?} (polled {polled}): the surface shows the library's picture"
+            );
+            // The object turns and the light moves: the view is drawn again, at the new state.
+            let yangle = s.lab().params().get("yangle").expect("yangle")[0] + 35.0;
+            s.set("yangle", &yangle.to_string()).expect("turns");
+            for _ in 0..6 {
+                s.input(Input::Key('X'));
+            }
+            draw(&mut s);
+            let moved = library(&mut s, &probe);
+            assert!(moved != want, "the lab changed");
+            assert!(shown(&mut s) == moved, "{wanted:?} (polled {polled}) follows the lab");
+        }
+        // Back to the picture.
+        s.set_view(None, None);
+        let plain = shown(&mut s);
+        let target = Offscreen::with_format(gpu(), SIZE.0, SIZE.1, COLOR_FORMAT);
+        let lab = shaderlab::lab::frame::render_into(gpu(), s.lab_mut(), &target).and_then(|()| target.read(gpu()));
+        assert!(plain == lab.expect("the lab draws"), "the lab's picture again");
+    }
+}
+
+#[test]
+fn a_view_that_cannot_be_drawn_says_why_and_the_picture_stays() {
+    let mut s = session();
+    let plain = shown(&mut s);
+    let file = phong_frag(&mut s);
+    for (wanted, says) in [
+        (
+            Wanted::from_link(&format!("{file}:1")).expect("a line"),
+            "assigns nothing",
+        ),
+        (
+            Wanted::from_link("nofile.frag:3").expect("a line"),
+            "is not a file of a shader this lab draws",
+        ),
+        (Wanted::Diff, "there is nothing to compare"),
+    ] {
+        s.set_view(Some(wanted.clone()), None);
+        assert!(s.view_frame(gpu(), SIZE, COLOR_FORMAT));
+        let why = match s.view_shown() {
+            Some(Err(e)) => e.clone(),
+            other => panic!("{wanted:?}: {:?}", other.map(|r| r.as_ref().map(|p| p.text.clone()))),
+        };
+        assert!(why.contains(says), "{wanted:?}: {why}");
+        assert!(shown(&mut s) == plain, "{wanted:?}: the lab's picture stays");
+    }
+}
+
+/// On the page a view asked for while another is read back waits for that read-back (the
+/// drawer's buffers are its until then), then is drawn: the picture is the new view's.
+#[test]
+fn a_view_asked_for_during_a_read_back_is_drawn_after_it() {
+    let mut s = session();
+    let file = phong_frag(&mut s);
+    let line = Wanted::from_link(&format!("{file}:17")).expect("a line");
+    s.set_view(Some(Wanted::Cost), None);
+    assert!(!s.view_poll(gpu(), SIZE, COLOR_FORMAT), "the read-back starts");
+    assert!(s.view_busy());
+    // The same view again (the same buffers), then another.
+    s.set_view(Some(Wanted::Cost), None);
+    s.set_view(Some(line.clone()), None);
+    let mut polls = 0;
+    while !s.view_poll(gpu(), SIZE, COLOR_FORMAT) {
+        polls += 1;
+        assert!(polls < 100_000, "the view never came back");
+        std::thread::yield_now();
+    }
+    let probe = view::Probe::Line {
+        file,
+        line: 17,
+        name: None,
+        stage: None,
+    };
+    let want = library(&mut s, &probe);
+    assert!(shown(&mut s) == want, "the picture is the line's");
+    assert!(matches!(s.view_shown(), Some(Ok(p)) if p.text.contains(":17")));
+}
