@@ -719,3 +719,20 @@ fn a_click_on_a_listed_line_shows_its_view_and_puts_it_in_the_link() {
     let url = page.get("capture-view-click.url");
     assert!(url.contains("phong.frag%3A17"), "the link: {url}");
 }
+
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn parameters_with_a_natural_range_get_sliders_and_typed_values_outside_still_count() {
+    let server = serve(site());
+    let page = open(&server, "webgl2", &format!("{}&check=sliders", query("phong", &[])));
+    let json: serde_json::Value =
+        serde_json::from_str(&page.get("capture-sliders")).expect("the page reports its sliders");
+    let counts = &json["counts"];
+    // phong declares its material as any float: the keys' ranges give the sliders.
+    for (name, sliders) in [("Ka", 1), ("Kd", 1), ("Ks", 1), ("shininess", 1), ("lightPosition", 3)] {
+        assert_eq!(counts[name].as_u64(), Some(sliders), "{name}: {json}");
+    }
+    assert_eq!(counts["object"].as_u64(), Some(0), "a choice has its list: {json}");
+    assert_eq!(json["afterSlider"].as_f64(), Some(0.5), "{json}");
+    assert_eq!(json["afterTyped"].as_f64(), Some(3.0), "{json}");
+}

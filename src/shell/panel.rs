@@ -7,7 +7,7 @@
 //! runs egui on the window's events and draws with egui-wgpu after the lab, into the same
 //! target (the swapchain's frame or the shared-memory presenter's texture).
 
-use crate::lab::Lab;
+use crate::lab::{Act, KeyRow, Lab};
 use crate::params::{Kind, ParamSpec};
 
 /// How a parameter is edited.
@@ -67,6 +67,44 @@ pub struct Widget {
     pub control: Control,
     /// Its group.
     pub group: Group,
+    /// The range a slider spans, per component (the first [`SLIDED`]): the declared range
+    /// where it is narrow enough, else the range the lab's keys keep it to (phong's `Ka` in
+    /// [0, 1], `shininess` in [6, 200]); `None`: no natural range, a number field alone. A
+    /// typed value outside it still counts (within the declared range).
+    pub sliders: [Option<(f64, f64)>; SLIDED],
+}
+
+/// How many components of a parameter get a slider each.
+pub const SLIDED: usize = 4;
+
+impl Widget {
+    /// The slider's range for component `c`, if it has one.
+    pub fn slider(&self, c: usize) -> Option<(f64, f64)> {
+        self.sliders.get(c).copied().flatten()
+    }
+}
+
+/// The slider ranges of `spec`'s components: its declared range when a slider can span it,
+/// else the range the key rows that step it keep to.
+pub fn slider_ranges(spec: &ParamSpec, keys: &[KeyRow]) -> [Option<(f64, f64)>; SLIDED] {
+    let mut ranges = [None; SLIDED];
+    if !matches!(spec.kind, Kind::Real | Kind::Int) {
+        return ranges;
+    }
+    let declared = (spec.max - spec.min <= SLIDER_SPAN).then_some((spec.min, spec.max));
+    for (c, range) in ranges.iter_mut().enumerate().take(spec.default.len()) {
+        *range = declared.or_else(|| {
+            keys.iter().find_map(|row| match row.act {
+                Act::Step {
+                    component,
+                    within: Some((lo, hi)),
+                    ..
+                } if row.param == spec.name && component.is_none_or(|k| k == c) && lo < hi => Some((lo, hi)),
+                _ => None,
+            })
+        });
+    }
+    ranges
 }
 
 /// The panel's width in logical pixels: it covers the right side of the window, the lab's
@@ -129,14 +167,16 @@ pub fn group_of(spec: &ParamSpec) -> Group {
     }
 }
 
-/// Every parameter's widget, in group order (declaration order within a group).
-pub fn widgets(specs: &[ParamSpec]) -> Vec<Widget> {
+/// Every parameter's widget, in group order (declaration order within a group); `keys` (the
+/// lab's key rows) give the sliders of parameters declared with a wide range.
+pub fn widgets(specs: &[ParamSpec], keys: &[KeyRow]) -> Vec<Widget> {
     let mut widgets: Vec<Widget> = specs
         .iter()
         .map(|spec| Widget {
             spec: *spec,
             control: control_of(spec),
             group: group_of(spec),
+            sliders: slider_ranges(spec, keys),
         })
         .collect();
     widgets.sort_by_key(|w| w.group);
@@ -192,7 +232,7 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
     }
     ui.separator();
     egui::ScrollArea::vertical().show(ui, |ui| {
-        let widgets = widgets(lab.params().specs());
+        let widgets = widgets(lab.params().specs(), lab.info().keys.rows);
         let mut group = None;
         for w in &widgets {
             if group != Some(w.group) {
@@ -319,7 +359,17 @@ fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
             }
             Control::Drag => {
                 let whole = spec.kind == Kind::Int;
-                for v in values.iter_mut() {
+                for (c, v) in values.iter_mut().enumerate() {
+                    if let Some((a, b)) = w.slider(c) {
+                        // The keys' range; a value typed into its field may leave it.
+                        let slider = egui::Slider::new(v, a..=b).clamping(egui::SliderClamping::Never);
+                        ui.add(if whole {
+                            slider.integer()
+                        } else {
+                            slider.max_decimals(3)
+                        });
+                        continue;
+                    }
                     let speed = if whole { 1.0 } else { (v.abs() * 0.01).max(0.01) };
                     let drag = egui::DragValue::new(v).range(lo..=hi).speed(speed);
                     ui.add(if whole {
@@ -1008,7 +1058,7 @@ mod tests {
     fn every_labs_parameters_get_a_widget_of_their_kind_and_range() {
         for entry in crate::course::ALL {
             let params = (entry.params)();
-            let widgets = widgets(params.specs());
+            let widgets = widgets(params.specs(), entry.info.keys.rows);
             assert_eq!(widgets.len(), params.specs().len(), "{}", entry.info.name);
             for w in &widgets {
                 let s = &w.spec;
@@ -1115,8 +1165,9 @@ mod tests {
     #[test]
     fn controls_and_groups_follow_names_kinds_and_ranges() {
         let find = |lab: &str, name: &str| {
-            let params = (crate::course::find(lab).unwrap().params)();
-            widgets(params.specs())
+            let entry = crate::course::find(lab).unwrap();
+            let params = (entry.params)();
+            widgets(params.specs(), entry.info.keys.rows)
                 .into_iter()
                 .find(|w| w.spec.name == name)
                 .unwrap()
@@ -1140,7 +1191,54 @@ mod tests {
         assert_eq!(find("phong_dir", "fixpos").control, Control::Check);
         // Groups come in order, whatever the declaration order.
         let params = (crate::course::PHONG.params)();
-        let groups: Vec<Group> = widgets(params.specs()).iter().map(|w| w.group).collect();
+        let groups: Vec<Group> = widgets(params.specs(), crate::course::PHONG.info.keys.rows)
+            .iter()
+            .map(|w| w.group)
+            .collect();
         assert!(groups.windows(2).all(|g| g[0] <= g[1]), "{groups:?}");
+    }
+
+    #[test]
+    fn the_keys_give_sliders_to_parameters_declared_without_a_range() {
+        let find = |lab: &str, name: &str| {
+            let entry = crate::course::find(lab).unwrap();
+            let params = (entry.params)();
+            widgets(params.specs(), entry.info.keys.rows)
+                .into_iter()
+                .find(|w| w.spec.name == name)
+                .unwrap()
+        };
+        // phong declares its material as any float; its keys keep it to the original's ranges.
+        for (name, range) in [
+            ("Ka", (0.0, 1.0)),
+            ("Kd", (0.0, 1.0)),
+            ("Ks", (0.0, 1.0)),
+            ("shininess", (6.0, 200.0)),
+        ] {
+            let w = find("phong", name);
+            assert_eq!(w.control, Control::Drag, "{name}: declared wide");
+            assert_eq!(w.slider(0), Some(range), "{name}");
+        }
+        // Per component: the light's x, y and z keys.
+        let light = find("phong", "lightPosition");
+        assert!((0..3).all(|c| light.slider(c).is_some()), "{:?}", light.sliders);
+        // A narrow declared range is the slider's; a wide one no key bounds has none.
+        assert_eq!(find("suzanne_phong", "ka").slider(0), Some((0.0, 1.0)));
+        assert_eq!(find("noise", "time").slider(0), None);
+        assert_eq!(find("phong", "object").slider(0), None, "a choice has its list");
+        // Every lab: a slider's range lies within what --set accepts.
+        for entry in crate::course::ALL {
+            let params = (entry.params)();
+            for w in widgets(params.specs(), entry.info.keys.rows) {
+                for (a, b) in w.sliders.iter().flatten() {
+                    assert!(
+                        w.spec.min <= *a && b <= &w.spec.max && a < b,
+                        "{}.{}",
+                        entry.info.name,
+                        w.spec.name
+                    );
+                }
+            }
+        }
     }
 }

@@ -423,13 +423,15 @@ impl WebApp {
     /// declaration order within one): per parameter `name`, `group` (its heading), `control`
     /// (`slider`, `drag`, `whole`, `check`, `choice`, `colour`: the window panel's control for
     /// it), `kind` (`real`, `int`, `bool`, `choice`), `options` (a choice's names), `min`, `max`,
-    /// `help`, `value` (as `--set` writes it), `values` (the numbers) and `default`.
+    /// `help`, `value` (as `--set` writes it), `values` (the numbers), `default` and `sliders`
+    /// (per component, the `[min, max]` its slider spans, or null: see
+    /// [`super::panel::Widget::sliders`]).
     pub fn params(&self) -> String {
         let Some(open) = self.open.as_ref() else {
             return "[]".into();
         };
         let p = open.lab().params();
-        let items: Vec<serde_json::Value> = widgets(p.specs())
+        let items: Vec<serde_json::Value> = widgets(p.specs(), open.entry().info.keys.rows)
             .iter()
             .map(|w| {
                 let s = &w.spec;
@@ -453,6 +455,9 @@ impl WebApp {
                     "options": options, "min": s.min, "max": s.max, "help": s.help,
                     "value": p.text(s.name), "values": p.get(s.name).unwrap_or(&[]),
                     "default": s.default_text(),
+                    "sliders": (0..p.get(s.name).map_or(0, <[f64]>::len))
+                        .map(|c| w.slider(c).map(|(a, b)| [a, b]))
+                        .collect::<Vec<_>>(),
                 })
             })
             .collect();
