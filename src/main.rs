@@ -61,7 +61,7 @@ fn verb_help(verb: &str) -> String {
              state, and compare: the difference as a picture (--out), PSNR, the pixels that differ,\n\
              the worst one, and there the first line, in the order the shaders ran, whose value\n\
              departs from the built-in shader's (file, line, name, both values)",
-            shaderlab::shell::diff::USAGE,
+            shaderlab::shell::diff_verb::USAGE,
             "\n  --shaders DIR  the copy of the lab's shaders (same file names as shaders_glsl/)\n  \
              --out FILE.png the difference as a picture, with its legend\n  \
              --json         print one JSON object (psnr, differing, worst, first_divergence)",
@@ -70,7 +70,7 @@ fn verb_help(verb: &str) -> String {
             "show a value over the whole frame, drawn on the GPU by an instrumented copy of the\n\
              lab's own shaders: the value line LINE of FILE assigns at every pixel (--line), or how\n\
              many statements the fragment shader ran there (--cost, the `cost` of shaderlab debug)",
-            shaderlab::shell::view::USAGE,
+            shaderlab::shell::view_verb::USAGE,
             "\n  --line FILE:LINE   a line of one of the lab's shader files (phong.frag:17); a vertex\n                     \
              shader line shows its value at the corners, interpolated as a varying\n  \
              --name VAR         the name to show, where the line assigns several things\n  \
@@ -257,9 +257,9 @@ fn main() -> ExitCode {
             if verb == "debug" {
                 shaderlab::shell::debug_main_from(entry, args)
             } else if verb == "view" {
-                shaderlab::shell::view::view_main_from(entry, args)
+                shaderlab::shell::view_verb::view_main_from(entry, args)
             } else if verb == "diff" {
-                shaderlab::shell::diff::diff_main_from(entry, args)
+                shaderlab::shell::diff_verb::diff_main_from(entry, args)
             } else {
                 shaderlab::shell::main_from(entry, args)
             }

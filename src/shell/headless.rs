@@ -40,7 +40,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         }
         None => None,
     };
-    let view = super::view::Plan::of(entry, args)?;
+    let view = super::view_verb::Plan::of(entry, args)?;
     let mut gpu = Gpu::headless()?;
     gpu.watchdog = args.watchdog();
     gpu.bounded_compiles = true;

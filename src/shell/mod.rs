@@ -22,7 +22,7 @@ mod args;
 mod cli;
 pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
-pub mod diff;
+pub mod diff_verb;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod inspector;
@@ -34,7 +34,7 @@ pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod tools;
 #[cfg(not(target_arch = "wasm32"))]
-pub mod view;
+pub mod view_verb;
 pub mod views;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
@@ -197,7 +197,7 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
     }
     if let Some(dir) = &args.diff {
         // `--diff DIR` is `shaderlab diff NAME --shaders DIR`, the picture to --screenshot.
-        let own = diff::Own {
+        let own = diff_verb::Own {
             out: args.screenshot.clone(),
             json: args.json,
         };
@@ -206,7 +206,7 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
             screenshot: None,
             ..args
         };
-        return diff::run(entry, &args, &own);
+        return diff_verb::run(entry, &args, &own);
     }
     if let Some(path) = &args.record {
         record::Output::parse(path, entry.info.name)?;
