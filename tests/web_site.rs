@@ -141,6 +141,16 @@ fn header<'a>(headers: &'a [(String, String)], name: &str) -> Option<&'a str> {
     headers.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_str())
 }
 
+/// A request and what must come back: path, `Accept-Encoding`, body, `Content-Encoding`,
+/// `Content-Type`.
+type Case = (
+    &'static str,
+    Option<&'static str>,
+    &'static str,
+    Option<&'static str>,
+    &'static str,
+);
+
 #[test]
 #[ignore = "needs python3: run by .ci/web"]
 fn the_server_sends_the_copy_the_request_accepts_with_its_encoding_and_the_originals_type() {
@@ -160,8 +170,7 @@ fn the_server_sends_the_copy_the_request_accepts_with_its_encoding_and_the_origi
     std::fs::write(dir.join("plain.js"), "no copies").unwrap();
     let server = serve(&dir);
 
-    let cases: &[(&str, Option<&str>, &str, Option<&str>, &str)] = &[
-        // path, Accept-Encoding, body, Content-Encoding, Content-Type
+    let cases: &[Case] = &[
         (
             "/web_bg.wasm",
             Some("gzip, deflate, br"),
