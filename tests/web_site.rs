@@ -1,0 +1,240 @@
+//! The site `scripts/web` builds, as a host serves it: every file has a gzip and a brotli copy
+//! beside it holding the same bytes, the module as browsers download it stays small, and
+//! `scripts/web-serve.py` (behind `scripts/web --serve`) sends the copy the request's
+//! `Accept-Encoding` takes, with `Content-Encoding`, the original's `Content-Type` and
+//! `Vary: Accept-Encoding`.
+//!
+//! They need the site, python3, gzip and brotli, which the native build does not: they are
+//! `#[ignore]`d in `cargo test` and run by `.ci/web` after `scripts/web`.
+
+use std::io::{Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// The module as browsers download it (gzip, which every browser takes) at most: over a
+/// 20 Mbit/s link it arrives in under a second.
+const MAX_WASM_GZ: u64 = 2_300_000;
+
+fn site() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web");
+    assert!(
+        dir.join("index.html").is_file() && dir.join("web_bg.wasm").is_file(),
+        "no site in {}: build it first with `scripts/web`",
+        dir.display()
+    );
+    dir
+}
+
+/// `tool -dc file`'s output; a missing tool is a failure naming its package.
+fn decompress(tool: &str, file: &Path) -> Vec<u8> {
+    let out = Command::new(tool)
+        .arg("-dc")
+        .arg(file)
+        .output()
+        .unwrap_or_else(|e| panic!("{tool}: {e} (sudo apt-get install -y {tool})"));
+    assert!(
+        out.status.success(),
+        "{tool} -dc {}: {}",
+        file.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+#[test]
+#[ignore = "needs the site (scripts/web), gzip and brotli: run by .ci/web"]
+fn every_file_of_the_site_has_gzip_and_brotli_copies_of_the_same_bytes() {
+    let dir = site();
+    for name in ["index.html", "web.js", "web_bg.wasm"] {
+        let original = std::fs::read(dir.join(name)).unwrap();
+        for (tool, suffix) in [("gzip", "gz"), ("brotli", "br")] {
+            let copy = dir.join(format!("{name}.{suffix}"));
+            assert!(copy.is_file(), "no {} beside {name}", copy.display());
+            assert!(
+                decompress(tool, &copy) == original,
+                "{} does not hold {name}'s bytes",
+                copy.display()
+            );
+            let (raw, packed) = (original.len(), std::fs::metadata(&copy).unwrap().len());
+            assert!(
+                packed < raw as u64,
+                "{} ({packed} bytes) is not smaller than {name} ({raw})",
+                copy.display()
+            );
+        }
+    }
+    let gz = std::fs::metadata(dir.join("web_bg.wasm.gz")).unwrap().len();
+    assert!(
+        gz <= MAX_WASM_GZ,
+        "web_bg.wasm.gz is {gz} bytes, more than {MAX_WASM_GZ}: the page's first frame waits for it"
+    );
+}
+
+/// `scripts/web-serve.py DIR PORT`, stopped when dropped.
+struct Server {
+    child: Child,
+    port: u16,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn serve(dir: &Path) -> Server {
+    let port = TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/web-serve.py");
+    let child = Command::new("python3")
+        .arg(&script)
+        .arg(dir)
+        .arg(port.to_string())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap_or_else(|e| panic!("python3 {}: {e} (sudo apt-get install -y python3)", script.display()));
+    let mut server = Server { child, port };
+    let start = Instant::now();
+    while TcpStream::connect(("127.0.0.1", port)).is_err() {
+        if let Ok(Some(status)) = server.child.try_wait() {
+            panic!("{} exited ({status}) before serving", script.display());
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(20),
+            "nothing listens on port {port}"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    server
+}
+
+/// One GET: the status line, the headers (names lower-cased) and the body.
+fn get(port: u16, path: &str, accept_encoding: Option<&str>) -> (String, Vec<(String, String)>, Vec<u8>) {
+    let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
+    stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    let mut request = format!("GET {path} HTTP/1.0\r\nHost: 127.0.0.1\r\n");
+    if let Some(ae) = accept_encoding {
+        request += &format!("Accept-Encoding: {ae}\r\n");
+    }
+    request += "\r\n";
+    stream.write_all(request.as_bytes()).unwrap();
+    let mut response = Vec::new();
+    stream.read_to_end(&mut response).unwrap();
+    let split = response
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("a response head");
+    let head = String::from_utf8_lossy(&response[..split]).into_owned();
+    let mut lines = head.lines();
+    let status = lines.next().unwrap_or("").to_string();
+    let headers = lines
+        .filter_map(|l| l.split_once(':'))
+        .map(|(k, v)| (k.trim().to_ascii_lowercase(), v.trim().to_string()))
+        .collect();
+    (status, headers, response[split + 4..].to_vec())
+}
+
+fn header<'a>(headers: &'a [(String, String)], name: &str) -> Option<&'a str> {
+    headers.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_str())
+}
+
+/// A request and what must come back: path, `Accept-Encoding`, body, `Content-Encoding`,
+/// `Content-Type`.
+type Case = (
+    &'static str,
+    Option<&'static str>,
+    &'static str,
+    Option<&'static str>,
+    &'static str,
+);
+
+#[test]
+#[ignore = "needs python3: run by .ci/web"]
+fn the_server_sends_the_copy_the_request_accepts_with_its_encoding_and_the_originals_type() {
+    let dir = std::env::temp_dir().join(format!("shaderlab-web-serve-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // Each copy's bytes say which file went out (the server compresses nothing itself).
+    for (name, body) in [
+        ("index.html", "<p>page</p>"),
+        ("web_bg.wasm", "module"),
+        ("web.js", "script"),
+    ] {
+        std::fs::write(dir.join(name), body).unwrap();
+        std::fs::write(dir.join(format!("{name}.gz")), format!("gz of {body}")).unwrap();
+        std::fs::write(dir.join(format!("{name}.br")), format!("br of {body}")).unwrap();
+    }
+    std::fs::write(dir.join("plain.js"), "no copies").unwrap();
+    let server = serve(&dir);
+
+    let cases: &[Case] = &[
+        (
+            "/web_bg.wasm",
+            Some("gzip, deflate, br"),
+            "br of module",
+            Some("br"),
+            "application/wasm",
+        ),
+        (
+            "/web_bg.wasm",
+            Some("gzip, deflate"),
+            "gz of module",
+            Some("gzip"),
+            "application/wasm",
+        ),
+        ("/web_bg.wasm", None, "module", None, "application/wasm"),
+        (
+            "/web_bg.wasm",
+            Some("br;q=0, gzip"),
+            "gz of module",
+            Some("gzip"),
+            "application/wasm",
+        ),
+        ("/web_bg.wasm", Some("identity"), "module", None, "application/wasm"),
+        ("/web.js", Some("br"), "br of script", Some("br"), "text/javascript"),
+        ("/", Some("gzip"), "gz of <p>page</p>", Some("gzip"), "text/html"),
+        (
+            "/index.html?lab=phong",
+            Some("br, gzip"),
+            "br of <p>page</p>",
+            Some("br"),
+            "text/html",
+        ),
+        ("/plain.js", Some("br, gzip"), "no copies", None, "text/javascript"),
+    ];
+    for &(path, ae, body, encoding, kind) in cases {
+        let (status, headers, got) = get(server.port, path, ae);
+        let what = format!("GET {path} with Accept-Encoding {ae:?}");
+        assert!(status.contains(" 200 "), "{what}: {status}");
+        assert_eq!(String::from_utf8_lossy(&got), body, "{what}: the wrong file");
+        assert_eq!(header(&headers, "content-encoding"), encoding, "{what}");
+        let got_kind = header(&headers, "content-type").unwrap_or("");
+        assert!(
+            got_kind.starts_with(kind),
+            "{what}: Content-Type {got_kind}, not {kind}"
+        );
+        assert_eq!(
+            header(&headers, "content-length"),
+            Some(body.len().to_string().as_str()),
+            "{what}"
+        );
+        if path != "/plain.js" {
+            assert_eq!(header(&headers, "vary"), Some("Accept-Encoding"), "{what}");
+        }
+    }
+
+    // A copy older than its original (a site half rebuilt) is not sent: the original is.
+    std::thread::sleep(Duration::from_millis(1100));
+    std::fs::write(dir.join("web.js"), "newer script").unwrap();
+    let (_, headers, got) = get(server.port, "/web.js", Some("gzip, br"));
+    assert_eq!(String::from_utf8_lossy(&got), "newer script");
+    assert_eq!(header(&headers, "content-encoding"), None);
+
+    let (status, _, _) = get(server.port, "/missing.wasm", Some("gzip, br"));
+    assert!(status.contains(" 404 "), "a missing file: {status}");
+    drop(server);
+    let _ = std::fs::remove_dir_all(&dir);
+}
