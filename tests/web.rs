@@ -580,6 +580,10 @@ fn a_click_in_inspect_mode_inspects_that_pixel_and_puts_it_in_the_link() {
     );
 }
 
+/// The probe of a view case, given the file the lab's fragment shader is read from (`None`: the
+/// diff with the built-in shaders).
+type ProbeOf = dyn Fn(&str) -> Option<view::Probe>;
+
 /// The picture of view `probe` of `name` at `sets` as the native build draws it at the lab's
 /// size (the view at the width and the height less the legend strip, then its legend); `probe`
 /// is given the file the lab's fragment shader `suffix` is read from as the lab shows it, and
@@ -637,8 +641,7 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
     };
     let cost = |_: &str| Some(view::Probe::Cost);
     let diff = |_: &str| None;
-    let cases: [(&str, &dyn Fn(&str) -> Option<view::Probe>); 3] =
-        [("cost", &cost), ("phong.frag:17", &line), ("diff", &diff)];
+    let cases: [(&str, &ProbeOf); 3] = [("cost", &cost), ("phong.frag:17", &line), ("diff", &diff)];
     for backend in ["webgl2", "webgpu"] {
         for (link, probe) in cases {
             let want = native_view("phong", &sets, probe, "phong.frag");
