@@ -318,7 +318,7 @@ impl Args {
             }
         }
         let after = format!(
-            "PARAMETERS (--set NAME=VALUE):\n{}\nKEYS AND MOUSE:\n  {}\n  F1 shows the parameter panel, F2 inspects a pixel (click one: why it has its colour, line by line), F10 starts/stops recording a GIF, F12 saves a screenshot, Esc quits; shaders edited under --shaders DIR (or shaders_glsl/) reload live.\n\nDefault size {w}x{h}.",
+            "PARAMETERS (--set NAME=VALUE):\n{}\nKEYS AND MOUSE:\n  {}\n  F1 shows the parameter panel, F2 inspects a pixel (click one: why it has its colour, line by line; click a line of its listing: that line's value at every pixel), F3 shows the cost view, F4 the diff against the built-in shaders, F10 starts/stops recording a GIF, F12 saves a screenshot, Esc quits; shaders edited under --shaders DIR (or shaders_glsl/) reload live.\n\nDefault size {w}x{h}.",
             params.help(),
             info.keys.help().replace('\n', "\n  ")
         );
