@@ -150,7 +150,7 @@ mod tests {
     #[test]
     fn one_name_per_idea() {
         assert!(has_word("a stage.", "stage") && !has_word("max_inter_stage_x", "stage"));
-        // Written in two halves, so that the renaming script (issue 40's renames.sh) leaves them.
+        // Written in two halves, so that the renaming script (renames.sh) leaves them.
         let retired = [
             ("crate::", "labs"),
             ("shaderlab::", "labs"),

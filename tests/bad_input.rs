@@ -1242,7 +1242,7 @@ fn position_rgb_with(dir: &Path, frag: &str) -> String {
     shaders.to_str().unwrap().to_owned()
 }
 
-/// Issue 39: a shader with no loop that the driver compiles for minutes (a large local array)
+/// A shader with no loop that the driver compiles for minutes (a large local array)
 /// meets the watchdog while the pipeline is built, and the message says so; a frame that does
 /// not finish with no loop in any shader is not called "a shader that never ends".
 #[test]
@@ -1271,7 +1271,7 @@ fn a_shader_too_large_to_compile_meets_the_watchdog() {
     assert!(!dir.join("out.png").exists());
 }
 
-/// Issue 39: a shader whose compilation takes more memory than the process may have (a chain of
+/// A shader whose compilation takes more memory than the process may have (a chain of
 /// 2,000 functions: gigabytes in the driver's compiler, which then crashes without a word) ends
 /// with a message before the limit, here `prlimit --as` as a container sets it.
 #[test]
@@ -1325,7 +1325,7 @@ fn run_limited(dir: &Path, bytes: u64, example_name: &str, args: &[&str]) -> Run
     }
 }
 
-/// Issue 39: under a memory limit, what does not fit is one clear message (exit status 1),
+/// Under a memory limit, what does not fit is one clear message (exit status 1),
 /// never wgpu's panicking handler or an abort on a failed allocation: a mesh the GPU runs out of
 /// memory for, a model and a picture too large for what the process may take.
 #[test]

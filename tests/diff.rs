@@ -168,7 +168,7 @@ fn a_broken_copy_a_copy_with_other_inputs_and_no_copy_get_one_clear_message() {
 /// A benchmark, not a timed test: a diff of two 640×360 frames with its two traces, from
 /// the labs built to the comparison (`cargo test --release --test diff -- --nocapture`).
 #[test]
-fn a_diff_of_two_frames_with_its_traces_is_quick() {
+fn a_diff_of_two_frames_with_its_traces_prints_its_time() {
     let dir = copy_with("bench", "phong.frag", "max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)");
     let entry = shaderlab::course::find("phong").expect("phong");
     let files = UserFiles::default();

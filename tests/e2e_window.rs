@@ -1520,7 +1520,7 @@ fn phong_frag_with(original: &str, add: &str, term: &str) -> String {
         )
 }
 
-/// Issue 39, item 2: a panic in the window is said as what it is, an internal error with the
+/// A panic in the window is said as what it is, an internal error with the
 /// panic's message and place, never as a window closed by another program; a reload of
 /// `h(c.y)` with an `out` argument (on which naga 30's SPIR-V writer panicked) draws; and a live
 /// reload whose compile panics (anything inside the compile, `SHADERLAB_TEST_PANIC=reload`)
@@ -1585,7 +1585,7 @@ fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipel
     lab.escape();
 }
 
-/// Issue 39, item 10: a window's first compile has no last good pipeline to keep drawing, so it
+/// A window's first compile has no last good pipeline to keep drawing, so it
 /// is bounded as the command line's are: a shader the driver compiles for minutes ends the
 /// window at the watchdog with a message saying so.
 #[test]
@@ -1607,7 +1607,7 @@ fn a_window_whose_first_compile_runs_away_meets_the_watchdog() {
     );
 }
 
-/// Issue 39, item 11: a live reload whose compile takes minutes (a 100,000-float array on
+/// A live reload whose compile takes minutes (a 100,000-float array on
 /// lavapipe) never freezes the window. The compile runs off the frame loop: the last good
 /// pipeline keeps drawing, a key changes the lab (its title, a new frame), and Esc or SIGTERM
 /// end the process within seconds, without waiting for the compile inside the driver.
@@ -2386,7 +2386,7 @@ fn f2_inspects_the_clicked_pixel_and_follows_the_lab() {
     lab.escape();
 }
 
-/// Issue 39, item 15: the inspected pixel stays in sight and clickable beside the panels. At the
+/// The inspected pixel stays in sight and clickable beside the panels. At the
 /// default 640x360 a click on the picture's centre (the teapot) inspects it; a click on the
 /// inspector and then one on the picture inspects the picture's pixel, not the panel's; with F1
 /// open too the two panels stay apart and the centre shows between them and is clicked; at
@@ -2472,7 +2472,7 @@ fn the_inspected_pixel_stays_visible_and_clickable_beside_the_panels() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Whole-frame views (issue 41)
+// Whole-frame views
 // ---------------------------------------------------------------------------------------------
 
 /// The picture `probe` gives of `lab` at a window of `size` (the view drawn at the window's
@@ -2501,7 +2501,7 @@ fn phong_fragment_file(lab: &mut dyn shaderlab::lab::Lab) -> String {
         .unwrap_or_else(|| panic!("no phong.frag among {files:?}"))
 }
 
-/// Issue 41: in the window, F2 and a line chosen in the inspector's listing show that line's
+/// In the window, F2 and a line chosen in the inspector's listing show that line's
 /// value at every pixel in place of the picture, with the legend, the very picture the
 /// library draws of the same state (F12 writes it, the screen shows it); a key that changes
 /// the lab draws the view again; F3 shows the cost view, and F3 again the lab's picture, as
@@ -2617,7 +2617,7 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
     lab.escape();
 }
 
-/// Issue 41: with `--shaders DIR`, F4 compares the lab with its built-in shaders: the window
+/// With `--shaders DIR`, F4 compares the lab with its built-in shaders: the window
 /// shows the library's diff picture of the same state (a bug planted in the copy's line 17
 /// shows where it changes the picture), and a saved fix draws the diff again, now of two
 /// equal pictures.

@@ -284,7 +284,7 @@ fn messages_say_what_is_wrong_in_the_users_terms() {
 /// A tiny OBJ: one triangle.
 const TRIANGLE_OBJ: &str = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
 
-/// Issue 39: an output that is, or leads to, one of the run's own inputs is refused, whichever
+/// An output that is, or leads to, one of the run's own inputs is refused, whichever
 /// output writes it and whatever path leads there (the same name, a symbolic link, a hard link,
 /// a file an input `#include`s), with status 2 and a message naming the input, and the input
 /// keeps its bytes. `--screenshot` used to write over the `--texture` picture and, through a
@@ -452,8 +452,8 @@ fn no_output_replaces_one_of_the_runs_inputs() {
     assert!(fs::read_to_string(dir.join("main.wgsl")).unwrap().contains("fn tint"));
 }
 
-/// Issue 39: `shaderlab debug --help` said "which lab?" and exited 2; the debug command's
-/// errors named `--debug` where the user typed `--pixel`; `+5,+6` was taken as a pixel.
+/// `shaderlab debug --help` prints the command's help (not "which lab?"), its errors name the
+/// flag the user typed (`--pixel`, not `--debug`), and `+5,+6` is not a pixel.
 #[test]
 fn the_debug_command_has_help_and_names_the_flag_typed() {
     let dir = scratch("debug_command");
@@ -516,7 +516,7 @@ fn the_debug_command_has_help_and_names_the_flag_typed() {
     assert!(out.status.success(), "{}", stderr(&out));
 }
 
-/// Issue 39: a run that fails leaves no folder it made: `glsl2wgsl --all` into a folder that
+/// A run that fails leaves no folder it made: `glsl2wgsl --all` into a folder that
 /// did not exist, with a shader that does not compile, used to leave the folder, empty (as
 /// `tradeoff` did on a full disk).
 #[test]

@@ -1,4 +1,4 @@
-//! Issue 41 in the shells' shared core: a session's whole-frame view is the library's picture
+//! In the shells' shared core: a session's whole-frame view is the library's picture
 //! of the lab's state whether it is drawn at once (the window's `Session::view_frame`) or read
 //! back over polls (the page's `Session::view_poll`), is drawn again when the lab changes, fills
 //! the surface with its legend, and a view that cannot be drawn leaves its reason and the lab's

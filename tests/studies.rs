@@ -161,9 +161,8 @@ fn an_interrupted_or_impossible_tradeoff_run_changes_nothing() {
     assert!(!err.contains("Caused by") && !err.contains("backtrace"), "{err}");
 }
 
-/// Issue 39: `tradeoff` on a full disk left a new, empty output folder behind; a failed run now
-/// leaves what was there before (the folder is made only when the files are moved in, and
-/// removed again if that fails). The disk is made full for the one process by a file size
+/// `tradeoff` on a full disk leaves what was there before, never a new, empty output folder
+/// (the folder is made only when the files are moved in, and removed again if that fails). The disk is made full for the one process by a file size
 /// limit (`RLIMIT_FSIZE`: a write past 4 KiB fails, as on a full disk, with `SIGXFSZ`
 /// ignored), which needs no root and no mount.
 #[test]

@@ -620,7 +620,7 @@ fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> Option<view::P
     image::DynamicImage::ImageRgba8(image).to_rgb8()
 }
 
-/// Issue 41: a link with `&view=cost`, `&view=FILE:LINE` or `&view=diff` opens the page showing
+/// A link with `&view=cost`, `&view=FILE:LINE` or `&view=diff` opens the page showing
 /// that view on the canvas, with its legend: the picture the native build draws of the same
 /// view (within the page's usual agreement), on WebGL2 and WebGPU.
 #[test]
@@ -688,7 +688,7 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Issue 41: in the page, Inspect, a click on the picture and then a click on a line of the
+/// In the page, Inspect, a click on the picture and then a click on a line of the
 /// inspector's listing (DOM events, as a user's) show that line's value at every pixel on the
 /// canvas, the native build's picture of the same view, with the line marked and the view in
 /// the link.

@@ -1079,7 +1079,7 @@ mod tests {
         a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
     }
 
-    /// Issue 39, item 15: at every size, wherever the pixel, with F1's panel or not, the
+    /// At every size, wherever the pixel, with F1's panel or not, the
     /// inspected pixel and its margin stay free, the panels stay apart and in the window, and
     /// the inspector is wide (or high) enough to read wherever the window leaves room for it.
     #[test]
@@ -1162,16 +1162,18 @@ mod tests {
         assert_eq!(l.inspector, None);
     }
 
+    /// The widget of parameter `name` of lab `lab`.
+    fn find(lab: &str, name: &str) -> Widget {
+        let entry = crate::course::find(lab).unwrap();
+        let params = (entry.params)();
+        widgets(params.specs(), entry.info.keys.rows)
+            .into_iter()
+            .find(|w| w.spec.name == name)
+            .unwrap()
+    }
+
     #[test]
     fn controls_and_groups_follow_names_kinds_and_ranges() {
-        let find = |lab: &str, name: &str| {
-            let entry = crate::course::find(lab).unwrap();
-            let params = (entry.params)();
-            widgets(params.specs(), entry.info.keys.rows)
-                .into_iter()
-                .find(|w| w.spec.name == name)
-                .unwrap()
-        };
         assert_eq!(find("phong", "diffuseColor").control, Control::Colour);
         assert_eq!(find("phong", "diffuseColor").group, Group::Material);
         assert_eq!(find("noise", "shade").control, Control::Colour);
@@ -1200,14 +1202,6 @@ mod tests {
 
     #[test]
     fn the_keys_give_sliders_to_parameters_declared_without_a_range() {
-        let find = |lab: &str, name: &str| {
-            let entry = crate::course::find(lab).unwrap();
-            let params = (entry.params)();
-            widgets(params.specs(), entry.info.keys.rows)
-                .into_iter()
-                .find(|w| w.spec.name == name)
-                .unwrap()
-        };
         // phong declares its material as any float; its keys keep it to the original's ranges.
         for (name, range) in [
             ("Ka", (0.0, 1.0)),
