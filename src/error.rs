@@ -88,6 +88,8 @@ pub enum Error {
         /// Whether the probe does not fit the lab's shaders (a usage error), rather than a
         /// rewritten shader the GPU refused or a frame of another size.
         usage: bool,
+        /// What the user may choose between to make the view drawable.
+        choose: Choose,
     },
     /// The GPU did not finish a frame within the watchdog's bound (a shader that never ends).
     #[error("{0}")]
@@ -132,3 +134,15 @@ fn obj_location(path: &std::path::Path, line: &Option<usize>) -> String {
 
 /// Shorthand for results with [`Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What a view's user may choose between where a line alone does not say what to show.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Choose {
+    /// Nothing: the view cannot be drawn as asked.
+    #[default]
+    Nothing,
+    /// One of the names the line assigns.
+    Name(Vec<String>),
+    /// The vertex or the fragment shader (a line of a file both include).
+    Stage,
+}

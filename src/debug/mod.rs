@@ -21,6 +21,7 @@ pub mod error;
 pub mod instrument;
 pub mod interp;
 mod math;
+pub mod paint;
 pub mod picture;
 pub mod positions;
 pub mod raster;

@@ -31,7 +31,7 @@ pub const NOT_RUN: [[u8; 3]; 2] = [[56, 56, 56], [88, 88, 88]];
 pub const LEGEND_HEIGHT: u32 = 16;
 
 /// Viridis at nine evenly spaced stops (matplotlib's), interpolated linearly between them.
-const VIRIDIS: [[u8; 3]; 9] = [
+pub(crate) const VIRIDIS: [[u8; 3]; 9] = [
     [68, 1, 84],
     [71, 45, 123],
     [59, 82, 139],
@@ -44,7 +44,7 @@ const VIRIDIS: [[u8; 3]; 9] = [
 ];
 
 /// A diverging map (Moreland's cool–warm): blue at −1, light grey at 0, red at +1.
-const DIVERGING: [[u8; 3]; 5] = [
+pub(crate) const DIVERGING: [[u8; 3]; 5] = [
     [59, 76, 192],
     [141, 176, 254],
     [221, 221, 221],
@@ -193,36 +193,9 @@ pub fn values(
             }
         }
     }
-    if lo > hi {
-        (lo, hi) = (0.0, 1.0);
-    }
-    let scale = if comps > 1 {
-        Scale::Rgb
-    } else if lo < 0.0 && hi > 0.0 {
-        Scale::Diverging
-    } else {
-        Scale::Sequential
-    };
-    let (min, max) = match scale {
-        Scale::Diverging => {
-            let m = lo.abs().max(hi.abs());
-            (-m, m)
-        }
-        // A vector within 0..1 (a colour, a normal's absolute value) is shown as it is.
-        Scale::Rgb if lo >= 0.0 && hi <= 1.0 => (0.0, 1.0),
-        _ => (lo, hi),
-    };
+    let mut legend = Legend::new(comps, lo, hi);
+    let (scale, min, max) = (legend.scale, legend.min, legend.max);
     let span = if max > min { max - min } else { 1.0 };
-    let mut legend = Legend {
-        scale,
-        min,
-        max,
-        nan: 0,
-        pos_inf: 0,
-        neg_inf: 0,
-        not_run: 0,
-        background: 0,
-    };
     let mut image = RgbaImage::new(width, height + LEGEND_HEIGHT);
     for y in 0..height {
         for x in 0..width {
@@ -253,22 +226,83 @@ pub fn values(
             image.put_pixel(x, y, rgba(colour));
         }
     }
-    let bar: Box<dyn Fn(f64) -> [u8; 3]> = match scale {
-        Scale::Sequential => Box::new(sequential),
-        Scale::Diverging => Box::new(|t| diverging(2.0 * t - 1.0)),
-        Scale::Rgb => Box::new(|t| {
-            let g = (t * 255.0).round() as u8;
-            [g, g, g]
-        }),
-    };
-    let words = format!(
-        "nan {} inf {} not run {}",
-        legend.nan,
-        legend.pos_inf + legend.neg_inf,
-        legend.not_run
-    );
-    draw_legend(&mut image, height, &short(min), &short(max), &*bar, &words);
+    legend.draw(&mut image, height);
     (image, legend)
+}
+
+impl Legend {
+    /// The map and range for values of `components` components whose finite shown components
+    /// span `lo..=hi` (`lo > hi`: none), with nothing counted yet: a vector is RGB (over 0..1
+    /// where it fits, otherwise its range), a scalar that changes sign diverges around 0 over
+    /// `-m..m`, any other scalar is sequential over its range.
+    pub fn new(components: usize, lo: f64, hi: f64) -> Legend {
+        let (lo, hi) = if lo > hi { (0.0, 1.0) } else { (lo, hi) };
+        let scale = if components > 1 {
+            Scale::Rgb
+        } else if lo < 0.0 && hi > 0.0 {
+            Scale::Diverging
+        } else {
+            Scale::Sequential
+        };
+        let (min, max) = match scale {
+            Scale::Diverging => {
+                let m = lo.abs().max(hi.abs());
+                (-m, m)
+            }
+            // A vector within 0..1 (a colour, a normal's absolute value) is shown as it is.
+            Scale::Rgb if lo >= 0.0 && hi <= 1.0 => (0.0, 1.0),
+            _ => (lo, hi),
+        };
+        Legend {
+            scale,
+            min,
+            max,
+            nan: 0,
+            pos_inf: 0,
+            neg_inf: 0,
+            not_run: 0,
+            background: 0,
+        }
+    }
+
+    /// Draws the legend strip into `image` from row `top` down: the range's ends around the
+    /// colour bar, then the counts.
+    pub fn draw(&self, image: &mut RgbaImage, top: u32) {
+        let bar: Box<dyn Fn(f64) -> [u8; 3]> = match self.scale {
+            Scale::Sequential => Box::new(sequential),
+            Scale::Diverging => Box::new(|t| diverging(2.0 * t - 1.0)),
+            Scale::Rgb => Box::new(|t| {
+                let g = (t * 255.0).round() as u8;
+                [g, g, g]
+            }),
+        };
+        let words = format!(
+            "nan {} inf {} not run {}",
+            self.nan,
+            self.pos_inf + self.neg_inf,
+            self.not_run
+        );
+        draw_legend(image, top, &short(self.min), &short(self.max), &*bar, &words);
+    }
+}
+
+/// The legend strip alone, `width` pixels wide: what [`values`] draws under its picture.
+pub fn strip(width: u32, legend: &Legend) -> RgbaImage {
+    let mut image = RgbaImage::new(width.max(1), LEGEND_HEIGHT);
+    legend.draw(&mut image, 0);
+    image
+}
+
+/// A cost view's legend strip alone, `width` pixels wide, for counts up to `max`: what
+/// [`cost`] draws under its picture.
+pub fn cost_strip(width: u32, max: u32) -> RgbaImage {
+    let mut image = RgbaImage::new(width.max(1), LEGEND_HEIGHT);
+    draw_cost_legend(&mut image, 0, max);
+    image
+}
+
+fn draw_cost_legend(image: &mut RgbaImage, top: u32, max: u32) {
+    draw_legend(image, top, "0", &max.to_string(), &sequential, "statements run");
 }
 
 /// The picture of a cost view: each pixel's count of statements run through the sequential
@@ -291,7 +325,7 @@ pub fn cost(width: u32, height: u32, cost: &[u32], drawn: &[bool]) -> (RgbaImage
             image.put_pixel(x, y, rgba(colour));
         }
     }
-    draw_legend(&mut image, height, "0", &max.to_string(), &sequential, "statements run");
+    draw_cost_legend(&mut image, height, max);
     (image, max)
 }
 

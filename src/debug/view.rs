@@ -119,6 +119,8 @@ pub enum ViewError {
         line: u32,
         /// The names it assigns.
         names: String,
+        /// The names to choose from (each variable once).
+        choices: Vec<String>,
     },
     /// The file is included by both stages and the line assigns in both.
     #[error("{file} is included by both the vertex and the fragment shader, and line {line} assigns in both: choose the stage")]
@@ -158,9 +160,15 @@ impl ViewError {
 
 impl From<ViewError> for crate::error::Error {
     fn from(e: ViewError) -> Self {
+        let choose = match &e {
+            ViewError::Ambiguous { choices, .. } => crate::error::Choose::Name(choices.clone()),
+            ViewError::BothStages { .. } => crate::error::Choose::Stage,
+            _ => crate::error::Choose::Nothing,
+        };
         crate::error::Error::View {
             message: e.to_string(),
             usage: e.is_usage(),
+            choose,
         }
     }
 }
@@ -330,6 +338,7 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
                         file: file.clone(),
                         line,
                         names: quoted(&all_names),
+                        choices: roots.iter().map(|r| (*r).to_owned()).collect(),
                     })
                 }
             }
@@ -645,6 +654,95 @@ impl ViewDrawer {
     /// [`ViewDrawer::finish`] brings them. The drawer's read-back buffers are the pending
     /// view's until then.
     pub fn start(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<PendingView> {
+        let label = "shaderlab.debug.view";
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some(&format!("{label}.encoder")),
+        });
+        let drawn = self.encode(gpu, &mut encoder, log, probe, width, height)?;
+        let Drawn {
+            resolved,
+            components,
+            value,
+            format,
+            size: (w, h),
+        } = drawn;
+        let targets = self.targets.as_ref().expect("made by encode");
+        let commands = gpu.checked(label, || {
+            let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
+                encoder.copy_texture_to_buffer(
+                    wgpu::TexelCopyTextureInfo {
+                        texture,
+                        mip_level: 0,
+                        origin: wgpu::Origin3d::ZERO,
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    wgpu::TexelCopyBufferInfo {
+                        buffer,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset: 0,
+                            bytes_per_row: Some(stride),
+                            rows_per_image: Some(h),
+                        },
+                    },
+                    wgpu::Extent3d {
+                        width: w,
+                        height: h,
+                        depth_or_array_layers: 1,
+                    },
+                );
+            };
+            if value {
+                copy(&targets.value.0, &targets.value.2, targets.value_stride);
+            }
+            copy(&targets.info.0, &targets.info.2, targets.info_stride);
+            encoder.finish()
+        })?;
+        gpu.queue.submit([commands]);
+        let staging: Vec<&wgpu::Buffer> = if value {
+            vec![&targets.value.2, &targets.info.2]
+        } else {
+            vec![&targets.info.2]
+        };
+        let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let failed = Arc::new(std::sync::atomic::AtomicBool::new(false));
+        for b in &staging {
+            let (mapped, failed) = (mapped.clone(), failed.clone());
+            b.slice(..).map_async(wgpu::MapMode::Read, move |r| match r {
+                Ok(()) => {
+                    mapped.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                }
+                Err(_) => failed.store(true, std::sync::atomic::Ordering::SeqCst),
+            });
+        }
+        Ok(PendingView {
+            resolved,
+            components,
+            value,
+            format,
+            size: (w, h),
+            buffers: staging.len(),
+            mapped,
+            failed,
+        })
+    }
+
+    /// The value and info targets the last [`ViewDrawer::encode`] drew into, as views.
+    pub fn targets(&self) -> Option<(&wgpu::TextureView, &wgpu::TextureView)> {
+        self.targets.as_ref().map(|t| (&t.value.1, &t.info.1))
+    }
+
+    /// Records the view `probe` of the frame `log` wrote down (at `width` × `height`) into
+    /// `encoder`: the value and info targets ([`ViewDrawer::targets`]) hold it once the
+    /// encoder runs. Builds what it has not built for an earlier frame.
+    pub fn encode(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        log: &DrawLog,
+        probe: &Probe,
+        width: u32,
+        height: u32,
+    ) -> Result<Drawn> {
         let draws = log.draws();
         let passes = log.passes();
         if passes.iter().any(|p| (p.1, p.2) != (width, height)) {
@@ -677,11 +775,7 @@ impl ViewDrawer {
         }
         let targets = self.targets.as_ref().expect("made above");
         let value = resolved.is_some();
-        let device = &gpu.device;
-        let commands = gpu.checked(label, || {
-            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some(&format!("{label}.encoder")),
-            });
+        gpu.checked(label, || {
             let views: Vec<&wgpu::TextureView> = if value {
                 vec![&targets.value.1, &targets.info.1]
             } else {
@@ -760,61 +854,13 @@ impl ViewDrawer {
                     });
                 }
             }
-            let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
-                encoder.copy_texture_to_buffer(
-                    wgpu::TexelCopyTextureInfo {
-                        texture,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    wgpu::TexelCopyBufferInfo {
-                        buffer,
-                        layout: wgpu::TexelCopyBufferLayout {
-                            offset: 0,
-                            bytes_per_row: Some(stride),
-                            rows_per_image: Some(h),
-                        },
-                    },
-                    wgpu::Extent3d {
-                        width: w,
-                        height: h,
-                        depth_or_array_layers: 1,
-                    },
-                );
-            };
-            if value {
-                copy(&targets.value.0, &targets.value.2, targets.value_stride);
-            }
-            copy(&targets.info.0, &targets.info.2, targets.info_stride);
-            encoder.finish()
         })?;
-        gpu.queue.submit([commands]);
-        let staging: Vec<&wgpu::Buffer> = if value {
-            vec![&targets.value.2, &targets.info.2]
-        } else {
-            vec![&targets.info.2]
-        };
-        let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
-        let failed = Arc::new(std::sync::atomic::AtomicBool::new(false));
-        for b in &staging {
-            let (mapped, failed) = (mapped.clone(), failed.clone());
-            b.slice(..).map_async(wgpu::MapMode::Read, move |r| match r {
-                Ok(()) => {
-                    mapped.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                }
-                Err(_) => failed.store(true, std::sync::atomic::Ordering::SeqCst),
-            });
-        }
-        Ok(PendingView {
+        Ok(Drawn {
             resolved,
             components,
             value,
             format,
             size: (w, h),
-            buffers: staging.len(),
-            mapped,
-            failed,
         })
     }
 
@@ -914,6 +960,22 @@ impl ViewDrawer {
     }
 }
 
+/// What [`ViewDrawer::encode`] drew: the line it resolved to (none: a cost view), the
+/// value's components, whether there is a value target, its format and the size.
+#[derive(Clone, Debug)]
+pub struct Drawn {
+    /// The line the probe resolved to; `None` for a cost view.
+    pub resolved: Option<Resolved>,
+    /// The value's components (0 for a cost view).
+    pub components: u32,
+    /// Whether the value target was drawn (a line view).
+    pub value: bool,
+    /// The value target's format.
+    pub format: wgpu::TextureFormat,
+    /// The targets' size.
+    pub size: (u32, u32),
+}
+
 /// A view drawn and being read back ([`ViewDrawer::start`]).
 pub struct PendingView {
     resolved: Option<Resolved>,
@@ -996,7 +1058,9 @@ impl Targets {
             let t = texture(
                 name,
                 format,
-                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
             );
             let v = t.create_view(&wgpu::TextureViewDescriptor {
                 label: Some(&format!("{label}.{name}_view")),
@@ -1043,6 +1107,14 @@ pub fn record(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32)
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
     let log = DrawLog::new();
     let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    Ok(log)
+}
+
+/// Records one frame of `lab` against `target` (its size and format) with its draws written
+/// down, without running it.
+pub fn record_to(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, target: &crate::offscreen::Offscreen) -> Result<DrawLog> {
+    let log = DrawLog::new();
+    let _frame = crate::lab::frame::record(gpu, lab, target, Some(&log))?;
     Ok(log)
 }
 

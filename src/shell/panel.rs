@@ -706,6 +706,7 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
                         clicked.set(Some(crate::shell::views::Wanted::Line {
                             file: row.file.clone(),
                             line: row.line,
+                            name: None,
                             stage: Some(stage),
                         }));
                     }

@@ -561,26 +561,44 @@ impl Session {
         self.views.shown()
     }
 
-    /// Draws the view asked for again at `size` (the surface's, in whose `format` the lab draws)
-    /// when the lab changed since its
-    /// last picture (parameters, input, the clock, a reload) or the size did; returns whether
-    /// a new picture (or error) was made. Blocks until the view's values are back.
+    /// Moves the view asked for on at `size` (the surface's, in whose `format` the lab draws):
+    /// draws it again when the lab changed since its last picture (parameters, input, the
+    /// clock, a reload) or the size did, and takes what came back ([`super::views::Views::update`]);
+    /// returns whether a new picture, legend or error was made (then draw again). A diff is
+    /// made at once here (the window).
     #[cfg(not(target_arch = "wasm32"))]
     pub fn view_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        self.views.update(gpu, self.lab.as_mut(), self.version, size, format)
-    }
-
-    /// Moves the view asked for on without blocking ([`super::views::Views::poll`], the page's
-    /// way): returns whether a new picture (or error) was made; then draw again.
-    pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        let made = self.views.poll(gpu, self.lab.as_mut(), self.version, size, format);
+        let made = self.views.update(gpu, self.lab.as_mut(), self.version, size, format, true);
         if made {
             self.changed();
         }
         made
     }
 
-    /// Whether a view is being read back.
+    /// Moves the view asked for on as [`Session::view_frame`] does, without ever blocking (the
+    /// page's way): a diff's frames are read back over calls.
+    pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+        let made = self.views.update(gpu, self.lab.as_mut(), self.version, size, format, false);
+        if made {
+            self.changed();
+        }
+        made
+    }
+
+    /// What may be chosen where the view could not be drawn as asked: each choice's words and
+    /// the view it asks for.
+    pub fn view_choices(&self) -> &[(String, Wanted)] {
+        self.views.choices()
+    }
+
+    /// The view's picture as the surface shows it, read back (blocking); `None` while there
+    /// is none.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn view_picture(&self, gpu: &Gpu) -> Option<Result<image::RgbaImage>> {
+        self.views.read(gpu)
+    }
+
+    /// Whether the view waits for the GPU (its legend or a diff's frames on their way).
     pub fn view_busy(&self) -> bool {
         self.views.busy()
     }

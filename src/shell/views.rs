@@ -12,10 +12,13 @@
 
 use image::RgbaImage;
 
-use crate::debug::view::{PendingView, Probe, ViewDrawer};
+use crate::debug::paint::{Kind, Painter};
+use crate::debug::view::{Probe, ViewDrawer};
 use crate::debug::{picture, Stage};
+use crate::error::Choose;
 use crate::gpu::Gpu;
 use crate::lab::Lab;
+use crate::offscreen::Offscreen;
 
 /// A view the user asked for.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -26,6 +29,8 @@ pub enum Wanted {
         file: String,
         /// The 1-based line.
         line: u32,
+        /// The name (where the line assigns several things).
+        name: Option<String>,
         /// The stage (where both include the file).
         stage: Option<Stage>,
     },
@@ -36,50 +41,98 @@ pub enum Wanted {
 }
 
 impl Wanted {
-    /// The view in a few words, for the title and the panel (`phong.frag:31`, `cost`, `diff`).
+    /// The view in a few words, for the title and the panel (`phong.frag:31`,
+    /// `phong.frag:31 R`, `cost`, `diff`).
     pub fn words(&self) -> String {
         match self {
-            Wanted::Line { file, line, .. } => {
-                format!("{}:{line}", file.rsplit(['/', '\\']).next().unwrap_or(file))
+            Wanted::Line { file, line, name, .. } => {
+                let short = file.rsplit(['/', '\\']).next().unwrap_or(file);
+                match name {
+                    Some(n) => format!("{short}:{line} {n}"),
+                    None => format!("{short}:{line}"),
+                }
             }
             Wanted::Cost => "cost".into(),
             Wanted::Diff => "diff with the built-in shaders".into(),
         }
     }
 
-    /// The view as the page's link writes it (`view=FILE:LINE`, `view=cost`, `view=diff`).
+    /// The view as the page's link writes it: `FILE:LINE`, then `:NAME` where a name was
+    /// chosen and `@vertex` or `@fragment` where a stage was; `cost`; `diff`.
     pub fn link(&self) -> String {
         match self {
-            Wanted::Line { file, line, .. } => format!("{file}:{line}"),
+            Wanted::Line { file, line, name, stage } => {
+                let mut text = format!("{file}:{line}");
+                if let Some(n) = name {
+                    text = format!("{text}:{n}");
+                }
+                match stage {
+                    Some(Stage::Vertex) => text.push_str("@vertex"),
+                    Some(Stage::Fragment) => text.push_str("@fragment"),
+                    None => {}
+                }
+                text
+            }
             Wanted::Cost => "cost".into(),
             Wanted::Diff => "diff".into(),
         }
     }
 
-    /// The view a link's `view=` names: `cost`, `diff` or `FILE:LINE`; `None` for text that is
+    /// The view a link's `view=` names ([`Wanted::link`]'s words); `None` for text that is
     /// none of them.
     pub fn from_link(text: &str) -> Option<Wanted> {
         match text {
             "cost" => Some(Wanted::Cost),
             "diff" => Some(Wanted::Diff),
             _ => {
-                let (file, line) = text.rsplit_once(':')?;
-                let line: u32 = line.parse().ok().filter(|&l| l > 0)?;
-                (!file.is_empty()).then(|| Wanted::Line {
+                let (text, stage) = match text.rsplit_once('@') {
+                    Some((t, "vertex")) => (t, Some(Stage::Vertex)),
+                    Some((t, "fragment")) => (t, Some(Stage::Fragment)),
+                    _ => (text, None),
+                };
+                let (rest, last) = text.rsplit_once(':')?;
+                // A GLSL name never starts with a digit: a last part that is no number is
+                // the name, and the line comes before it.
+                let (file, line, name) = match last.parse::<u32>() {
+                    Ok(line) => (rest, line, None),
+                    Err(_) => {
+                        let ok = last.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                            && last.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+                        let (file, line) = rest.rsplit_once(':').filter(|_| ok)?;
+                        (file, line.parse().ok()?, Some(last.to_owned()))
+                    }
+                };
+                (!file.is_empty() && line > 0).then(|| Wanted::Line {
                     file: file.to_owned(),
                     line,
-                    stage: None,
+                    name,
+                    stage,
                 })
             }
         }
     }
 
+    /// The same line with `name` or `stage` chosen: what a choice offered by a view that
+    /// could not be drawn asks for.
+    fn with(&self, name: Option<&str>, stage: Option<Stage>) -> Wanted {
+        let mut chosen = self.clone();
+        if let Wanted::Line { name: n, stage: s, .. } = &mut chosen {
+            if let Some(name) = name {
+                *n = Some(name.to_owned());
+            }
+            if stage.is_some() {
+                *s = stage;
+            }
+        }
+        chosen
+    }
+
     fn probe(&self) -> Probe {
         match self {
-            Wanted::Line { file, line, stage } => Probe::Line {
+            Wanted::Line { file, line, name, stage } => Probe::Line {
                 file: file.clone(),
                 line: *line,
-                name: None,
+                name: name.clone(),
                 stage: *stage,
             },
             _ => Probe::Cost,
@@ -93,28 +146,47 @@ const NOTHING_TO_COMPARE: &str =
 
 /// A view's picture and what it says in words (the legend, the diff's findings).
 pub struct Picture {
-    /// The picture with its legend strip, the surface's size.
-    pub image: RgbaImage,
+    /// The picture with its legend strip, the surface's size, where the CPU made it (a diff);
+    /// a line or cost view's picture is made on the GPU and stays there ([`Views::read`]).
+    pub image: Option<RgbaImage>,
     /// The legend or the diff's report, in words.
     pub text: String,
 }
 
 /// The views' state: the view asked for, its last picture (or why there is none), the state
 /// it was drawn at, and what draws it again without building anew.
+///
+/// A line or cost view is drawn on the GPU, picture included ([`Painter`]): drawing it waits
+/// for nothing, and only its legend's few numbers come back, a frame or two later. A diff
+/// compares two traces on the CPU.
 #[derive(Default)]
 pub struct Views {
     wanted: Option<Wanted>,
     drawer: ViewDrawer,
+    painter: Option<Painter>,
+    /// What the lab's frame is recorded against to write its draws down (never drawn).
+    scratch: Option<Offscreen>,
     /// The session's version and the size the last picture was drawn at.
     taken: Option<(u64, (u32, u32))>,
     shown: Option<Result<Picture, String>>,
+    /// What may be chosen to draw a view that could not be drawn as asked, in words.
+    choices: Vec<(String, Wanted)>,
+    /// Whether the painter's picture is the view asked for.
+    painted: bool,
+    /// Pictures painted so far; the first of the view asked for; the last.
+    paints: u64,
+    first_paint: u64,
+    last_paint: u64,
+    /// The legend that came back is of an earlier picture: paint again to read the last's.
+    stale: bool,
+    /// How the line view's legend begins (`phong.frag:31 = \`NdotL\``).
+    legend_words: String,
     /// The lab drawn with its built-in shaders, for the diff.
     reference: Option<Box<dyn Lab>>,
     blit: Option<Blit>,
-    /// The view being read back without blocking ([`Views::poll`], the page's way), and the
-    /// view it is of. It is finished even when another view is asked for meanwhile: the
-    /// drawer's read-back buffers are its until then.
-    pending: Option<(PendingView, Wanted)>,
+    /// The diff's picture on the GPU, and whether it needs the CPU's picture uploaded.
+    uploaded: Option<(wgpu::Device, wgpu::Texture, wgpu::TextureView)>,
+    upload: bool,
     /// The diff's two frames being read back without blocking: the lab's and the reference's.
     pending_diff: Option<(crate::debug::Pending, crate::debug::Pending)>,
 }
@@ -141,60 +213,176 @@ impl Views {
         self.reference = reference;
         self.taken = None;
         self.shown = None;
+        self.choices.clear();
+        self.painted = false;
+        self.first_paint = self.paints + 1;
+        self.stale = false;
         self.pending_diff = None;
     }
 
-    /// Whether a view is being read back ([`Views::poll`]).
+    /// Whether the view waits for the GPU: a legend or a diff's frames being read back.
     pub fn busy(&self) -> bool {
-        self.pending.is_some() || self.pending_diff.is_some()
+        self.pending_diff.is_some() || self.stale || self.painter.as_ref().is_some_and(Painter::reading)
     }
 
-    /// Moves the view on without blocking (the page, which cannot wait for the GPU): values
-    /// that are back become the picture; otherwise, when the lab's state (`version`) or `size`
-    /// changed since the last picture, the view is drawn again and its read-back starts.
-    /// Returns whether a new picture (or error) was made. A diff's two frames are read back
-    /// the same way, then compared at once.
-    pub fn poll(
+    /// What may be chosen where the view could not be drawn as asked (the names a line
+    /// assigns, or the stage of a file both include): the words for each and the view it asks
+    /// for. Empty otherwise.
+    pub fn choices(&self) -> &[(String, Wanted)] {
+        &self.choices
+    }
+
+    /// Moves the view on: draws it again when the lab's state (`version`) or `size` changed
+    /// since its last picture (or a legend of an older picture came back), takes a legend
+    /// that is back, and a diff's frames that are back. Returns whether a new picture, legend
+    /// or error was made. With `wait`, a diff is made at once (the window); without, its frames
+    /// are read back over calls (the page, which cannot block). A line or cost view waits for
+    /// nothing either way.
+    pub fn update(
         &mut self,
         gpu: &Gpu,
         lab: &mut dyn Lab,
         version: u64,
         size: (u32, u32),
         format: wgpu::TextureFormat,
+        wait: bool,
     ) -> bool {
-        if let Some((pending, _)) = &self.pending {
-            let _ = gpu.device.poll(wgpu::PollType::Poll);
-            if !pending.ready() {
-                return false;
-            }
-            let (pending, of) = self.pending.take().expect("checked above");
-            let made = self.drawer.finish(pending);
-            // A view asked for since the read-back started is drawn next.
-            if self.wanted.as_ref() == Some(&of) {
-                self.shown = Some(made.map(|frame| picture_of(&of, &frame)).map_err(|e| e.to_string()));
-                return true;
-            }
-        }
         let Some(wanted) = self.wanted.clone() else {
             return false;
         };
+        let mut made = self.take_legend(gpu, &wanted, size);
+        if wanted == Wanted::Diff {
+            return made | self.update_diff(gpu, lab, version, size, format, wait);
+        }
+        if self.taken == Some((version, size)) && !self.stale {
+            return made;
+        }
+        self.taken = Some((version, size));
+        self.stale = false;
+        let (w, h) = view_size(size);
+        match self.paint(gpu, lab, &wanted, (w, h), format) {
+            Ok(()) => {
+                self.painted = true;
+                if !matches!(self.shown, Some(Ok(_))) {
+                    // Drawn; its words come with its legend.
+                    self.shown = None;
+                }
+            }
+            Err(e) => {
+                self.failed(&wanted, e);
+                made = true;
+            }
+        }
+        made
+    }
+
+    /// Draws the line or cost view `wanted` of `lab` at `(w, h)` and its picture, on the GPU.
+    fn paint(
+        &mut self,
+        gpu: &Gpu,
+        lab: &mut dyn Lab,
+        wanted: &Wanted,
+        (w, h): (u32, u32),
+        format: wgpu::TextureFormat,
+    ) -> crate::error::Result<()> {
+        let fits = |o: &Offscreen| (o.width, o.height, o.format()) == (w, h, format);
+        if !self.scratch.as_ref().is_some_and(fits) {
+            self.scratch = Some(Offscreen::with_format(gpu, w, h, format));
+        }
+        let log = crate::debug::view::record_to(gpu, lab, self.scratch.as_ref().expect("made above"))?;
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("shaderlab.view"),
+            });
+        let drawn = self.drawer.encode(gpu, &mut encoder, &log, &wanted.probe(), w, h)?;
+        if !self.painter.as_ref().is_some_and(|p| p.serves(&gpu.device)) {
+            self.painter = Some(Painter::new(&gpu.device));
+        }
+        let painter = self.painter.as_mut().expect("made above");
+        self.paints += 1;
+        self.last_paint = self.paints;
+        let targets = self.drawer.targets().expect("drawn above");
+        painter.paint(gpu, &mut encoder, targets, &drawn, self.paints)?;
+        gpu.queue.submit([encoder.finish()]);
+        painter.submitted();
+        self.legend_words = legend_words(wanted, &drawn);
+        Ok(())
+    }
+
+    /// Takes a legend that came back: writes its strip into the picture and its words into
+    /// the text. One of an older picture of this view still stands until the next, and asks
+    /// for the last picture to be painted again for its own; one of another view is dropped.
+    fn take_legend(&mut self, gpu: &Gpu, wanted: &Wanted, size: (u32, u32)) -> bool {
+        let Some(painter) = self.painter.as_mut() else {
+            return false;
+        };
+        if !painter.reading() {
+            return false;
+        }
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        let Some(back) = painter.legend() else {
+            return false;
+        };
+        let (stats, tag, kind) = match back {
+            Ok(b) => b,
+            Err(e) => {
+                self.shown = Some(Err(e.to_string()));
+                return true;
+            }
+        };
+        if tag < self.first_paint || *wanted == Wanted::Diff {
+            self.stale = self.painted;
+            return false;
+        }
+        self.stale = tag < self.last_paint;
+        painter.write_strip(gpu, &kind.strip(size.0.max(1), &stats));
+        let text = match kind {
+            Kind::Value(c) => format!("{}: {}", self.legend_words, stats.legend(c).text()),
+            Kind::Cost => format!(
+                "cost: statements the fragment shader ran, 0 … {} (viridis); black: no fragment",
+                stats.max_cost as u32
+            ),
+        };
+        self.shown = Some(Ok(Picture { image: None, text }));
+        true
+    }
+
+    /// Keeps why `wanted` could not be drawn, and what may be chosen instead.
+    fn failed(&mut self, wanted: &Wanted, e: crate::error::Error) {
+        self.choices = match &e {
+            crate::error::Error::View { choose, .. } => match choose {
+                Choose::Name(names) => names.iter().map(|n| (n.clone(), wanted.with(Some(n), None))).collect(),
+                Choose::Stage => [(Stage::Vertex, "vertex shader"), (Stage::Fragment, "fragment shader")]
+                    .into_iter()
+                    .map(|(s, words)| (words.to_owned(), wanted.with(None, Some(s))))
+                    .collect(),
+                Choose::Nothing => Vec::new(),
+            },
+            _ => Vec::new(),
+        };
+        self.painted = false;
+        self.shown = Some(Err(e.to_string()));
+    }
+
+    /// The diff: made at once (`wait`) or over calls when the state or size changed.
+    fn update_diff(
+        &mut self,
+        gpu: &Gpu,
+        lab: &mut dyn Lab,
+        version: u64,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        wait: bool,
+    ) -> bool {
         if let Some((mine, reference)) = &self.pending_diff {
             let _ = gpu.device.poll(wgpu::PollType::Poll);
             if !(mine.ready() && reference.ready()) {
                 return false;
             }
             let (mine, reference) = self.pending_diff.take().expect("checked above");
-            let name = lab.info().name;
-            let made = mine
-                .finish()
-                .and_then(|mine| Ok((mine, reference.finish()?)))
-                .and_then(|(mine, reference)| crate::debug::diff::diff(name, &mine, &reference))
-                .map(|diff| Picture {
-                    text: diff.text(),
-                    image: diff.picture,
-                })
-                .map_err(|e| e.to_string());
-            self.shown = Some(made);
+            let made = mine.finish().and_then(|mine| Ok((mine, reference.finish()?)));
+            self.show_diff(lab, made);
             return true;
         }
         if self.taken == Some((version, size)) {
@@ -202,34 +390,34 @@ impl Views {
         }
         self.taken = Some((version, size));
         let (w, h) = view_size(size);
-        if wanted == Wanted::Diff {
-            let Some(reference) = self.reference.as_mut() else {
-                self.shown = Some(Err(NOTHING_TO_COMPARE.into()));
-                return true;
-            };
-            carry_params(lab, reference.as_mut());
-            let started = crate::debug::capture_start(gpu, lab, (w, h), format).and_then(|mine| {
-                Ok((
-                    mine,
-                    crate::debug::capture_start(gpu, reference.as_mut(), (w, h), format)?,
-                ))
-            });
-            match started {
-                Ok(both) => {
-                    self.pending_diff = Some(both);
-                    return false;
+        let Some(reference) = self.reference.as_mut() else {
+            self.shown = Some(Err(NOTHING_TO_COMPARE.into()));
+            return true;
+        };
+        carry_params(lab, reference.as_mut());
+        // Both labs draw in the surface's format: each frame is captured with its picture.
+        let started = crate::debug::capture_start(gpu, lab, (w, h), format).and_then(|mine| {
+            Ok((
+                mine,
+                crate::debug::capture_start(gpu, reference.as_mut(), (w, h), format)?,
+            ))
+        });
+        match started {
+            Ok(both) if wait => {
+                #[cfg(not(target_arch = "wasm32"))]
+                {
+                    let made = both.0.wait(gpu).and_then(|mine| Ok((mine, both.1.wait(gpu)?)));
+                    self.show_diff(lab, made);
+                    true
                 }
-                Err(e) => {
-                    self.shown = Some(Err(e.to_string()));
-                    return true;
+                #[cfg(target_arch = "wasm32")]
+                {
+                    self.pending_diff = Some(both);
+                    false
                 }
             }
-        }
-        match crate::debug::view::record_in(gpu, lab, w, h, format)
-            .and_then(|log| self.drawer.start(gpu, &log, &wanted.probe(), w, h))
-        {
-            Ok(pending) => {
-                self.pending = Some((pending, wanted));
+            Ok(both) => {
+                self.pending_diff = Some(both);
                 false
             }
             Err(e) => {
@@ -239,77 +427,45 @@ impl Views {
         }
     }
 
-    /// The last picture, or why there is none; `None` while no view is asked for.
+    fn show_diff(
+        &mut self,
+        lab: &dyn Lab,
+        made: crate::error::Result<(crate::debug::Captured, crate::debug::Captured)>,
+    ) {
+        let name = lab.info().name;
+        let made = made
+            .and_then(|(mine, reference)| crate::debug::diff::diff(name, &mine, &reference))
+            .map(|diff| Picture {
+                text: diff.text(),
+                image: Some(diff.picture),
+            })
+            .map_err(|e| e.to_string());
+        self.upload = made.is_ok();
+        self.shown = Some(made);
+    }
+
+    /// The last picture's words, or why there is none; `None` while no view is asked for (or
+    /// while its first legend is on its way).
     pub fn shown(&self) -> Option<&Result<Picture, String>> {
         self.shown.as_ref().filter(|_| self.wanted.is_some())
     }
 
-    /// The picture to show instead of the lab's frame, if there is one.
-    pub fn image(&self) -> Option<&RgbaImage> {
-        self.shown().and_then(|s| s.as_ref().ok()).map(|p| &p.image)
-    }
-
-    /// Draws the view again for `lab` (whose pipelines draw in `format`) at `size` when its
-    /// state (`version`) or the size changed
-    /// since the last picture; returns whether a new picture (or error) was made. Blocks until
-    /// the GPU's values are back.
+    /// The picture shown instead of the lab's frame, read back (blocking): what the surface
+    /// shows. `None` while there is none.
     #[cfg(not(target_arch = "wasm32"))]
-    pub fn update(
-        &mut self,
-        gpu: &Gpu,
-        lab: &mut dyn Lab,
-        version: u64,
-        size: (u32, u32),
-        format: wgpu::TextureFormat,
-    ) -> bool {
-        let Some(wanted) = self.wanted.clone() else {
-            return false;
-        };
-        if self.taken == Some((version, size)) {
-            return false;
+    pub fn read(&self, gpu: &Gpu) -> Option<crate::error::Result<RgbaImage>> {
+        match self.wanted.as_ref()? {
+            Wanted::Diff => match self.shown()? {
+                Ok(p) => p.image.clone().map(Ok),
+                Err(_) => None,
+            },
+            _ if self.painted => self.painter.as_ref().map(|p| p.read(gpu)),
+            _ => None,
         }
-        self.taken = Some((version, size));
-        let (w, h) = view_size(size);
-        let made = match wanted {
-            Wanted::Diff => self.diff(gpu, lab, (w, h), format),
-            _ => crate::debug::view::record_in(gpu, lab, w, h, format)
-                .and_then(|log| self.drawer.draw(gpu, &log, &wanted.probe(), w, h))
-                .map(|frame| picture_of(&wanted, &frame))
-                .map_err(|e| e.to_string()),
-        };
-        self.shown = Some(made);
-        true
     }
 
-    #[cfg(not(target_arch = "wasm32"))]
-    fn diff(
-        &mut self,
-        gpu: &Gpu,
-        lab: &mut dyn Lab,
-        (w, h): (u32, u32),
-        format: wgpu::TextureFormat,
-    ) -> Result<Picture, String> {
-        let Some(reference) = self.reference.as_mut() else {
-            return Err(NOTHING_TO_COMPARE.into());
-        };
-        carry_params(lab, reference.as_mut());
-        let name = lab.info().name;
-        // Both labs draw in the surface's format: each frame is captured with its picture.
-        let capture = |lab: &mut dyn Lab| {
-            crate::debug::capture_start(gpu, lab, (w, h), format).and_then(|pending| pending.wait(gpu))
-        };
-        let diff = capture(lab)
-            .and_then(|mine| Ok((mine, capture(reference.as_mut())?)))
-            .and_then(|(mine, reference)| crate::debug::diff::diff(name, &mine, &reference))
-            .map_err(|e| e.to_string())?;
-        Ok(Picture {
-            image: diff.picture.clone(),
-            text: diff.text(),
-        })
-    }
-
-    /// Records the picture into `color` (of `format`, `size` pixels) in `encoder`, in place of
-    /// the lab's frame; returns whether there was one to record.
+    /// Records the picture into `color` (of `format`) in `encoder`, in place of the lab's
+    /// frame; returns whether there was one to record.
     pub fn record(
         &mut self,
         gpu: &Gpu,
@@ -317,24 +473,56 @@ impl Views {
         color: &wgpu::TextureView,
         format: wgpu::TextureFormat,
     ) -> bool {
-        let Some(image) = self
-            .shown
-            .as_ref()
-            .filter(|_| self.wanted.is_some())
-            .and_then(|s| s.as_ref().ok())
-        else {
+        let Some(wanted) = &self.wanted else {
             return false;
         };
-        let image = &image.image;
+        let source = if *wanted == Wanted::Diff {
+            let Some(Ok(Picture { image: Some(image), .. })) = &self.shown else {
+                return false;
+            };
+            let fits = |t: &(wgpu::Device, wgpu::Texture, wgpu::TextureView)| {
+                t.0 == gpu.device && (t.1.width(), t.1.height()) == image.dimensions()
+            };
+            if !self.uploaded.as_ref().is_some_and(fits) {
+                let (texture, view) = upload_texture(&gpu.device, image.dimensions());
+                self.uploaded = Some((gpu.device.clone(), texture, view));
+                self.upload = true;
+            }
+            let (_, texture, view) = self.uploaded.as_ref().expect("made above");
+            if self.upload {
+                write_image(gpu, texture, image);
+                self.upload = false;
+            }
+            view
+        } else {
+            match (&self.painter, self.painted) {
+                (Some(p), true) => match p.picture() {
+                    Some(v) => v,
+                    None => return false,
+                },
+                _ => return false,
+            }
+        };
         let fits = |b: &Blit| b.device == gpu.device && b.format == format;
         if !self.blit.as_ref().is_some_and(fits) {
             self.blit = Some(Blit::new(&gpu.device, format));
         }
-        self.blit
-            .as_mut()
-            .expect("made above")
-            .record(gpu, encoder, color, image);
+        self.blit.as_ref().expect("made above").record(&gpu.device, encoder, color, source);
         true
+    }
+}
+
+/// A line view's legend begins with what it shows: `phong.frag:31 = \`NdotL\``, and says
+/// when it is a vertex shader's line.
+fn legend_words(wanted: &Wanted, drawn: &crate::debug::view::Drawn) -> String {
+    let what = match drawn.resolved.as_ref().and_then(|r| r.site.name.as_ref()) {
+        Some(n) => format!("{} = `{n}`", wanted.words()),
+        None => wanted.words(),
+    };
+    if drawn.resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex) {
+        format!("{what} (a vertex shader line: its value at the corners, interpolated as a varying)")
+    } else {
+        what
     }
 }
 
@@ -342,46 +530,6 @@ impl Views {
 /// legend strip (at least one pixel).
 pub fn view_size((w, h): (u32, u32)) -> (u32, u32) {
     (w.max(1), h.saturating_sub(picture::LEGEND_HEIGHT).max(1))
-}
-
-/// The picture of a line or cost view's values, and its legend in words.
-pub fn picture_of(wanted: &Wanted, frame: &crate::debug::view::ValueFrame) -> Picture {
-    let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
-    match wanted {
-        Wanted::Cost => {
-            let (image, max) = picture::cost(frame.width, frame.height, &frame.cost, &drawn);
-            Picture {
-                image,
-                text: format!("cost: statements the fragment shader ran, 0 … {max} (viridis); black: no fragment"),
-            }
-        }
-        _ => {
-            let (image, legend) = picture::values(
-                frame.width,
-                frame.height,
-                frame.components as usize,
-                &frame.values,
-                &frame.ran,
-                &drawn,
-            );
-            let what = match &frame.resolved {
-                Some(r) => match &r.site.name {
-                    Some(n) => format!("{} = `{n}`", wanted.words()),
-                    None => wanted.words(),
-                },
-                None => wanted.words(),
-            };
-            let vertex = if frame.vertex {
-                " (a vertex shader line: its value at the corners, interpolated as a varying)"
-            } else {
-                ""
-            };
-            Picture {
-                image,
-                text: format!("{what}{vertex}: {}", legend.text()),
-            }
-        }
-    }
 }
 
 /// Gives `reference` the parameters of `lab`, by name where the count of numbers is the same.
@@ -398,13 +546,12 @@ fn carry_params(lab: &dyn Lab, reference: &mut dyn Lab) {
 }
 
 /// Draws an RGBA picture onto a surface pixel for pixel (top left on top left; black where
-/// the picture does not reach), through a texture it keeps while the size stays.
+/// the picture does not reach).
 struct Blit {
     device: wgpu::Device,
     format: wgpu::TextureFormat,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
-    texture: Option<(wgpu::Texture, wgpu::BindGroup)>,
 }
 
 const BLIT_SHADER: &str = r"
@@ -482,66 +629,26 @@ impl Blit {
             format,
             pipeline,
             layout,
-            texture: None,
         }
     }
 
-    fn record(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, image: &RgbaImage) {
+    /// Records drawing `picture` (an `Rgba8Unorm` texture's view) into `color`.
+    fn record(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+        picture: &wgpu::TextureView,
+    ) {
         let label = "shaderlab.view_blit";
-        let (w, h) = image.dimensions();
-        let (w, h) = (w.max(1), h.max(1));
-        let fits = |t: &(wgpu::Texture, wgpu::BindGroup)| (t.0.width(), t.0.height()) == (w, h);
-        if !self.texture.as_ref().is_some_and(fits) {
-            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("{label}.picture")),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            });
-            let view = texture.create_view(&wgpu::TextureViewDescriptor {
-                label: Some(&format!("{label}.picture_view")),
-                ..Default::default()
-            });
-            let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(&format!("{label}.bind_group")),
-                layout: &self.layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                }],
-            });
-            self.texture = Some((texture, group));
-        }
-        let (texture, group) = self.texture.as_ref().expect("made above");
-        if image.width() > 0 && image.height() > 0 {
-            gpu.queue.write_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture,
-                    mip_level: 0,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                image.as_raw(),
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(4 * image.width()),
-                    rows_per_image: Some(image.height()),
-                },
-                wgpu::Extent3d {
-                    width: image.width(),
-                    height: image.height(),
-                    depth_or_array_layers: 1,
-                },
-            );
-        }
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("{label}.bind_group")),
+            layout: &self.layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(picture),
+            }],
+        });
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&format!("{label}.pass")),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -559,9 +666,59 @@ impl Blit {
             multiview_mask: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, group, &[]);
+        pass.set_bind_group(0, &group, &[]);
         pass.draw(0..3, 0..1);
     }
+}
+
+/// A texture a CPU-made picture of `(w, h)` is uploaded into, and its view.
+fn upload_texture(device: &wgpu::Device, (w, h): (u32, u32)) -> (wgpu::Texture, wgpu::TextureView) {
+    let label = "shaderlab.view_blit.picture";
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: w.max(1),
+            height: h.max(1),
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(&format!("{label}_view")),
+        ..Default::default()
+    });
+    (texture, view)
+}
+
+/// Uploads `image` into `texture` (of its size).
+fn write_image(gpu: &Gpu, texture: &wgpu::Texture, image: &RgbaImage) {
+    if image.width() == 0 || image.height() == 0 {
+        return;
+    }
+    gpu.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        image.as_raw(),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * image.width()),
+            rows_per_image: Some(image.height()),
+        },
+        wgpu::Extent3d {
+            width: image.width(),
+            height: image.height(),
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 #[cfg(test)]

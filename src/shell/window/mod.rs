@@ -983,10 +983,13 @@ impl WindowState {
         }
         let path = self.fresh_name("png");
         let (w, h) = self.screen.size();
-        if let Some(image) = self.session.view_shown().and_then(|s| s.as_ref().ok()) {
+        if let Some(picture) = self.session.view_picture(&self.gpu) {
             // A view shows: its picture is what the window shows.
-            let image = image::imageops::crop_imm(&image.image, 0, 0, w, h).to_image();
-            match save_png(&image, &path) {
+            let saved = picture.and_then(|image| {
+                let image = image::imageops::crop_imm(&image, 0, 0, w, h).to_image();
+                save_png(&image, &path)
+            });
+            match saved {
                 Ok(()) => {
                     let path = std::fs::canonicalize(&path).unwrap_or(path);
                     let _ = super::cli::say(&format!("screenshot: {}", path.display()));
@@ -1053,7 +1056,7 @@ impl WindowState {
             self.update_title();
             if let Some(log) = self.test_log.as_mut() {
                 log.say(&match self.session.view_shown() {
-                    Some(Ok(p)) => format!("view {}x{}", p.image.width(), p.image.height()),
+                    Some(Ok(_)) => format!("view {w}x{h}"),
                     Some(Err(e)) => format!("view error: {}", e.lines().next().unwrap_or("")),
                     None => "view none".into(),
                 });

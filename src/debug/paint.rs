@@ -1,0 +1,895 @@
+//! A line or cost view's picture made on the GPU from the targets a
+//! [`super::view::ViewDrawer`] drew, so that a window or a page shows a view without bringing
+//! its values back: the colours are [`super::picture::values`]' and [`super::picture::cost`]'
+//! (the same maps, stops, range rule, NaN, infinity, not-run and background colours), computed
+//! in `f32` where those use `f64` (a channel may differ by 1 of 255).
+//!
+//! The range comes from the frame itself: fragment passes fold the value and info targets in
+//! blocks of [`BLOCK`] × [`BLOCK`] pixels into two `Rgba32Float` targets (lowest and highest
+//! finite component, the largest count, and the counts of background, NaN, +∞, −∞ and not-run
+//! pixels), again and again down to one pixel, which the colouring pass reads. Fragment passes
+//! rather than a compute pass, because WebGL2 has none. Only those 32 bytes come back to the
+//! CPU, later, for the legend strip's words ([`Painter::legend`]); the strip is written into
+//! the picture's bottom rows when they arrive, so its numbers may be a frame or two behind a
+//! turning object's colours.
+
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::Arc;
+
+use image::RgbaImage;
+
+use super::instrument::{COST_SHIFT, RAN_BIT};
+use super::picture::{self, Legend, DIVERGING, INFINITE_COLOUR, LEGEND_HEIGHT, NAN_COLOUR, NOT_RUN, VIRIDIS};
+use super::view::Drawn;
+use crate::error::{Error, Result};
+use crate::gpu::Gpu;
+
+/// The side of the square of pixels each folding pass makes one pixel of.
+pub const BLOCK: u32 = 16;
+
+/// The format of the folding passes' targets.
+const STATS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// The picture's format: bytes as [`super::picture`] writes them.
+pub const PICTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// The legend strip's grey, as [`super::picture`] draws it.
+const STRIP_GREY: f64 = 24.0 / 255.0;
+
+/// What the folding passes found over a frame, as the colouring pass reads it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// The lowest finite shown component where the line ran (`f32::MAX` where none).
+    pub lo: f32,
+    /// The highest (`-f32::MAX` where none).
+    pub hi: f32,
+    /// The largest step count where a fragment ran.
+    pub max_cost: f32,
+    /// Pixels where no fragment ran.
+    pub background: f32,
+    /// Pixels with a NaN.
+    pub nan: f32,
+    /// Pixels with +∞ (and no NaN).
+    pub pos_inf: f32,
+    /// Pixels with −∞ (and no NaN or +∞).
+    pub neg_inf: f32,
+    /// Pixels where a fragment ran and the line did not.
+    pub not_run: f32,
+}
+
+impl Stats {
+    /// The legend of a line view of `components` components with these findings.
+    pub fn legend(&self, components: u32) -> Legend {
+        let comps = (components as usize).clamp(1, 4);
+        Legend {
+            nan: self.nan as usize,
+            pos_inf: self.pos_inf as usize,
+            neg_inf: self.neg_inf as usize,
+            not_run: self.not_run as usize,
+            background: self.background as usize,
+            ..Legend::new(comps, f64::from(self.lo), f64::from(self.hi))
+        }
+    }
+}
+
+/// The shaders: a full-screen triangle, the first folding pass (value and info targets in),
+/// the next ones (the previous pass's two targets in), and the colouring pass.
+fn shader_source() -> String {
+    let stops = |name: &str, stops: &[[u8; 3]]| {
+        let list: Vec<String> = stops
+            .iter()
+            .map(|c| format!("vec3<f32>({}.0, {}.0, {}.0)", c[0], c[1], c[2]))
+            .collect();
+        format!("const {name} = array<vec3<f32>, {}>({});\n", stops.len(), list.join(", "))
+    };
+    let colour = |name: &str, c: [u8; 3]| format!("const {name} = vec3<f32>({}.0, {}.0, {}.0);\n", c[0], c[1], c[2]);
+    let mut source = String::new();
+    source.push_str(&stops("VIRIDIS", &VIRIDIS));
+    source.push_str(&stops("DIVERGING", &DIVERGING));
+    source.push_str(&colour("NAN_COLOUR", NAN_COLOUR));
+    source.push_str(&colour("INFINITE_COLOUR", INFINITE_COLOUR));
+    source.push_str(&colour("NOT_RUN_0", NOT_RUN[0]));
+    source.push_str(&colour("NOT_RUN_1", NOT_RUN[1]));
+    source.push_str(&format!(
+        "const RAN_BIT: u32 = {RAN_BIT}u;\nconst COST_SHIFT: u32 = {COST_SHIFT}u;\nconst BLOCK: u32 = {BLOCK}u;\n"
+    ));
+    source.push_str(SHADER);
+    source
+}
+
+const SHADER: &str = r"
+const BIG: f32 = 3.4028235e38;
+
+struct Params {
+    // 0: a line's value; 1: the cost.
+    mode: u32,
+    components: u32,
+    _a: u32,
+    _b: u32,
+}
+
+struct Folded {
+    // lowest, highest, largest count, background
+    @location(0) a: vec4<f32>,
+    // NaN, +inf, -inf, not run
+    @location(1) b: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var values: texture_2d<f32>;
+@group(0) @binding(2) var info: texture_2d<u32>;
+@group(0) @binding(3) var folded_a: texture_2d<f32>;
+@group(0) @binding(4) var folded_b: texture_2d<f32>;
+
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// 0: finite; 1: a NaN; 2: +inf (no NaN); 3: -inf (no NaN or +inf). By the bits: WGSL lets a
+// compiler assume no float is NaN or infinite.
+fn kind(v: vec4<f32>, n: u32) -> u32 {
+    var nan = false;
+    var pos = false;
+    var neg = false;
+    for (var c = 0u; c < n; c++) {
+        let bits = bitcast<u32>(v[c]);
+        if ((bits & 0x7f800000u) == 0x7f800000u) {
+            if ((bits & 0x007fffffu) != 0u) {
+                nan = true;
+            } else if ((bits & 0x80000000u) == 0u) {
+                pos = true;
+            } else {
+                neg = true;
+            }
+        }
+    }
+    if (nan) { return 1u; }
+    if (pos) { return 2u; }
+    if (neg) { return 3u; }
+    return 0u;
+}
+
+@fragment
+fn fold_first(@builtin(position) at: vec4<f32>) -> Folded {
+    let size = textureDimensions(info);
+    let o = vec2<u32>(at.xy) * BLOCK;
+    let n = clamp(params.components, 1u, 4u);
+    let shown = min(n, 3u);
+    var lo = BIG;
+    var hi = -BIG;
+    var top = 0.0;
+    var background = 0.0;
+    var nan = 0.0;
+    var pos = 0.0;
+    var neg = 0.0;
+    var not_run = 0.0;
+    for (var y = o.y; y < min(o.y + BLOCK, size.y); y++) {
+        for (var x = o.x; x < min(o.x + BLOCK, size.x); x++) {
+            let p = vec2<i32>(i32(x), i32(y));
+            let word = textureLoad(info, p, 0).r;
+            let cost = word >> COST_SHIFT;
+            if (cost == 0u) {
+                background += 1.0;
+                continue;
+            }
+            top = max(top, f32(cost));
+            if (params.mode == 1u) {
+                continue;
+            }
+            if ((word & RAN_BIT) == 0u) {
+                not_run += 1.0;
+                continue;
+            }
+            let v = textureLoad(values, p, 0);
+            let k = kind(v, n);
+            if (k == 1u) {
+                nan += 1.0;
+            } else if (k == 2u) {
+                pos += 1.0;
+            } else if (k == 3u) {
+                neg += 1.0;
+            } else {
+                for (var c = 0u; c < shown; c++) {
+                    lo = min(lo, v[c]);
+                    hi = max(hi, v[c]);
+                }
+            }
+        }
+    }
+    var out: Folded;
+    out.a = vec4<f32>(lo, hi, top, background);
+    out.b = vec4<f32>(nan, pos, neg, not_run);
+    return out;
+}
+
+@fragment
+fn fold_next(@builtin(position) at: vec4<f32>) -> Folded {
+    let size = textureDimensions(folded_a);
+    let o = vec2<u32>(at.xy) * BLOCK;
+    var a = vec4<f32>(BIG, -BIG, 0.0, 0.0);
+    var b = vec4<f32>(0.0);
+    for (var y = o.y; y < min(o.y + BLOCK, size.y); y++) {
+        for (var x = o.x; x < min(o.x + BLOCK, size.x); x++) {
+            let p = vec2<i32>(i32(x), i32(y));
+            let fa = textureLoad(folded_a, p, 0);
+            a = vec4<f32>(min(a.x, fa.x), max(a.y, fa.y), max(a.z, fa.z), a.w + fa.w);
+            b += textureLoad(folded_b, p, 0);
+        }
+    }
+    var out: Folded;
+    out.a = a;
+    out.b = b;
+    return out;
+}
+
+fn ramp_viridis(t: f32) -> vec3<f32> {
+    var stops = VIRIDIS;
+    let f = clamp(t, 0.0, 1.0) * 8.0;
+    let k = min(u32(floor(f)), 7u);
+    let u = f - f32(k);
+    return floor(stops[k] + (stops[k + 1u] - stops[k]) * u + 0.5);
+}
+
+fn ramp_diverging(t: f32) -> vec3<f32> {
+    var stops = DIVERGING;
+    let f = clamp((t + 1.0) / 2.0, 0.0, 1.0) * 4.0;
+    let k = min(u32(floor(f)), 3u);
+    let u = f - f32(k);
+    return floor(stops[k] + (stops[k + 1u] - stops[k]) * u + 0.5);
+}
+
+fn colour_of(p: vec2<i32>) -> vec3<f32> {
+    let word = textureLoad(info, p, 0).r;
+    let cost = word >> COST_SHIFT;
+    if (cost == 0u) {
+        return vec3<f32>(0.0);
+    }
+    let a = textureLoad(folded_a, vec2<i32>(0, 0), 0);
+    if (params.mode == 1u) {
+        return ramp_viridis(f32(cost) / max(a.z, 1.0));
+    }
+    if ((word & RAN_BIT) == 0u) {
+        if ((((u32(p.x) / 4u) + (u32(p.y) / 4u)) % 2u) == 0u) {
+            return NOT_RUN_0;
+        }
+        return NOT_RUN_1;
+    }
+    let n = clamp(params.components, 1u, 4u);
+    let v = textureLoad(values, p, 0);
+    let k = kind(v, n);
+    if (k == 1u) {
+        return NAN_COLOUR;
+    }
+    if (k != 0u) {
+        return INFINITE_COLOUR;
+    }
+    var lo = a.x;
+    var hi = a.y;
+    if (lo > hi) {
+        lo = 0.0;
+        hi = 1.0;
+    }
+    if (n > 1u) {
+        var low = lo;
+        var high = hi;
+        if (lo >= 0.0 && hi <= 1.0) {
+            low = 0.0;
+            high = 1.0;
+        }
+        var span = 1.0;
+        if (high > low) {
+            span = high - low;
+        }
+        let shown = min(n, 3u);
+        var c = vec3<f32>(0.0);
+        for (var i = 0u; i < shown; i++) {
+            c[i] = floor(clamp((v[i] - low) / span, 0.0, 1.0) * 255.0 + 0.5);
+        }
+        return c;
+    }
+    if (lo < 0.0 && hi > 0.0) {
+        let m = max(abs(lo), abs(hi));
+        return ramp_diverging(v.x / max(m, 1.17549435e-38));
+    }
+    var span = 1.0;
+    if (hi > lo) {
+        span = hi - lo;
+    }
+    return ramp_viridis((v.x - lo) / span);
+}
+
+@fragment
+fn colour(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(colour_of(vec2<i32>(at.xy)) / 255.0, 1.0);
+}
+";
+
+/// One folding pass's two targets.
+struct Level {
+    size: (u32, u32),
+    a: (wgpu::Texture, wgpu::TextureView),
+    b: (wgpu::Texture, wgpu::TextureView),
+}
+
+/// Where the legend's read-back stands.
+const IDLE: u8 = 0;
+const MAPPING: u8 = 1;
+const MAPPED: u8 = 2;
+const FAILED: u8 = 3;
+
+/// Makes views' pictures on the GPU ([`Painter::paint`]), keeping its pipelines, its folding
+/// targets and the picture while the size stays.
+pub struct Painter {
+    device: wgpu::Device,
+    first: wgpu::RenderPipeline,
+    next: wgpu::RenderPipeline,
+    colour: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    params: wgpu::Buffer,
+    levels: Vec<Level>,
+    /// What the first folding pass binds where the next ones read the pass before.
+    unread: (wgpu::TextureView, wgpu::TextureView),
+    picture: Option<(wgpu::Texture, wgpu::TextureView)>,
+    /// The last level's 32 bytes, copied for the legend.
+    stats: wgpu::Buffer,
+    /// The read-back's state, and what it is of: the caller's tag and the view's kind.
+    reading: Option<(Arc<AtomicU8>, u64, Kind)>,
+}
+
+/// What a painted picture shows, for its legend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A line's value of this many components.
+    Value(u32),
+    /// The cost.
+    Cost,
+}
+
+impl Kind {
+    /// The kind of the view `drawn` holds.
+    pub fn of(drawn: &Drawn) -> Kind {
+        if drawn.value {
+            Kind::Value(drawn.components)
+        } else {
+            Kind::Cost
+        }
+    }
+
+    /// The legend strip, `width` pixels wide, of a picture with these findings.
+    pub fn strip(self, width: u32, stats: &Stats) -> RgbaImage {
+        match self {
+            Kind::Value(c) => picture::strip(width, &stats.legend(c)),
+            Kind::Cost => picture::cost_strip(width, stats.max_cost as u32),
+        }
+    }
+}
+
+impl Painter {
+    /// A painter for `device`: its pipelines are built here, its targets at the first paint.
+    pub fn new(device: &wgpu::Device) -> Painter {
+        let label = "shaderlab.debug.paint";
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&format!("{label}.shader")),
+            source: wgpu::ShaderSource::Wgsl(shader_source().into()),
+        });
+        let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let float = wgpu::TextureSampleType::Float { filterable: false };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&format!("{label}.bind_group_layout")),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                texture(1, float),
+                texture(2, wgpu::TextureSampleType::Uint),
+                texture(3, float),
+                texture(4, float),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&format!("{label}.pipeline_layout")),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |name: &str, entry: &str, targets: &[Option<wgpu::ColorTargetState>]| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&format!("{label}.{name}")),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let stats_target = Some(wgpu::ColorTargetState {
+            format: STATS_FORMAT,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        });
+        let folds = [stats_target.clone(), stats_target];
+        let first = pipeline("fold_first", "fold_first", &folds);
+        let next = pipeline("fold_next", "fold_next", &folds);
+        let colour = pipeline(
+            "colour",
+            "colour",
+            &[Some(wgpu::ColorTargetState {
+                format: PICTURE_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        );
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&format!("{label}.params")),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let stats = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&format!("{label}.stats")),
+            size: 2 * u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let unread = |name: &str| {
+            device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(&format!("{label}.{name}")),
+                    size: wgpu::Extent3d {
+                        width: 1,
+                        height: 1,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: STATS_FORMAT,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                })
+                .create_view(&wgpu::TextureViewDescriptor {
+                    label: Some(&format!("{label}.{name}_view")),
+                    ..Default::default()
+                })
+        };
+        Painter {
+            device: device.clone(),
+            unread: (unread("unread_a"), unread("unread_b")),
+            first,
+            next,
+            colour,
+            layout,
+            params,
+            levels: Vec::new(),
+            picture: None,
+            stats,
+            reading: None,
+        }
+    }
+
+    /// Whether this painter was built for `device`.
+    pub fn serves(&self, device: &wgpu::Device) -> bool {
+        self.device == *device
+    }
+
+    /// The folding levels for a view of `size`, made anew when the size changed.
+    fn levels_for(&mut self, size: (u32, u32)) {
+        let mut sizes = Vec::new();
+        let (mut w, mut h) = size;
+        loop {
+            (w, h) = (w.div_ceil(BLOCK).max(1), h.div_ceil(BLOCK).max(1));
+            sizes.push((w, h));
+            if (w, h) == (1, 1) {
+                break;
+            }
+        }
+        if self.levels.iter().map(|l| l.size).eq(sizes.iter().copied()) {
+            return;
+        }
+        let label = "shaderlab.debug.paint";
+        let target = |name: &str, (width, height): (u32, u32)| {
+            let t = self.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&format!("{label}.{name}")),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: STATS_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+            let v = t.create_view(&wgpu::TextureViewDescriptor {
+                label: Some(&format!("{label}.{name}_view")),
+                ..Default::default()
+            });
+            (t, v)
+        };
+        self.levels = sizes
+            .into_iter()
+            .enumerate()
+            .map(|(k, size)| Level {
+                size,
+                a: target(&format!("fold{k}_a"), size),
+                b: target(&format!("fold{k}_b"), size),
+            })
+            .collect();
+    }
+
+    /// The picture for a view of `size` (and its legend strip under it), made anew when the
+    /// size changed; returns whether it is new (its strip is then blank).
+    fn picture_for(&mut self, (w, h): (u32, u32)) -> bool {
+        let full = (w, h + LEGEND_HEIGHT);
+        if self
+            .picture
+            .as_ref()
+            .is_some_and(|(t, _)| (t.width(), t.height()) == full)
+        {
+            return false;
+        }
+        let label = "shaderlab.debug.paint.picture";
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: full.0,
+                height: full.1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: PICTURE_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some(&format!("{label}_view")),
+            ..Default::default()
+        });
+        self.picture = Some((texture, view));
+        true
+    }
+
+    /// Records into `encoder` the picture of the view `drawn` ([`super::view::ViewDrawer::encode`]
+    /// drew it into `targets`, its value and info views): the folding passes and the colouring
+    /// pass into the picture ([`Painter::picture`], `drawn.size` plus the legend strip, which
+    /// keeps the last legend written). Unless a legend is being read back, the findings are
+    /// copied for one, tagged `tag`: call [`Painter::submitted`] once the encoder is submitted.
+    pub fn paint(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: (&wgpu::TextureView, &wgpu::TextureView),
+        drawn: &Drawn,
+        tag: u64,
+    ) -> Result<()> {
+        let label = "shaderlab.debug.paint";
+        let (w, h) = drawn.size;
+        let kind = Kind::of(drawn);
+        gpu.checked(label, || {
+            self.levels_for((w, h));
+            let fresh = self.picture_for((w, h));
+            let (mode, components) = match kind {
+                Kind::Value(c) => (0u32, c),
+                Kind::Cost => (1, 0),
+            };
+            gpu.queue
+                .write_buffer(&self.params, 0, bytemuck::cast_slice(&[mode, components, 0, 0]));
+            let (values, info) = targets;
+            let group = |a: &wgpu::TextureView, b: &wgpu::TextureView| {
+                let entries = [
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.params.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(values),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(info),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(a),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(b),
+                    },
+                ];
+                self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&format!("{label}.bind_group")),
+                    layout: &self.layout,
+                    entries: &entries,
+                })
+            };
+            let attachment = |view| {
+                Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })
+            };
+            for (k, level) in self.levels.iter().enumerate() {
+                // The first pass reads the view's targets; each next one the pass before.
+                let group = match k {
+                    0 => group(&self.unread.0, &self.unread.1),
+                    _ => group(&self.levels[k - 1].a.1, &self.levels[k - 1].b.1),
+                };
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(&format!("{label}.fold{k}")),
+                    color_attachments: &[attachment(&level.a.1), attachment(&level.b.1)],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(if k == 0 { &self.first } else { &self.next });
+                pass.set_bind_group(0, &group, &[]);
+                pass.draw(0..3, 0..1);
+            }
+            let last = self.levels.last().expect("at least one level");
+            let group = group(&last.a.1, &last.b.1);
+            let (_, picture) = self.picture.as_ref().expect("made above");
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(&format!("{label}.colour")),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: picture,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        // A new picture's strip starts as the legend's grey; an old one's
+                        // keeps the last legend written into it.
+                        load: if fresh {
+                            wgpu::LoadOp::Clear(wgpu::Color {
+                                r: STRIP_GREY,
+                                g: STRIP_GREY,
+                                b: STRIP_GREY,
+                                a: 1.0,
+                            })
+                        } else {
+                            wgpu::LoadOp::Load
+                        },
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.colour);
+            pass.set_bind_group(0, &group, &[]);
+            pass.set_viewport(0.0, 0.0, w as f32, h as f32, 0.0, 1.0);
+            pass.draw(0..3, 0..1);
+            drop(pass);
+            if self.reading.is_none() {
+                for (k, texture) in [&last.a.0, &last.b.0].into_iter().enumerate() {
+                    encoder.copy_texture_to_buffer(
+                        wgpu::TexelCopyTextureInfo {
+                            texture,
+                            mip_level: 0,
+                            origin: wgpu::Origin3d::ZERO,
+                            aspect: wgpu::TextureAspect::All,
+                        },
+                        wgpu::TexelCopyBufferInfo {
+                            buffer: &self.stats,
+                            layout: wgpu::TexelCopyBufferLayout {
+                                offset: k as u64 * u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT),
+                                bytes_per_row: None,
+                                rows_per_image: None,
+                            },
+                        },
+                        wgpu::Extent3d {
+                            width: 1,
+                            height: 1,
+                            depth_or_array_layers: 1,
+                        },
+                    );
+                }
+                self.reading = Some((Arc::new(AtomicU8::new(IDLE)), tag, kind));
+            }
+        })
+    }
+
+    /// Starts reading back the findings [`Painter::paint`] copied, once its encoder is
+    /// submitted.
+    pub fn submitted(&mut self) {
+        let Some((state, _, _)) = &self.reading else {
+            return;
+        };
+        if state.load(Ordering::SeqCst) != IDLE {
+            return;
+        }
+        state.store(MAPPING, Ordering::SeqCst);
+        let state = state.clone();
+        self.stats.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            state.store(if r.is_ok() { MAPPED } else { FAILED }, Ordering::SeqCst);
+        });
+    }
+
+    /// Whether findings are being read back.
+    pub fn reading(&self) -> bool {
+        self.reading.is_some()
+    }
+
+    /// The findings read back, with their tag and kind, once they are back (poll the device
+    /// meanwhile); `None` while they are not (or none were asked for).
+    pub fn legend(&mut self) -> Option<Result<(Stats, u64, Kind)>> {
+        let (state, tag, kind) = self.reading.as_ref()?;
+        let (tag, kind) = (*tag, *kind);
+        match state.load(Ordering::SeqCst) {
+            MAPPED => {}
+            FAILED => {
+                self.reading = None;
+                return Some(Err(Error::Wgpu {
+                    context: "reading a view's legend back".into(),
+                    message: "the buffer could not be mapped".into(),
+                }));
+            }
+            _ => return None,
+        }
+        let read = self.stats.slice(..).get_mapped_range().map(|data| {
+            let word = |offset: usize| f32::from_le_bytes([data[offset], data[offset + 1], data[offset + 2], data[offset + 3]]);
+            let b = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as usize;
+            Stats {
+                lo: word(0),
+                hi: word(4),
+                max_cost: word(8),
+                background: word(12),
+                nan: word(b),
+                pos_inf: word(b + 4),
+                neg_inf: word(b + 8),
+                not_run: word(b + 12),
+            }
+        });
+        self.stats.unmap();
+        self.reading = None;
+        Some(read.map(|stats| (stats, tag, kind)).map_err(|e| Error::Wgpu {
+            context: "reading a view's legend back".into(),
+            message: e.to_string(),
+        }))
+    }
+
+    /// The picture (the view with its legend strip), once painted.
+    pub fn picture(&self) -> Option<&wgpu::TextureView> {
+        self.picture.as_ref().map(|(_, v)| v)
+    }
+
+    /// Writes the legend strip `strip` into the picture's bottom rows.
+    pub fn write_strip(&self, gpu: &Gpu, strip: &RgbaImage) {
+        let Some((texture, _)) = &self.picture else {
+            return;
+        };
+        let width = strip.width().min(texture.width());
+        let rows = strip.height().min(LEGEND_HEIGHT);
+        if width == 0 || rows == 0 {
+            return;
+        }
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d {
+                    x: 0,
+                    y: texture.height() - LEGEND_HEIGHT,
+                    z: 0,
+                },
+                aspect: wgpu::TextureAspect::All,
+            },
+            strip.as_raw(),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * strip.width()),
+                rows_per_image: Some(strip.height()),
+            },
+            wgpu::Extent3d {
+                width,
+                height: rows,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+
+    /// Reads the picture back (blocking): what a window showing it shows.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn read(&self, gpu: &Gpu) -> Result<RgbaImage> {
+        let failed = |message: String| Error::Wgpu {
+            context: "reading a view's picture back".into(),
+            message,
+        };
+        let Some((texture, _)) = &self.picture else {
+            return Err(failed("nothing was painted".into()));
+        };
+        let (w, h) = (texture.width(), texture.height());
+        let stride = crate::gpu::targets::padded_row(4, w);
+        let label = "shaderlab.debug.paint.read";
+        let buffer = crate::gpu::targets::readback_buffer(&gpu.device, label, stride, h);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(stride),
+                    rows_per_image: Some(h),
+                },
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let (tx, rx) = std::sync::mpsc::channel();
+        buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        gpu.wait()?;
+        rx.recv()
+            .map_err(|e| failed(e.to_string()))?
+            .map_err(|e| failed(e.to_string()))?;
+        let mut pixels = Vec::with_capacity((4 * w * h) as usize);
+        {
+            let data = buffer.slice(..).get_mapped_range().map_err(|e| failed(e.to_string()))?;
+            for row in data.chunks(stride as usize).take(h as usize) {
+                pixels.extend_from_slice(&row[..(4 * w) as usize]);
+            }
+        }
+        buffer.unmap();
+        RgbaImage::from_raw(w, h, pixels).ok_or_else(|| failed("short buffer".into()))
+    }
+}
