@@ -93,6 +93,20 @@ fn shader_source() -> String {
     source.push_str(&format!(
         "const RAN_BIT: u32 = {RAN_BIT}u;\nconst COST_SHIFT: u32 = {COST_SHIFT}u;\nconst BLOCK: u32 = {BLOCK}u;\n"
     ));
+    // Where a channel of a vector's colour steps up: the library rounds `t * 255` in `f64`,
+    // so the byte is the count of halfway points `(2k + 1) / 510` at or below `t`, each here
+    // as the smallest `f32` not below it.
+    let steps: Vec<String> = (0..255u32)
+        .map(|k| {
+            let at = f64::from(2 * k + 1) / 510.0;
+            let mut f = at as f32;
+            if f64::from(f) < at {
+                f = f32::from_bits(f.to_bits() + 1);
+            }
+            format!("{f:e}")
+        })
+        .collect();
+    source.push_str(&format!("const STEPS = array<f32, 255>({});\n", steps.join(", ")));
     source.push_str(SHADER);
     source
 }
@@ -240,6 +254,22 @@ fn ramp_diverging(t: f32) -> vec3<f32> {
     return floor(stops[k] + (stops[k + 1u] - stops[k]) * u + 0.5);
 }
 
+// round(t * 255) for t in 0..1, as the library's f64 rounds it.
+fn byte(t: f32) -> f32 {
+    var steps = STEPS;
+    var lo = 0u;
+    var hi = 255u;
+    while (lo < hi) {
+        let mid = (lo + hi) / 2u;
+        if (t >= steps[mid]) {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    return f32(lo);
+}
+
 fn colour_of(p: vec2<i32>) -> vec3<f32> {
     let word = textureLoad(info, p, 0).r;
     let cost = word >> COST_SHIFT;
@@ -285,7 +315,7 @@ fn colour_of(p: vec2<i32>) -> vec3<f32> {
         let shown = min(n, 3u);
         var c = vec3<f32>(0.0);
         for (var i = 0u; i < shown; i++) {
-            c[i] = floor(clamp((v[i] - low) / span, 0.0, 1.0) * 255.0 + 0.5);
+            c[i] = byte(clamp((v[i] - low) / span, 0.0, 1.0));
         }
         return c;
     }
@@ -892,4 +922,69 @@ impl Painter {
         buffer.unmap();
         RgbaImage::from_raw(w, h, pixels).ok_or_else(|| failed("short buffer".into()))
     }
+}
+
+/// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`) and paints
+/// its picture on the GPU, waits for it and its legend, and reads it back: the picture a
+/// window showing the view shows once its legend is back (what tests and `--bench` check).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn paint_view(
+    gpu: &Gpu,
+    drawer: &mut super::view::ViewDrawer,
+    painter: &mut Painter,
+    log: &crate::render::DrawLog,
+    probe: &super::view::Probe,
+    width: u32,
+    height: u32,
+) -> Result<(RgbaImage, Stats)> {
+    let stats = paint_and_wait(gpu, drawer, painter, log, probe, width, height)?;
+    Ok((painter.read(gpu)?, stats))
+}
+
+/// Draws and paints the view as [`paint_view`] does and waits for its legend, without reading
+/// the picture back.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn paint_and_wait(
+    gpu: &Gpu,
+    drawer: &mut super::view::ViewDrawer,
+    painter: &mut Painter,
+    log: &crate::render::DrawLog,
+    probe: &super::view::Probe,
+    width: u32,
+    height: u32,
+) -> Result<Stats> {
+    // A legend still on its way from an earlier picture is taken first.
+    if painter.reading() {
+        gpu.wait()?;
+        let _ = painter.legend();
+    }
+    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("shaderlab.debug.paint.view"),
+    });
+    let drawn = drawer.encode(gpu, &mut encoder, log, probe, width, height)?;
+    let targets = drawer.targets().ok_or_else(|| Error::Wgpu {
+        context: "painting a view".into(),
+        message: "the view's targets are gone".into(),
+    })?;
+    painter.paint(gpu, &mut encoder, targets, &drawn, 0)?;
+    gpu.queue.submit([encoder.finish()]);
+    painter.submitted();
+    gpu.wait()?;
+    // Another thread polling the same device may be running the read-back's callback.
+    let start = std::time::Instant::now();
+    let (stats, _, kind) = loop {
+        if let Some(back) = painter.legend() {
+            break back?;
+        }
+        if start.elapsed() > std::time::Duration::from_secs(10) {
+            return Err(Error::Wgpu {
+                context: "painting a view".into(),
+                message: "its legend did not come back".into(),
+            });
+        }
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        std::thread::yield_now();
+    };
+    painter.write_strip(gpu, &kind.strip(drawn.size.0, &stats));
+    Ok(stats)
 }
