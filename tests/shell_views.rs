@@ -204,3 +204,66 @@ fn a_view_asked_for_during_a_read_back_is_drawn_after_it() {
     same(&shown(&mut s), &want, "the picture is the line's");
     assert!(matches!(s.view_shown(), Some(Ok(p)) if p.text.contains(":17")));
 }
+
+/// A line that assigns two variables cannot be drawn as a view until one is chosen: the
+/// session offers each name (the window's and the page's buttons), and the one chosen is
+/// drawn, the library's picture of that name, and carried in the link.
+#[test]
+fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
+    let text = "#version 450\n\
+        layout(location = 0) in vec3 normal;\n\
+        layout(location = 0) out vec4 frag_color;\n\
+        void main() {\n\
+        \x20   vec3 a = normal; vec3 b = -normal;\n\
+        \x20   frag_color = vec4(a + 0.25 * b, 1.0);\n\
+        }\n";
+    let edits: std::collections::BTreeMap<String, String> = [("normal_rgb.frag".to_owned(), text.to_owned())].into();
+    let entry = shaderlab::course::find("normal_rgb").expect("normal_rgb");
+    let mut s = Session::open(
+        entry,
+        gpu(),
+        &ShaderSource::Edited(std::sync::Arc::new(edits)),
+        COLOR_FORMAT,
+        &UserFiles::default(),
+        0.0,
+        1.0,
+    )
+    .expect("the copy opens");
+    let file = (s.shader_files().into_iter().flat_map(|p| p.spliced))
+        .find(|f| f.ends_with("normal_rgb.frag"))
+        .expect("normal_rgb.frag");
+    s.set_view(Wanted::from_link(&format!("{file}:5")), None);
+    settle(&mut s, false);
+    let why = match s.view_shown() {
+        Some(Err(e)) => e.clone(),
+        other => panic!("{:?}", other.map(|r| r.as_ref().map(|p| p.text.clone()))),
+    };
+    assert!(why.contains("choose one by its name"), "{why}");
+    let offered: Vec<&str> = s.view_choices().iter().map(|(w, _)| w.as_str()).collect();
+    assert_eq!(offered, ["a", "b"], "each name once");
+    let (_, b) = s.view_choices()[1].clone();
+    assert_eq!(b.link(), format!("{file}:5:b"), "the link carries the name");
+    s.set_view(Some(b), None);
+    settle(&mut s, true);
+    assert!(s.view_choices().is_empty(), "nothing to choose once drawn");
+    let text = match s.view_shown() {
+        Some(Ok(p)) => p.text.clone(),
+        other => panic!("{:?}", other.map(|r| r.as_ref().err().cloned())),
+    };
+    assert!(text.contains("= `b`"), "the legend names b: {text}");
+    let probe = view::Probe::Line {
+        file: file.clone(),
+        line: 5,
+        name: Some("b".into()),
+        stage: None,
+    };
+    let want = library(&mut s, &probe);
+    same(&shown(&mut s), &want, "b's view");
+    let a = view::Probe::Line {
+        file,
+        line: 5,
+        name: Some("a".into()),
+        stage: None,
+    };
+    assert!(library(&mut s, &a) != want, "a's view is another picture");
+}

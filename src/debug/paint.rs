@@ -75,17 +75,8 @@ impl Stats {
 /// The shaders: a full-screen triangle, the first folding pass (value and info targets in),
 /// the next ones (the previous pass's two targets in), and the colouring pass.
 fn shader_source() -> String {
-    let stops = |name: &str, stops: &[[u8; 3]]| {
-        let list: Vec<String> = stops
-            .iter()
-            .map(|c| format!("vec3<f32>({}.0, {}.0, {}.0)", c[0], c[1], c[2]))
-            .collect();
-        format!("const {name} = array<vec3<f32>, {}>({});\n", stops.len(), list.join(", "))
-    };
     let colour = |name: &str, c: [u8; 3]| format!("const {name} = vec3<f32>({}.0, {}.0, {}.0);\n", c[0], c[1], c[2]);
     let mut source = String::new();
-    source.push_str(&stops("VIRIDIS", &VIRIDIS));
-    source.push_str(&stops("DIVERGING", &DIVERGING));
     source.push_str(&colour("NAN_COLOUR", NAN_COLOUR));
     source.push_str(&colour("INFINITE_COLOUR", INFINITE_COLOUR));
     source.push_str(&colour("NOT_RUN_0", NOT_RUN[0]));
@@ -93,22 +84,21 @@ fn shader_source() -> String {
     source.push_str(&format!(
         "const RAN_BIT: u32 = {RAN_BIT}u;\nconst COST_SHIFT: u32 = {COST_SHIFT}u;\nconst BLOCK: u32 = {BLOCK}u;\n"
     ));
-    // Where a channel of a vector's colour steps up: the library rounds `t * 255` in `f64`,
-    // so the byte is the count of halfway points `(2k + 1) / 510` at or below `t`, each here
-    // as the smallest `f32` not below it.
-    let steps: Vec<String> = (0..255u32)
-        .map(|k| {
-            let at = f64::from(2 * k + 1) / 510.0;
-            let mut f = at as f32;
-            if f64::from(f) < at {
-                f = f32::from_bits(f.to_bits() + 1);
-            }
-            format!("{f:e}")
-        })
-        .collect();
-    source.push_str(&format!("const STEPS = array<f32, 255>({});\n", steps.join(", ")));
     source.push_str(SHADER);
     source
+}
+
+/// Where the shader's `Params` holds the last folding pass's two texels.
+const FOUND_AT: u64 = 16;
+
+/// The maps' stops as the shader's `Params` holds them after its four words and the two
+/// texels found, each as a `vec4`.
+fn tables() -> Vec<f32> {
+    VIRIDIS
+        .iter()
+        .chain(DIVERGING.iter())
+        .flat_map(|stop| [f32::from(stop[0]), f32::from(stop[1]), f32::from(stop[2]), 0.0])
+        .collect()
 }
 
 const SHADER: &str = r"
@@ -120,6 +110,11 @@ struct Params {
     components: u32,
     _a: u32,
     _b: u32,
+    // The last folding pass's two texels, copied here on the GPU before the colouring pass.
+    found_a: vec4<f32>,
+    found_b: vec4<f32>,
+    // viridis's nine stops, then the diverging map's five.
+    stops: array<vec4<f32>, 14>,
 }
 
 struct Folded {
@@ -141,80 +136,82 @@ fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
 }
 
-// 0: finite; 1: a NaN; 2: +inf (no NaN); 3: -inf (no NaN or +inf). By the bits: WGSL lets a
-// compiler assume no float is NaN or infinite.
+// 0: finite; 1: a NaN; 2: +inf (no NaN); 3: -inf (no NaN or +inf), over the first n
+// components. By the bits: WGSL lets a compiler assume no float is NaN or infinite.
 fn kind(v: vec4<f32>, n: u32) -> u32 {
-    var nan = false;
-    var pos = false;
-    var neg = false;
-    for (var c = 0u; c < n; c++) {
-        let bits = bitcast<u32>(v[c]);
-        if ((bits & 0x7f800000u) == 0x7f800000u) {
-            if ((bits & 0x007fffffu) != 0u) {
-                nan = true;
-            } else if ((bits & 0x80000000u) == 0u) {
-                pos = true;
-            } else {
-                neg = true;
-            }
-        }
-    }
-    if (nan) { return 1u; }
-    if (pos) { return 2u; }
-    if (neg) { return 3u; }
-    return 0u;
+    let bits = bitcast<vec4<u32>>(v);
+    let used = vec4<u32>(0u, 1u, 2u, 3u) < vec4<u32>(n);
+    let odd = ((bits & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) & used;
+    let nan = odd & ((bits & vec4<u32>(0x007fffffu)) != vec4<u32>(0u));
+    let negative = (bits & vec4<u32>(0x80000000u)) != vec4<u32>(0u);
+    let pos = odd & !nan & !negative;
+    let neg = odd & !nan & negative;
+    return select(select(select(0u, 3u, any(neg)), 2u, any(pos)), 1u, any(nan));
+}
+
+// The lowest and highest of the first n (1 to 3) components.
+fn low_high(v: vec4<f32>, n: u32) -> vec2<f32> {
+    let y = select(v.x, v.y, n > 1u);
+    let z = select(y, v.z, n > 2u);
+    return vec2<f32>(min(min(v.x, y), z), max(max(v.x, y), z));
 }
 
 @fragment
-fn fold_first(@builtin(position) at: vec4<f32>) -> Folded {
+fn fold_value(@builtin(position) at: vec4<f32>) -> Folded {
     let size = textureDimensions(info);
     let o = vec2<u32>(at.xy) * BLOCK;
+    let end = min(o + vec2<u32>(BLOCK), size);
     let n = clamp(params.components, 1u, 4u);
     let shown = min(n, 3u);
-    var lo = BIG;
-    var hi = -BIG;
-    var top = 0.0;
-    var background = 0.0;
-    var nan = 0.0;
-    var pos = 0.0;
-    var neg = 0.0;
-    var not_run = 0.0;
-    for (var y = o.y; y < min(o.y + BLOCK, size.y); y++) {
-        for (var x = o.x; x < min(o.x + BLOCK, size.x); x++) {
+    var a = vec4<f32>(BIG, -BIG, 0.0, 0.0);
+    var b = vec4<f32>(0.0);
+    for (var y = o.y; y < end.y; y++) {
+        for (var x = o.x; x < end.x; x++) {
             let p = vec2<i32>(i32(x), i32(y));
             let word = textureLoad(info, p, 0).r;
             let cost = word >> COST_SHIFT;
-            if (cost == 0u) {
-                background += 1.0;
-                continue;
-            }
-            top = max(top, f32(cost));
-            if (params.mode == 1u) {
-                continue;
-            }
-            if ((word & RAN_BIT) == 0u) {
-                not_run += 1.0;
-                continue;
-            }
-            let v = textureLoad(values, p, 0);
-            let k = kind(v, n);
-            if (k == 1u) {
-                nan += 1.0;
-            } else if (k == 2u) {
-                pos += 1.0;
-            } else if (k == 3u) {
-                neg += 1.0;
-            } else {
-                for (var c = 0u; c < shown; c++) {
-                    lo = min(lo, v[c]);
-                    hi = max(hi, v[c]);
+            let ran = cost != 0u && (word & RAN_BIT) != 0u;
+            var k = 4u;
+            if (ran) {
+                let v = textureLoad(values, p, 0);
+                k = kind(v, n);
+                if (k == 0u) {
+                    let lh = low_high(v, shown);
+                    a.x = min(a.x, lh.x);
+                    a.y = max(a.y, lh.y);
                 }
             }
+            a.z = max(a.z, f32(cost));
+            a.w += select(0.0, 1.0, cost == 0u);
+            b += select(vec4<f32>(0.0), vec4<f32>(1.0, 0.0, 0.0, 0.0), k == 1u)
+                + select(vec4<f32>(0.0), vec4<f32>(0.0, 1.0, 0.0, 0.0), k == 2u)
+                + select(vec4<f32>(0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), k == 3u)
+                + select(vec4<f32>(0.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), cost != 0u && !ran);
         }
     }
     var out: Folded;
-    out.a = vec4<f32>(lo, hi, top, background);
-    out.b = vec4<f32>(nan, pos, neg, not_run);
+    out.a = a;
+    out.b = b;
+    return out;
+}
+
+@fragment
+fn fold_cost(@builtin(position) at: vec4<f32>) -> Folded {
+    let size = textureDimensions(info);
+    let o = vec2<u32>(at.xy) * BLOCK;
+    let end = min(o + vec2<u32>(BLOCK), size);
+    var top = 0u;
+    var background = 0.0;
+    for (var y = o.y; y < end.y; y++) {
+        for (var x = o.x; x < end.x; x++) {
+            let cost = textureLoad(info, vec2<i32>(i32(x), i32(y)), 0).r >> COST_SHIFT;
+            top = max(top, cost);
+            background += select(0.0, 1.0, cost == 0u);
+        }
+    }
+    var out: Folded;
+    out.a = vec4<f32>(BIG, -BIG, f32(top), background);
+    out.b = vec4<f32>(0.0);
     return out;
 }
 
@@ -222,10 +219,11 @@ fn fold_first(@builtin(position) at: vec4<f32>) -> Folded {
 fn fold_next(@builtin(position) at: vec4<f32>) -> Folded {
     let size = textureDimensions(folded_a);
     let o = vec2<u32>(at.xy) * BLOCK;
+    let end = min(o + vec2<u32>(BLOCK), size);
     var a = vec4<f32>(BIG, -BIG, 0.0, 0.0);
     var b = vec4<f32>(0.0);
-    for (var y = o.y; y < min(o.y + BLOCK, size.y); y++) {
-        for (var x = o.x; x < min(o.x + BLOCK, size.x); x++) {
+    for (var y = o.y; y < end.y; y++) {
+        for (var x = o.x; x < end.x; x++) {
             let p = vec2<i32>(i32(x), i32(y));
             let fa = textureLoad(folded_a, p, 0);
             a = vec4<f32>(min(a.x, fa.x), max(a.y, fa.y), max(a.z, fa.z), a.w + fa.w);
@@ -238,101 +236,107 @@ fn fold_next(@builtin(position) at: vec4<f32>) -> Folded {
     return out;
 }
 
-fn ramp_viridis(t: f32) -> vec3<f32> {
-    var stops = VIRIDIS;
-    let f = clamp(t, 0.0, 1.0) * 8.0;
-    let k = min(u32(floor(f)), 7u);
+// The map whose stops begin at `base` (of `segments` + 1) at t in 0..1, rounded as the
+// library rounds.
+fn ramp(t: f32, base: u32, segments: u32) -> vec3<f32> {
+    let f = clamp(t, 0.0, 1.0) * f32(segments);
+    let k = min(u32(floor(f)), segments - 1u);
     let u = f - f32(k);
-    return floor(stops[k] + (stops[k + 1u] - stops[k]) * u + 0.5);
+    let a = params.stops[base + k].xyz;
+    return floor(a + (params.stops[base + k + 1u].xyz - a) * u + 0.5);
 }
 
-fn ramp_diverging(t: f32) -> vec3<f32> {
-    var stops = DIVERGING;
-    let f = clamp((t + 1.0) / 2.0, 0.0, 1.0) * 4.0;
-    let k = min(u32(floor(f)), 3u);
-    let u = f - f32(k);
-    return floor(stops[k] + (stops[k + 1u] - stops[k]) * u + 0.5);
+// round(t * 255) for t in 0..1 as the library rounds it in f64: the f32 estimate is within
+// one of it, and whether t * 255 reaches the halfway points around it is settled exactly as
+// t * 256 - (e ± 0.5) against t (t * 256 is exact, and near a halfway point the subtraction
+// is of two numbers within a factor of two of each other, so exact too).
+fn bytes(t: vec3<f32>) -> vec3<f32> {
+    let e = floor(t * 255.0 + 0.5);
+    let t256 = t * 256.0;
+    let down = (e > vec3<f32>(0.0)) & (t256 - (e - 0.5) < t);
+    let up = (e < vec3<f32>(255.0)) & (t256 - (e + 0.5) >= t);
+    return e - select(vec3<f32>(0.0), vec3<f32>(1.0), down) + select(vec3<f32>(0.0), vec3<f32>(1.0), up);
 }
 
-// round(t * 255) for t in 0..1, as the library's f64 rounds it.
-fn byte(t: f32) -> f32 {
-    var steps = STEPS;
-    var lo = 0u;
-    var hi = 255u;
-    while (lo < hi) {
-        let mid = (lo + hi) / 2u;
-        if (t >= steps[mid]) {
-            lo = mid + 1u;
-        } else {
-            hi = mid;
-        }
-    }
-    return f32(lo);
+fn checker(p: vec2<i32>) -> vec3<f32> {
+    return select(NOT_RUN_1, NOT_RUN_0, ((u32(p.x) / 4u + u32(p.y) / 4u) % 2u) == 0u);
 }
 
-fn colour_of(p: vec2<i32>) -> vec3<f32> {
-    let word = textureLoad(info, p, 0).r;
-    let cost = word >> COST_SHIFT;
-    if (cost == 0u) {
-        return vec3<f32>(0.0);
-    }
-    let a = textureLoad(folded_a, vec2<i32>(0, 0), 0);
-    if (params.mode == 1u) {
-        return ramp_viridis(f32(cost) / max(a.z, 1.0));
-    }
-    if ((word & RAN_BIT) == 0u) {
-        if ((((u32(p.x) / 4u) + (u32(p.y) / 4u)) % 2u) == 0u) {
-            return NOT_RUN_0;
-        }
-        return NOT_RUN_1;
-    }
-    let n = clamp(params.components, 1u, 4u);
-    let v = textureLoad(values, p, 0);
-    let k = kind(v, n);
-    if (k == 1u) {
-        return NAN_COLOUR;
-    }
-    if (k != 0u) {
-        return INFINITE_COLOUR;
-    }
-    var lo = a.x;
-    var hi = a.y;
-    if (lo > hi) {
-        lo = 0.0;
-        hi = 1.0;
-    }
-    if (n > 1u) {
-        var low = lo;
-        var high = hi;
-        if (lo >= 0.0 && hi <= 1.0) {
-            low = 0.0;
-            high = 1.0;
-        }
-        var span = 1.0;
-        if (high > low) {
-            span = high - low;
-        }
-        let shown = min(n, 3u);
-        var c = vec3<f32>(0.0);
-        for (var i = 0u; i < shown; i++) {
-            c[i] = byte(clamp((v[i] - low) / span, 0.0, 1.0));
-        }
-        return c;
-    }
-    if (lo < 0.0 && hi > 0.0) {
-        let m = max(abs(lo), abs(hi));
-        return ramp_diverging(v.x / max(m, 1.17549435e-38));
-    }
-    var span = 1.0;
-    if (hi > lo) {
-        span = hi - lo;
-    }
-    return ramp_viridis((v.x - lo) / span);
+fn out(c: vec3<f32>) -> vec4<f32> {
+    return vec4<f32>(c / 255.0, 1.0);
 }
 
 @fragment
-fn colour(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(colour_of(vec2<i32>(at.xy)) / 255.0, 1.0);
+fn colour_cost(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
+    let cost = textureLoad(info, vec2<i32>(at.xy), 0).r >> COST_SHIFT;
+    let c = ramp(f32(cost) / max(params.found_a.z, 1.0), 0u, 8u);
+    return out(select(c, vec3<f32>(0.0), cost == 0u));
+}
+
+// What a pixel that is not a finite value shows, if it is one: (colour, 1) or (_, 0).
+fn unless_finite(p: vec2<i32>, word: u32, v: vec4<f32>, n: u32) -> vec4<f32> {
+    if ((word >> COST_SHIFT) == 0u) {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    if ((word & RAN_BIT) == 0u) {
+        return vec4<f32>(checker(p), 1.0);
+    }
+    let k = kind(v, n);
+    if (k == 1u) {
+        return vec4<f32>(NAN_COLOUR, 1.0);
+    }
+    if (k != 0u) {
+        return vec4<f32>(INFINITE_COLOUR, 1.0);
+    }
+    return vec4<f32>(0.0);
+}
+
+// The range the library states: lowest and highest, or 0..1 where nothing was finite.
+fn range() -> vec2<f32> {
+    let lo = params.found_a.x;
+    let hi = params.found_a.y;
+    return select(vec2<f32>(lo, hi), vec2<f32>(0.0, 1.0), lo > hi);
+}
+
+@fragment
+fn colour_scalar(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(at.xy);
+    let word = textureLoad(info, p, 0).r;
+    if ((word >> COST_SHIFT) == 0u) {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    let v = textureLoad(values, p, 0);
+    let odd = unless_finite(p, word, v, 1u);
+    let r = range();
+    let diverging = r.x < 0.0 && r.y > 0.0;
+    let m = max(abs(r.x), abs(r.y));
+    let span = select(1.0, r.y - r.x, r.y > r.x);
+    let t = select((v.x - r.x) / span, (v.x / max(m, 1.17549435e-38) + 1.0) / 2.0, diverging);
+    let c = ramp(t, select(0u, 9u, diverging), select(8u, 4u, diverging));
+    return out(select(c, odd.xyz, odd.w > 0.0));
+}
+
+@fragment
+fn colour_vector(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(at.xy);
+    let word = textureLoad(info, p, 0).r;
+    if ((word >> COST_SHIFT) == 0u) {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    let v = textureLoad(values, p, 0);
+    let n = clamp(params.components, 1u, 4u);
+    let odd = unless_finite(p, word, v, n);
+    var r = range();
+    if (r.x >= 0.0 && r.y <= 1.0) {
+        r = vec2<f32>(0.0, 1.0);
+    }
+    let span = select(1.0, r.y - r.x, r.y > r.x);
+    let t = clamp((v.xyz - vec3<f32>(r.x)) / span, vec3<f32>(0.0), vec3<f32>(1.0));
+    var c = bytes(t);
+    if (n <= 2u) {
+        c.z = 0.0;
+    }
+    return out(select(c, odd.xyz, odd.w > 0.0));
 }
 ";
 
@@ -353,9 +357,12 @@ const FAILED: u8 = 3;
 /// targets and the picture while the size stays.
 pub struct Painter {
     device: wgpu::Device,
-    first: wgpu::RenderPipeline,
-    next: wgpu::RenderPipeline,
-    colour: wgpu::RenderPipeline,
+    fold_value: wgpu::RenderPipeline,
+    fold_cost: wgpu::RenderPipeline,
+    fold_next: wgpu::RenderPipeline,
+    colour_cost: wgpu::RenderPipeline,
+    colour_scalar: wgpu::RenderPipeline,
+    colour_vector: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     params: wgpu::Buffer,
     levels: Vec<Level>,
@@ -439,9 +446,9 @@ impl Painter {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = |name: &str, entry: &str, targets: &[Option<wgpu::ColorTargetState>]| {
+        let pipeline = |entry: &str, targets: &[Option<wgpu::ColorTargetState>]| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&format!("{label}.{name}")),
+                label: Some(&format!("{label}.{entry}")),
                 layout: Some(&pipeline_layout),
                 vertex: wgpu::VertexState {
                     module: &module,
@@ -468,23 +475,21 @@ impl Painter {
             write_mask: wgpu::ColorWrites::ALL,
         });
         let folds = [stats_target.clone(), stats_target];
-        let first = pipeline("fold_first", "fold_first", &folds);
-        let next = pipeline("fold_next", "fold_next", &folds);
-        let colour = pipeline(
-            "colour",
-            "colour",
-            &[Some(wgpu::ColorTargetState {
-                format: PICTURE_FORMAT,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+        let picture = [Some(wgpu::ColorTargetState {
+            format: PICTURE_FORMAT,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let mut contents = vec![0u8; FOUND_AT as usize + 32];
+        contents.extend_from_slice(bytemuck::cast_slice(&tables()));
+        let params = wgpu::util::DeviceExt::create_buffer_init(
+            device,
+            &wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label}.params")),
+                contents: &contents,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            },
         );
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(&format!("{label}.params")),
-            size: 16,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         let stats = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(&format!("{label}.stats")),
             size: 2 * u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT),
@@ -515,9 +520,12 @@ impl Painter {
         Painter {
             device: device.clone(),
             unread: (unread("unread_a"), unread("unread_b")),
-            first,
-            next,
-            colour,
+            fold_value: pipeline("fold_value", &folds),
+            fold_cost: pipeline("fold_cost", &folds),
+            fold_next: pipeline("fold_next", &folds),
+            colour_cost: pipeline("colour_cost", &picture),
+            colour_scalar: pipeline("colour_scalar", &picture),
+            colour_vector: pipeline("colour_vector", &picture),
             layout,
             params,
             levels: Vec::new(),
@@ -698,12 +706,33 @@ impl Painter {
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
-                pass.set_pipeline(if k == 0 { &self.first } else { &self.next });
+                pass.set_pipeline(match (k, kind) {
+                    (0, Kind::Cost) => &self.fold_cost,
+                    (0, Kind::Value(_)) => &self.fold_value,
+                    _ => &self.fold_next,
+                });
                 pass.set_bind_group(0, &group, &[]);
                 pass.draw(0..3, 0..1);
             }
             let last = self.levels.last().expect("at least one level");
-            let group = group(&last.a.1, &last.b.1);
+            // The findings into the parameters, for every pixel of the colouring pass to read.
+            let found = |k: u64| wgpu::TexelCopyBufferInfo {
+                buffer: &self.params,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: FOUND_AT + 16 * k,
+                    bytes_per_row: None,
+                    rows_per_image: None,
+                },
+            };
+            let one = wgpu::Extent3d {
+                width: 1,
+                height: 1,
+                depth_or_array_layers: 1,
+            };
+            for (k, texture) in [&last.a.0, &last.b.0].into_iter().enumerate() {
+                encoder.copy_texture_to_buffer(texture.as_image_copy(), found(k as u64), one);
+            }
+            let group = group(&self.unread.0, &self.unread.1);
             let (_, picture) = self.picture.as_ref().expect("made above");
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(&format!("{label}.colour")),
@@ -732,7 +761,11 @@ impl Painter {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.colour);
+            pass.set_pipeline(match kind {
+                Kind::Cost => &self.colour_cost,
+                Kind::Value(c) if c > 1 => &self.colour_vector,
+                Kind::Value(_) => &self.colour_scalar,
+            });
             pass.set_bind_group(0, &group, &[]);
             pass.set_viewport(0.0, 0.0, w as f32, h as f32, 0.0, 1.0);
             pass.draw(0..3, 0..1);

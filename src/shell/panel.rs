@@ -200,6 +200,9 @@ pub struct Status<'a> {
     pub recording: Option<u32>,
     /// The whole-frame view shown, in words (what it is, its legend or why it failed).
     pub view: Option<String>,
+    /// What may be chosen where the view could not be drawn as asked (the names a line
+    /// assigns, or the stage).
+    pub choices: Vec<(String, crate::shell::views::Wanted)>,
     /// Whether the lab draws with shaders other than its built-in ones (a diff is offered).
     pub can_diff: bool,
 }
@@ -281,6 +284,9 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
                         request = Some(Request::Picture);
                     }
                     ui.label(view);
+                    if let Some(chosen) = choose(ui, &status.choices) {
+                        request = Some(chosen);
+                    }
                 }
             });
         egui::CollapsingHeader::new("Shaders")
@@ -394,6 +400,24 @@ fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
     false
 }
 
+/// A button for each choice a view that could not be drawn offers (`Show: a | b`); returns
+/// the view of the one clicked.
+fn choose(ui: &mut egui::Ui, choices: &[(String, crate::shell::views::Wanted)]) -> Option<Request> {
+    if choices.is_empty() {
+        return None;
+    }
+    let mut chosen = None;
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Show:");
+        for (words, wanted) in choices {
+            if ui.button(words).clicked() {
+                chosen = Some(Request::View(wanted.clone()));
+            }
+        }
+    });
+    chosen
+}
+
 /// What the pixel inspector shows (F2).
 pub struct InspectView<'a> {
     /// The pixel picked, if any.
@@ -406,6 +430,8 @@ pub struct InspectView<'a> {
     pub line: Option<(String, u32)>,
     /// The view shown, in words (what it is, its legend or why it failed).
     pub view: Option<String>,
+    /// What may be chosen where the view could not be drawn as asked.
+    pub choices: Vec<(String, crate::shell::views::Wanted)>,
 }
 
 /// The narrowest F1's panel gets on the right beside an inspected pixel before it moves to the
@@ -605,6 +631,9 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
             }
             ui.label(words);
         });
+        if let Some(chosen) = choose(ui, &view.choices) {
+            request = Some(chosen);
+        }
     }
     let Some(result) = view.result else {
         ui.label("Click a pixel of the picture to see why it has its colour (F2 turns this off).");

@@ -11,12 +11,14 @@ use std::time::Instant;
 
 use super::args::Args;
 use super::cli::{say, Failure};
+use crate::debug::paint::{self, Painter};
 use crate::debug::picture::{self, Legend, Scale};
 use crate::debug::view::{self, Probe, ValueFrame, ViewDrawer};
 use crate::debug::Stage;
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 use crate::lab::{Lab, LabEntry};
+use crate::offscreen::Offscreen;
 use crate::render::DrawLog;
 
 /// The usage line.
@@ -150,15 +152,19 @@ impl Plan {
         let frame = drawer.draw(gpu, &log, &probe, width, height).map_err(failure)?;
         drop(log);
         if let Some(frames) = self.bench {
-            let ms = bench(gpu, lab, &mut drawer, &probe, frames, width, height)?;
+            let t = bench(gpu, lab, &mut drawer, &probe, frames, width, height)?;
             let object = if lab.params().has("object") {
                 format!(" object={}", lab.params().text("object"))
             } else {
                 String::new()
             };
             say(&format!(
-                "effect={name}{object} size={width}x{height} frames={frames} {} ms_per_frame={ms:.3}",
-                probe_words(&frame)
+                "effect={name}{object} size={width}x{height} frames={frames} {} ms_per_frame={:.3} plain_ms_per_frame={:.3} ratio={:.2} values_ms_per_frame={:.3}",
+                probe_words(&frame),
+                t.painted,
+                t.plain,
+                t.painted / t.plain.max(1e-9),
+                t.values
             ))?;
         }
         let (image, legend) = picture_of(&frame);
@@ -233,9 +239,21 @@ fn named(log: &DrawLog, probe: &Probe) -> Probe {
     }
 }
 
-/// Times `frames` views of `lab`: each records a frame (drawing it) and draws and reads back
-/// the view, as a window showing the view does. An animated lab's time advances 1/60 s per
-/// frame, as in `--bench` without a view. Returns milliseconds per frame.
+/// What [`bench`] measured, in milliseconds per frame.
+struct Timings {
+    /// The lab's plain frame, drawn and waited for (as `--bench` without a view).
+    plain: f64,
+    /// The view drawn and its picture painted on the GPU, waited for with its legend: what a
+    /// window or a page showing the view does each frame.
+    painted: f64,
+    /// The view drawn and its values read back (what `--out`, `--npy` and `--json` do).
+    values: f64,
+}
+
+/// Times `frames` frames of `lab` three ways, side by side in turn (the machine's load falls
+/// on all three alike): the plain frame, the view as the window and the page show it, and the
+/// view read back. An animated lab's time advances 1/60 s per frame, as in `--bench` without a
+/// view.
 fn bench(
     gpu: &Gpu,
     lab: &mut dyn Lab,
@@ -244,25 +262,53 @@ fn bench(
     frames: u32,
     width: u32,
     height: u32,
-) -> Result<f64, Failure> {
-    let once = |lab: &mut dyn Lab, drawer: &mut ViewDrawer| -> Result<(), Failure> {
-        let log = view::record(gpu, lab, width, height)?;
+) -> Result<Timings, Failure> {
+    let target = Offscreen::new(gpu, width, height);
+    let scratch = Offscreen::new(gpu, width, height);
+    let mut painter = Painter::new(&gpu.device);
+    let plain = |lab: &mut dyn Lab| -> Result<(), Failure> {
+        crate::lab::frame::render_into(gpu, lab, &target)?;
+        gpu.wait()?;
+        Ok(())
+    };
+    let mut painted = |lab: &mut dyn Lab, drawer: &mut ViewDrawer| -> Result<(), Failure> {
+        let log = view::record_to(gpu, lab, &scratch)?;
+        paint::paint_and_wait(gpu, drawer, &mut painter, &log, probe, width, height).map_err(failure)?;
+        Ok(())
+    };
+    let values = |lab: &mut dyn Lab, drawer: &mut ViewDrawer| -> Result<(), Failure> {
+        let log = view::record_to(gpu, lab, &scratch)?;
         drawer.draw(gpu, &log, probe, width, height).map_err(failure)?;
         Ok(())
     };
     for _ in 0..2 {
-        once(lab, drawer)?;
+        plain(lab)?;
+        painted(lab, drawer)?;
+        values(lab, drawer)?;
     }
     let animated = lab.animated() && lab.params().has("time");
-    let start = Instant::now();
+    let mut spent = [std::time::Duration::ZERO; 3];
     for _ in 0..frames {
         if animated {
             let t = lab.params().f64("time") + 1.0 / 60.0;
             lab.params_mut().set_unchecked("time", &[t]);
         }
-        once(lab, drawer)?;
+        let start = Instant::now();
+        plain(lab)?;
+        let between = Instant::now();
+        painted(lab, drawer)?;
+        let then = Instant::now();
+        values(lab, drawer)?;
+        spent[0] += between - start;
+        spent[1] += then - between;
+        spent[2] += then.elapsed();
     }
-    Ok(start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames))
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1000.0 / f64::from(frames);
+    Ok(Timings {
+        plain: ms(spent[0]),
+        painted: ms(spent[1]),
+        values: ms(spent[2]),
+    })
 }
 
 /// Where a fragment ran: the fragment shader's trace has at least one step there.

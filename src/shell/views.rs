@@ -733,12 +733,39 @@ mod tests {
             Wanted::Line {
                 file: "shaders/phong.frag".into(),
                 line: 31,
+                name: None,
                 stage: None,
+            },
+            Wanted::Line {
+                file: "C:\\shaders\\common.glsl".into(),
+                line: 7,
+                name: Some("light_dir".into()),
+                stage: Some(Stage::Vertex),
+            },
+            Wanted::Line {
+                file: "phong.frag".into(),
+                line: 12,
+                name: None,
+                stage: Some(Stage::Fragment),
             },
         ] {
             assert_eq!(Wanted::from_link(&w.link()), Some(w));
         }
-        for bad in ["", "phong.frag", "phong.frag:0", "phong.frag:x", ":3", "costs"] {
+        assert_eq!(
+            Wanted::from_link("a/phong.frag:31:R").map(|w| w.link()),
+            Some("a/phong.frag:31:R".to_owned())
+        );
+        for bad in [
+            "",
+            "phong.frag",
+            "phong.frag:0",
+            "phong.frag:x",
+            ":3",
+            "costs",
+            "phong.frag:3:1x",
+            "phong.frag:3:a-b",
+            "phong.frag:3@sideways",
+        ] {
             assert_eq!(Wanted::from_link(bad), None, "{bad:?}");
         }
     }

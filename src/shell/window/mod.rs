@@ -840,6 +840,7 @@ impl WindowState {
         };
         let error = self.session.shader_error().map(str::to_owned);
         let words = self.view_words();
+        let choices = self.session.view_choices().to_vec();
         let status = super::panel::Status {
             frame_ms: (self.session.animated() || self.pacing.unpaced).then_some(self.pacing.frame_ms),
             draw_ms,
@@ -848,6 +849,7 @@ impl WindowState {
             error: error.as_deref(),
             recording: self.recording.as_ref().map(recording::Recording::frames),
             view: words.clone(),
+            choices: choices.clone(),
             can_diff: !matches!(self.sources.source, ShaderSource::Embedded),
         };
         let (inspecting, pixel, busy) = (
@@ -866,6 +868,7 @@ impl WindowState {
             busy,
             line,
             view: words,
+            choices,
         });
         let (changed, request) = self.panel.draw(
             &self.gpu,
