@@ -589,10 +589,21 @@ type ProbeOf = dyn Fn(&str) -> Option<view::Probe>;
 /// is given the file the lab's fragment shader `suffix` is read from as the lab shows it, and
 /// `None` from it is the diff with the built-in shaders.
 fn native_view(name: &str, sets: &[&str], probe: impl Fn(&str) -> Option<view::Probe>, suffix: &str) -> RgbImage {
+    native_view_of(&ShaderSource::Embedded, name, sets, probe, suffix)
+}
+
+/// [`native_view`] of the lab drawn from `source`.
+fn native_view_of(
+    source: &ShaderSource,
+    name: &str,
+    sets: &[&str],
+    probe: impl Fn(&str) -> Option<view::Probe>,
+    suffix: &str,
+) -> RgbImage {
     let entry = shaderlab::course::find(name).unwrap();
     let gpu = common::gpu();
     let files = UserFiles::default();
-    let cx = BuildContext::new(gpu, &ShaderSource::Embedded, COLOR_FORMAT, &files);
+    let cx = BuildContext::new(gpu, source, COLOR_FORMAT, &files);
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
     let state: Vec<(&str, &str)> = sets.iter().map(|s| s.split_once('=').unwrap()).collect();
     common::set_state(lab.as_mut(), &state);
@@ -641,7 +652,12 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
     };
     let cost = |_: &str| Some(view::Probe::Cost);
     let diff = |_: &str| None;
-    let cases: [(&str, &ProbeOf); 3] = [("cost", &cost), ("phong.frag:17", &line), ("diff", &diff)];
+    let cases: [(&str, &ProbeOf); 4] = [
+        ("cost", &cost),
+        ("phong.frag:17", &line),
+        ("phong.frag:17:Idiff", &line),
+        ("diff", &diff),
+    ];
     for backend in ["webgl2", "webgpu"] {
         for (link, probe) in cases {
             let want = native_view("phong", &sets, probe, "phong.frag");
@@ -686,6 +702,53 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
         table.join("\n")
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// In the page, a copy of the fragment shader typed into the editor with a line assigning two
+/// names: that line's view says to choose one and offers each as a button; a click on the
+/// second shows its view (the native build's picture of the same name) and puts the name in
+/// the link.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_line_assigning_two_names_offers_each_and_shows_the_one_clicked() {
+    let server = serve(site());
+    let sets = ["object=sphere"];
+    let page = open(&server, "webgl2", &format!("{}&check=choose", query("normal_rgb", &sets)));
+    let asked = page.get("capture-choose.asked");
+    let offered = page.get("capture-choose.offered");
+    let text = page.get("capture-choose.text");
+    println!("asked: `{asked}`; offered: {offered}; then: `{text}`");
+    assert!(asked.contains("choose one by its name"), "the view asks for a name: `{asked}`");
+    assert_eq!(offered, "a,b", "each name is offered");
+    let Some(web) = page.image("capture-choose") else {
+        panic!("the page drew no view after the click: `{text}`");
+    };
+    let line: u32 = page.get("capture-choose.line").parse().expect("the line");
+    let copy = shaderlab::shader::embedded_source("normal_rgb.frag").unwrap().replace(
+        "frag_color = vec4(normal, 1.0);",
+        "vec3 a = normal; vec3 b = -normal;\n    frag_color = vec4(a + 0.25 * b, 1.0);",
+    );
+    let edits: std::collections::BTreeMap<String, String> = [("normal_rgb.frag".to_owned(), copy)].into();
+    let named = |file: &str| {
+        Some(view::Probe::Line {
+            file: file.to_owned(),
+            line,
+            name: Some("b".into()),
+            stage: None,
+        })
+    };
+    let source = ShaderSource::Edited(std::sync::Arc::new(edits));
+    let want = native_view_of(&source, "normal_rgb", &sets, named, "normal_rgb.frag");
+    let db = psnr(&web, &want).unwrap_or(0.0);
+    println!("the chosen name's view against the native view: {db:.1} dB");
+    assert!(db >= MIN_DB, "{db:.1} dB; the page said `{text}`");
+    assert!(text.contains("= `b`"), "the legend names b: `{text}`");
+    let url = page.get("capture-choose.url");
+    assert!(
+        url.contains(&format!("normal_rgb.frag%3A{line}%3Ab")) || url.contains(&format!("normal_rgb.frag:{line}:b")),
+        "the link carries the name: {url}"
+    );
+    assert_eq!(page.get("capture-choose.left"), "0", "nothing left to choose");
 }
 
 /// In the page, Inspect, a click on the picture and then a click on a line of the

@@ -701,6 +701,22 @@ impl WebApp {
         open.view_shown().is_some() && !open.view_busy()
     }
 
+    /// What may be chosen where the view could not be drawn as asked (the names a line
+    /// assigns, or the stage), as JSON: `[[words, view], …]`, each view as the link writes it.
+    pub fn view_choices(&self) -> String {
+        let choices: Vec<serde_json::Value> = self
+            .open
+            .as_ref()
+            .map(|open| {
+                open.view_choices()
+                    .iter()
+                    .map(|(words, wanted)| serde_json::json!([words, wanted.link()]))
+                    .collect()
+            })
+            .unwrap_or_default();
+        serde_json::Value::from(choices).to_string()
+    }
+
     /// The view shown, in words: its legend, the diff's findings, or why it could not be
     /// drawn ("" for the picture, or while its first picture is drawn).
     pub fn view_text(&self) -> String {
