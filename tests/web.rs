@@ -688,7 +688,8 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
                 web.save(dir.join(format!("view-{tag}-{backend}.png"))).unwrap();
                 want.save(dir.join(format!("view-{tag}-native.png"))).unwrap();
                 failures.push(format!(
-                    "{link} {backend}: {db:.1} dB against the native view; the page said `{text}`"
+                    "{link} {backend}: {db:.1} dB against the native view; the page said `{text}` (errors: `{}`)",
+                    page.get("capture.error")
                 ));
             }
             let shown = page.get("capture.view");

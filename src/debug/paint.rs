@@ -102,7 +102,8 @@ fn tables() -> Vec<f32> {
 }
 
 const SHADER: &str = r"
-const BIG: f32 = 3.4028235e38;
+// f32::MAX, written exactly (a decimal past it is an error in some WGSL compilers).
+const BIG: f32 = 0x1.fffffep+127f;
 
 struct Params {
     // 0: a line's value; 1: the cost.
@@ -311,7 +312,7 @@ fn colour_scalar(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     let diverging = r.x < 0.0 && r.y > 0.0;
     let m = max(abs(r.x), abs(r.y));
     let span = select(1.0, r.y - r.x, r.y > r.x);
-    let t = select((v.x - r.x) / span, (v.x / max(m, 1.17549435e-38) + 1.0) / 2.0, diverging);
+    let t = select((v.x - r.x) / span, (v.x / max(m, 0x1p-126f) + 1.0) / 2.0, diverging);
     let c = ramp(t, select(0u, 9u, diverging), select(8u, 4u, diverging));
     return out(select(c, odd.xyz, odd.w > 0.0));
 }

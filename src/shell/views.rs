@@ -45,15 +45,20 @@ impl Wanted {
     /// `phong.frag:31 R`, `cost`, `diff`).
     pub fn words(&self) -> String {
         match self {
-            Wanted::Line { file, line, name, .. } => {
-                let short = file.rsplit(['/', '\\']).next().unwrap_or(file);
-                match name {
-                    Some(n) => format!("{short}:{line} {n}"),
-                    None => format!("{short}:{line}"),
-                }
-            }
+            Wanted::Line { name: Some(n), .. } => format!("{} {n}", self.place()),
+            Wanted::Line { .. } => self.place(),
             Wanted::Cost => "cost".into(),
             Wanted::Diff => "diff with the built-in shaders".into(),
+        }
+    }
+
+    /// A line's file name and line (`phong.frag:31`); the view's words otherwise.
+    fn place(&self) -> String {
+        match self {
+            Wanted::Line { file, line, .. } => {
+                format!("{}:{line}", file.rsplit(['/', '\\']).next().unwrap_or(file))
+            }
+            _ => self.words(),
         }
     }
 
@@ -516,7 +521,7 @@ impl Views {
 /// when it is a vertex shader's line.
 fn legend_words(wanted: &Wanted, drawn: &crate::debug::view::Drawn) -> String {
     let what = match drawn.resolved.as_ref().and_then(|r| r.site.name.as_ref()) {
-        Some(n) => format!("{} = `{n}`", wanted.words()),
+        Some(n) => format!("{} = `{n}`", wanted.place()),
         None => wanted.words(),
     };
     if drawn.resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex) {
