@@ -45,7 +45,9 @@ fn compare(
     probe: &Probe,
 ) -> Result<(usize, u8, Option<picture::Legend>), String> {
     let log = view::record(gpu(), lab, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
-    let frame = drawer.draw(gpu(), &log, probe, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
+    let frame = drawer
+        .draw(gpu(), &log, probe, WIDTH, HEIGHT)
+        .map_err(|e| e.to_string())?;
     let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
     let (want, legend) = match probe {
         Probe::Cost => (picture::cost(WIDTH, HEIGHT, &frame.cost, &drawn).0, None),
@@ -61,7 +63,8 @@ fn compare(
             (image, Some(legend))
         }
     };
-    let (got, stats) = paint::paint_view(gpu(), drawer, painter, &log, probe, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
+    let (got, stats) =
+        paint::paint_view(gpu(), drawer, painter, &log, probe, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
     if got.dimensions() != want.dimensions() {
         return Err(format!("{:?} against {:?}", got.dimensions(), want.dimensions()));
     }
@@ -193,16 +196,25 @@ fn the_diverging_map_the_checker_nan_and_infinities_are_the_librarys() {
         name: None,
         stage: None,
     };
-    let sign = agrees("s (changes sign)", compare(lab.as_mut(), &mut drawer, &mut painter, &line(5)))
-        .expect("a legend");
+    let sign = agrees(
+        "s (changes sign)",
+        compare(lab.as_mut(), &mut drawer, &mut painter, &line(5)),
+    )
+    .expect("a legend");
     assert_eq!(sign.scale, picture::Scale::Diverging, "{sign:?}");
-    let odd = agrees("odd (a branch, NaN, ±inf)", compare(lab.as_mut(), &mut drawer, &mut painter, &line(8)))
-        .expect("a legend");
+    let odd = agrees(
+        "odd (a branch, NaN, ±inf)",
+        compare(lab.as_mut(), &mut drawer, &mut painter, &line(8)),
+    )
+    .expect("a legend");
     assert!(
         odd.not_run > 100 && odd.nan > 10 && odd.pos_inf > 10 && odd.neg_inf > 10,
         "the branch leaves pixels not run, and NaN and both infinities are there: {odd:?}"
     );
-    let colour = agrees("the colour (a vector)", compare(lab.as_mut(), &mut drawer, &mut painter, &line(10)))
-        .expect("a legend");
+    let colour = agrees(
+        "the colour (a vector)",
+        compare(lab.as_mut(), &mut drawer, &mut painter, &line(10)),
+    )
+    .expect("a legend");
     assert_eq!(colour.scale, picture::Scale::Rgb, "{colour:?}");
 }

@@ -106,7 +106,10 @@ fn same(got: &image::RgbaImage, want: &image::RgbaImage, what: &str) {
         }
     }
     let n = want.width() * strip;
-    assert!(worst <= 1 && off * 1000 <= n, "{what}: {off} of {n} pixels differ, by up to {worst}");
+    assert!(
+        worst <= 1 && off * 1000 <= n,
+        "{what}: {off} of {n} pixels differ, by up to {worst}"
+    );
 }
 
 #[test]
@@ -142,7 +145,11 @@ fn a_view_drawn_at_once_or_over_polls_is_the_librarys_picture_and_follows_the_la
             draw(&mut s);
             let moved = library(&mut s, &probe);
             assert!(moved != want, "the lab changed");
-            same(&shown(&mut s), &moved, &format!("{wanted:?} (polled {polled}) follows the lab"));
+            same(
+                &shown(&mut s),
+                &moved,
+                &format!("{wanted:?} (polled {polled}) follows the lab"),
+            );
         }
         // Back to the picture.
         s.set_view(None, None);

@@ -714,12 +714,19 @@ fn a_view_in_the_link_shows_the_native_views_picture() {
 fn a_line_assigning_two_names_offers_each_and_shows_the_one_clicked() {
     let server = serve(site());
     let sets = ["object=sphere"];
-    let page = open(&server, "webgl2", &format!("{}&check=choose", query("normal_rgb", &sets)));
+    let page = open(
+        &server,
+        "webgl2",
+        &format!("{}&check=choose", query("normal_rgb", &sets)),
+    );
     let asked = page.get("capture-choose.asked");
     let offered = page.get("capture-choose.offered");
     let text = page.get("capture-choose.text");
     println!("asked: `{asked}`; offered: {offered}; then: `{text}`");
-    assert!(asked.contains("choose one by its name"), "the view asks for a name: `{asked}`");
+    assert!(
+        asked.contains("choose one by its name"),
+        "the view asks for a name: `{asked}`"
+    );
     assert_eq!(offered, "a,b", "each name is offered");
     let Some(web) = page.image("capture-choose") else {
         panic!("the page drew no view after the click: `{text}`");

@@ -488,7 +488,7 @@ impl Painter {
             &wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label}.params")),
                 contents: &contents,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             },
         );
         let stats = device.create_buffer(&wgpu::BufferDescriptor {
@@ -838,7 +838,9 @@ impl Painter {
             _ => return None,
         }
         let read = self.stats.slice(..).get_mapped_range().map(|data| {
-            let word = |offset: usize| f32::from_le_bytes([data[offset], data[offset + 1], data[offset + 2], data[offset + 3]]);
+            let word = |offset: usize| {
+                f32::from_le_bytes([data[offset], data[offset + 1], data[offset + 2], data[offset + 3]])
+            };
             let b = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as usize;
             Stats {
                 lo: word(0),

@@ -568,7 +568,9 @@ impl Session {
     /// made at once here (the window).
     #[cfg(not(target_arch = "wasm32"))]
     pub fn view_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        let made = self.views.update(gpu, self.lab.as_mut(), self.version, size, format, true);
+        let made = self
+            .views
+            .update(gpu, self.lab.as_mut(), self.version, size, format, true);
         if made {
             self.changed();
         }
@@ -578,7 +580,9 @@ impl Session {
     /// Moves the view asked for on as [`Session::view_frame`] does, without ever blocking (the
     /// page's way): a diff's frames are read back over calls.
     pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        let made = self.views.update(gpu, self.lab.as_mut(), self.version, size, format, false);
+        let made = self
+            .views
+            .update(gpu, self.lab.as_mut(), self.version, size, format, false);
         if made {
             self.changed();
         }

@@ -66,7 +66,12 @@ impl Wanted {
     /// chosen and `@vertex` or `@fragment` where a stage was; `cost`; `diff`.
     pub fn link(&self) -> String {
         match self {
-            Wanted::Line { file, line, name, stage } => {
+            Wanted::Line {
+                file,
+                line,
+                name,
+                stage,
+            } => {
                 let mut text = format!("{file}:{line}");
                 if let Some(n) = name {
                     text = format!("{text}:{n}");
@@ -134,7 +139,12 @@ impl Wanted {
 
     fn probe(&self) -> Probe {
         match self {
-            Wanted::Line { file, line, name, stage } => Probe::Line {
+            Wanted::Line {
+                file,
+                line,
+                name,
+                stage,
+            } => Probe::Line {
                 file: file.clone(),
                 line: *line,
                 name: name.clone(),
@@ -295,11 +305,9 @@ impl Views {
             self.scratch = Some(Offscreen::with_format(gpu, w, h, format));
         }
         let log = crate::debug::view::record_to(gpu, lab, self.scratch.as_ref().expect("made above"))?;
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("shaderlab.view"),
-            });
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("shaderlab.view"),
+        });
         let drawn = self.drawer.encode(gpu, &mut encoder, &log, &wanted.probe(), w, h)?;
         if !self.painter.as_ref().is_some_and(|p| p.serves(&gpu.device)) {
             self.painter = Some(Painter::new(&gpu.device));
@@ -512,7 +520,10 @@ impl Views {
         if !self.blit.as_ref().is_some_and(fits) {
             self.blit = Some(Blit::new(&gpu.device, format));
         }
-        self.blit.as_ref().expect("made above").record(&gpu.device, encoder, color, source);
+        self.blit
+            .as_ref()
+            .expect("made above")
+            .record(&gpu.device, encoder, color, source);
         true
     }
 }
