@@ -338,13 +338,21 @@ fn bench_with_a_view_times_the_view() {
         args.extend(view.iter().map(String::as_str));
         let text = ok(&shaderlab_in(&dir, &args));
         assert_eq!(text.lines().count(), 1, "{text}");
-        let ms: f64 = text
-            .split("ms_per_frame=")
-            .nth(1)
-            .and_then(|s| s.split_whitespace().next())
-            .and_then(|s| s.parse().ok())
-            .unwrap_or_else(|| panic!("a time: {text}"));
-        assert!(ms > 0.0 && ms.is_finite(), "{text}");
+        // The view as the window and the page draw it, the plain frame beside it, their
+        // ratio, and the view read back.
+        let field = |key: &str| -> f64 {
+            text.split(&format!(" {key}="))
+                .nth(1)
+                .and_then(|s| s.split_whitespace().next())
+                .and_then(|s| s.parse().ok())
+                .unwrap_or_else(|| panic!("{key}: {text}"))
+        };
+        for key in ["ms_per_frame", "plain_ms_per_frame", "ratio", "values_ms_per_frame"] {
+            let v = field(key);
+            assert!(v > 0.0 && v.is_finite(), "{key}: {text}");
+        }
+        let ratio = field("ms_per_frame") / field("plain_ms_per_frame");
+        assert!((ratio - field("ratio")).abs() < 0.01 + 0.01 * ratio, "{text}");
         assert!(text.contains(" view="), "{text}");
     }
     assert_eq!(

@@ -649,11 +649,9 @@ impl ViewDrawer {
         self.read(pending, waited)
     }
 
-    /// Draws the view as [`ViewDrawer::draw`] does and starts reading it back without waiting
-    /// (the page cannot block): [`PendingView::ready`] says when the values are back, then
-    /// [`ViewDrawer::finish`] brings them. The drawer's read-back buffers are the pending
-    /// view's until then.
-    pub fn start(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<PendingView> {
+    /// Draws the view as [`ViewDrawer::draw`] does and starts reading it back.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn start(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<PendingView> {
         let label = "shaderlab.debug.view";
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&format!("{label}.encoder")),
@@ -703,16 +701,10 @@ impl ViewDrawer {
         } else {
             vec![&targets.info.2]
         };
-        let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
-        let failed = Arc::new(std::sync::atomic::AtomicBool::new(false));
         for b in &staging {
-            let (mapped, failed) = (mapped.clone(), failed.clone());
-            b.slice(..).map_async(wgpu::MapMode::Read, move |r| match r {
-                Ok(()) => {
-                    mapped.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                }
-                Err(_) => failed.store(true, std::sync::atomic::Ordering::SeqCst),
-            });
+            // Read once the GPU is waited for ([`ViewDrawer::draw`]); a mapping that failed
+            // shows as an unmapped buffer there.
+            b.slice(..).map_async(wgpu::MapMode::Read, |_| {});
         }
         Ok(PendingView {
             resolved,
@@ -720,9 +712,6 @@ impl ViewDrawer {
             value,
             format,
             size: (w, h),
-            buffers: staging.len(),
-            mapped,
-            failed,
         })
     }
 
@@ -864,21 +853,9 @@ impl ViewDrawer {
         })
     }
 
-    /// The values of the view `pending` ([`ViewDrawer::start`]) once [`PendingView::ready`].
-    pub fn finish(&mut self, pending: PendingView) -> Result<ValueFrame> {
-        let waited = if pending.failed.load(std::sync::atomic::Ordering::SeqCst) {
-            Err(crate::error::Error::Wgpu {
-                context: "reading a view back".into(),
-                message: "the browser could not map the view's values".into(),
-            })
-        } else {
-            Ok(())
-        };
-        self.read(pending, waited)
-    }
-
     /// Reads the values of `pending` back from the mapped buffers (`waited`: whether the GPU
     /// got there) and unmaps them.
+    #[cfg(not(target_arch = "wasm32"))]
     fn read(&mut self, pending: PendingView, waited: Result<()>) -> Result<ValueFrame> {
         let PendingView {
             resolved,
@@ -977,25 +954,13 @@ pub struct Drawn {
 }
 
 /// A view drawn and being read back ([`ViewDrawer::start`]).
-pub struct PendingView {
+#[cfg(not(target_arch = "wasm32"))]
+struct PendingView {
     resolved: Option<Resolved>,
     components: u32,
     value: bool,
     format: wgpu::TextureFormat,
     size: (u32, u32),
-    /// The read-back buffers, and how many of them are mapped so far.
-    buffers: usize,
-    mapped: Arc<std::sync::atomic::AtomicUsize>,
-    failed: Arc<std::sync::atomic::AtomicBool>,
-}
-
-impl PendingView {
-    /// Whether the values are back (or their mapping failed): [`ViewDrawer::finish`] then
-    /// takes them without waiting. Poll the device meanwhile where the backend maps on a poll.
-    pub fn ready(&self) -> bool {
-        use std::sync::atomic::Ordering;
-        self.failed.load(Ordering::SeqCst) || self.mapped.load(Ordering::SeqCst) >= self.buffers
-    }
 }
 
 /// The format of a view's value target for a value of `components` components: as few
