@@ -127,26 +127,12 @@ impl Offscreen {
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("shaderlab.offscreen.copy"),
         });
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &self.texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: Some(self.height),
-                },
-            },
-            wgpu::Extent3d {
-                width: self.width,
-                height: self.height,
-                depth_or_array_layers: 1,
-            },
+        crate::gpu::targets::copy_to_buffer(
+            &mut encoder,
+            &self.texture,
+            &self.readback,
+            self.padded_row,
+            (self.width, self.height),
         );
         gpu.queue.submit([encoder.finish()]);
         self.readback.slice(..).map_async(wgpu::MapMode::Read, mapped);

@@ -34,16 +34,7 @@ impl Rng {
 }
 
 fn build(name: &str, files: &UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
-    let entry = shaderlab::course::find(name).expect("a lab");
-    let source = ShaderSource::Embedded;
-    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, files);
-    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
-    for (k, v) in set {
-        lab.params_mut()
-            .set_str(k, v)
-            .unwrap_or_else(|e| panic!("{name} --set {k}={v}: {e}"));
-    }
-    lab
+    common::lab_at(name, &ShaderSource::Embedded, files, set)
 }
 
 /// The pixels of `image` checked: `SURFACE` on the drawn surface (not the clear colour) and

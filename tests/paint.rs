@@ -16,24 +16,14 @@ use shaderlab::debug::paint::{self, Painter};
 use shaderlab::debug::picture;
 use shaderlab::debug::view::{self, Probe, ViewDrawer};
 use shaderlab::debug::Stage;
-use shaderlab::lab::{BuildContext, Lab, UserFiles};
-use shaderlab::offscreen::COLOR_FORMAT;
+use shaderlab::lab::{Lab, UserFiles};
 use shaderlab::shader::ShaderSource;
 
 const WIDTH: u32 = 200;
 const HEIGHT: u32 = 120;
 
 fn build(name: &str, source: ShaderSource, set: &[(&str, &str)]) -> Box<dyn Lab> {
-    let entry = shaderlab::course::find(name).expect("a lab");
-    let files = UserFiles::default();
-    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, &files);
-    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
-    for (k, v) in set {
-        lab.params_mut()
-            .set_str(k, v)
-            .unwrap_or_else(|e| panic!("{name} --set {k}={v}: {e}"));
-    }
-    lab
+    common::lab_at(name, &source, &UserFiles::default(), set)
 }
 
 /// How the GPU's picture of `probe` differs from the library's: pixels off, by how much at
@@ -64,7 +54,7 @@ fn compare(
         }
     };
     let (got, stats) =
-        paint::paint_view(gpu(), drawer, painter, &log, probe, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
+        paint::paint_view(gpu(), drawer, painter, (&log, probe), WIDTH, HEIGHT).map_err(|e| e.to_string())?;
     if got.dimensions() != want.dimensions() {
         return Err(format!("{:?} against {:?}", got.dimensions(), want.dimensions()));
     }

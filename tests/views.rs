@@ -13,8 +13,7 @@ use std::sync::Arc;
 use common::gpu;
 use shaderlab::debug::view::{self, Probe, ValueFrame, ViewDrawer, ViewError};
 use shaderlab::debug::{Captured, Inspection, Stage};
-use shaderlab::lab::{BuildContext, Lab, UserFiles};
-use shaderlab::offscreen::COLOR_FORMAT;
+use shaderlab::lab::{Lab, UserFiles};
 use shaderlab::render::DrawLog;
 use shaderlab::shader::ShaderSource;
 
@@ -22,15 +21,7 @@ const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
 
 fn build(name: &str, source: ShaderSource, files: &UserFiles, set: &[(&str, &str)]) -> Box<dyn Lab> {
-    let entry = shaderlab::course::find(name).expect("a lab");
-    let cx = BuildContext::new(gpu(), &source, COLOR_FORMAT, files);
-    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
-    for (k, v) in set {
-        lab.params_mut()
-            .set_str(k, v)
-            .unwrap_or_else(|e| panic!("{name} --set {k}={v}: {e}"));
-    }
-    lab
+    common::lab_at(name, &source, files, set)
 }
 
 fn lab(name: &str, set: &[(&str, &str)]) -> Box<dyn Lab> {

@@ -7,8 +7,8 @@
 //! The range comes from the frame itself: fragment passes fold the value and info targets in
 //! blocks of [`BLOCK`] × [`BLOCK`] pixels into two `Rgba32Float` targets (lowest and highest
 //! finite component, the largest count, and the counts of background, NaN, +∞, −∞ and not-run
-//! pixels), again and again down to one pixel, which the colouring pass reads. Fragment passes
-//! rather than a compute pass, because WebGL2 has none. Only those 32 bytes come back to the
+//! pixels), again and again down to one pixel, which is copied on the GPU into the colouring
+//! pass's parameters. Fragment passes rather than a compute pass, because WebGL2 has none. Only those 32 bytes come back to the
 //! CPU, later, for the legend strip's words ([`Painter::legend`]); the strip is written into
 //! the picture's bottom rows when they arrive, so its numbers may be a frame or two behind a
 //! turning object's colours.
@@ -22,6 +22,7 @@ use super::instrument::{COST_SHIFT, RAN_BIT};
 use super::picture::{self, Legend, DIVERGING, INFINITE_COLOUR, LEGEND_HEIGHT, NAN_COLOUR, NOT_RUN, VIRIDIS};
 use super::view::Drawn;
 use crate::error::{Error, Result};
+use crate::gpu::targets::texture_and_view;
 use crate::gpu::Gpu;
 
 /// The side of the square of pixels each folding pass makes one pixel of.
@@ -34,7 +35,7 @@ const STATS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const PICTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// The legend strip's grey, as [`super::picture`] draws it.
-const STRIP_GREY: f64 = 24.0 / 255.0;
+const STRIP_GREY: f64 = picture::LEGEND_GREY as f64 / 255.0;
 
 /// What the folding passes found over a frame, as the colouring pass reads it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -84,6 +85,7 @@ fn shader_source() -> String {
     source.push_str(&format!(
         "const RAN_BIT: u32 = {RAN_BIT}u;\nconst COST_SHIFT: u32 = {COST_SHIFT}u;\nconst BLOCK: u32 = {BLOCK}u;\n"
     ));
+    source.push_str(crate::gpu::targets::FULL_SCREEN_WGSL);
     source.push_str(SHADER);
     source
 }
@@ -130,12 +132,6 @@ struct Folded {
 @group(0) @binding(2) var info: texture_2d<u32>;
 @group(0) @binding(3) var folded_a: texture_2d<f32>;
 @group(0) @binding(4) var folded_b: texture_2d<f32>;
-
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
-}
 
 // 0: finite; 1: a NaN; 2: +inf (no NaN); 3: -inf (no NaN or +inf), over the first n
 // components. By the bits: WGSL lets a compiler assume no float is NaN or infinite.
@@ -448,27 +444,14 @@ impl Painter {
             immediate_size: 0,
         });
         let pipeline = |entry: &str, targets: &[Option<wgpu::ColorTargetState>]| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&format!("{label}.{entry}")),
-                layout: Some(&pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: None,
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            crate::gpu::targets::full_screen_pipeline(
+                device,
+                &format!("{label}.{entry}"),
+                &pipeline_layout,
+                &module,
+                entry,
+                targets,
+            )
         };
         let stats_target = Some(wgpu::ColorTargetState {
             format: STATS_FORMAT,
@@ -498,25 +481,8 @@ impl Painter {
             mapped_at_creation: false,
         });
         let unread = |name: &str| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(&format!("{label}.{name}")),
-                    size: wgpu::Extent3d {
-                        width: 1,
-                        height: 1,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: STATS_FORMAT,
-                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                })
-                .create_view(&wgpu::TextureViewDescriptor {
-                    label: Some(&format!("{label}.{name}_view")),
-                    ..Default::default()
-                })
+            let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+            texture_and_view(device, &format!("{label}.{name}"), (1, 1), STATS_FORMAT, usage).1
         };
         Painter {
             device: device.clone(),
@@ -556,29 +522,11 @@ impl Painter {
             return;
         }
         let label = "shaderlab.debug.paint";
-        let target = |name: &str, (width, height): (u32, u32)| {
-            let t = self.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("{label}.{name}")),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: STATS_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
-            let v = t.create_view(&wgpu::TextureViewDescriptor {
-                label: Some(&format!("{label}.{name}_view")),
-                ..Default::default()
-            });
-            (t, v)
-        };
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC;
+        let target =
+            |name: &str, size| texture_and_view(&self.device, &format!("{label}.{name}"), size, STATS_FORMAT, usage);
         self.levels = sizes
             .into_iter()
             .enumerate()
@@ -601,28 +549,12 @@ impl Painter {
         {
             return false;
         }
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST;
         let label = "shaderlab.debug.paint.picture";
-        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: full.0,
-                height: full.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: PICTURE_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some(&format!("{label}_view")),
-            ..Default::default()
-        });
+        let (texture, view) = texture_and_view(&self.device, label, full, PICTURE_FORMAT, usage);
         self.picture = Some((texture, view));
         true
     }
@@ -918,27 +850,7 @@ impl Painter {
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(stride),
-                    rows_per_image: Some(h),
-                },
-            },
-            wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-        );
+        crate::gpu::targets::copy_to_buffer(&mut encoder, texture, &buffer, stride, (w, h));
         gpu.queue.submit([encoder.finish()]);
         let (tx, rx) = std::sync::mpsc::channel();
         buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
@@ -962,18 +874,17 @@ impl Painter {
 
 /// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`) and paints
 /// its picture on the GPU, waits for it and its legend, and reads it back: the picture a
-/// window showing the view shows once its legend is back (what tests and `--bench` check).
+/// window showing the view shows once its legend is back (what the tests check).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn paint_view(
     gpu: &Gpu,
     drawer: &mut super::view::ViewDrawer,
     painter: &mut Painter,
-    log: &crate::render::DrawLog,
-    probe: &super::view::Probe,
+    view: (&crate::render::DrawLog, &super::view::Probe),
     width: u32,
     height: u32,
 ) -> Result<(RgbaImage, Stats)> {
-    let stats = paint_and_wait(gpu, drawer, painter, log, probe, width, height)?;
+    let stats = paint_and_wait(gpu, drawer, painter, view.0, view.1, width, height)?;
     Ok((painter.read(gpu)?, stats))
 }
 
@@ -1003,7 +914,8 @@ pub fn paint_and_wait(
         message: "the view's targets are gone".into(),
     })?;
     painter.paint(gpu, &mut encoder, targets, &drawn, 0)?;
-    gpu.queue.submit([encoder.finish()]);
+    let commands = gpu.checked("shaderlab.debug.paint.view", || encoder.finish())?;
+    gpu.queue.submit([commands]);
     painter.submitted();
     gpu.wait()?;
     // Another thread polling the same device may be running the read-back's callback.

@@ -29,6 +29,8 @@ pub const BACKGROUND: [u8; 3] = [0, 0, 0];
 pub const NOT_RUN: [[u8; 3]; 2] = [[56, 56, 56], [88, 88, 88]];
 /// The legend strip's height in pixels, under the picture.
 pub const LEGEND_HEIGHT: u32 = 16;
+/// The legend strip's grey (each of red, green and blue).
+pub const LEGEND_GREY: u8 = 24;
 
 /// Viridis at nine evenly spaced stops (matplotlib's), interpolated linearly between them.
 pub(crate) const VIRIDIS: [[u8; 3]; 9] = [
@@ -383,7 +385,7 @@ fn draw_legend(image: &mut RgbaImage, top: u32, low: &str, high: &str, bar: &dyn
     let width = image.width();
     for y in top..image.height() {
         for x in 0..width {
-            image.put_pixel(x, y, Rgba([24, 24, 24, 255]));
+            image.put_pixel(x, y, Rgba([LEGEND_GREY, LEGEND_GREY, LEGEND_GREY, 255]));
         }
     }
     let text_y = top + (LEGEND_HEIGHT - 10) / 2;

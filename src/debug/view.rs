@@ -667,27 +667,7 @@ impl ViewDrawer {
         let targets = self.targets.as_ref().expect("made by encode");
         let commands = gpu.checked(label, || {
             let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
-                encoder.copy_texture_to_buffer(
-                    wgpu::TexelCopyTextureInfo {
-                        texture,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    wgpu::TexelCopyBufferInfo {
-                        buffer,
-                        layout: wgpu::TexelCopyBufferLayout {
-                            offset: 0,
-                            bytes_per_row: Some(stride),
-                            rows_per_image: Some(h),
-                        },
-                    },
-                    wgpu::Extent3d {
-                        width: w,
-                        height: h,
-                        depth_or_array_layers: 1,
-                    },
-                );
+                crate::gpu::targets::copy_to_buffer(&mut encoder, texture, buffer, stride, (w, h));
             };
             if value {
                 copy(&targets.value.0, &targets.value.2, targets.value_stride);

@@ -65,6 +65,93 @@ pub fn copyable_color(
     (texture, view)
 }
 
+/// A texture as [`target_descriptor`] describes it, labelled `label`, and its view labelled
+/// `label_view`.
+pub fn texture_and_view(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> (wgpu::Texture, wgpu::TextureView) {
+    let texture = device.create_texture(&target_descriptor(label, width, height, format, usage));
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(&format!("{label}_view")),
+        ..Default::default()
+    });
+    (texture, view)
+}
+
+/// A vertex shader entry point `full_screen` (WGSL) drawing one triangle that covers the
+/// target: three vertices, no buffers.
+pub const FULL_SCREEN_WGSL: &str = r"
+@vertex
+fn full_screen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+";
+
+/// A pipeline that runs `module`'s fragment entry point `entry` over the whole target (the
+/// module holds [`FULL_SCREEN_WGSL`]), into `targets`, with no depth or blending of its own.
+pub fn full_screen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("full_screen"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// Records copying `texture`'s first `width` × `height` texels into `buffer`, rows `stride`
+/// bytes apart ([`padded_row`]), for the CPU to map.
+pub fn copy_to_buffer(
+    encoder: &mut wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    buffer: &wgpu::Buffer,
+    stride: u32,
+    (width, height): (u32, u32),
+) {
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(stride),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+}
+
 /// Bytes in one row of a buffer that a `width`-pixel row is copied into: `bytes_per_pixel *
 /// width` padded to the 256 bytes wgpu's texture-to-buffer copies need.
 pub fn padded_row(bytes_per_pixel: u32, width: u32) -> u32 {

@@ -317,7 +317,8 @@ impl Views {
         self.last_paint = self.paints;
         let targets = self.drawer.targets().expect("drawn above");
         painter.paint(gpu, &mut encoder, targets, &drawn, self.paints)?;
-        gpu.queue.submit([encoder.finish()]);
+        let commands = gpu.checked("shaderlab.view", || encoder.finish())?;
+        gpu.queue.submit([commands]);
         painter.submitted();
         self.legend_words = legend_words(wanted, &drawn);
         Ok(())
@@ -573,12 +574,6 @@ struct Blit {
 const BLIT_SHADER: &str = r"
 @group(0) @binding(0) var picture: texture_2d<f32>;
 
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
-}
-
 @fragment
 fn fs(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     let size = textureDimensions(picture);
@@ -595,7 +590,7 @@ impl Blit {
         let label = "shaderlab.view_blit";
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&format!("{label}.shader")),
-            source: wgpu::ShaderSource::Wgsl(BLIT_SHADER.into()),
+            source: wgpu::ShaderSource::Wgsl(format!("{}{BLIT_SHADER}", crate::gpu::targets::FULL_SCREEN_WGSL).into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{label}.bind_group_layout")),
@@ -615,31 +610,19 @@ impl Blit {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&format!("{label}.pipeline")),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let target = [Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let pipeline = crate::gpu::targets::full_screen_pipeline(
+            device,
+            &format!("{label}.pipeline"),
+            &pipeline_layout,
+            &module,
+            "fs",
+            &target,
+        );
         Blit {
             device: device.clone(),
             format,
@@ -689,26 +672,15 @@ impl Blit {
 
 /// A texture a CPU-made picture of `(w, h)` is uploaded into, and its view.
 fn upload_texture(device: &wgpu::Device, (w, h): (u32, u32)) -> (wgpu::Texture, wgpu::TextureView) {
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
     let label = "shaderlab.view_blit.picture";
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: w.max(1),
-            height: h.max(1),
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&wgpu::TextureViewDescriptor {
-        label: Some(&format!("{label}_view")),
-        ..Default::default()
-    });
-    (texture, view)
+    crate::gpu::targets::texture_and_view(
+        device,
+        label,
+        (w.max(1), h.max(1)),
+        wgpu::TextureFormat::Rgba8Unorm,
+        usage,
+    )
 }
 
 /// Uploads `image` into `texture` (of its size).

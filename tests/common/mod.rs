@@ -234,6 +234,21 @@ pub fn build(entry: &LabEntry) -> Box<dyn Lab> {
     lab(entry).lab
 }
 
+/// The lab `name` drawn from `source` with the user's `files`, at the state `set` (as `--set`
+/// takes it).
+pub fn lab_at(
+    name: &str,
+    source: &ShaderSource,
+    files: &shaderlab::lab::UserFiles,
+    set: &[(&str, &str)],
+) -> Box<dyn Lab> {
+    let entry = shaderlab::course::find(name).expect("a lab");
+    let cx = BuildContext::new(gpu(), source, COLOR_FORMAT, files);
+    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name} builds: {e}"));
+    set_state(lab.as_mut(), set);
+    lab
+}
+
 /// Sets `key=value` assignments as `--set` takes them (a state of SPEC on top of the defaults).
 pub fn set_state(lab: &mut dyn Lab, state: &[(&str, &str)]) {
     for (key, value) in state {

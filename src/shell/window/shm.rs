@@ -377,22 +377,7 @@ impl ShmPresenter {
                     Some(buffer) => buffer,
                     None => targets_buffer(gpu, stride, height),
                 };
-                encoder.copy_texture_to_buffer(
-                    copying.texture.as_image_copy(),
-                    wgpu::TexelCopyBufferInfo {
-                        buffer: &buffer,
-                        layout: wgpu::TexelCopyBufferLayout {
-                            offset: 0,
-                            bytes_per_row: Some(stride),
-                            rows_per_image: Some(height),
-                        },
-                    },
-                    wgpu::Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                );
+                crate::gpu::targets::copy_to_buffer(&mut encoder, &copying.texture, &buffer, stride, (width, height));
                 let submission = gpu.queue.submit([encoder.finish()]);
                 (Destination::Readback { buffer, stride }, submission)
             }
