@@ -803,34 +803,7 @@ impl Painter {
         let Some((texture, _)) = &self.picture else {
             return;
         };
-        let width = strip.width().min(texture.width());
-        let rows = strip.height().min(LEGEND_HEIGHT);
-        if width == 0 || rows == 0 {
-            return;
-        }
-        gpu.queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d {
-                    x: 0,
-                    y: texture.height() - LEGEND_HEIGHT,
-                    z: 0,
-                },
-                aspect: wgpu::TextureAspect::All,
-            },
-            strip.as_raw(),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(4 * strip.width()),
-                rows_per_image: Some(strip.height()),
-            },
-            wgpu::Extent3d {
-                width,
-                height: rows,
-                depth_or_array_layers: 1,
-            },
-        );
+        write_rgba(gpu, texture, texture.height().saturating_sub(LEGEND_HEIGHT), strip);
     }
 
     /// Reads the picture back (blocking): what a window showing it shows.
@@ -870,6 +843,34 @@ impl Painter {
         buffer.unmap();
         RgbaImage::from_raw(w, h, pixels).ok_or_else(|| failed("short buffer".into()))
     }
+}
+
+/// Writes `image` into an `Rgba8Unorm` `texture` from row `top` down, as much of it as fits.
+pub fn write_rgba(gpu: &Gpu, texture: &wgpu::Texture, top: u32, image: &RgbaImage) {
+    let width = image.width().min(texture.width());
+    let rows = image.height().min(texture.height().saturating_sub(top));
+    if width == 0 || rows == 0 {
+        return;
+    }
+    gpu.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: 0, y: top, z: 0 },
+            aspect: wgpu::TextureAspect::All,
+        },
+        image.as_raw(),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * image.width()),
+            rows_per_image: Some(image.height()),
+        },
+        wgpu::Extent3d {
+            width,
+            height: rows,
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 /// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`) and paints

@@ -504,7 +504,7 @@ impl Views {
             }
             let (_, texture, view) = self.uploaded.as_ref().expect("made above");
             if self.upload {
-                write_image(gpu, texture, image);
+                crate::debug::paint::write_rgba(gpu, texture, 0, image);
                 self.upload = false;
             }
             view
@@ -681,32 +681,6 @@ fn upload_texture(device: &wgpu::Device, (w, h): (u32, u32)) -> (wgpu::Texture, 
         wgpu::TextureFormat::Rgba8Unorm,
         usage,
     )
-}
-
-/// Uploads `image` into `texture` (of its size).
-fn write_image(gpu: &Gpu, texture: &wgpu::Texture, image: &RgbaImage) {
-    if image.width() == 0 || image.height() == 0 {
-        return;
-    }
-    gpu.queue.write_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        image.as_raw(),
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(4 * image.width()),
-            rows_per_image: Some(image.height()),
-        },
-        wgpu::Extent3d {
-            width: image.width(),
-            height: image.height(),
-            depth_or_array_layers: 1,
-        },
-    );
 }
 
 #[cfg(test)]
