@@ -375,6 +375,28 @@ impl Gpu {
         }
     }
 
+    /// Blocks until the GPU has finished all submitted work ([`Gpu::wait`]) and then until
+    /// `done` holds: a read-back's callbacks run inside whichever thread polls the device, so
+    /// when another thread shares it they may still be running as the queue empties. Gives up
+    /// after [`Gpu::watchdog`] (10 s without one) with an error naming `what`.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn wait_until(&self, what: &str, done: impl Fn() -> bool) -> Result<()> {
+        self.wait()?;
+        let start = std::time::Instant::now();
+        let limit = self.watchdog.unwrap_or(std::time::Duration::from_secs(10));
+        while !done() {
+            if start.elapsed() > limit {
+                return Err(Error::Wgpu {
+                    context: what.to_owned(),
+                    message: format!("the read-back did not arrive within {:.0} s", limit.as_secs_f64()),
+                });
+            }
+            let _ = self.device.poll(wgpu::PollType::Poll);
+            std::thread::yield_now();
+        }
+        Ok(())
+    }
+
     /// The error of a wait for the GPU: a timeout is [`Error::Hang`] (and marks the device as
     /// [`hung`]), anything else [`Error::Wgpu`].
     pub fn wait_error(&self, e: wgpu::PollError) -> Error {

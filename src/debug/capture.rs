@@ -191,7 +191,10 @@ impl Pending {
     /// Blocks until the buffers are mapped, then [`Pending::finish`].
     #[cfg(not(target_arch = "wasm32"))]
     pub fn wait(self, gpu: &Gpu) -> Result<Captured> {
-        gpu.wait()?;
+        let failed = || self.failed.lock().map_or(true, |w| w.is_some());
+        gpu.wait_until("reading the frame's buffers back for the debugger", || {
+            self.ready() || failed()
+        })?;
         self.finish()
     }
 

@@ -753,6 +753,14 @@ impl Painter {
         self.reading.is_some()
     }
 
+    /// Whether the findings being read back are there (or could not be): [`Painter::legend`]
+    /// then takes them.
+    pub fn legend_back(&self) -> bool {
+        self.reading
+            .as_ref()
+            .is_none_or(|(state, _, _)| matches!(state.load(Ordering::SeqCst), MAPPED | FAILED))
+    }
+
     /// The findings read back, with their tag and kind, once they are back (poll the device
     /// meanwhile); `None` while they are not (or none were asked for).
     pub fn legend(&mut self) -> Option<Result<(Stats, u64, Kind)>> {
@@ -918,22 +926,13 @@ pub fn paint_and_wait(
     let commands = gpu.checked("shaderlab.debug.paint.view", || encoder.finish())?;
     gpu.queue.submit([commands]);
     painter.submitted();
-    gpu.wait()?;
-    // Another thread polling the same device may be running the read-back's callback.
-    let start = std::time::Instant::now();
-    let (stats, _, kind) = loop {
-        if let Some(back) = painter.legend() {
-            break back?;
-        }
-        if start.elapsed() > std::time::Duration::from_secs(10) {
-            return Err(Error::Wgpu {
-                context: "painting a view".into(),
-                message: "its legend did not come back".into(),
-            });
-        }
-        let _ = gpu.device.poll(wgpu::PollType::Poll);
-        std::thread::yield_now();
-    };
+    gpu.wait_until("painting a view", || painter.legend_back())?;
+    let (stats, _, kind) = painter.legend().unwrap_or_else(|| {
+        Err(Error::Wgpu {
+            context: "painting a view".into(),
+            message: "its legend did not come back".into(),
+        })
+    })?;
     painter.write_strip(gpu, &kind.strip(drawn.size.0, &stats));
     Ok(stats)
 }

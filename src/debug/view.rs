@@ -645,7 +645,10 @@ impl ViewDrawer {
     #[cfg(not(target_arch = "wasm32"))]
     pub fn draw(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
         let pending = self.start(gpu, log, probe, width, height)?;
-        let waited = gpu.wait();
+        let (mapped, buffers) = (pending.mapped.clone(), pending.buffers);
+        let waited = gpu.wait_until("reading a view back", || {
+            mapped.load(std::sync::atomic::Ordering::SeqCst) >= buffers
+        });
         self.read(pending, waited)
     }
 
@@ -681,10 +684,14 @@ impl ViewDrawer {
         } else {
             vec![&targets.info.2]
         };
+        let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
         for b in &staging {
-            // Read once the GPU is waited for ([`ViewDrawer::draw`]); a mapping that failed
-            // shows as an unmapped buffer there.
-            b.slice(..).map_async(wgpu::MapMode::Read, |_| {});
+            // Counted whether it mapped or not: a mapping that failed shows as an unmapped
+            // buffer when read.
+            let mapped = mapped.clone();
+            b.slice(..).map_async(wgpu::MapMode::Read, move |_| {
+                mapped.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            });
         }
         Ok(PendingView {
             resolved,
@@ -692,6 +699,8 @@ impl ViewDrawer {
             value,
             format,
             size: (w, h),
+            buffers: staging.len(),
+            mapped,
         })
     }
 
@@ -941,6 +950,9 @@ struct PendingView {
     value: bool,
     format: wgpu::TextureFormat,
     size: (u32, u32),
+    /// The read-back buffers, and how many of their mappings have ended.
+    buffers: usize,
+    mapped: Arc<std::sync::atomic::AtomicUsize>,
 }
 
 /// The format of a view's value target for a value of `components` components: as few
