@@ -213,8 +213,9 @@ fn a_view_asked_for_during_a_read_back_is_drawn_after_it() {
 }
 
 /// A line that assigns two variables cannot be drawn as a view until one is chosen: the
-/// session offers each name (the window's and the page's buttons), and the one chosen is
-/// drawn, the library's picture of that name, and carried in the link.
+/// session offers each name (the window's and the page's buttons), as it does for a name the
+/// line does not assign, and the one chosen is drawn, the library's picture of that name, and
+/// carried in the link.
 #[test]
 fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
     let text = "#version 450\n\
@@ -248,6 +249,16 @@ fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
     assert!(why.contains("choose one by its name"), "{why}");
     let offered: Vec<&str> = s.view_choices().iter().map(|(w, _)| w.as_str()).collect();
     assert_eq!(offered, ["a", "b"], "each name once");
+    // A name the line does not assign (a typo in a link) offers the same choice.
+    s.set_view(Wanted::from_link(&format!("{file}:5:c")), None);
+    settle(&mut s, false);
+    assert!(
+        matches!(s.view_shown(), Some(Err(e)) if e.contains("does not assign `c`")),
+        "{:?}",
+        s.view_shown().map(|r| r.as_ref().err().cloned())
+    );
+    let offered: Vec<&str> = s.view_choices().iter().map(|(w, _)| w.as_str()).collect();
+    assert_eq!(offered, ["a", "b"], "the names it does assign");
     let (_, b) = s.view_choices()[1].clone();
     assert_eq!(b.link(), format!("{file}:5:b"), "the link carries the name");
     s.set_view(Some(b), None);

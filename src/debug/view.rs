@@ -109,6 +109,8 @@ pub enum ViewError {
         name: String,
         /// The names it assigns.
         names: String,
+        /// The names to choose from (each variable once).
+        choices: Vec<String>,
     },
     /// The line assigns several things and none was chosen.
     #[error("{file}:{line} assigns {names}: choose one by its name")]
@@ -161,7 +163,9 @@ impl ViewError {
 impl From<ViewError> for crate::error::Error {
     fn from(e: ViewError) -> Self {
         let choose = match &e {
-            ViewError::Ambiguous { choices, .. } => crate::error::Choose::Name(choices.clone()),
+            ViewError::Ambiguous { choices, .. } | ViewError::NoSuchName { choices, .. } => {
+                crate::error::Choose::Name(choices.clone())
+            }
             ViewError::BothStages { .. } => crate::error::Choose::Stage,
             _ => crate::error::Choose::Nothing,
         };
@@ -310,6 +314,12 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
             near: nearest(&all, line),
         });
     }
+    let mut roots: Vec<&str> = Vec::new();
+    for a in &here {
+        if a.root != super::interp::TEMPORARY && !roots.contains(&a.root.as_str()) {
+            roots.push(&a.root);
+        }
+    }
     let chosen = match name {
         Some(n) => {
             if !here.iter().any(|a| a.named(n)) {
@@ -318,18 +328,13 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
                     line,
                     name: n.clone(),
                     names: quoted(&names(&here)),
+                    choices: roots.iter().map(|r| (*r).to_owned()).collect(),
                 });
             }
             Some(n.clone())
         }
         None => {
             let all_names = names(&here);
-            let mut roots: Vec<&str> = Vec::new();
-            for a in &here {
-                if a.root != super::interp::TEMPORARY && !roots.contains(&a.root.as_str()) {
-                    roots.push(&a.root);
-                }
-            }
             match roots.as_slice() {
                 [] => None,
                 [one] => Some((*one).to_owned()),
