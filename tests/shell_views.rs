@@ -118,7 +118,7 @@ fn a_view_drawn_at_once_or_over_polls_is_the_librarys_picture_and_follows_the_la
         let mut s = session();
         let file = phong_frag(&mut s);
         for (wanted, probe) in [
-            (Wanted::Cost, view::Probe::Cost),
+            (Wanted::COST, view::Probe::Cost),
             (
                 Wanted::from_link(&format!("{file}:17")).expect("a line"),
                 view::Probe::Line {
@@ -194,11 +194,11 @@ fn a_view_asked_for_during_a_read_back_is_drawn_after_it() {
     let mut s = session();
     let file = phong_frag(&mut s);
     let line = Wanted::from_link(&format!("{file}:17")).expect("a line");
-    s.set_view(Some(Wanted::Cost), None);
+    s.set_view(Some(Wanted::COST), None);
     assert!(!s.view_poll(gpu(), SIZE, COLOR_FORMAT), "the read-back starts");
     assert!(s.view_busy());
     // The same view again (the same buffers), then another.
-    s.set_view(Some(Wanted::Cost), None);
+    s.set_view(Some(Wanted::COST), None);
     s.set_view(Some(line.clone()), None);
     settle(&mut s, true);
     let probe = view::Probe::Line {

@@ -11,6 +11,7 @@
 
 use naga::{Binding, Expression, Function, Handle, Literal, Module, ScalarKind, Span, Statement, Type, TypeInner};
 
+use super::interp::pointee;
 use super::{locate, user_name, value::part_name};
 use crate::shader::CompiledShader;
 
@@ -89,21 +90,6 @@ fn functions(shader: &CompiledShader) -> Vec<Which> {
 /// translator's own `main`).
 fn shown(shader: &CompiledShader, function: &Function) -> bool {
     !(shader.translated && function.name.as_deref() == Some("main"))
-}
-
-/// The type a pointer points at.
-fn pointee(module: &Module, ty: &TypeInner) -> Option<TypeInner> {
-    match ty {
-        TypeInner::Pointer { base, .. } => Some(module.types[*base].inner.clone()),
-        TypeInner::ValuePointer { size, scalar, .. } => Some(match size {
-            Some(size) => TypeInner::Vector {
-                size: *size,
-                scalar: *scalar,
-            },
-            None => TypeInner::Scalar(*scalar),
-        }),
-        _ => None,
-    }
 }
 
 /// The name the interpreter gives a store through `pointer` (whole, and its variable's), as
@@ -778,6 +764,22 @@ pub fn free_location(vertex: &CompiledShader, fragment: &CompiledShader) -> u32 
     used.into_iter().max().map_or(0, |m| m + 1)
 }
 
+/// Puts `returned`'s block in place of every `return` of the module's entry point, and also
+/// at the end of its body where `falls_off` (an entry point that ends without a `return`);
+/// then validates the module.
+fn end_with(module: &mut Module, returned: &Returned, falls_off: bool) -> Result<(), String> {
+    let function = &mut module.entry_points[0].function;
+    let mut exprs = std::mem::take(&mut function.expressions);
+    let body = std::mem::take(&mut function.body);
+    let mut body = returns(body, &mut exprs, returned);
+    if falls_off {
+        body.push(Statement::Block(returned(None, &mut exprs)), Span::UNDEFINED);
+    }
+    function.expressions = exprs;
+    function.body = body;
+    validate(module)
+}
+
 fn validate(module: &Module) -> Result<(), String> {
     let mut validator =
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all());
@@ -923,17 +925,8 @@ pub fn fragment(
         block.push(Statement::Return { value: Some(out) }, s);
         block
     };
-    let mut exprs = std::mem::take(&mut function.expressions);
-    let body = std::mem::take(&mut function.body);
-    let mut body = returns(body, &mut exprs, &returned);
-    if !had_result {
-        // A shader without outputs ends without a `return`.
-        body.push(Statement::Block(returned(None, &mut exprs)), Span::UNDEFINED);
-    }
-    let function = &mut module.entry_points[0].function;
-    function.expressions = exprs;
-    function.body = body;
-    validate(&module)?;
+    // A shader without outputs ends without a `return`.
+    end_with(&mut module, &returned, !had_result)?;
     Ok((module, found))
 }
 
@@ -1011,12 +1004,6 @@ pub fn vertex(vertex: &CompiledShader, site: Option<&Site>, at: u32) -> Result<(
         block.push(Statement::Return { value: Some(out) }, s);
         block
     };
-    let mut exprs = std::mem::take(&mut function.expressions);
-    let body = std::mem::take(&mut function.body);
-    let body = returns(body, &mut exprs, &returned);
-    let function = &mut module.entry_points[0].function;
-    function.expressions = exprs;
-    function.body = body;
-    validate(&module)?;
+    end_with(&mut module, &returned, false)?;
     Ok((module, found))
 }

@@ -1536,7 +1536,8 @@ fn vec3(comps: &[Comp], lane: usize) -> [f32; 3] {
     [0, 1, 2].map(|k| comps.get(k).map_or(0.0, |c| c.f(lane)))
 }
 
-fn pointee(module: &Module, ty: &TypeInner) -> Option<TypeInner> {
+/// The type a pointer points at.
+pub(crate) fn pointee(module: &Module, ty: &TypeInner) -> Option<TypeInner> {
     match ty {
         TypeInner::Pointer { base, .. } => Some(module.types[*base].inner.clone()),
         TypeInner::ValuePointer { size, scalar, .. } => Some(match size {

@@ -363,6 +363,9 @@ pub struct Painter {
     layout: wgpu::BindGroupLayout,
     params: wgpu::Buffer,
     levels: Vec<Level>,
+    /// The passes' bind groups (the first folding pass's, which the colouring pass shares,
+    /// then each next one's), kept while the view's targets and the levels stay.
+    groups: Option<((wgpu::TextureView, wgpu::TextureView), Vec<wgpu::BindGroup>)>,
     /// What the first folding pass binds where the next ones read the pass before.
     unread: (wgpu::TextureView, wgpu::TextureView),
     picture: Option<(wgpu::Texture, wgpu::TextureView)>,
@@ -496,6 +499,7 @@ impl Painter {
             layout,
             params,
             levels: Vec::new(),
+            groups: None,
             picture: None,
             stats,
             reading: None,
@@ -527,6 +531,7 @@ impl Painter {
             | wgpu::TextureUsages::COPY_SRC;
         let target =
             |name: &str, size| texture_and_view(&self.device, &format!("{label}.{name}"), size, STATS_FORMAT, usage);
+        self.groups = None;
         self.levels = sizes
             .into_iter()
             .enumerate()
@@ -614,6 +619,15 @@ impl Painter {
                     entries: &entries,
                 })
             };
+            if self.groups.as_ref().is_none_or(|((v, i), _)| v != values || i != info) {
+                // The first pass reads the view's targets; each next one the pass before.
+                let mut groups = vec![group(&self.unread.0, &self.unread.1)];
+                for pair in self.levels.windows(2) {
+                    groups.push(group(&pair[0].a.1, &pair[0].b.1));
+                }
+                self.groups = Some(((values.clone(), info.clone()), groups));
+            }
+            let (_, groups) = self.groups.as_ref().expect("made above");
             let attachment = |view| {
                 Some(wgpu::RenderPassColorAttachment {
                     view,
@@ -625,12 +639,7 @@ impl Painter {
                     },
                 })
             };
-            for (k, level) in self.levels.iter().enumerate() {
-                // The first pass reads the view's targets; each next one the pass before.
-                let group = match k {
-                    0 => group(&self.unread.0, &self.unread.1),
-                    _ => group(&self.levels[k - 1].a.1, &self.levels[k - 1].b.1),
-                };
+            for (k, (level, group)) in self.levels.iter().zip(groups).enumerate() {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some(&format!("{label}.fold{k}")),
                     color_attachments: &[attachment(&level.a.1), attachment(&level.b.1)],
@@ -644,7 +653,7 @@ impl Painter {
                     (0, Kind::Value(_)) => &self.fold_value,
                     _ => &self.fold_next,
                 });
-                pass.set_bind_group(0, &group, &[]);
+                pass.set_bind_group(0, group, &[]);
                 pass.draw(0..3, 0..1);
             }
             let last = self.levels.last().expect("at least one level");
@@ -665,7 +674,6 @@ impl Painter {
             for (k, texture) in [&last.a.0, &last.b.0].into_iter().enumerate() {
                 encoder.copy_texture_to_buffer(texture.as_image_copy(), found(k as u64), one);
             }
-            let group = group(&self.unread.0, &self.unread.1);
             let (_, picture) = self.picture.as_ref().expect("made above");
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(&format!("{label}.colour")),
@@ -699,7 +707,7 @@ impl Painter {
                 Kind::Value(c) if c > 1 => &self.colour_vector,
                 Kind::Value(_) => &self.colour_scalar,
             });
-            pass.set_bind_group(0, &group, &[]);
+            pass.set_bind_group(0, &groups[0], &[]);
             pass.set_viewport(0.0, 0.0, w as f32, h as f32, 0.0, 1.0);
             pass.draw(0..3, 0..1);
             drop(pass);

@@ -144,13 +144,7 @@ pub fn short(v: f64) -> String {
     if a != 0.0 && !(1e-3..1e5).contains(&a) {
         return format!("{v:.2e}");
     }
-    let s = format!("{v:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.to_owned()
-    }
+    super::report::num(v)
 }
 
 fn special(v: &[f32]) -> Option<(usize, [u8; 3])> {

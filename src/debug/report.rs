@@ -590,7 +590,7 @@ pub fn json_number(v: f64) -> serde_json::Value {
 }
 
 /// A number as people read it: up to 4 decimals, no trailing zeros.
-fn num(v: f64) -> String {
+pub(crate) fn num(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }

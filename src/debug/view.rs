@@ -579,17 +579,7 @@ impl ViewDrawer {
                         cull_mode: setup.cull,
                         ..Default::default()
                     },
-                    depth_stencil: Some(wgpu::DepthStencilState {
-                        format: crate::offscreen::DEPTH_FORMAT,
-                        depth_write_enabled: Some(setup.state.depth_test),
-                        depth_compare: Some(if setup.state.depth_test {
-                            wgpu::CompareFunction::Less
-                        } else {
-                            wgpu::CompareFunction::Always
-                        }),
-                        stencil: Default::default(),
-                        bias: Default::default(),
-                    }),
+                    depth_stencil: Some(crate::render::depth_state(setup.state.depth_test)),
                     multisample: Default::default(),
                     multiview_mask: None,
                     cache: None,
@@ -999,49 +989,23 @@ struct Targets {
 impl Targets {
     fn new(device: &wgpu::Device, width: u32, height: u32, format: wgpu::TextureFormat) -> Targets {
         let label = "shaderlab.debug.view";
-        let size = wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        };
-        let texture = |name: &str, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("{label}.{name}")),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
+        let target = |name: &str, format, stride| {
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING;
+            let (t, v) = crate::gpu::targets::texture_and_view(
+                device,
+                &format!("{label}.{name}"),
+                (width, height),
                 format,
                 usage,
-                view_formats: &[],
-            })
-        };
-        let target = |name: &str, format, stride| {
-            let t = texture(
-                name,
-                format,
-                wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::COPY_SRC
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
             );
-            let v = t.create_view(&wgpu::TextureViewDescriptor {
-                label: Some(&format!("{label}.{name}_view")),
-                ..Default::default()
-            });
             let b = crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height);
             (t, v, b)
         };
         let value_stride = crate::offscreen::padded_row(4 * texel_words(format) as u32, width);
         let info_stride = crate::offscreen::padded_row(4, width);
-        let depth = texture(
-            "depth",
-            crate::offscreen::DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
-        )
-        .create_view(&wgpu::TextureViewDescriptor {
-            label: Some(&format!("{label}.depth_view")),
-            ..Default::default()
-        });
+        let depth = crate::gpu::targets::depth_texture(device, width, height);
         Targets {
             device: device.clone(),
             width,

@@ -68,8 +68,8 @@ pub use mesh::{
 };
 pub use param_block::{Derived, ParamBlock};
 pub use program::{
-    reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Culling, Program, RenderState,
-    Resource, VertexInput,
+    depth_state, reflect_bindings, reflect_inputs, AnyProgram, Bind, BindingInfo, BindingKind, Culling, Program,
+    RenderState, Resource, VertexInput,
 };
 pub use texture::{check_texture_size, sampler, Sampler, SamplerDesc, Texture};
 pub use uniforms::Uniforms;

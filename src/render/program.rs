@@ -738,19 +738,7 @@ impl<V: VertexType> Program<V> {
                         cull_mode,
                         ..Default::default()
                     },
-                    // Every pass has a depth attachment; without GL_DEPTH_TEST the pipeline neither
-                    // tests nor writes it.
-                    depth_stencil: Some(wgpu::DepthStencilState {
-                        format: DEPTH_FORMAT,
-                        depth_write_enabled: Some(state.depth_test),
-                        depth_compare: Some(if state.depth_test {
-                            wgpu::CompareFunction::Less // GL_LESS, GL's default
-                        } else {
-                            wgpu::CompareFunction::Always
-                        }),
-                        stencil: Default::default(),
-                        bias: Default::default(),
-                    }),
+                    depth_stencil: Some(depth_state(state.depth_test)),
                     multisample: Default::default(),
                     multiview_mask: None,
                     cache: None,
@@ -996,5 +984,22 @@ impl<V: VertexType> Program<V> {
             }
             mesh.draw_range(pass, range.clone());
         }
+    }
+}
+
+/// The depth state of a draw with GL_DEPTH_TEST on or off: every pass has a depth attachment,
+/// and without the test the pipeline neither tests nor writes it (GL_LESS, GL's default,
+/// with it).
+pub fn depth_state(depth_test: bool) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(depth_test),
+        depth_compare: Some(if depth_test {
+            wgpu::CompareFunction::Less
+        } else {
+            wgpu::CompareFunction::Always
+        }),
+        stencil: Default::default(),
+        bias: Default::default(),
     }
 }

@@ -267,7 +267,7 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
             .show(ui, |ui| {
                 ui.label("Click a line in the inspector (F2) to see its value at every pixel.");
                 if ui.button("Cost: statements run per pixel (F3)").clicked() {
-                    request = Some(Request::View(crate::shell::views::Wanted::Cost));
+                    request = Some(Request::View(crate::shell::views::Wanted::COST));
                 }
                 if ui
                     .add_enabled(
@@ -732,12 +732,14 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
                         .add(egui::Label::new(egui::RichText::new(short).monospace()).sense(egui::Sense::click()))
                         .on_hover_text(&row.text);
                     if a.clicked() || b.clicked() {
-                        clicked.set(Some(crate::shell::views::Wanted::Line {
-                            file: row.file.clone(),
-                            line: row.line,
-                            name: None,
-                            stage: Some(stage),
-                        }));
+                        clicked.set(Some(crate::shell::views::Wanted::Probe(
+                            crate::debug::view::Probe::Line {
+                                file: row.file.clone(),
+                                line: row.line,
+                                name: None,
+                                stage: Some(stage),
+                            },
+                        )));
                     }
                     ui.label(
                         egui::RichText::new(&row.values)

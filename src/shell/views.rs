@@ -23,31 +23,39 @@ use crate::offscreen::Offscreen;
 /// A view the user asked for.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Wanted {
-    /// The value a line of a shader assigns, at every pixel.
-    Line {
-        /// The file as the lab shows it.
-        file: String,
-        /// The 1-based line.
-        line: u32,
-        /// The name (where the line assigns several things).
-        name: Option<String>,
-        /// The stage (where both include the file).
-        stage: Option<Stage>,
-    },
-    /// The statements the fragment shader ran at every pixel.
-    Cost,
+    /// A line's value or the cost, at every pixel, drawn by the instrumented shaders.
+    Probe(Probe),
     /// The difference from the lab drawn with its built-in shaders.
     Diff,
 }
 
+impl From<Probe> for Wanted {
+    fn from(probe: Probe) -> Wanted {
+        Wanted::Probe(probe)
+    }
+}
+
 impl Wanted {
+    /// The cost view.
+    pub const COST: Wanted = Wanted::Probe(Probe::Cost);
+
+    /// The view of `line` of `file` (as the lab shows it), no name or stage chosen.
+    pub fn line(file: &str, line: u32) -> Wanted {
+        Wanted::Probe(Probe::Line {
+            file: file.to_owned(),
+            line,
+            name: None,
+            stage: None,
+        })
+    }
+
     /// The view in a few words, for the title and the panel (`phong.frag:31`,
     /// `phong.frag:31 R`, `cost`, `diff`).
     pub fn words(&self) -> String {
         match self {
-            Wanted::Line { name: Some(n), .. } => format!("{} {n}", self.place()),
-            Wanted::Line { .. } => self.place(),
-            Wanted::Cost => "cost".into(),
+            Wanted::Probe(Probe::Line { name: Some(n), .. }) => format!("{} {n}", self.place()),
+            Wanted::Probe(Probe::Line { .. }) => self.place(),
+            Wanted::Probe(Probe::Cost) => "cost".into(),
             Wanted::Diff => "diff with the built-in shaders".into(),
         }
     }
@@ -55,10 +63,18 @@ impl Wanted {
     /// A line's file name and line (`phong.frag:31`); the view's words otherwise.
     fn place(&self) -> String {
         match self {
-            Wanted::Line { file, line, .. } => {
+            Wanted::Probe(Probe::Line { file, line, .. }) => {
                 format!("{}:{line}", file.rsplit(['/', '\\']).next().unwrap_or(file))
             }
             _ => self.words(),
+        }
+    }
+
+    /// The line a line view shows: its file (as the lab shows it) and line.
+    pub fn line_shown(&self) -> Option<(&str, u32)> {
+        match self {
+            Wanted::Probe(Probe::Line { file, line, .. }) => Some((file, *line)),
+            _ => None,
         }
     }
 
@@ -66,12 +82,12 @@ impl Wanted {
     /// chosen and `@vertex` or `@fragment` where a stage was; `cost`; `diff`.
     pub fn link(&self) -> String {
         match self {
-            Wanted::Line {
+            Wanted::Probe(Probe::Line {
                 file,
                 line,
                 name,
                 stage,
-            } => {
+            }) => {
                 let mut text = format!("{file}:{line}");
                 if let Some(n) = name {
                     text = format!("{text}:{n}");
@@ -83,7 +99,7 @@ impl Wanted {
                 }
                 text
             }
-            Wanted::Cost => "cost".into(),
+            Wanted::Probe(Probe::Cost) => "cost".into(),
             Wanted::Diff => "diff".into(),
         }
     }
@@ -91,34 +107,32 @@ impl Wanted {
     /// The view a link's `view=` names ([`Wanted::link`]'s words); `None` for text that is
     /// none of them.
     pub fn from_link(text: &str) -> Option<Wanted> {
-        match text {
-            "cost" => Some(Wanted::Cost),
-            "diff" => Some(Wanted::Diff),
-            _ => {
-                let (text, stage) = match text.rsplit_once('@') {
-                    Some((t, "vertex")) => (t, Some(Stage::Vertex)),
-                    Some((t, "fragment")) => (t, Some(Stage::Fragment)),
-                    _ => (text, None),
-                };
-                let (rest, last) = text.rsplit_once(':')?;
-                // A GLSL name never starts with a digit: a last part that is no number is
-                // the name, and the line comes before it.
-                let (file, line, name) = match last.parse::<u32>() {
-                    Ok(line) => (rest, line, None),
-                    Err(_) => {
-                        let ok = last.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-                            && last.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-                        let (file, line) = rest.rsplit_once(':').filter(|_| ok)?;
-                        (file, line.parse().ok()?, Some(last.to_owned()))
-                    }
-                };
-                (!file.is_empty() && line > 0).then(|| Wanted::Line {
-                    file: file.to_owned(),
-                    line,
-                    name,
-                    stage,
-                })
-            }
+        if text == "diff" {
+            return Some(Wanted::Diff);
+        }
+        let (text, stage) = match text.rsplit_once('@') {
+            Some((t, "vertex")) => (t, Some(Stage::Vertex)),
+            Some((t, "fragment")) => (t, Some(Stage::Fragment)),
+            _ => (text, None),
+        };
+        // A GLSL name never starts with a digit: a last part that is no number is the name,
+        // and `FILE:LINE` comes before it.
+        let named = text.rsplit_once(':').filter(|(_, last)| {
+            last.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                && last.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        });
+        let (text, name) = match named {
+            Some((rest, last)) => (rest, Some(last.to_owned())),
+            None => (text, None),
+        };
+        match text.parse::<Probe>().ok()? {
+            Probe::Line { file, line, .. } => Some(Wanted::Probe(Probe::Line {
+                file,
+                line,
+                name,
+                stage,
+            })),
+            Probe::Cost => (name.is_none() && stage.is_none()).then_some(Wanted::COST),
         }
     }
 
@@ -126,7 +140,7 @@ impl Wanted {
     /// could not be drawn asks for.
     fn with(&self, name: Option<&str>, stage: Option<Stage>) -> Wanted {
         let mut chosen = self.clone();
-        if let Wanted::Line { name: n, stage: s, .. } = &mut chosen {
+        if let Wanted::Probe(Probe::Line { name: n, stage: s, .. }) = &mut chosen {
             if let Some(name) = name {
                 *n = Some(name.to_owned());
             }
@@ -135,23 +149,6 @@ impl Wanted {
             }
         }
         chosen
-    }
-
-    fn probe(&self) -> Probe {
-        match self {
-            Wanted::Line {
-                file,
-                line,
-                name,
-                stage,
-            } => Probe::Line {
-                file: file.clone(),
-                line: *line,
-                name: name.clone(),
-                stage: *stage,
-            },
-            _ => Probe::Cost,
-        }
     }
 }
 
@@ -266,16 +263,16 @@ impl Views {
             return false;
         };
         let mut made = self.take_legend(gpu, &wanted, size);
-        if wanted == Wanted::Diff {
+        let Wanted::Probe(probe) = &wanted else {
             return made | self.update_diff(gpu, lab, version, size, format, wait);
-        }
+        };
         if self.taken == Some((version, size)) && !self.stale {
             return made;
         }
         self.taken = Some((version, size));
         self.stale = false;
         let (w, h) = view_size(size);
-        match self.paint(gpu, lab, &wanted, (w, h), format) {
+        match self.paint(gpu, lab, (&wanted, probe), (w, h), format) {
             Ok(()) => {
                 self.painted = true;
                 if !matches!(self.shown, Some(Ok(_))) {
@@ -291,12 +288,13 @@ impl Views {
         made
     }
 
-    /// Draws the line or cost view `wanted` of `lab` at `(w, h)` and its picture, on the GPU.
+    /// Draws the line or cost view `wanted` (of `probe`) of `lab` at `(w, h)` and its
+    /// picture, on the GPU.
     fn paint(
         &mut self,
         gpu: &Gpu,
         lab: &mut dyn Lab,
-        wanted: &Wanted,
+        (wanted, probe): (&Wanted, &Probe),
         (w, h): (u32, u32),
         format: wgpu::TextureFormat,
     ) -> crate::error::Result<()> {
@@ -308,7 +306,7 @@ impl Views {
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("shaderlab.view"),
         });
-        let drawn = self.drawer.encode(gpu, &mut encoder, &log, &wanted.probe(), w, h)?;
+        let drawn = self.drawer.encode(gpu, &mut encoder, &log, probe, w, h)?;
         if !self.painter.as_ref().is_some_and(|p| p.serves(&gpu.device)) {
             self.painter = Some(Painter::new(&gpu.device));
         }
@@ -521,10 +519,7 @@ impl Views {
         if !self.blit.as_ref().is_some_and(fits) {
             self.blit = Some(Blit::new(&gpu.device, format));
         }
-        self.blit
-            .as_ref()
-            .expect("made above")
-            .record(&gpu.device, encoder, color, source);
+        self.blit.as_mut().expect("made above").record(encoder, color, source);
         true
     }
 }
@@ -569,6 +564,8 @@ struct Blit {
     format: wgpu::TextureFormat,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    /// The bind group of the last picture drawn, kept while the picture is the same.
+    group: Option<(wgpu::TextureView, wgpu::BindGroup)>,
 }
 
 const BLIT_SHADER: &str = r"
@@ -628,26 +625,25 @@ impl Blit {
             format,
             pipeline,
             layout,
+            group: None,
         }
     }
 
     /// Records drawing `picture` (an `Rgba8Unorm` texture's view) into `color`.
-    fn record(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        color: &wgpu::TextureView,
-        picture: &wgpu::TextureView,
-    ) {
+    fn record(&mut self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, picture: &wgpu::TextureView) {
         let label = "shaderlab.view_blit";
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&format!("{label}.bind_group")),
-            layout: &self.layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(picture),
-            }],
-        });
+        if self.group.as_ref().is_none_or(|(v, _)| v != picture) {
+            let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(&format!("{label}.bind_group")),
+                layout: &self.layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(picture),
+                }],
+            });
+            self.group = Some((picture.clone(), group));
+        }
+        let (_, group) = self.group.as_ref().expect("made above");
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&format!("{label}.pass")),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -665,7 +661,7 @@ impl Blit {
             multiview_mask: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(0, group, &[]);
         pass.draw(0..3, 0..1);
     }
 }
@@ -690,26 +686,26 @@ mod tests {
     #[test]
     fn links_name_views_and_refuse_other_text() {
         for w in [
-            Wanted::Cost,
+            Wanted::COST,
             Wanted::Diff,
-            Wanted::Line {
+            Wanted::Probe(Probe::Line {
                 file: "shaders/phong.frag".into(),
                 line: 31,
                 name: None,
                 stage: None,
-            },
-            Wanted::Line {
+            }),
+            Wanted::Probe(Probe::Line {
                 file: "C:\\shaders\\common.glsl".into(),
                 line: 7,
                 name: Some("light_dir".into()),
                 stage: Some(Stage::Vertex),
-            },
-            Wanted::Line {
+            }),
+            Wanted::Probe(Probe::Line {
                 file: "phong.frag".into(),
                 line: 12,
                 name: None,
                 stage: Some(Stage::Fragment),
-            },
+            }),
         ] {
             assert_eq!(Wanted::from_link(&w.link()), Some(w));
         }

@@ -647,7 +647,7 @@ impl WebApp {
         let Some(mut wanted) = Wanted::from_link(text) else {
             return format!("`{text}` names no view: write FILE:LINE, cost or diff");
         };
-        if let Wanted::Line { file, .. } = &mut wanted {
+        if let Wanted::Probe(crate::debug::view::Probe::Line { file, .. }) = &mut wanted {
             // The page names files without the built-in folder; the lab shows them with it.
             let spliced: Vec<String> = open.shader_files().into_iter().flat_map(|p| p.spliced).collect();
             if !spliced.contains(file) {

@@ -857,10 +857,11 @@ impl WindowState {
             self.session.inspected(),
             self.session.inspect_busy(),
         );
-        let line = match self.session.view() {
-            Some(super::views::Wanted::Line { file, line, .. }) => Some((file.clone(), *line)),
-            _ => None,
-        };
+        let line = self
+            .session
+            .view()
+            .and_then(super::views::Wanted::line_shown)
+            .map(|(file, line)| (file.to_owned(), line));
         let (lab, result) = self.session.lab_and_inspection();
         let inspect = inspecting.then_some(super::panel::InspectView {
             pixel,
@@ -1140,7 +1141,7 @@ impl WindowState {
                 self.session.toggle_inspect();
                 self.window.request_redraw();
             }
-            Key::Named(NamedKey::F3) => self.toggle_view(super::views::Wanted::Cost),
+            Key::Named(NamedKey::F3) => self.toggle_view(super::views::Wanted::COST),
             Key::Named(NamedKey::F4) => self.toggle_view(super::views::Wanted::Diff),
             Key::Named(NamedKey::F1) => {
                 self.panel.shown = !self.panel.shown;
