@@ -17,6 +17,8 @@ use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
+use common::site;
+
 use image::RgbImage;
 use shaderlab::debug::{picture, view};
 use shaderlab::lab::{BuildContext, UserFiles};
@@ -72,16 +74,6 @@ fn sets_of(name: &str, sets: &[&'static str]) -> Vec<String> {
         );
     }
     all
-}
-
-fn site() -> PathBuf {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web");
-    assert!(
-        dir.join("index.html").is_file() && dir.join("web_bg.wasm").is_file(),
-        "no site in {}: build it first with `scripts/web`",
-        dir.display()
-    );
-    dir
 }
 
 fn chromium() -> PathBuf {

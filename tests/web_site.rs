@@ -7,25 +7,19 @@
 //! They need the site, python3, gzip and brotli, which the native build does not: they are
 //! `#[ignore]`d in `cargo test` and run by `.ci/web` after `scripts/web`.
 
+mod common;
+
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
+
+use common::site;
 
 /// The module as browsers download it (gzip, which every browser takes) at most: over a
 /// 20 Mbit/s link it arrives in under a second.
 const MAX_WASM_GZ: u64 = 2_300_000;
-
-fn site() -> PathBuf {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web");
-    assert!(
-        dir.join("index.html").is_file() && dir.join("web_bg.wasm").is_file(),
-        "no site in {}: build it first with `scripts/web`",
-        dir.display()
-    );
-    dir
-}
 
 /// `tool -dc file`'s output; a missing tool is a failure naming its package.
 fn decompress(tool: &str, file: &Path) -> Vec<u8> {

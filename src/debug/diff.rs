@@ -164,17 +164,22 @@ pub fn same_value(a: &[f64], b: &[f64]) -> bool {
 /// another variable or ran another function) or of another value.
 pub fn first_divergence(mine: &[TraceStep], reference: &[TraceStep]) -> Option<Divergence> {
     for (k, a) in mine.iter().enumerate() {
+        // The divergence at `a`, the copy's step.
+        let at = |reference: Option<&TraceStep>, why: String| Divergence {
+            stage: a.stage,
+            corner: a.corner,
+            file: a.file.clone(),
+            line: a.line,
+            name: a.name.clone(),
+            mine: a.value.clone(),
+            reference: reference.cloned(),
+            why,
+        };
         let Some(b) = reference.get(k) else {
-            return Some(Divergence {
-                stage: a.stage,
-                corner: a.corner,
-                file: a.file.clone(),
-                line: a.line,
-                name: a.name.clone(),
-                mine: a.value.clone(),
-                reference: None,
-                why: "the copy runs this step after the reference's shader has ended".into(),
-            });
+            return Some(at(
+                None,
+                "the copy runs this step after the reference's shader has ended".into(),
+            ));
         };
         let why = if a.stage != b.stage || a.corner != b.corner || a.name != b.name {
             format!(
@@ -189,16 +194,7 @@ pub fn first_divergence(mine: &[TraceStep], reference: &[TraceStep]) -> Option<D
         } else {
             continue;
         };
-        let mut d = Divergence {
-            stage: a.stage,
-            corner: a.corner,
-            file: a.file.clone(),
-            line: a.line,
-            name: a.name.clone(),
-            mine: a.value.clone(),
-            reference: Some(b.clone()),
-            why,
-        };
+        let mut d = at(Some(b), why);
         at_call_site(mine, k, &mut d);
         return Some(d);
     }

@@ -662,22 +662,23 @@ impl ViewDrawer {
             format,
             size: (w, h),
         } = drawn;
-        let targets = self.targets.as_ref().expect("made by encode");
+        let targets = self.targets.as_mut().expect("made by encode");
+        let [value_staging, info_staging] = targets.staging().clone();
         let commands = gpu.checked(label, || {
             let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
                 crate::gpu::targets::copy_to_buffer(&mut encoder, texture, buffer, stride, (w, h));
             };
             if value {
-                copy(&targets.value.0, &targets.value.2, targets.value_stride);
+                copy(&targets.value.0, &value_staging, targets.value_stride);
             }
-            copy(&targets.info.0, &targets.info.2, targets.info_stride);
+            copy(&targets.info.0, &info_staging, targets.info_stride);
             encoder.finish()
         })?;
         gpu.queue.submit([commands]);
         let staging: Vec<&wgpu::Buffer> = if value {
-            vec![&targets.value.2, &targets.info.2]
+            vec![&value_staging, &info_staging]
         } else {
-            vec![&targets.info.2]
+            vec![&info_staging]
         };
         let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
         for b in &staging {
@@ -853,10 +854,16 @@ impl ViewDrawer {
             context: "reading a view back".into(),
             message: "the view's targets are gone".into(),
         })?;
+        let Some([value_staging, info_staging]) = &targets.staging else {
+            return Err(crate::error::Error::Wgpu {
+                context: "reading a view back".into(),
+                message: "nothing was read back".into(),
+            });
+        };
         let staging: Vec<&wgpu::Buffer> = if value {
-            vec![&targets.value.2, &targets.info.2]
+            vec![value_staging, info_staging]
         } else {
-            vec![&targets.info.2]
+            vec![info_staging]
         };
         let mapped = |b: &wgpu::Buffer| {
             b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
@@ -869,7 +876,7 @@ impl ViewDrawer {
             let n = (w * h) as usize;
             let mut values = Vec::with_capacity(n);
             if value {
-                let data = mapped(&targets.value.2)?;
+                let data = mapped(value_staging)?;
                 let k = texel_words(format);
                 for y in 0..h as usize {
                     let row = &data[y * targets.value_stride as usize..][..w as usize * k * 4];
@@ -888,7 +895,7 @@ impl ViewDrawer {
             } else {
                 values.resize(n, [0.0; 4]);
             }
-            let data = mapped(&targets.info.2)?;
+            let data = mapped(info_staging)?;
             let mut info = Vec::with_capacity(n);
             for y in 0..h as usize {
                 let row = &data[y * targets.info_stride as usize..][..w as usize * 4];
@@ -971,37 +978,32 @@ fn texel_words(format: wgpu::TextureFormat) -> usize {
 /// The format of a view's info target ([`instrument::fragment`]'s info word).
 const INFO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
-/// A view's targets, depth and read-back buffers, kept while the size stays: each target with
-/// its view and staging buffer.
+/// A view's targets (each with its view), depth and read-back buffers, kept while the size
+/// stays.
 struct Targets {
     device: wgpu::Device,
     width: u32,
     height: u32,
     /// The value target's format.
     format: wgpu::TextureFormat,
-    value: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
-    info: (wgpu::Texture, wgpu::TextureView, wgpu::Buffer),
+    value: (wgpu::Texture, wgpu::TextureView),
+    info: (wgpu::Texture, wgpu::TextureView),
     value_stride: u32,
     info_stride: u32,
     depth: wgpu::TextureView,
+    /// The value's and the info's read-back buffers, made by the first read-back (a view
+    /// painted on the GPU reads nothing back).
+    staging: Option<[wgpu::Buffer; 2]>,
 }
 
 impl Targets {
     fn new(device: &wgpu::Device, width: u32, height: u32, format: wgpu::TextureFormat) -> Targets {
         let label = "shaderlab.debug.view";
-        let target = |name: &str, format, stride| {
+        let target = |name: &str, format| {
             let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::TEXTURE_BINDING;
-            let (t, v) = crate::gpu::targets::texture_and_view(
-                device,
-                &format!("{label}.{name}"),
-                (width, height),
-                format,
-                usage,
-            );
-            let b = crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height);
-            (t, v, b)
+            crate::gpu::targets::texture_and_view(device, &format!("{label}.{name}"), (width, height), format, usage)
         };
         let value_stride = crate::offscreen::padded_row(4 * texel_words(format) as u32, width);
         let info_stride = crate::offscreen::padded_row(4, width);
@@ -1011,12 +1013,27 @@ impl Targets {
             width,
             height,
             format,
-            value: target("value", format, value_stride),
-            info: target("info", INFO_FORMAT, info_stride),
+            value: target("value", format),
+            info: target("info", INFO_FORMAT),
             value_stride,
             info_stride,
             depth,
+            staging: None,
         }
+    }
+
+    /// The read-back buffers, made the first time.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn staging(&mut self) -> &[wgpu::Buffer; 2] {
+        let label = "shaderlab.debug.view";
+        let (device, height) = (&self.device, self.height);
+        let (value_stride, info_stride) = (self.value_stride, self.info_stride);
+        self.staging.get_or_insert_with(|| {
+            let buffer = |name: &str, stride| {
+                crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height)
+            };
+            [buffer("value", value_stride), buffer("info", info_stride)]
+        })
     }
 }
 

@@ -234,6 +234,18 @@ pub fn build(entry: &LabEntry) -> Box<dyn Lab> {
     lab(entry).lab
 }
 
+/// The browser build (`scripts/web` writes it into `target/web`); none is a failure saying how
+/// to build it.
+pub fn site() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web");
+    assert!(
+        dir.join("index.html").is_file() && dir.join("web_bg.wasm").is_file(),
+        "no site in {}: build it first with `scripts/web`",
+        dir.display()
+    );
+    dir
+}
+
 /// The lab `name` drawn from `source` with the user's `files`, at the state `set` (as `--set`
 /// takes it).
 pub fn lab_at(
