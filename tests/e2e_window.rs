@@ -468,6 +468,28 @@ impl App<'_> {
     }
 
     /// How many times the program has said `shaderlab-test: WHAT` (`SHADERLAB_TEST_LOG`).
+    /// Presses F12 and waits for the window's `n`th `screenshot: PATH` line; the path.
+    fn f12(&self, n: usize) -> PathBuf {
+        self.keys(&["F12"]);
+        let line = poll(PATIENCE, || {
+            let out = self.stdout();
+            let lines: Vec<String> = out
+                .lines()
+                .filter(|l| l.starts_with("screenshot: "))
+                .map(str::to_owned)
+                .collect();
+            (lines.len() >= n).then(|| lines[n - 1].clone())
+        })
+        .unwrap_or_else(|| {
+            panic!(
+                "F12 printed no {n}th `screenshot:` line; stdout:\n{}\nstderr:\n{}",
+                self.stdout(),
+                self.stderr()
+            )
+        });
+        PathBuf::from(line.trim_start_matches("screenshot: ").trim())
+    }
+
     fn said(&self, what: &str) -> usize {
         let needle = format!("shaderlab-test: {what}");
         self.stderr().lines().filter(|l| l.starts_with(&needle)).count()
@@ -1028,25 +1050,8 @@ fn f12_writes_what_the_window_shows() {
     let mut seen = 0;
     let mut check = |lab: &App, tag: &str| {
         let shown = lab.settled();
-        lab.keys(&["F12"]);
         seen += 1;
-        let line = poll(PATIENCE, || {
-            let out = lab.stdout();
-            let lines: Vec<String> = out
-                .lines()
-                .filter(|l| l.starts_with("screenshot: "))
-                .map(str::to_owned)
-                .collect();
-            (lines.len() >= seen).then(|| lines[seen - 1].clone())
-        })
-        .unwrap_or_else(|| {
-            panic!(
-                "F12 printed no `screenshot:` line; stdout:\n{}\nstderr:\n{}",
-                lab.stdout(),
-                lab.stderr()
-            )
-        });
-        let path = PathBuf::from(line.trim_start_matches("screenshot: ").trim());
+        let path = lab.f12(seen);
         assert!(
             path.is_absolute(),
             "the screenshot path is not absolute: {}",
@@ -2538,22 +2543,7 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
             .to_owned();
         assert_eq!(last, format!("shaderlab-test: view {w}x{h}"), "{err}");
     };
-    let f12 = |n: usize| -> image::RgbImage {
-        lab.keys(&["F12"]);
-        let line = poll(PATIENCE, || {
-            let out = lab.stdout();
-            let lines: Vec<String> = out
-                .lines()
-                .filter(|l| l.starts_with("screenshot: "))
-                .map(str::to_owned)
-                .collect();
-            (lines.len() >= n).then(|| lines[n - 1].clone())
-        })
-        .unwrap_or_else(|| panic!("no screenshot {n}; stderr:\n{}", lab.stderr()));
-        image::open(line.trim_start_matches("screenshot: ").trim())
-            .expect("a PNG")
-            .to_rgb8()
-    };
+    let f12 = |n: usize| -> image::RgbImage { image::open(lab.f12(n)).expect("a PNG").to_rgb8() };
     let rgb = |i: &image::RgbaImage| image::DynamicImage::ImageRgba8(i.clone()).to_rgb8();
     // F2, then the first inspection chooses the line.
     lab.keys(&["F2"]);
@@ -2657,22 +2647,7 @@ fn f4_diffs_a_copy_against_the_built_in_shaders_and_follows_saved_shaders() {
         .expect("the library diffs");
         image::DynamicImage::ImageRgba8(diff.picture).to_rgb8()
     };
-    let f12 = |n: usize| -> RgbImage {
-        lab.keys(&["F12"]);
-        let line = poll(PATIENCE, || {
-            let out = lab.stdout();
-            let lines: Vec<String> = out
-                .lines()
-                .filter(|l| l.starts_with("screenshot: "))
-                .map(str::to_owned)
-                .collect();
-            (lines.len() >= n).then(|| lines[n - 1].clone())
-        })
-        .unwrap_or_else(|| panic!("no screenshot {n}; stderr:\n{}", lab.stderr()));
-        image::open(line.trim_start_matches("screenshot: ").trim())
-            .expect("a PNG")
-            .to_rgb8()
-    };
+    let f12 = |n: usize| -> RgbImage { image::open(lab.f12(n)).expect("a PNG").to_rgb8() };
     lab.keys(&["F4"]);
     poll(PATIENCE, || (lab.said("view ") >= 1).then_some(()))
         .unwrap_or_else(|| panic!("no view; stderr:\n{}", lab.stderr()));
