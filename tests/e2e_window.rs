@@ -2486,11 +2486,7 @@ fn library_view(lab: &mut dyn shaderlab::lab::Lab, probe: &view::Probe, (w, h): 
     let vh = h - picture::LEGEND_HEIGHT;
     let log = view::record(common::gpu(), lab, w, vh).expect("the frame records");
     let frame = view::draw_view(common::gpu(), &log, probe, w, vh).expect("the view draws");
-    let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
-    match probe {
-        view::Probe::Cost => picture::cost(w, vh, &frame.cost, &drawn).0,
-        _ => picture::values(w, vh, frame.components as usize, &frame.values, &frame.ran, &drawn).0,
-    }
+    frame.picture().0
 }
 
 /// The file the phong lab's fragment shader is read from, as the lab shows it.

@@ -38,21 +38,7 @@ fn compare(
     let frame = drawer
         .draw(gpu(), &log, probe, WIDTH, HEIGHT)
         .map_err(|e| e.to_string())?;
-    let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
-    let (want, legend) = match probe {
-        Probe::Cost => (picture::cost(WIDTH, HEIGHT, &frame.cost, &drawn).0, None),
-        _ => {
-            let (image, legend) = picture::values(
-                WIDTH,
-                HEIGHT,
-                frame.components as usize,
-                &frame.values,
-                &frame.ran,
-                &drawn,
-            );
-            (image, Some(legend))
-        }
-    };
+    let (want, legend) = frame.picture();
     let (got, stats) =
         paint::paint_view(gpu(), drawer, painter, (&log, probe), WIDTH, HEIGHT).map_err(|e| e.to_string())?;
     if got.dimensions() != want.dimensions() {

@@ -37,12 +37,7 @@ fn session() -> Session {
 fn library(s: &mut Session, probe: &view::Probe) -> image::RgbaImage {
     let (w, h) = (SIZE.0, SIZE.1 - picture::LEGEND_HEIGHT);
     let log = view::record(gpu(), s.lab_mut(), w, h).expect("records");
-    let f = view::draw_view(gpu(), &log, probe, w, h).expect("draws");
-    let drawn: Vec<bool> = f.cost.iter().map(|&c| c > 0).collect();
-    match probe {
-        view::Probe::Cost => picture::cost(w, h, &f.cost, &drawn).0,
-        _ => picture::values(w, h, f.components as usize, &f.values, &f.ran, &drawn).0,
-    }
+    view::draw_view(gpu(), &log, probe, w, h).expect("draws").picture().0
 }
 
 fn phong_frag(s: &mut Session) -> String {

@@ -615,12 +615,7 @@ fn native_view_of(
         return image::DynamicImage::ImageRgba8(diff.picture).to_rgb8();
     };
     let frame = view::draw_view(gpu, &log, &probe, w, vh).expect("the view draws");
-    let drawn: Vec<bool> = frame.cost.iter().map(|&c| c > 0).collect();
-    let image = match probe {
-        view::Probe::Cost => picture::cost(w, vh, &frame.cost, &drawn).0,
-        _ => picture::values(w, vh, frame.components as usize, &frame.values, &frame.ran, &drawn).0,
-    };
-    image::DynamicImage::ImageRgba8(image).to_rgb8()
+    image::DynamicImage::ImageRgba8(frame.picture().0).to_rgb8()
 }
 
 /// A link with `&view=cost`, `&view=FILE:LINE` or `&view=diff` opens the page showing

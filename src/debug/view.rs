@@ -216,6 +216,30 @@ impl ValueFrame {
     pub fn at(&self, x: u32, y: u32) -> usize {
         (y * self.width + x) as usize
     }
+
+    /// Where a fragment ran: the fragment shader's trace has at least one step there.
+    pub fn drawn(&self) -> Vec<bool> {
+        self.cost.iter().map(|&c| c > 0).collect()
+    }
+
+    /// The view's picture with its legend strip ([`super::picture::values`] or
+    /// [`super::picture::cost`]), and a line view's legend.
+    pub fn picture(&self) -> (image::RgbaImage, Option<super::picture::Legend>) {
+        let drawn = self.drawn();
+        if self.resolved.is_none() {
+            let (image, _) = super::picture::cost(self.width, self.height, &self.cost, &drawn);
+            return (image, None);
+        }
+        let (image, legend) = super::picture::values(
+            self.width,
+            self.height,
+            self.components as usize,
+            &self.values,
+            &self.ran,
+            &drawn,
+        );
+        (image, Some(legend))
+    }
 }
 
 /// The distinct shaders of `draws` of one stage.

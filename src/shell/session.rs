@@ -568,21 +568,20 @@ impl Session {
     /// made at once here (the window).
     #[cfg(not(target_arch = "wasm32"))]
     pub fn view_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        let made = self
-            .views
-            .update(gpu, self.lab.as_mut(), self.version, size, format, true);
-        if made {
-            self.changed();
-        }
-        made
+        self.update_view(gpu, size, format, true)
     }
 
     /// Moves the view asked for on as [`Session::view_frame`] does, without ever blocking (the
     /// page's way): a diff's frames are read back over calls.
     pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+        self.update_view(gpu, size, format, false)
+    }
+
+    /// [`super::views::Views::update`] at the lab's state; something made is drawn again.
+    fn update_view(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat, wait: bool) -> bool {
         let made = self
             .views
-            .update(gpu, self.lab.as_mut(), self.version, size, format, false);
+            .update(gpu, self.lab.as_mut(), self.version, size, format, wait);
         if made {
             self.changed();
         }

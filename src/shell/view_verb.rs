@@ -167,7 +167,7 @@ impl Plan {
                 t.values
             ))?;
         }
-        let (image, legend) = picture_of(&frame);
+        let (image, legend) = frame.picture();
         if let Some(path) = &self.out {
             crate::offscreen::save_png(&image, path)?;
             eprintln!("wrote {}", path.display());
@@ -311,34 +311,10 @@ fn bench(
     })
 }
 
-/// Where a fragment ran: the fragment shader's trace has at least one step there.
-fn drawn(frame: &ValueFrame) -> Vec<bool> {
-    frame.cost.iter().map(|&c| c > 0).collect()
-}
-
-/// The view's picture with its legend strip ([`picture::values`] or [`picture::cost`]), and
-/// a line view's legend.
-pub fn picture_of(frame: &ValueFrame) -> (image::RgbaImage, Option<Legend>) {
-    let drawn = drawn(frame);
-    if frame.resolved.is_none() {
-        let (image, _) = picture::cost(frame.width, frame.height, &frame.cost, &drawn);
-        return (image, None);
-    }
-    let (image, legend) = picture::values(
-        frame.width,
-        frame.height,
-        frame.components as usize,
-        &frame.values,
-        &frame.ran,
-        &drawn,
-    );
-    (image, Some(legend))
-}
-
 /// Writes the view's raw values: a line's value (NaN where it did not run or no fragment
 /// ran), or the cost (NaN where no fragment ran).
 fn write_npy(frame: &ValueFrame, path: &Path) -> Result<()> {
-    let drawn = drawn(frame);
+    let drawn = frame.drawn();
     if frame.resolved.is_none() {
         let values: Vec<[f32; 4]> = frame.cost.iter().map(|&c| [c as f32, 0.0, 0.0, 0.0]).collect();
         return picture::write_npy(path, frame.width, frame.height, 1, &values, &drawn);

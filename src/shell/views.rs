@@ -185,10 +185,10 @@ pub struct Views {
     choices: Vec<(String, Wanted)>,
     /// Whether the painter's picture is the view asked for.
     painted: bool,
-    /// Pictures painted so far; the first of the view asked for; the last.
+    /// Pictures painted so far (the last one's number), and the number of the first of the
+    /// view asked for.
     paints: u64,
     first_paint: u64,
-    last_paint: u64,
     /// The legend that came back is of an earlier picture: paint again to read the last's.
     stale: bool,
     /// How the line view's legend begins (`phong.frag:31 = \`NdotL\``).
@@ -312,7 +312,6 @@ impl Views {
         }
         let painter = self.painter.as_mut().expect("made above");
         self.paints += 1;
-        self.last_paint = self.paints;
         let targets = self.drawer.targets().expect("drawn above");
         painter.paint(gpu, &mut encoder, targets, &drawn, self.paints)?;
         let commands = gpu.checked("shaderlab.view", || encoder.finish())?;
@@ -347,7 +346,7 @@ impl Views {
             self.stale = self.painted;
             return false;
         }
-        self.stale = tag < self.last_paint;
+        self.stale = tag < self.paints;
         painter.write_strip(gpu, &kind.strip(size.0.max(1), &stats));
         let text = match kind {
             Kind::Value(c) => format!("{}: {}", self.legend_words, stats.legend(c).text()),
