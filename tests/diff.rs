@@ -215,3 +215,87 @@ fn frames_of_shaders_with_other_inputs_are_refused_by_the_library() {
     );
     assert!(same.text().contains("identical"), "{}", same.text());
 }
+
+/// A vertex-shader bug that moves the surface is found at its line, compared vertex by vertex
+/// (the same draw and vertex index in both frames), not at a pixel that other triangles cover
+/// in the two frames: the planted line, the name it assigns, the stage and the vertex.
+#[test]
+fn a_vertex_bug_that_moves_the_surface_is_found_at_its_line_vertex_by_vertex() {
+    let cases: [(&str, &str, &str, &str, &str, &str); 3] = [
+        (
+            "wave",
+            "wave.vert",
+            "h*sin(time + xs*vertex_position.x)",
+            "h*sin(time + xs*vertex_position.x*1.5)",
+            "xs*vertex_position.x*1.5",
+            "t.y",
+        ),
+        (
+            "displacement",
+            "noise.glsl",
+            "vec3 i = floor(v + dot(v, C.yyy));",
+            "vec3 i = floor(v + dot(v, C.yyy) + 0.3);",
+            "C.yyy) + 0.3",
+            "i",
+        ),
+        (
+            "phong",
+            "phong.vert",
+            "gl_Position = mvp * vertex;",
+            "gl_Position = mvp * (vertex + vec4(0.1, 0.0, 0.0, 0.0));",
+            "vec4(0.1, 0.0, 0.0, 0.0)",
+            "gl_Position",
+        ),
+    ];
+    for (lab, file, from, to, planted, name) in cases {
+        let dir = copy_with(&format!("moves_{lab}"), file, from, to);
+        let v = diff_json(lab, &dir, &[]);
+        assert!(v["differing"].as_u64().is_some_and(|n| n > 100), "{lab}: {v}");
+        let first = &v["first_divergence"];
+        assert_eq!(first["stage"], "vertex", "{lab}: {v}");
+        assert!(first["file"].as_str().is_some_and(|f| f.ends_with(file)), "{lab}: {v}");
+        assert_eq!(first["line"], line_of(&dir, file, planted), "{lab}: {v}");
+        assert_eq!(first["name"], name, "{lab}: {v}");
+        assert_eq!(first["why"], "the value differs", "{lab}: {v}");
+        assert!(
+            first["vertex"]["index"].is_u64() && first["vertex"]["draw"].is_u64(),
+            "{lab}: {v}"
+        );
+        assert_ne!(first["mine"], first["reference"], "{lab}: {v}");
+        let text = shaderlab(&["diff", lab, "--shaders", dir.to_str().expect("utf-8")]);
+        let text = String::from_utf8_lossy(&text.stdout);
+        assert!(
+            text.contains(&format!(
+                "{}:{} (vertex shader, draw {} vertex {})",
+                file, first["line"], first["vertex"]["draw"], first["vertex"]["index"]
+            )),
+            "{lab}: {text}"
+        );
+    }
+}
+
+/// The lecture's side-by-side (`compare=1`) draws each program in its own viewport: a bug
+/// planted in the right-hand program's fragment shader is found at its line, at a worst pixel
+/// of the right half.
+#[test]
+fn a_bug_in_a_draw_with_its_own_viewport_is_found_at_its_line() {
+    let dir = copy_with(
+        "viewport",
+        "phong_fragment.frag",
+        "vec4 diffuse = Kd * FrontLightProduct[0].diffuse;",
+        "vec4 diffuse = 0.5 * Kd * FrontLightProduct[0].diffuse;",
+    );
+    let v = diff_json("phong_fragment", &dir, &["--set", "compare=1"]);
+    let first = &v["first_divergence"];
+    assert_eq!(first["stage"], "fragment", "{v}");
+    assert!(
+        first["file"]
+            .as_str()
+            .is_some_and(|f| f.ends_with("phong_fragment.frag")),
+        "{v}"
+    );
+    assert_eq!(first["line"], line_of(&dir, "phong_fragment.frag", "0.5 * Kd"), "{v}");
+    assert_eq!(first["name"], "diffuse", "{v}");
+    let (x, width) = (v["worst"]["x"].as_u64(), v["width"].as_u64());
+    assert!(x.zip(width).is_some_and(|(x, w)| x >= w / 2), "{v}");
+}

@@ -655,3 +655,53 @@ fn a_line_assigning_two_variables_asks_for_one_and_shows_the_one_named() {
     );
     assert_eq!(v.values[i][0], -a.values[i][0], "b is -a");
 }
+
+/// The lecture's side-by-side (`compare=1`) draws each program in its own viewport: the cost
+/// view counts the debugger's steps, a line of the right-hand program's fragment shader runs
+/// in the right half only, and the replay stores the GPU's pixel in both halves, each from the
+/// draw of its own viewport.
+#[test]
+fn draws_in_their_own_viewports_are_viewed_and_replayed_there() {
+    let mut both = lab("phong_fragment", &[("compare", "1")]);
+    costs_agree("phong_fragment compare=1", both.as_mut(), 10);
+    let (log, captured) = frame(both.as_mut());
+    let (file, line) = line_of(&captured, "phong_fragment.frag", "vec4 diffuse");
+    let view = view::draw_view(gpu(), &log, &probe(&file, line, None), WIDTH, HEIGHT).expect("the view");
+    let half = WIDTH / 2;
+    let (mut right, mut left_drawn) = (0, 0);
+    for i in 0..view.values.len() {
+        let x = i as u32 % WIDTH;
+        if view.ran[i] {
+            assert!(
+                x >= half,
+                "{file}:{line} ran at column {x}, in the left program's viewport"
+            );
+            right += 1;
+        } else if x < half && view.cost[i] > 0 {
+            left_drawn += 1;
+        }
+    }
+    assert!(
+        right > 1000 && left_drawn > 1000,
+        "ran at {right} pixels; the left half drew {left_drawn}"
+    );
+    agrees(
+        "phong_fragment compare=1",
+        both.as_mut(),
+        "phong_fragment.frag",
+        "vec4 diffuse",
+        None,
+        8,
+    );
+    let (_, captured) = shaderlab::debug::capture_lab(gpu(), both.as_mut(), WIDTH, HEIGHT, true).expect("a capture");
+    for (x, y) in spread(&view, 12, |i| view.cost[i] > 0) {
+        let ins = Inspection::new("phong_fragment", &captured, x, y).expect("an inspection");
+        assert_eq!(ins.disagreement(), None, "pixel {x},{y}");
+        let draw = ins.replayed.fragment.as_ref().map(|f| f.draw);
+        assert_eq!(
+            draw,
+            Some(usize::from(x >= half)),
+            "pixel {x},{y}: the draw of its viewport"
+        );
+    }
+}

@@ -1,11 +1,20 @@
 //! Where a copy of a lab's shaders departs from a reference: the same frame captured twice
 //! (the copy's shaders and the reference's, at the same state), compared pixel by pixel (a
-//! picture of the difference, PSNR, the number of pixels that differ, the worst one), and at
-//! the worst pixel both traced ([`Inspection`]) and compared step by step in the order the
-//! shaders ran: the first step whose name or value differs is the line where the copy departs.
+//! picture of the difference, PSNR, the number of pixels that differ, the worst one), then
+//! where the copy departs, in the order the shaders run:
+//!
+//! - the vertex stage as vertices: each draw's vertex shader run over the same vertices in
+//!   both frames, and the first vertex whose outputs differ traced in both. A vertex-shader bug
+//!   that moves the surface covers a pixel with other triangles in the two frames, whose traces
+//!   are not runs of the same vertex; compared vertex by vertex, they are.
+//! - where every vertex agrees, the worst pixel traced in both ([`Inspection`]).
+//!
+//! The first step whose name or value differs is the line where the copy departs.
 
 use image::RgbaImage;
 
+use super::capture::CapturedDraw;
+use super::replay::{self, CHUNK};
 use super::{Captured, Inspection, Stage, TraceStep};
 use crate::error::{Error, Result};
 
@@ -32,8 +41,10 @@ pub struct Worst {
 pub struct Divergence {
     /// The stage.
     pub stage: Stage,
-    /// For a vertex step, the corner (0–2).
+    /// For a vertex step at the worst pixel, the corner (0–2) of the triangle covering it.
     pub corner: Option<usize>,
+    /// For a vertex compared as a vertex: the draw and the vertex's index.
+    pub vertex: Option<VertexAt>,
     /// The copy's file.
     pub file: String,
     /// Its 1-based line.
@@ -47,6 +58,15 @@ pub struct Divergence {
     pub reference: Option<TraceStep>,
     /// How they differ, in words.
     pub why: String,
+}
+
+/// A vertex of a frame: which draw, and its index in the draw's vertex buffer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VertexAt {
+    /// The draw, in the frame's order.
+    pub draw: usize,
+    /// The vertex's index.
+    pub index: u32,
 }
 
 /// The comparison of a copy's frame with the reference's.
@@ -168,6 +188,7 @@ pub fn first_divergence(mine: &[TraceStep], reference: &[TraceStep]) -> Option<D
         let at = |reference: Option<&TraceStep>, why: String| Divergence {
             stage: a.stage,
             corner: a.corner,
+            vertex: None,
             file: a.file.clone(),
             line: a.line,
             name: a.name.clone(),
@@ -201,6 +222,7 @@ pub fn first_divergence(mine: &[TraceStep], reference: &[TraceStep]) -> Option<D
     reference.get(mine.len()).map(|b| Divergence {
         stage: b.stage,
         corner: b.corner,
+        vertex: None,
         file: mine.last().map_or_else(|| b.file.clone(), |a| a.file.clone()),
         line: mine.last().map_or(b.line, |a| a.line),
         name: b.name.clone(),
@@ -290,7 +312,13 @@ pub fn diff(lab: &str, mine: &Captured, reference: &Captured) -> Result<Diff> {
     let (diff_picture, _) = super::picture::difference(&a, &b);
     let mut notes = Vec::new();
     let mut first = None;
-    if let Some((_, w)) = &worst {
+    if worst.is_some() {
+        match vertex_divergence(mine, reference) {
+            Ok(found) => first = found,
+            Err(e) => notes.push(format!("the vertices could not be compared: {e}")),
+        }
+    }
+    if let (Some((_, w)), None) = (&worst, &first) {
         let traced = (
             Inspection::new(lab, mine, w.x, w.y),
             Inspection::new(lab, reference, w.x, w.y),
@@ -327,7 +355,7 @@ pub fn diff(lab: &str, mine: &Captured, reference: &Captured) -> Result<Diff> {
                 }
             }
         }
-    } else {
+    } else if worst.is_none() {
         notes.push("the two pictures are the same".to_owned());
     }
     Ok(Diff {
@@ -341,6 +369,60 @@ pub fn diff(lab: &str, mine: &Captured, reference: &Captured) -> Result<Diff> {
         notes,
         picture: diff_picture,
     })
+}
+
+/// The first vertex, in draw order and then index order, whose vertex shader outputs differ
+/// between the two frames (beyond [`VALUE_TOLERANCE`]), traced in both: the first step that
+/// departs there. None where every vertex agrees, or where the two frames' draws read other
+/// vertices (then only pixels can be compared).
+fn vertex_divergence(mine: &Captured, reference: &Captured) -> Result<Option<Divergence>> {
+    for (k, (a, b)) in mine.draws.iter().zip(&reference.draws).enumerate() {
+        let ids = replay::drawn_vertices(b).map_err(super::report::replay_error)?;
+        if replay::drawn_vertices(a).map_err(super::report::replay_error)? != ids {
+            continue;
+        }
+        for chunk in ids.chunks(CHUNK) {
+            let ours = replay::vertex_outputs(a, chunk).map_err(super::report::replay_error)?;
+            let theirs = replay::vertex_outputs(b, chunk).map_err(super::report::replay_error)?;
+            let Some(i) = (0..chunk.len()).find(|&i| !same_value(&ours[i], &theirs[i])) else {
+                continue;
+            };
+            let at = VertexAt {
+                draw: k,
+                index: chunk[i],
+            };
+            return Ok(Some(traced_vertex(a, b, at)?));
+        }
+    }
+    Ok(None)
+}
+
+/// The first step at which the copy's vertex shader departs from the reference's at vertex
+/// `at` (both traced there), or, where the traces agree step by step, the output that differs.
+fn traced_vertex(mine: &CapturedDraw, reference: &CapturedDraw, at: VertexAt) -> Result<Divergence> {
+    let steps = |draw: &CapturedDraw| -> Result<Vec<TraceStep>> {
+        let trace = replay::trace_vertex(draw, at.index).map_err(super::report::replay_error)?;
+        let (mut steps, mut dropped) = (Vec::new(), Vec::new());
+        super::report::steps_of(Stage::Vertex, &draw.vertex, &trace, &mut steps, &mut dropped);
+        for s in &mut steps {
+            s.corner = None;
+        }
+        Ok(steps)
+    };
+    let (ours, theirs) = (steps(mine)?, steps(reference)?);
+    let mut d = first_divergence(&ours, &theirs).unwrap_or_else(|| Divergence {
+        stage: Stage::Vertex,
+        corner: None,
+        vertex: None,
+        file: mine.vertex.path.clone(),
+        line: ours.last().map_or(0, |s| s.line),
+        name: "(outputs)".into(),
+        mine: Vec::new(),
+        reference: None,
+        why: "the traces agree step by step, yet the outputs differ".into(),
+    });
+    d.vertex = Some(at);
+    Ok(d)
 }
 
 /// Draws `mine` and `reference` at `size` and compares them ([`diff`]); each frame's draws
@@ -417,10 +499,11 @@ impl Diff {
             );
         }
         if let Some(d) = &self.first_divergence {
-            let stage = match (d.stage, d.corner) {
-                (Stage::Vertex, Some(c)) => format!("vertex shader, corner {c}"),
-                (Stage::Vertex, None) => "vertex shader".to_owned(),
-                (Stage::Fragment, _) => "fragment shader".to_owned(),
+            let stage = match (d.stage, d.corner, d.vertex) {
+                (Stage::Vertex, _, Some(v)) => format!("vertex shader, draw {} vertex {}", v.draw, v.index),
+                (Stage::Vertex, Some(c), None) => format!("vertex shader, corner {c}"),
+                (Stage::Vertex, None, None) => "vertex shader".to_owned(),
+                (Stage::Fragment, _, _) => "fragment shader".to_owned(),
             };
             let _ = writeln!(
                 out,
@@ -441,7 +524,8 @@ impl Diff {
 
     /// The comparison for programs: `psnr` (`"Infinity"` where the pictures are the same),
     /// `differing`, `worst` {x, y, mine, reference} and `first_divergence` {stage, corner,
-    /// file, line, name, mine, reference, reference_file, reference_line, why} (null where
+    /// vertex {draw, index}, file, line, name, mine, reference, reference_file,
+    /// reference_line, why} (null where
     /// there is none), with `width`, `height` and `notes`.
     pub fn json(&self) -> String {
         use serde_json::{json, Value};
@@ -459,6 +543,7 @@ impl Diff {
             json!({
                 "stage": if d.stage == Stage::Vertex { "vertex" } else { "fragment" },
                 "corner": d.corner,
+                "vertex": d.vertex.map(|v| json!({"draw": v.draw, "index": v.index})),
                 "file": d.file, "line": d.line, "name": d.name,
                 "mine": if d.mine.is_empty() { Value::Null } else { value(&d.mine) },
                 "reference": d.reference.as_ref().map_or(Value::Null, |r| value(&r.value)),

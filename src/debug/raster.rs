@@ -11,28 +11,48 @@
 /// Sub-pixel bits of fixed-point positions (llvmpipe's `FIXED_ORDER`).
 pub const SUBPIXEL_BITS: u32 = 8;
 
-/// The viewport: the target's size.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Viewport {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-}
+pub use crate::render::{Scissor, Viewport};
 
 impl Viewport {
     /// Clip-space position → window position (x right, y down, in pixels), depth and 1/w, in
-    /// `f32` as the vertex pipeline's epilogue computes them.
+    /// `f32` as the vertex pipeline's epilogue computes them (scale, then translate by the
+    /// viewport's centre).
     pub fn to_window(&self, p: [f32; 4]) -> [f32; 4] {
         let oow = 1.0 / p[3];
-        let (hw, hh) = (self.width as f32 * 0.5, self.height as f32 * 0.5);
+        let [sx, sy, sz] = self.scale();
+        let [tx, ty, tz] = self.translate();
         [
-            (p[0] * oow).mul_add(hw, hw),
-            (p[1] * oow).mul_add(-hh, hh),
-            p[2] * oow,
+            (p[0] * oow).mul_add(sx, tx),
+            (p[1] * oow).mul_add(sy, ty),
+            (p[2] * oow).mul_add(sz, tz),
             oow,
         ]
     }
+
+    /// The viewport transform's scale (y flipped: window rows run down).
+    fn scale(&self) -> [f32; 3] {
+        [self.width * 0.5, -self.height * 0.5, self.max_depth - self.min_depth]
+    }
+
+    /// Its translation: the viewport's centre and near depth.
+    fn translate(&self) -> [f32; 3] {
+        [self.x + self.width * 0.5, self.y + self.height * 0.5, self.min_depth]
+    }
+
+    /// Where the clipper's vertices land: divided, then scaled and translated unfused, as
+    /// llvmpipe's clipper interpolates them.
+    fn to_window_unfused(&self, p: [f32; 4]) -> [f32; 4] {
+        let oow = 1.0f32 / p[3];
+        let [sx, sy, sz] = self.scale();
+        let [tx, ty, tz] = self.translate();
+        [p[0] * oow * sx + tx, p[1] * oow * sy + ty, p[2] * oow * sz + tz, oow]
+    }
+}
+
+/// Whether pixel (x, y) is inside `scissor`.
+pub fn scissored(scissor: Scissor, x: u32, y: u32) -> bool {
+    let [sx, sy, w, h] = scissor;
+    x >= sx && y >= sy && x - sx < w && y - sy < h
 }
 
 /// How attribute values are interpolated.
@@ -308,7 +328,6 @@ pub fn triangle(
     }
     // Window positions: the primitive's vertices as the vertex pipeline computes them, the
     // clipper's as its `interp` does (divide, then scale and translate, unfused).
-    let (hw, hh) = (vp.width as f32 * 0.5, vp.height as f32 * 0.5);
     let window: Vec<[f32; 4]> = pos
         .iter()
         .enumerate()
@@ -316,8 +335,7 @@ pub fn triangle(
             if i < 3 {
                 vp.to_window(p)
             } else {
-                let oow = 1.0f32 / p[3];
-                [p[0] * oow * hw + hw, p[1] * oow * -hh + hh, p[2] * oow, oow]
+                vp.to_window_unfused(p)
             }
         })
         .collect();

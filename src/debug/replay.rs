@@ -10,7 +10,7 @@ use super::capture::{Captured, CapturedDraw};
 use super::error::Failure;
 use super::error::ReplayError;
 use super::interp::{Host, Lod, Run, Trace};
-use super::raster::{self, Cover, Interp, Viewport};
+use super::raster::{self, Cover, Interp};
 use super::sample::{self, View};
 use super::value::{self, Bits, Comp, Kind};
 use crate::render::Load;
@@ -33,7 +33,7 @@ fn in_shader(shader: &std::sync::Arc<CompiledShader>) -> impl Fn(Failure) -> Rep
 }
 
 /// The vertices shaded at once when positions are computed for a whole mesh (memory bound).
-const CHUNK: usize = 4_096;
+pub const CHUNK: usize = 4_096;
 
 /// A named value at one place of the interface (`v_normal` at location 1, `gl_Position`).
 #[derive(Clone, Debug)]
@@ -431,17 +431,47 @@ struct Candidate {
     points: bool,
 }
 
-fn candidates(draw_index: usize, draw: &CapturedDraw, vp: Viewport, x: u32, y: u32) -> Res<Vec<Candidate>> {
-    let whole: Vec<u32>;
-    let sequence: &[u32] = match &draw.indices {
-        Some(indices) => indices
-            .get(draw.range.start as usize..draw.range.end as usize)
-            .ok_or_else(|| plain("a draw past the end of its index buffer"))?,
-        None => {
-            whole = draw.range.clone().collect();
-            &whole
-        }
-    };
+/// The vertex ids a draw reads, in the order it draws them.
+fn sequence(draw: &CapturedDraw) -> Res<std::borrow::Cow<'_, [u32]>> {
+    Ok(match &draw.indices {
+        Some(indices) => std::borrow::Cow::Borrowed(
+            indices
+                .get(draw.range.start as usize..draw.range.end as usize)
+                .ok_or_else(|| plain("a draw past the end of its index buffer"))?,
+        ),
+        None => std::borrow::Cow::Owned(draw.range.clone().collect()),
+    })
+}
+
+/// The vertices a draw shades: their ids, sorted, each once.
+pub fn drawn_vertices(draw: &CapturedDraw) -> Res<Vec<u32>> {
+    let mut ids = sequence(draw)?.into_owned();
+    ids.sort_unstable();
+    ids.dedup();
+    Ok(ids)
+}
+
+/// The vertex shader of `draw` run over vertices `ids` (at most a few thousand at once): per
+/// vertex, every output's components as numbers, the outputs in the order the shader declares
+/// them. Two frames' draws are compared vertex by vertex with it ([`super::diff`]).
+pub fn vertex_outputs(draw: &CapturedDraw, ids: &[u32]) -> Res<Vec<Vec<f64>>> {
+    let run = run_vertices(draw, ids, false)?;
+    Ok((0..ids.len())
+        .map(|lane| run.outputs.iter().flat_map(|slot| value::numbers(slot, lane)).collect())
+        .collect())
+}
+
+/// The vertex shader of `draw` traced for vertex `id` alone.
+pub fn trace_vertex(draw: &CapturedDraw, id: u32) -> Res<Trace> {
+    Ok(run_vertices(draw, &[id], true)?.trace)
+}
+
+fn candidates(draw_index: usize, draw: &CapturedDraw, x: u32, y: u32) -> Res<Vec<Candidate>> {
+    if !raster::scissored(draw.scissor, x, y) {
+        return Ok(Vec::new());
+    }
+    let vp = draw.viewport;
+    let sequence = sequence(draw)?;
     let prims = raster::primitives(draw.state.topology, sequence.len())
         .ok_or_else(|| plain(format!("the debugger does not rasterise {:?}", draw.state.topology)))?;
     let shaded = draw
@@ -689,7 +719,6 @@ pub fn replay(captured: &Captured, x: u32, y: u32) -> Res<Replayed> {
             height - 1
         )));
     }
-    let vp = Viewport { width, height };
     let mut clear = [0.0f64; 3];
     let mut depth = 1.0f32;
     let mut top = Top::Clear([0.0, 0.0, 0.0, 1.0]);
@@ -707,7 +736,7 @@ pub fn replay(captured: &Captured, x: u32, y: u32) -> Res<Replayed> {
         // Without discard, a depth output or blending, the depth test alone decides which
         // fragment stays: only that one is shaded, at the end.
         let decides = writes_depth_or_discards(&draw.fragment) || draw.state.blend.is_some();
-        for cand in candidates(i, draw, vp, x, y)? {
+        for cand in candidates(i, draw, x, y)? {
             covering += 1;
             let z = cand.cover.depth[cand.cover.lane];
             if !decides {

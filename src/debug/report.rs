@@ -172,7 +172,24 @@ pub fn caveats(adapter: &str, anisotropic: bool) -> Vec<String> {
     out
 }
 
-fn steps_of(
+/// A replay's failure as the user reads it: at the file and line of the user's source it met,
+/// with the line.
+pub(crate) fn replay_error(e: super::error::ReplayError) -> Error {
+    match e.at {
+        Some((shader, span)) => match locate(&shader, span) {
+            Some((file, line)) => {
+                let text = source_line(&shader, &file, line).unwrap_or("").trim();
+                Error::Debug(format!("{file}:{line}: {}\n    {line} | {text}", e.message))
+            }
+            None => Error::Debug(format!("{}: {}", shader.path, e.message)),
+        },
+        None => Error::Debug(e.message),
+    }
+}
+
+/// The steps of `trace` (one lane per corner for the vertex stage) as the report lists them,
+/// in the user's files and names; the steps left out are counted in `dropped`.
+pub(crate) fn steps_of(
     stage: Stage,
     shader: &CompiledShader,
     trace: &interp::Trace,
@@ -233,16 +250,7 @@ impl Inspection {
     /// The inspection of pixel (x, y) of a captured frame of lab `lab`.
     pub fn new(lab: &str, captured: &Captured, x: u32, y: u32) -> Result<Inspection> {
         let (width, height) = captured.passes.last().map_or((0, 0), |p| (p.1, p.2));
-        let replayed = replay(captured, x, y).map_err(|e| match e.at {
-            Some((shader, span)) => match locate(&shader, span) {
-                Some((file, line)) => {
-                    let text = source_line(&shader, &file, line).unwrap_or("").trim();
-                    Error::Debug(format!("{file}:{line}: {}\n    {line} | {text}", e.message))
-                }
-                None => Error::Debug(format!("{}: {}", shader.path, e.message)),
-            },
-            None => Error::Debug(e.message),
-        })?;
+        let replayed = replay(captured, x, y).map_err(replay_error)?;
         let mut steps = Vec::new();
         let mut dropped = Vec::new();
         let mut anisotropic = false;

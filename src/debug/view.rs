@@ -818,6 +818,10 @@ impl ViewDrawer {
                     if call.setup.pass != k {
                         continue;
                     }
+                    let vp = call.setup.viewport;
+                    pass.set_viewport(vp.x, vp.y, vp.width, vp.height, vp.min_depth, vp.max_depth);
+                    let [x, y, w, h] = call.setup.scissor;
+                    pass.set_scissor_rect(x, y, w, h);
                     pass.set_pipeline(pipeline);
                     if let Some(group) = &call.bind_group {
                         pass.set_bind_group(0, group, &[]);

@@ -3,7 +3,7 @@
 use crate::gpu::Gpu;
 use crate::offscreen::DEPTH_FORMAT;
 
-use super::log::DrawLog;
+use super::log::{DrawLog, Scissor, Viewport};
 
 /// What a render pass does with the target first.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -97,7 +97,12 @@ impl<'a> Frame<'a> {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        Pass { pass, log: self.log }
+        Pass {
+            pass,
+            log: self.log,
+            viewport: Viewport::whole(self.width, self.height),
+            scissor: [0, 0, self.width, self.height],
+        }
     }
 
     /// Width over height as the originals compute it: `(float)w / h`, height 0 taken as 1.
@@ -106,24 +111,56 @@ impl<'a> Frame<'a> {
     }
 }
 
-/// A render pass of a [`Frame`]: wgpu's pass, and the frame's [`DrawLog`] when the debugger
-/// asked for one ([`Program::draw`](super::Program::draw) writes each draw into it).
+/// A render pass of a [`Frame`]: wgpu's pass, the frame's [`DrawLog`] when the debugger asked
+/// for one ([`Program::draw`](super::Program::draw) writes each draw into it), and the pass
+/// state a draw is written down with. Labs change that state through the pass's own methods,
+/// never wgpu's, so what the debugger replays is what the GPU drew.
 pub struct Pass<'p> {
-    /// The pass.
-    pub pass: wgpu::RenderPass<'p>,
-    /// Where draws are written down.
-    pub log: Option<&'p DrawLog>,
+    pass: wgpu::RenderPass<'p>,
+    log: Option<&'p DrawLog>,
+    viewport: Viewport,
+    scissor: Scissor,
 }
 
-impl<'p> std::ops::Deref for Pass<'p> {
-    type Target = wgpu::RenderPass<'p>;
-    fn deref(&self) -> &Self::Target {
-        &self.pass
+impl<'p> Pass<'p> {
+    /// Where the draws that follow land (`glViewport`, `glDepthRange`).
+    pub fn set_viewport(&mut self, viewport: Viewport) {
+        let Viewport {
+            x,
+            y,
+            width,
+            height,
+            min_depth,
+            max_depth,
+        } = viewport;
+        self.pass.set_viewport(x, y, width, height, min_depth, max_depth);
+        self.viewport = viewport;
     }
-}
 
-impl std::ops::DerefMut for Pass<'_> {
-    fn deref_mut(&mut self) -> &mut Self::Target {
+    /// The pixels the draws that follow may write (`glScissor`).
+    pub fn set_scissor(&mut self, scissor: Scissor) {
+        let [x, y, width, height] = scissor;
+        self.pass.set_scissor_rect(x, y, width, height);
+        self.scissor = scissor;
+    }
+
+    /// The viewport the next draw lands in.
+    pub fn viewport(&self) -> Viewport {
+        self.viewport
+    }
+
+    /// The scissor rectangle of the next draw.
+    pub fn scissor(&self) -> Scissor {
+        self.scissor
+    }
+
+    /// Where draws are written down.
+    pub(crate) fn log(&self) -> Option<&'p DrawLog> {
+        self.log
+    }
+
+    /// wgpu's pass, for the draw calls themselves.
+    pub(crate) fn raw(&mut self) -> &mut wgpu::RenderPass<'p> {
         &mut self.pass
     }
 }

@@ -25,8 +25,45 @@ pub struct Texels {
     pub levels: Vec<Vec<u8>>,
 }
 
+/// Where a draw lands in its pass's target (`glViewport` and `glDepthRange`): the rectangle
+/// that clip space maps to, in pixels from the top left, and the depth range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Viewport {
+    /// Left edge in pixels.
+    pub x: f32,
+    /// Top edge in pixels.
+    pub y: f32,
+    /// Width in pixels.
+    pub width: f32,
+    /// Height in pixels.
+    pub height: f32,
+    /// The depth clip space's 0 maps to.
+    pub min_depth: f32,
+    /// The depth clip space's 1 maps to.
+    pub max_depth: f32,
+}
+
+impl Viewport {
+    /// The whole of a `width` × `height` target, depth 0 to 1: a pass's viewport until a lab
+    /// sets another.
+    pub fn whole(width: u32, height: u32) -> Viewport {
+        Viewport {
+            x: 0.0,
+            y: 0.0,
+            width: width as f32,
+            height: height as f32,
+            min_depth: 0.0,
+            max_depth: 1.0,
+        }
+    }
+}
+
+/// The scissor rectangle of a draw (`glScissor`): the pixels it may write, x, y, width and
+/// height from the top left.
+pub type Scissor = [u32; 4];
+
 /// What a draw is apart from the GPU objects it reads: its shaders, fixed-function state,
-/// vertex layout and range. The recorded [`DrawCall`] and the debugger's CPU copy of it share
+/// where in the target it lands, vertex layout and range. The recorded [`DrawCall`] and the debugger's CPU copy of it share
 /// it.
 #[derive(Clone)]
 pub struct DrawSetup {
@@ -44,6 +81,10 @@ pub struct DrawSetup {
     pub state: RenderState,
     /// This draw's culling (a program may draw twice, culling each winding in turn).
     pub cull: Option<wgpu::Face>,
+    /// The viewport the pass had when it drew.
+    pub viewport: Viewport,
+    /// The scissor rectangle the pass had when it drew (its whole target unless set).
+    pub scissor: Scissor,
     /// Bytes per vertex.
     pub stride: u64,
     /// The vertex attributes, by shader location.

@@ -61,7 +61,7 @@ mod texture;
 mod uniforms;
 
 pub use frame::{Frame, Load, Pass};
-pub use log::{DrawCall, DrawLog, DrawSetup, Texels};
+pub use log::{DrawCall, DrawLog, DrawSetup, Scissor, Texels, Viewport};
 pub use mesh::{
     check_fits, facing_first, note_once, GpuMesh, TieGuard, VertexAttr, VertexType, ViewOrdered, LARGE_MESH_TRIANGLES,
     SORT_EVERY_FRAME,

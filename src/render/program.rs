@@ -957,7 +957,7 @@ impl<V: VertexType> Program<V> {
     pub fn draw_range(&self, pass: &mut Pass<'_>, mesh: &GpuMesh<V>, range: std::ops::Range<u32>) {
         let culls = self.state.culls();
         for (k, pipeline) in self.built.pipelines.iter().enumerate() {
-            if let Some(log) = pass.log {
+            if let Some(log) = pass.log() {
                 log.draw(super::DrawCall {
                     setup: super::DrawSetup {
                         pass: 0,
@@ -967,6 +967,8 @@ impl<V: VertexType> Program<V> {
                         bindings: self.built.bindings.clone(),
                         state: self.state,
                         cull: culls.get(k).copied().flatten(),
+                        viewport: pass.viewport(),
+                        scissor: pass.scissor(),
                         stride: std::mem::size_of::<V>() as u64,
                         attributes: self.built.stages.attributes.clone(),
                         indices: mesh.index_data().cloned(),
@@ -978,11 +980,12 @@ impl<V: VertexType> Program<V> {
                     bind_group: self.bind_group.clone(),
                 });
             }
-            pass.set_pipeline(pipeline);
+            let raw = pass.raw();
+            raw.set_pipeline(pipeline);
             if let Some(group) = &self.bind_group {
-                pass.set_bind_group(0, group, &[]);
+                raw.set_bind_group(0, group, &[]);
             }
-            mesh.draw_range(pass, range.clone());
+            mesh.draw_range(raw, range.clone());
         }
     }
 }

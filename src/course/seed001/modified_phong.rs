@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::lab::{BuildContext, Geometry, Input, Key::C, KeyRow, Keys, Scene};
 use crate::mesh::Vertex;
 use crate::params::{ParamSpec, Params};
-use crate::render::{AnyProgram, Frame, Load, Program, RenderState};
+use crate::render::{AnyProgram, Frame, Load, Program, RenderState, Viewport};
 
 use crate::course::seed001::geometry::{SolidGeometry, OBJECT, ROTATION, TESS};
 use crate::course::seed001::gl_light::{Lit, COURSE, COURSE_KEYS};
@@ -113,7 +113,14 @@ impl Scene for ModifiedPhong {
         let mut pass = frame.pass(self.label, Load::Clear([0.0; 3]));
         if compare {
             for ((x, y, side), program) in viewports.into_iter().zip([&self.per_vertex, &self.per_fragment]) {
-                pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
+                pass.set_viewport(Viewport {
+                    x: x as f32,
+                    y: y as f32,
+                    width: side as f32,
+                    height: side as f32,
+                    min_depth: 0.0,
+                    max_depth: 1.0,
+                });
                 program.draw(&mut pass, mesh);
             }
         } else {
