@@ -705,3 +705,110 @@ fn draws_in_their_own_viewports_are_viewed_and_replayed_there() {
         );
     }
 }
+
+/// A fragment shader that assigns parts of values: components of a vector (`c.xy`, `c.yx`),
+/// array elements (`arr[i]`, `arr[1]`), a component in a switch's case (`c.z`), a matrix.
+const PARTS: &str = "#version 450
+layout(location = 0) in vec3 normal;
+layout(location = 0) out vec4 frag_color;
+
+void main() {
+    vec4 c = vec4(0.0, 0.0, 0.0, 1.0);
+    c.xy = normal.xy;
+    float arr[3];
+    int i = int(gl_FragCoord.x) % 3;
+    arr[i] = normal.z;
+    arr[1] = normal.x;
+    mat3 m = mat3(normal, normal.yzx, normal.zxy);
+    switch (i) {
+        case 0: c.z = arr[0]; break;
+        default: c.z = m[1].x; break;
+    }
+    c.yx = vec2(c.x, c.y) * 0.5;
+    frag_color = c;
+}
+";
+
+/// A line that assigns part of a value shows what it assigns, named as written: the
+/// components of `c.xy = …` (2, in the order written, `c.yx` too), `arr[i]` and `arr[1]`, a
+/// switch's `c.z`; a matrix is offered as its columns (`m[0]`…), each one a vector. The
+/// values are the debugger's at the pixels where the line ran.
+#[test]
+fn a_line_assigning_part_of_a_value_shows_what_it_assigns_named_as_written() {
+    let mut lab = edited("normal_rgb", &[("normal_rgb.frag", PARTS)], &[("object", "sphere")]);
+    let (log, captured) = frame(lab.as_mut());
+    let at = |needle: &str| line_of(&captured, "normal_rgb.frag", needle);
+    let (file, m_line) = at("mat3 m =");
+    let e = view::resolve(&log.draws(), &probe(&file, m_line, None)).expect_err("a matrix's columns");
+    assert!(
+        matches!(&e, ViewError::Ambiguous { choices, .. } if choices == &["m[0]", "m[1]", "m[2]"]),
+        "{e}"
+    );
+    // (needle, name given, the view's name, the trace's names of its components in order)
+    let cases: [(&str, Option<&str>, &str, &[&str]); 8] = [
+        ("c.xy = normal.xy;", None, "c.xy", &["c.x", "c.y"]),
+        ("c.xy = normal.xy;", Some("c"), "c.xy", &["c.x", "c.y"]),
+        ("c.yx = vec2", None, "c.yx", &["c.y", "c.x"]),
+        ("arr[i] = normal.z;", None, "arr[i]", &[]),
+        ("arr[1] = normal.x;", None, "arr[1]", &["arr[1]"]),
+        ("case 0: c.z", None, "c.z", &["c.z"]),
+        ("default: c.z", None, "c.z", &["c.z"]),
+        ("mat3 m =", Some("m[1]"), "m[1]", &["m"]),
+    ];
+    for (needle, given, name, parts) in cases {
+        let (file, line) = at(needle);
+        let view = view::draw_view(gpu(), &log, &probe(&file, line, given), WIDTH, HEIGHT)
+            .unwrap_or_else(|e| panic!("{needle}: {e}"));
+        let resolved = view.resolved.clone().expect("a line view");
+        assert_eq!(resolved.site.name.as_deref(), Some(name), "{needle}");
+        let want = match name {
+            "c.xy" | "c.yx" => 2,
+            "m[1]" => 3,
+            _ => 1,
+        };
+        assert_eq!((resolved.components, view.components), (want, want), "{needle}");
+        let ran = spread(&view, 6, |i| view.ran[i]);
+        assert!(ran.len() >= 4, "{needle}: ran at {} pixels", ran.len());
+        for (x, y) in ran {
+            let ins = Inspection::new("normal_rgb", &captured, x, y).expect("an inspection");
+            let got = view.values[view.at(x, y)];
+            let expected: Vec<f64> = match (name, parts) {
+                // The element the pixel's own index picks (the trace names it `arr[i]`, or by
+                // its value where the quad's pixels agree on it).
+                ("arr[i]", _) => traced(&ins, Stage::Fragment, &file, line, "arr")
+                    .last()
+                    .cloned()
+                    .unwrap_or_else(|| panic!("{x},{y}: arr[…] traced")),
+                // Column 1 of the matrix: its components 3..6.
+                ("m[1]", _) => {
+                    let m = traced(&ins, Stage::Fragment, &file, line, "m");
+                    m.last().expect("m traced")[3..6].to_vec()
+                }
+                _ => parts
+                    .iter()
+                    .map(|p| {
+                        let steps: Vec<_> = ins
+                            .steps
+                            .iter()
+                            .filter(|s| s.file == file && s.line == line && s.name == *p)
+                            .collect();
+                        steps
+                            .last()
+                            .unwrap_or_else(|| panic!("{needle} {x},{y}: {p} traced"))
+                            .value[0]
+                    })
+                    .collect(),
+            };
+            assert_eq!(expected.len() as u32, want, "{needle} {x},{y}");
+            for (k, e) in expected.iter().enumerate() {
+                assert!(
+                    close(got[k], *e),
+                    "{needle} pixel {x},{y}: `{name}` component {k}: view {:?}, debugger {expected:?}",
+                    got
+                );
+            }
+        }
+    }
+    let e = view::resolve(&log.draws(), &probe(&file, m_line, Some("m[3]"))).expect_err("no such column");
+    assert!(matches!(e, ViewError::NoSuchName { .. }), "{e}");
+}

@@ -13,9 +13,8 @@
 
 use image::RgbaImage;
 
-use super::capture::CapturedDraw;
 use super::replay::{self, CHUNK};
-use super::{Captured, Inspection, Stage, TraceStep};
+use super::{Captured, CapturedDraw, Inspection, Stage, TraceStep};
 use crate::error::{Error, Result};
 
 /// How far apart two traced values may be, relative to the larger (or absolutely below 1),

@@ -23,22 +23,110 @@ pub struct Assignment {
     pub file: String,
     /// The 1-based line.
     pub line: u32,
-    /// The name as the trace writes it (`L`, `color.x`, `(temporary)`).
+    /// The name as the trace writes it (`L`, `color.x`, `arr[i]`, `(temporary)`).
     pub name: String,
     /// The variable it assigns (part of): `color` for `color.x`.
     pub root: String,
     /// The components of the value a view shows (its first four).
     pub components: u32,
+    /// For a store into one component of a vector (`c.x`): the vector's name (`c`) and the
+    /// component.
+    pub part: Option<(String, u32)>,
+    /// For a matrix value: its columns and rows.
+    pub matrix: Option<(u32, u32)>,
 }
 
-impl Assignment {
-    /// Whether `name` picks it: its whole name or its variable's.
-    pub fn named(&self, name: &str) -> bool {
-        self.name == name || self.root == name
+/// One thing a line assigns that a view can show, named as written: a whole value (`N`,
+/// `arr[i]`, `c.z`), the components of a vector the line assigns one by one (`c.xy` for
+/// `c.xy = …;`, in the order written), or a column of a matrix (`m[1]`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Target {
+    /// The name as the view is labelled and chosen.
+    pub name: String,
+    /// The variable it is (part of).
+    pub root: String,
+    /// The components a view shows (at most 4).
+    pub components: u32,
+    /// What is stored for it.
+    pub pick: Pick,
+}
+
+/// Which stores of a line make a [`Target`]'s value, and how.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Pick {
+    /// The value a store of this name stores.
+    Value(String),
+    /// These components of the vector of this name, read after each store into one of them.
+    Parts(String, Vec<u32>),
+    /// This column of the matrix a store of this name stores.
+    Column(String, u32),
+}
+
+impl Target {
+    /// Whether `name` picks it: its name, or its variable's where that is the only thing of
+    /// the variable's the line assigns (`given` lists the line's targets).
+    pub fn named(&self, name: &str, given: &[Target]) -> bool {
+        self.name == name || (self.root == name && given.iter().filter(|t| t.root == name).count() == 1)
     }
 }
 
-/// What a view probes in one module: the line and, where chosen, the name.
+/// The targets of the assignments `here` (those of one line), in the order the line first
+/// assigns them: stores into single components of one vector make one target, a matrix one
+/// target per column, any other name one target.
+pub fn targets(here: &[&Assignment]) -> Vec<Target> {
+    let mut out: Vec<Target> = Vec::new();
+    for a in here {
+        if let Some((base, part)) = &a.part {
+            let letter = ["x", "y", "z", "w"].get(*part as usize).copied().unwrap_or("?");
+            if let Some(t) = out
+                .iter_mut()
+                .find(|t| matches!(&t.pick, Pick::Parts(b, _) if b == base))
+            {
+                if let Pick::Parts(_, parts) = &mut t.pick {
+                    if !parts.contains(part) && parts.len() < 4 {
+                        parts.push(*part);
+                        t.name.push_str(letter);
+                        t.components = parts.len() as u32;
+                    }
+                }
+                continue;
+            }
+            out.push(Target {
+                name: format!("{base}.{letter}"),
+                root: a.root.clone(),
+                components: 1,
+                pick: Pick::Parts(base.clone(), vec![*part]),
+            });
+            continue;
+        }
+        let made: Vec<Target> = match a.matrix {
+            Some((columns, rows)) => (0..columns)
+                .map(|k| Target {
+                    name: format!("{}[{k}]", a.name),
+                    root: a.root.clone(),
+                    components: rows.min(4),
+                    pick: Pick::Column(a.name.clone(), k),
+                })
+                .collect(),
+            None => vec![Target {
+                name: a.name.clone(),
+                root: a.root.clone(),
+                components: a.components,
+                pick: Pick::Value(a.name.clone()),
+            }],
+        };
+        for t in made {
+            match out.iter_mut().find(|o| o.name == t.name) {
+                Some(o) => o.components = o.components.max(t.components),
+                None => out.push(t),
+            }
+        }
+    }
+    out
+}
+
+/// What a view probes in one module: the line and the name of the [`Target`] chosen (none
+/// where the line assigns only what the compiler made).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Site {
     /// The file.
@@ -124,10 +212,74 @@ fn pointer_name(
             };
             Some((format!("{whole}{}", part_name(&inner, *index as usize, members)), root))
         }
-        Expression::Access { base, .. } => {
+        Expression::Access { base, index } => {
             let (whole, root) = pointer_name(module, function, info, *base)?;
-            Some((format!("{whole}[i]"), root))
+            Some((format!("{whole}[{}]", index_name(module, function, *index)), root))
         }
+        _ => None,
+    }
+}
+
+/// An index as written: a number, or the variable it is read from (`i` where it is
+/// computed).
+fn index_name(module: &Module, function: &Function, index: Handle<Expression>) -> String {
+    let literal = |l: &Literal| match *l {
+        Literal::I32(v) => Some(v.to_string()),
+        Literal::U32(v) => Some(v.to_string()),
+        Literal::I64(v) => Some(v.to_string()),
+        Literal::U64(v) => Some(v.to_string()),
+        Literal::AbstractInt(v) => Some(v.to_string()),
+        _ => None,
+    };
+    let named = match &function.expressions[index] {
+        Expression::Literal(l) => literal(l),
+        Expression::Constant(c) => match &module.global_expressions[module.constants[*c].init] {
+            Expression::Literal(l) => literal(l),
+            _ => module.constants[*c].name.clone(),
+        },
+        Expression::Load { pointer } => match &function.expressions[*pointer] {
+            Expression::LocalVariable(l) => function.local_variables[*l].name.clone(),
+            Expression::GlobalVariable(g) => module.global_variables[*g].name.clone(),
+            _ => None,
+        },
+        Expression::FunctionArgument(k) => function.arguments.get(*k as usize).and_then(|a| a.name.clone()),
+        _ => None,
+    };
+    named.unwrap_or_else(|| "i".into())
+}
+
+/// A store's names as [`Assignment`] gives them: the name, its variable's, and for a store
+/// into one component of a vector the vector's name and the component (and the vector's
+/// pointer).
+struct Stored {
+    name: String,
+    root: String,
+    part: Option<(String, u32, Handle<Expression>)>,
+}
+
+fn stored(
+    module: &Module,
+    function: &Function,
+    info: &naga::valid::FunctionInfo,
+    pointer: Handle<Expression>,
+) -> Option<Stored> {
+    let (name, root) = pointer_name(module, function, info, pointer)?;
+    let part = match &function.expressions[pointer] {
+        Expression::AccessIndex { base, index } => match pointee(module, info[*base].ty.inner_with(&module.types)) {
+            Some(TypeInner::Vector { .. }) => {
+                pointer_name(module, function, info, *base).map(|(whole, _)| (whole, *index, *base))
+            }
+            _ => None,
+        },
+        _ => None,
+    };
+    Some(Stored { name, root, part })
+}
+
+/// A matrix type's columns and rows.
+fn matrix(inner: &TypeInner) -> Option<(u32, u32)> {
+    match *inner {
+        TypeInner::Matrix { columns, rows, .. } => Some((columns as u32, rows as u32)),
         _ => None,
     }
 }
@@ -148,12 +300,15 @@ pub fn assignments(shader: &CompiledShader) -> Vec<Assignment> {
             }
             if let Some((file, line)) = locate(shader, function.local_variables.get_span(h)) {
                 let n = user_name(shader, local.name.as_deref().unwrap_or(super::interp::TEMPORARY));
+                let inner = &module.types[local.ty].inner;
                 out.push(Assignment {
                     file,
                     line,
                     name: n.clone(),
                     root: n,
-                    components: count(&module.types, &module.types[local.ty].inner),
+                    components: count(&module.types, inner),
+                    part: None,
+                    matrix: matrix(inner),
                 });
             }
         }
@@ -175,16 +330,19 @@ fn stores(
                 let Some((file, line)) = locate(shader, *span) else {
                     continue;
                 };
-                let Some((name, root)) = pointer_name(&shader.module, function, info, *pointer) else {
+                let Some(store) = stored(&shader.module, function, info, *pointer) else {
                     continue;
                 };
                 let types = &shader.module.types;
+                let inner = info[*value].ty.inner_with(types);
                 out.push(Assignment {
                     file,
                     line,
-                    name: user_name(shader, &name),
-                    root: user_name(shader, &root),
-                    components: count(types, info[*value].ty.inner_with(types)),
+                    name: user_name(shader, &store.name),
+                    root: user_name(shader, &store.root),
+                    components: count(types, inner),
+                    part: store.part.map(|(base, k, _)| (user_name(shader, &base), k)),
+                    matrix: matrix(inner),
                 });
             }
             Statement::Block(b) => stores(shader, function, info, b, out),
@@ -271,6 +429,8 @@ struct Rewrite<'a> {
     /// The function's steps reach the trace.
     shown: bool,
     site: Option<&'a Site>,
+    /// The target chosen on the site's line (none: every store of the line).
+    target: Option<&'a Target>,
     /// Count steps (the fragment shader's).
     count: bool,
     globals: Globals,
@@ -288,23 +448,27 @@ impl Rewrite<'_> {
         self.count && self.shown && locate(self.shader, span).is_some()
     }
 
-    /// Whether an assignment at `span` named (`name`, `root`) is the probed one.
-    fn probed(&self, span: Span, name: &str, root: &str) -> bool {
-        let Some(site) = self.site else { return false };
+    /// What to store for a store at `span` of `store` where it is the probed one.
+    fn probed(&self, span: Span, store: &Stored) -> Option<Source> {
+        let site = self.site?;
         if !self.shown {
-            return false;
+            return None;
         }
-        let Some((file, line)) = locate(self.shader, span) else {
-            return false;
-        };
-        let a = Assignment {
-            file,
-            line,
-            name: user_name(self.shader, name),
-            root: user_name(self.shader, root),
-            components: 0,
-        };
-        a.file == site.file && a.line == site.line && site.name.as_deref().is_none_or(|n| a.named(n))
+        let (file, line) = locate(self.shader, span)?;
+        if file != site.file || line != site.line {
+            return None;
+        }
+        let name = user_name(self.shader, &store.name);
+        match self.target.map(|t| &t.pick) {
+            None => Some(Source::Stored),
+            Some(Pick::Value(n)) => (*n == name).then_some(Source::Stored),
+            Some(Pick::Column(n, k)) => (*n == name).then_some(Source::Column(*k)),
+            Some(Pick::Parts(b, parts)) => {
+                let (base, k, pointer) = store.part.as_ref()?;
+                (user_name(self.shader, base) == *b && parts.contains(k))
+                    .then(|| Source::Parts(*pointer, parts.clone()))
+            }
+        }
     }
 
     /// `cost += 1`.
@@ -326,12 +490,13 @@ impl Rewrite<'_> {
         out.push(Statement::Store { pointer: g, value: new }, s);
     }
 
-    /// Stores `value` (of type `inner`) as the probed value: its first four components as
-    /// `f32`, and `ran = 1`.
+    /// Stores the probed value, from the store of `value` (of type `inner`) as `source`
+    /// says, as its first four components as `f32`, and `ran = 1`.
     fn capture(
         &mut self,
         inner: &TypeInner,
         value: Handle<Expression>,
+        source: Source,
         exprs: &mut naga::Arena<Expression>,
         out: &mut naga::Block,
     ) {
@@ -343,7 +508,26 @@ impl Rewrite<'_> {
         let gc = exprs.append(Expression::GlobalVariable(self.globals.components), s);
         let start = exprs.len();
         let mut comps = Vec::new();
-        flatten(&self.shader.module.types, inner, value, exprs, zero, one, &mut comps);
+        let types = &self.shader.module.types;
+        match (source, inner) {
+            (Source::Column(k), &TypeInner::Matrix { rows, scalar, .. }) => {
+                let column = exprs.append(Expression::AccessIndex { base: value, index: k }, s);
+                let inner = TypeInner::Vector { size: rows, scalar };
+                flatten(types, &inner, column, exprs, zero, one, &mut comps);
+            }
+            (Source::Parts(pointer, parts), _) => {
+                let info = info_of(self.shader, self.which);
+                let vector = pointee(&self.shader.module, info[pointer].ty.inner_with(types));
+                if let Some(TypeInner::Vector { scalar, .. }) = vector {
+                    let loaded = exprs.append(Expression::Load { pointer }, s);
+                    for k in parts {
+                        let c = exprs.append(Expression::AccessIndex { base: loaded, index: k }, s);
+                        flatten(types, &TypeInner::Scalar(scalar), c, exprs, zero, one, &mut comps);
+                    }
+                }
+            }
+            _ => flatten(types, inner, value, exprs, zero, one, &mut comps),
+        }
         let n = comps.len() as u32;
         self.found.push(n);
         while comps.len() < 4 {
@@ -439,12 +623,11 @@ impl Rewrite<'_> {
                     }
                     let original = self.original();
                     let info = info_of(self.shader, self.which);
-                    let named = pointer_name(&self.shader.module, original, info, pointer);
-                    if let Some((name, root)) = named {
-                        if self.probed(span, &name, &root) {
-                            let inner = info[value].ty.inner_with(&self.shader.module.types).clone();
-                            self.capture(&inner, value, exprs, &mut out);
-                        }
+                    let source = stored(&self.shader.module, original, info, pointer)
+                        .and_then(|store| self.probed(span, &store));
+                    if let Some(source) = source {
+                        let inner = info[value].ty.inner_with(&self.shader.module.types).clone();
+                        self.capture(&inner, value, source, exprs, &mut out);
                     }
                 }
                 other => out.push(other, span),
@@ -548,6 +731,36 @@ fn flatten(
     out.truncate(4);
 }
 
+/// Where a probed value comes from at a store.
+enum Source {
+    /// The value stored.
+    Stored,
+    /// A column of the matrix stored.
+    Column(u32),
+    /// These components of the vector through this pointer, after the store.
+    Parts(Handle<Expression>, Vec<u32>),
+}
+
+/// The target `site` names on its line among `shader`'s assignments: the one of its name (or
+/// of its variable's, where that has one), the only one where no name is given.
+pub fn chosen(shader: &CompiledShader, site: &Site) -> Option<Target> {
+    let all = assignments(shader);
+    let here: Vec<&Assignment> = all
+        .iter()
+        .filter(|a| a.file == site.file && a.line == site.line)
+        .collect();
+    let list = targets(&here);
+    match &site.name {
+        Some(n) => list
+            .iter()
+            .find(|t| t.name == *n)
+            .or_else(|| list.iter().find(|t| t.named(n, &list)))
+            .cloned(),
+        None if list.len() == 1 => list.into_iter().next(),
+        None => None,
+    }
+}
+
 /// What [`rewrite`] did: the component counts of the probed assignments it found.
 struct Rewritten {
     module: Module,
@@ -562,6 +775,7 @@ fn rewrite(shader: &CompiledShader, stage: naga::ShaderStage, site: Option<&Site
     let ep = module.entry_points.iter().position(|e| e.stage == stage)?;
     let globals = add_globals(&mut module);
     let mut found = Vec::new();
+    let target = site.and_then(|site| chosen(shader, site));
     for which in functions(shader) {
         let original = function_of(&shader.module, which);
         let mut rw = Rewrite {
@@ -569,6 +783,7 @@ fn rewrite(shader: &CompiledShader, stage: naga::ShaderStage, site: Option<&Site
             which,
             shown: shown(shader, original),
             site,
+            target: target.as_ref(),
             count,
             globals,
             found: Vec::new(),
@@ -587,13 +802,18 @@ fn rewrite(shader: &CompiledShader, stage: naga::ShaderStage, site: Option<&Site
                 rw.increment(&mut exprs, &mut prologue);
             }
             let name = local.name.clone().unwrap_or_else(|| super::interp::TEMPORARY.into());
-            if rw.probed(span, &name, &name) {
+            let store = Stored {
+                name: name.clone(),
+                root: name,
+                part: None,
+            };
+            if let Some(source) = rw.probed(span, &store) {
                 let inner = shader.module.types[local.ty].inner.clone();
                 let pointer = exprs.append(Expression::LocalVariable(h), Span::UNDEFINED);
                 let start = exprs.len();
                 let loaded = exprs.append(Expression::Load { pointer }, Span::UNDEFINED);
                 prologue.push(Statement::Emit(exprs.range_from(start)), Span::UNDEFINED);
-                rw.capture(&inner, loaded, &mut exprs, &mut prologue);
+                rw.capture(&inner, loaded, source, &mut exprs, &mut prologue);
             }
         }
         let mut body = rw.block(body, &mut exprs);

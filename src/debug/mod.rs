@@ -34,7 +34,7 @@ pub mod view;
 use crate::error::Result;
 use crate::shader::CompiledShader;
 
-pub use capture::{Captured, Pending};
+pub use capture::{Captured, CapturedDraw, Pending};
 pub use replay::{replay, Fragment, Named, Replayed};
 pub use report::{caveats, json_number, Dropped, Inspection, Row, Stage, TraceStep, GPU_TOLERANCE};
 

@@ -338,47 +338,51 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
             near: nearest(&all, line),
         });
     }
-    let mut roots: Vec<&str> = Vec::new();
-    for a in &here {
-        if a.root != super::interp::TEMPORARY && !roots.contains(&a.root.as_str()) {
-            roots.push(&a.root);
-        }
-    }
-    let chosen = match name {
+    let list = instrument::targets(&here);
+    let names: Vec<String> = list.iter().map(|t| t.name.clone()).collect();
+    // What the compiler made (a `?:`'s result) is not offered by name.
+    let choices: Vec<String> = list
+        .iter()
+        .filter(|t| t.root != super::interp::TEMPORARY)
+        .map(|t| t.name.clone())
+        .collect();
+    let target = match name {
         Some(n) => {
-            if !here.iter().any(|a| a.named(n)) {
-                return Err(ViewError::NoSuchName {
-                    file: file.clone(),
-                    line,
-                    name: n.clone(),
-                    names: quoted(&names(&here)),
-                    choices: roots.iter().map(|r| (*r).to_owned()).collect(),
-                });
-            }
-            Some(n.clone())
-        }
-        None => {
-            let all_names = names(&here);
-            match roots.as_slice() {
-                [] => None,
-                [one] => Some((*one).to_owned()),
-                _ => {
-                    return Err(ViewError::Ambiguous {
+            let found = list
+                .iter()
+                .find(|t| t.name == *n)
+                .or_else(|| list.iter().find(|t| t.named(n, &list)));
+            match found {
+                Some(t) => Some(t),
+                None => {
+                    return Err(ViewError::NoSuchName {
                         file: file.clone(),
                         line,
-                        names: quoted(&all_names),
-                        choices: roots.iter().map(|r| (*r).to_owned()).collect(),
+                        name: n.clone(),
+                        names: quoted(&names),
+                        choices,
                     })
                 }
             }
         }
+        None => match choices.as_slice() {
+            [] => None,
+            [one] => list.iter().find(|t| t.name == *one),
+            _ => {
+                return Err(ViewError::Ambiguous {
+                    file: file.clone(),
+                    line,
+                    names: quoted(&names),
+                    choices,
+                })
+            }
+        },
     };
-    let components = here
-        .iter()
-        .filter(|a| chosen.as_deref().is_none_or(|n| a.named(n)))
-        .map(|a| a.components)
-        .max()
-        .unwrap_or(0);
+    let components = match target {
+        Some(t) => t.components,
+        None => list.iter().map(|t| t.components).max().unwrap_or(0),
+    };
+    let chosen = target.map(|t| t.name.clone());
     Ok(Some(Resolved {
         stage,
         components,

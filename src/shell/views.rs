@@ -115,11 +115,14 @@ impl Wanted {
             Some((t, "fragment")) => (t, Some(Stage::Fragment)),
             _ => (text, None),
         };
-        // A GLSL name never starts with a digit: a last part that is no number is the name,
-        // and `FILE:LINE` comes before it.
+        // A GLSL name never starts with a digit: a last part that is no number is the name
+        // (a variable, or part of one: `c.xy`, `m[1]`, `arr[i]`), and `FILE:LINE` comes
+        // before it.
         let named = text.rsplit_once(':').filter(|(_, last)| {
             last.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-                && last.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                && last
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '[' | ']'))
         });
         let (text, name) = match named {
             Some((rest, last)) => (rest, Some(last.to_owned())),
@@ -703,6 +706,18 @@ mod tests {
                 file: "phong.frag".into(),
                 line: 12,
                 name: None,
+                stage: Some(Stage::Fragment),
+            }),
+            Wanted::Probe(Probe::Line {
+                file: "normal_rgb.frag".into(),
+                line: 8,
+                name: Some("c.xy".into()),
+                stage: None,
+            }),
+            Wanted::Probe(Probe::Line {
+                file: "normal_rgb.frag".into(),
+                line: 13,
+                name: Some("m[1]".into()),
                 stage: Some(Stage::Fragment),
             }),
         ] {
