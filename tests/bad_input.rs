@@ -31,7 +31,19 @@ struct Run {
 
 /// Runs `example args` in `dir`, with no display, and the extra environment.
 fn run_in(dir: &Path, example_name: &str, args: &[&str], env: &[(&str, &str)]) -> Run {
-    let mut command = Command::new(example(example_name));
+    run_via(&[], dir, example_name, args, env)
+}
+
+/// `run_in` with the example run by `wrapper` (`wrapper... example args`) when it is not empty.
+fn run_via(wrapper: &[String], dir: &Path, example_name: &str, args: &[&str], env: &[(&str, &str)]) -> Run {
+    let mut command = match wrapper.split_first() {
+        Some((program, rest)) => {
+            let mut command = Command::new(program);
+            command.args(rest).arg(example(example_name));
+            command
+        }
+        None => Command::new(example(example_name)),
+    };
     command
         .args(args)
         .current_dir(dir)
@@ -855,43 +867,108 @@ fn negative_bench_frames_are_out_of_range() {
     );
 }
 
-#[test]
-fn a_read_only_screenshot_folder_is_found_before_the_gpu_is_opened() {
-    let dir = test_dir("read_only_folder");
-    let ro = dir.join("ro");
-    std::fs::create_dir(&ro).unwrap();
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
+/// How a child runs with the folder `ro` of its directory not writable to it, even as root.
+#[cfg(unix)]
+struct ReadOnly {
+    /// The command the child runs under (empty: none).
+    wrapper: Vec<String>,
+    /// The folder made immutable, made mutable again when dropped.
+    immutable: Option<PathBuf>,
+}
+
+#[cfg(unix)]
+impl Drop for ReadOnly {
+    fn drop(&mut self) {
+        if let Some(ro) = &self.immutable {
+            let _ = Command::new("chattr").arg("-i").arg(ro).status();
+        }
     }
+}
+
+/// Makes `dir/ro` unwritable to a child: mode 0555 where that is enough (a normal user), else a
+/// read-only bind mount of it in a user and mount namespace of the child's own (`unshare -rm`,
+/// which leaves nothing behind), else the immutable attribute (`chattr +i`). None of them
+/// working is a failure saying what each answered, never a skip.
+#[cfg(unix)]
+fn read_only_folder(dir: &Path) -> ReadOnly {
+    use std::os::unix::fs::PermissionsExt;
+    let ro = dir.join("ro");
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
     let writable = |d: &Path| {
         let probe = d.join("probe");
         let ok = std::fs::write(&probe, b"").is_ok();
         let _ = std::fs::remove_file(&probe);
         ok
     };
-    // Root writes anywhere: make the folder immutable instead, where the file system can.
-    let immutable = writable(&ro)
-        && Command::new("chattr")
-            .arg("+i")
-            .arg(&ro)
-            .status()
-            .is_ok_and(|s| s.success());
-    if writable(&ro) {
-        println!("skipped: cannot make a read-only folder here");
-        return;
+    if !writable(&ro) {
+        return ReadOnly {
+            wrapper: Vec::new(),
+            immutable: None,
+        };
     }
+    let mut tried = vec!["mode 0555: still writable (root)".to_string()];
+    let mount = "mount -o bind,ro ro ro";
+    let probe = Command::new("unshare")
+        .args(["-rm", "sh", "-c"])
+        .arg(format!("{mount} && ! (: > ro/probe) 2>/dev/null"))
+        .current_dir(dir)
+        .output();
+    match probe {
+        Ok(out) if out.status.success() => {
+            let wrapper = ["unshare", "-rm", "sh", "-c", &format!("{mount} && exec \"$@\""), "sh"];
+            return ReadOnly {
+                wrapper: wrapper.map(String::from).to_vec(),
+                immutable: None,
+            };
+        }
+        Ok(out) => tried.push(format!(
+            "unshare -rm sh -c '{mount}': {} {}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        )),
+        Err(e) => tried.push(format!("unshare: {e} (util-linux)")),
+    }
+    let _ = std::fs::remove_file(ro.join("probe"));
+    match Command::new("chattr").arg("+i").arg(&ro).output() {
+        Ok(out) if out.status.success() => {
+            let made = ReadOnly {
+                wrapper: Vec::new(),
+                immutable: Some(ro.clone()),
+            };
+            if !writable(&ro) {
+                return made;
+            }
+            tried.push("chattr +i: still writable".to_string());
+        }
+        Ok(out) => tried.push(format!(
+            "chattr +i: {} {}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        )),
+        Err(e) => tried.push(format!("chattr: {e} (e2fsprogs)")),
+    }
+    panic!(
+        "cannot make a folder this test's child cannot write; run it as a normal user, or allow \
+         user namespaces (unshare -rm) or chattr +i:\n  {}",
+        tried.join("\n  ")
+    );
+}
+
+#[test]
+#[cfg(unix)]
+fn a_read_only_screenshot_folder_is_found_before_the_gpu_is_opened() {
+    let dir = test_dir("read_only_folder");
+    std::fs::create_dir(dir.join("ro")).unwrap();
+    let ro = read_only_folder(&dir);
     // With no GPU to be found, a run that got as far as opening one would say so instead.
-    let run = run_in(
+    let run = run_via(
+        &ro.wrapper,
         &dir,
         "phong",
         &["--screenshot", "ro/x.png"],
         &[("VK_ICD_FILENAMES", "/nonexistent"), ("WGPU_BACKEND", "vulkan")],
     );
-    if immutable {
-        let _ = Command::new("chattr").arg("-i").arg(&ro).status();
-    }
+    drop(ro);
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     assert!(
         run.stderr
@@ -900,6 +977,7 @@ fn a_read_only_screenshot_folder_is_found_before_the_gpu_is_opened() {
         run.stderr
     );
     assert!(!run.stderr.contains("GPU"), "{}", run.stderr);
+    assert!(!dir.join("ro/x.png").exists(), "ro/x.png was written");
 }
 
 #[test]

@@ -293,7 +293,10 @@ fn the_server_sends_only_regular_files_inside_its_folder_and_answers_a_malformed
             Some(body) => assert_eq!(got, body, "GET {path}: the wrong file"),
             None => {
                 assert!(!got.is_empty(), "GET {path}: {status} without a body");
-                assert!(!got.contains("SECRET"), "GET {path}: a file outside the folder went out");
+                assert!(
+                    !got.contains("SECRET"),
+                    "GET {path}: a file outside the folder went out"
+                );
                 assert!(!got.contains("a.txt"), "GET {path}: a folder was listed\n{got}");
             }
         }
@@ -301,7 +304,11 @@ fn the_server_sends_only_regular_files_inside_its_folder_and_answers_a_malformed
     // The copy is a link out of the folder: the original goes out instead.
     let (status, headers, got) = get(server.port, "/web.js", Some("gzip"));
     assert!(status.contains(" 200 "), "GET /web.js: {status}");
-    assert_eq!(String::from_utf8_lossy(&got), "script", "GET /web.js: the linked copy went out");
+    assert_eq!(
+        String::from_utf8_lossy(&got),
+        "script",
+        "GET /web.js: the linked copy went out"
+    );
     assert_eq!(header(&headers, "content-encoding"), None);
 
     drop(server);
