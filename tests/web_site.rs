@@ -98,7 +98,7 @@ fn serve(dir: &Path, log: &Path) -> Server {
             panic!("{} exited ({status}) before serving", script.display());
         }
         assert!(
-            start.elapsed() < Duration::from_secs(20),
+            start.elapsed() < Duration::from_secs(120),
             "nothing listens on port {port}"
         );
         std::thread::sleep(Duration::from_millis(50));
@@ -109,7 +109,7 @@ fn serve(dir: &Path, log: &Path) -> Server {
 /// One GET: the status line, the headers (names lower-cased) and the body.
 fn get(port: u16, path: &str, accept_encoding: Option<&str>) -> (String, Vec<(String, String)>, Vec<u8>) {
     let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
-    stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    stream.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
     let mut request = format!("GET {path} HTTP/1.0\r\nHost: 127.0.0.1\r\n");
     if let Some(ae) = accept_encoding {
         request += &format!("Accept-Encoding: {ae}\r\n");
