@@ -5,12 +5,18 @@ when the request's `Accept-Encoding` takes it (brotli first, then gzip, else the
 with the original's `Content-Type` (`application/wasm` for the module, which the browser needs to
 compile it while it downloads) and `Vary: Accept-Encoding`.
 
+It serves only regular files whose real path (every link followed) lies inside the folder; `/`
+is its index.html, and no folder is listed. A malformed path (not UTF-8, a NUL or other control
+character, a `.` or `..` name, plain or percent-encoded) gets 400, anything else 404.
+
 usage: web-serve.py DIRECTORY PORT    (binds 127.0.0.1; `scripts/web --serve` runs it)
 """
 import functools
 import http.server
 import os
+import stat
 import sys
+import urllib.parse
 
 TYPES = {
     ".html": "text/html; charset=utf-8",
@@ -47,29 +53,71 @@ def accepted(header):
     return taken
 
 
+def inside(root, path):
+    """`path`'s real path when it names a regular file inside the real folder `root`, else None.
+
+    The real path follows every link, so a link inside the folder that leads out of it, and a
+    folder, a pipe or a device, are not served."""
+    real = os.path.realpath(path)
+    if os.path.commonpath([root, real]) != root or real == root:
+        return None
+    try:
+        return real if stat.S_ISREG(os.stat(real).st_mode) else None
+    except OSError:
+        return None
+
+
+class Malformed(ValueError):
+    """A request path that names no file: not absolute, not UTF-8, a NUL, or `.`/`..`."""
+
+
+def segments(target):
+    """The file names a request's target walks, decoded; `[]` for `/`. Raises Malformed."""
+    path = target.split("?", 1)[0].split("#", 1)[0]
+    if not path.startswith("/"):
+        raise Malformed("the path does not start with /")
+    try:
+        decoded = urllib.parse.unquote(path, errors="strict")
+    except UnicodeDecodeError:
+        raise Malformed("the path is not UTF-8") from None
+    if any(ord(c) < 0x20 or c == "\x7f" for c in decoded):
+        raise Malformed("the path holds a control character")
+    names = decoded.split("/")[1:]
+    if any(name in (".", "..") for name in names):
+        raise Malformed("the path holds . or ..")
+    return names
+
+
 class Handler(http.server.SimpleHTTPRequestHandler):
     extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map, **TYPES}
 
     encoding = None
 
     def send_head(self):
+        """Opens the regular file inside the folder the request names (`/` names index.html), or
+        answers 400 for a malformed path and 404 for anything else: no listing, no redirect."""
         self.encoding = None
-        path = self.translate_path(self.path)
-        if os.path.isdir(path):
-            index = os.path.join(path, "index.html")
-            if not self.path.split("?", 1)[0].endswith("/") or not os.path.isfile(index):
-                return super().send_head()  # the redirect to "dir/", or the listing
-            path = index
-        if not os.path.isfile(path):
-            return super().send_head()  # 404
+        try:
+            names = segments(self.path)
+        except Malformed as e:
+            self.send_error(400, "Bad request path", str(e))
+            return None
+        root = os.path.realpath(self.directory)
+        if names == [""]:
+            names = ["index.html"]
+        path = inside(root, os.path.join(root, *names)) if all(names) else None
+        if path is None:
+            self.send_error(404, "File not found")
+            return None
         # A copy older than its original is stale (a site half rebuilt): the original goes out.
         # Whole seconds: gzip and brotli give a copy its original's time, brotli without the
         # fraction.
+        copies = {name: inside(root, path + suffix) for name, suffix in ENCODINGS}
         chosen, encoding = path, None
         taken = accepted(self.headers.get("Accept-Encoding"))
-        for name, suffix in ENCODINGS:
-            copy = path + suffix
-            if name in taken and os.path.isfile(copy) and int(os.path.getmtime(copy)) >= int(os.path.getmtime(path)):
+        for name, _ in ENCODINGS:
+            copy = copies[name]
+            if name in taken and copy and int(os.path.getmtime(copy)) >= int(os.path.getmtime(path)):
                 chosen, encoding = copy, name
                 break
         try:
@@ -84,7 +132,7 @@ class Handler(http.server.SimpleHTTPRequestHandler):
             self.send_header("Content-Type", self.guess_type(path))
             if encoding:
                 self.send_header("Content-Encoding", encoding)
-            if any(os.path.isfile(path + suffix) for _, suffix in ENCODINGS):
+            if any(copies.values()):
                 self.send_header("Vary", "Accept-Encoding")
             self.send_header("Content-Length", str(size))
             self.send_header("Last-Modified", self.date_time_string(int(os.path.getmtime(path))))
@@ -95,9 +143,22 @@ class Handler(http.server.SimpleHTTPRequestHandler):
             f.close()
             raise
 
+    def list_directory(self, path):
+        """No folder is listed."""
+        self.send_error(404, "File not found")
+        return None
+
     def log_request(self, code="-", size="-"):
         sent = f" ({self.encoding})" if self.encoding else ""
         self.log_message('"%s" %s%s', self.requestline, code, sent)
+
+
+class Server(http.server.ThreadingHTTPServer):
+    def handle_error(self, request, client_address):
+        """One line for a request that failed (a client gone mid-reply), not a traceback."""
+        error = sys.exc_info()[1]
+        if not isinstance(error, (BrokenPipeError, ConnectionResetError)):
+            print(f"web-serve: a request from {client_address[0]} failed: {error!r}", file=sys.stderr, flush=True)
 
 
 def main():
@@ -110,7 +171,7 @@ def main():
         sys.exit(f"web-serve: the port is a number from 1 to 65535, not '{port}'")
     handler = functools.partial(Handler, directory=directory)
     try:
-        server = http.server.ThreadingHTTPServer(("127.0.0.1", int(port)), handler)
+        server = Server(("127.0.0.1", int(port)), handler)
     except OSError as e:
         sys.exit(f"web-serve: cannot listen on 127.0.0.1:{port}: {e.strerror}")
     print(f"web: serving http://127.0.0.1:{port}/ (Ctrl-C stops)", file=sys.stderr, flush=True)

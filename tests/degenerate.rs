@@ -235,6 +235,10 @@ fn tangent_frames_edge_on() {
                 assert_sane(&what, &o);
             } else {
                 assert_finite(&what, &o);
+                assert_eq!(
+                    o.drawn, 0,
+                    "{what}: the quad is edge-on, yet pixels differ from the background"
+                );
             }
         }
     }

@@ -135,6 +135,18 @@ fn poll<T>(timeout: Duration, mut f: impl FnMut() -> Option<T>) -> Option<T> {
     }
 }
 
+/// PSNR of two pictures that must have one size: pictures of different sizes are a failure,
+/// never a pass.
+fn psnr_of(a: &RgbImage, b: &RgbImage) -> f64 {
+    psnr(a, b).unwrap_or_else(|| {
+        panic!(
+            "pictures of different sizes: {:?} and {:?}",
+            a.dimensions(),
+            b.dimensions()
+        )
+    })
+}
+
 fn sleep_ms(ms: u64) {
     thread::sleep(Duration::from_millis(ms));
 }
@@ -1217,9 +1229,21 @@ fn noise_runs_at_60x_clock_with_flat_memory_and_steady_noise() {
         "the noise turned blocky: equal neighbours {flat_early:.3} -> {flat_late:.3}"
     );
     assert!((cov.0 - cov.1).abs() < 0.05, "the object's coverage changed: {cov:?}");
-    // The clock really runs at 60x: a key refreshes the title, which shows the time. (The
-    // time uniform may wrap by the noise's period, 144.5 s: compare modulo that.)
-    let lab_time = |lab: &App, key: &str, shade: &str| -> (Instant, f64) {
+    // The clock really runs at 60x: a key refreshes the title, which shows the lab's time at
+    // the window's last frame. That frame's tick is bracketed by moments the test sees: after
+    // `after` (the test waits for a frame the window drew after an F11 sent then, before it
+    // sends the key) and before `seen` (when the title showed it). Load widens the bracket,
+    // never shifts it. (The time in the title wraps by the noise's period: whole periods are
+    // added to the advance.)
+    let lab_time = |lab: &App, key: &str, shade: &str| -> (Instant, Instant, f64) {
+        let after = Instant::now();
+        lab.sync();
+        poll(PATIENCE, || {
+            let err = lab.stderr();
+            let (_, since_sync) = err.rsplit_once("shaderlab-test: sync")?;
+            since_sync.contains("shaderlab-test: frame ").then_some(())
+        })
+        .unwrap_or_else(|| panic!("no frame after F11; stderr:\n{}", lab.stderr()));
         lab.keys(&[key]);
         let title = lab.wait_title_contains(&format!("shade ({shade},"));
         let seen = Instant::now();
@@ -1229,16 +1253,28 @@ fn noise_runs_at_60x_clock_with_flat_memory_and_steady_noise() {
             .and_then(|t| t.parse().ok())
             .unwrap_or_else(|| panic!("no time in the title `{title}`"));
         assert!(time.is_finite(), "time is not finite: {title}");
-        (seen, time)
+        (after, seen, time)
     };
-    let (wall0, time0) = lab_time(&lab, "r", "0.95");
-    sleep_ms(1500);
-    let (wall1, time1) = lab_time(&lab, "R", "1.00");
-    let rate = (time1 - time0).rem_euclid(144.5) / (wall1 - wall0).as_secs_f64();
-    println!("lab time {time0:.1} -> {time1:.1}: {rate:.1} lab seconds per second");
+    let (after0, seen0, time0) = lab_time(&lab, "r", "0.95");
+    sleep_ms(500);
+    let (after1, seen1, time1) = lab_time(&lab, "R", "1.00");
+    let (shortest, longest) = ((after1 - seen0).as_secs_f64(), (seen1 - after0).as_secs_f64());
+    let period = shaderlab::course::seed000::NOISE_PERIOD;
+    let advanced = (time1 - time0).rem_euclid(period);
+    // 60x, to 1% and the title's 0.1 s either side.
+    let (low, high) = (0.99 * 60.0 * shortest - 0.1, 1.01 * 60.0 * longest + 0.1);
+    let fits = (0..)
+        .map(|wraps| advanced + wraps as f64 * period)
+        .take_while(|t| *t <= high)
+        .any(|t| t >= low);
+    println!(
+        "lab time {time0:.1} -> {time1:.1} (+{advanced:.1} s and whole periods) while the window's \
+         clock ran {shortest:.2} to {longest:.2} s: 60x wants {low:.1} to {high:.1}"
+    );
     assert!(
-        (45.0..=75.0).contains(&rate),
-        "SHADERLAB_CLOCK_SCALE=60 runs the clock at {rate:.1}x"
+        fits,
+        "SHADERLAB_CLOCK_SCALE=60: the lab's time advanced {advanced:.1} s (and whole periods of \
+         {period} s) in {shortest:.2} to {longest:.2} s of the window's clock, not {low:.1} to {high:.1}"
     );
     lab.assert_clean();
     lab.escape();
@@ -1377,8 +1413,15 @@ fn run_to_end(x: &Xvfb, name: &str, args: &[&str], env: &[(&str, &str)]) -> (Exi
         .stderr(Stdio::piped())
         .spawn()
         .expect("spawn");
-    let stdout = collect(child.stdout.take().unwrap());
-    let stderr = collect(child.stderr.take().unwrap());
+    let read = |mut pipe: Box<dyn Read + Send>| {
+        thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let _ = pipe.read_to_end(&mut bytes);
+            String::from_utf8_lossy(&bytes).into_owned()
+        })
+    };
+    let stdout = read(Box::new(child.stdout.take().unwrap()));
+    let stderr = read(Box::new(child.stderr.take().unwrap()));
     struct Kill(Child);
     impl Drop for Kill {
         fn drop(&mut self) {
@@ -1389,8 +1432,10 @@ fn run_to_end(x: &Xvfb, name: &str, args: &[&str], env: &[(&str, &str)]) -> (Exi
     let mut child = Kill(child);
     let status = poll(PATIENCE, || child.0.try_wait().ok().flatten())
         .unwrap_or_else(|| panic!("{name} {args:?} did not end within 20 s"));
-    sleep_ms(100); // let the reader threads finish
-    let text = format!("{}{}", stdout.lock().unwrap(), stderr.lock().unwrap());
+    // The pipes close when the program (which starts no other) has ended: all it wrote is read.
+    let stdout = stdout.join().expect("the stdout reader");
+    let stderr = stderr.join().expect("the stderr reader");
+    let text = format!("{stdout}{stderr}");
     for bad in ["panicked", "RUST_BACKTRACE"] {
         assert!(!text.contains(bad), "{name} {args:?} printed `{bad}`:\n{text}");
     }
@@ -2559,14 +2604,14 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
     lab.save(&written, "line_f12");
     want.save(lab.x.dir.join("line_library.png")).expect("saved");
     assert_eq!(written.dimensions(), want.dimensions());
-    let db = psnr(&written, &want).unwrap_or(f64::INFINITY);
+    let db = psnr_of(&written, &want);
     println!("line view: F12 against the library: {db:.1} dB");
     assert!(db >= 50.0, "the window's line view is not the library's: {db:.1} dB");
     // F2 off: the screen shows the view itself (no inspector over it).
     lab.keys(&["F2"]);
     let shown = lab.settled();
     lab.save(&shown, "line_window");
-    let db = psnr(&shown, &want).unwrap_or(f64::INFINITY);
+    let db = psnr_of(&shown, &want);
     println!("line view: the window against the library: {db:.1} dB");
     assert!(db >= 40.0, "the window does not show the line view: {db:.1} dB");
     // A key moves the light: the view is drawn again, and it is the library's at the new state.
@@ -2578,7 +2623,7 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
     let moved = rgb(&library_view(lab_ref.as_mut(), &probe, (w, h)));
     assert_ne!(moved, want, "the light moved");
     let written = f12(2);
-    let db = psnr(&written, &moved).unwrap_or(f64::INFINITY);
+    let db = psnr_of(&written, &moved);
     println!("line view after X×8: F12 against the library: {db:.1} dB");
     assert!(db >= 50.0, "the line view did not follow the lab: {db:.1} dB");
     // F3: the cost view.
@@ -2589,7 +2634,7 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
     let cost = rgb(&library_view(lab_ref.as_mut(), &view::Probe::Cost, (w, h)));
     let written = f12(3);
     lab.save(&written, "cost_f12");
-    let db = psnr(&written, &cost).unwrap_or(f64::INFINITY);
+    let db = psnr_of(&written, &cost);
     println!("cost view: F12 against the library: {db:.1} dB");
     assert!(db >= 50.0, "the window's cost view is not the library's: {db:.1} dB");
     // F3 again: the lab's picture, as a plain window shows it at that state.
@@ -2597,7 +2642,7 @@ fn line_and_cost_views_replace_the_picture_follow_the_lab_and_go_back() {
     let back = lab.settled();
     assert!(!lab.title().contains("VIEW"), "{}", lab.title());
     lab.save(&back, "back");
-    assert!(psnr(&back, &cost).unwrap_or(f64::INFINITY) < 30.0, "the view is gone");
+    assert!(psnr_of(&back, &cost) < 30.0, "the view is gone");
     assert_ne!(back, plain, "the light moved since the first picture");
     assert!(!lab.stderr().contains("view error"), "{}", lab.stderr());
     lab.escape();
@@ -2652,7 +2697,7 @@ fn f4_diffs_a_copy_against_the_built_in_shaders_and_follows_saved_shaders() {
     let want = library_diff(&planted);
     let written = f12(1);
     lab.save(&written, "diff_planted");
-    let db = psnr(&written, &want).unwrap_or(f64::INFINITY);
+    let db = psnr_of(&written, &want);
     println!("diff of the planted bug: F12 against the library: {db:.1} dB");
     assert!(db >= 50.0, "the window's diff is not the library's: {db:.1} dB");
     // The fix is saved: the lab reloads, and the diff is drawn again, of equal pictures.
@@ -2666,7 +2711,7 @@ fn f4_diffs_a_copy_against_the_built_in_shaders_and_follows_saved_shaders() {
     let fixed = library_diff(&original);
     assert_ne!(fixed, want, "the fix changes the diff");
     let written = f12(2);
-    let db = psnr(&written, &fixed).unwrap_or(f64::INFINITY);
+    let db = psnr_of(&written, &fixed);
     println!("diff after the fix: F12 against the library: {db:.1} dB");
     assert!(db >= 50.0, "the diff did not follow the saved shader: {db:.1} dB");
     assert!(!lab.stderr().contains("view error"), "{}", lab.stderr());

@@ -138,8 +138,30 @@ fn culling_is_opt_in_and_changes_only_silhouette_pixels_of_closed_meshes() {
                 );
             }
         }
+        // The open teapot seen from above (xangle 90): through the gap around the lid and the
+        // spout's mouth the inside shows, its back faces, which culling takes away: many more
+        // pixels change.
+        lab.set_object(Object::Teapot);
+        lab.set_angles(TEAPOT_FROM_ABOVE);
+        let full = lab.rgb(640, 360);
+        lab.set_str("cull", "1").expect("cull");
+        let culled = lab.rgb(640, 360);
+        lab.set_str("cull", "0").expect("cull");
+        let differing = full.pixels().zip(culled.pixels()).filter(|(a, b)| a != b).count();
+        println!(
+            "{} teapot from above: culling changed {differing} pixels",
+            entry.info.name
+        );
+        assert!(
+            differing > 1000,
+            "{} teapot {TEAPOT_FROM_ABOVE:?}: culling changed only {differing} pixels",
+            entry.info.name
+        );
     }
 }
+
+/// Angles that show the teapot from above, the gap around its lid towards the eye.
+const TEAPOT_FROM_ABOVE: [f32; 3] = [90.0, 0.0, 0.0];
 
 /// A lab, the angle parameters it turns, its picture size and the solids it is checked on (none:
 /// its only model).

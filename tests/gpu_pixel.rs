@@ -62,7 +62,7 @@ fn every_inspection_carries_the_screenshots_pixel() {
         let start = std::time::Instant::now();
         while !pending.ready() {
             let _ = gpu().device.poll(wgpu::PollType::Poll);
-            assert!(start.elapsed().as_secs() < 60, "{name}: the capture never finished");
+            assert!(start.elapsed().as_secs() < 300, "{name}: the capture never finished");
             std::thread::yield_now();
         }
         let captured = pending.finish().expect("the captured frame");
@@ -185,20 +185,19 @@ fn a_frame_that_never_ends_still_gets_its_report() {
         1,
     );
     std::fs::write(&path, text).expect("write phong.frag");
-    let start = std::time::Instant::now();
-    let out = shaderlab(&[
-        "debug",
-        "phong",
-        "--pixel",
-        "320,180",
-        "--shaders",
-        dir.to_str().expect("utf-8"),
-        "--timeout",
-        "2",
-        "--json",
-    ]);
+    // Two lavapipe threads, so that the CPU the watchdog's two seconds cost is the same on any
+    // machine.
+    let (out, cpu) = common::output_with_cpu(
+        std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+            .args(["debug", "phong", "--pixel", "320,180", "--shaders"])
+            .arg(&dir)
+            .args(["--timeout", "2", "--json"])
+            .env("LP_NUM_THREADS", "2"),
+    );
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+    // Ended by the watchdog, not by the frame (minutes of CPU): CPU seconds, which a busy
+    // machine does not inflate.
+    assert!(cpu < 20.0, "{cpu:.1} s of CPU");
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
     assert_eq!(v["covered"], serde_json::Value::Bool(true), "{v}");
     assert_eq!(v["gpu_pixel"], serde_json::Value::Null, "{v}");

@@ -30,13 +30,15 @@ fn save(image: &RgbImage, name: &str) {
 }
 
 /// Writes `assets/uvgrid.bmp` from [`images::uvgrid`]: run deliberately with
-/// `cargo test --release --test seed004 -- --ignored write_uvgrid_bmp` (or
-/// `scripts/write-uvgrid-bmp`). The picture is stored upside down (the grid's row 0 at the
+/// `scripts/write-uvgrid-bmp` (`SHADERLAB_WRITE_REFERENCES=1 cargo test --release --test
+/// seed004 -- --ignored --exact write_uvgrid_bmp`; without the variable it fails, so that
+/// `--include-ignored` does not rewrite the file `uvgrid_bmp_uploads_uvgrid` reads). The picture is stored upside down (the grid's row 0 at the
 /// bottom, a 24-bit BMP's first stored row), so that the course's loader, uploading the BMP's
 /// rows in file order, uploads exactly uvgrid's rows; `uvgrid_bmp_uploads_uvgrid` checks it.
 #[test]
 #[ignore = "writes assets/uvgrid.bmp; run deliberately"]
 fn write_uvgrid_bmp() {
+    common::require_write_opt_in("scripts/write-uvgrid-bmp");
     let grid = images::uvgrid();
     let picture = RgbImage::from_fn(grid.width, grid.height, |x, y| {
         let t = grid.texel(0, x, grid.height - 1 - y).expect("inside");

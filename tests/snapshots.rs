@@ -1,8 +1,9 @@
 //! The redesign guard, as one table: the port's own output for every lab at a state away from
 //! its defaults (and seed 000's labs on every object, and the port-only modes) must stay
 //! byte-identical to `tests/snapshots/NAME.png`. Those files are written only by the deliberate
-//! `scripts/write-snapshots` (this file's ignored `write_snapshots`, run when a picture is
-//! meant to change), never by the test that reads them.
+//! `scripts/write-snapshots` (this file's ignored `write_snapshots`, which also needs
+//! `SHADERLAB_WRITE_REFERENCES=1`, run when a picture is meant to change), never by the test
+//! that reads them, even under `--include-ignored`.
 
 mod common;
 
@@ -409,11 +410,13 @@ fn every_lab_has_a_snapshot() {
     }
 }
 
-/// Writes every row's picture: run deliberately (`scripts/write-snapshots`) when a picture is
-/// meant to change, and look at what changed before committing it.
+/// Writes every row's picture: run deliberately (`scripts/write-snapshots`, which sets
+/// `SHADERLAB_WRITE_REFERENCES=1`) when a picture is meant to change, and look at what changed
+/// before committing it.
 #[test]
 #[ignore = "writes tests/snapshots/: run through scripts/write-snapshots"]
 fn write_snapshots() {
+    common::require_write_opt_in("scripts/write-snapshots");
     for (name, lab, state) in ROWS {
         render(lab, state).save(path(name)).expect("write a snapshot");
     }

@@ -349,9 +349,30 @@ fn a_vertex_line_view_is_the_value_interpolated_as_a_varying() {
                 input.value
             );
         }
-        // And each corner's traced value of the line is the corner's output.
-        let corners = traced(&ins, Stage::Vertex, &file, line, "v");
-        assert_eq!(corners.len(), 3, "the line ran at the three corners");
+        // And each corner's traced value of the line is that corner's output `v`.
+        let steps: Vec<_> = (ins.steps.iter())
+            .filter(|s| s.stage == Stage::Vertex && s.file == file && s.line == line && s.name == "v")
+            .collect();
+        let mut ran: Vec<usize> = steps.iter().filter_map(|s| s.corner).collect();
+        ran.sort_unstable();
+        assert_eq!(
+            ran,
+            [0, 1, 2],
+            "pixel {x},{y}: the line ran once at each of the three corners"
+        );
+        for step in steps {
+            let k = step.corner.expect("a corner");
+            let output = (f.corners[k].outputs.iter())
+                .find(|n| n.name == "v")
+                .expect("the output v");
+            assert!(
+                step.value.len() == 3
+                    && (0..3).all(|c| (step.value[c] - output.value[c]).abs() <= 1e-5 * output.value[c].abs().max(1.0)),
+                "pixel {x},{y} corner {k}: the line's v {:?}, the corner's output v {:?}",
+                step.value,
+                output.value
+            );
+        }
     }
 }
 
@@ -392,7 +413,11 @@ fn a_view_drawn_again_builds_nothing_and_draws_the_same() {
     let mut drawer = ViewDrawer::new();
     let p = probe(&file, line, None);
     let a = drawer.draw(gpu(), &log, &p, WIDTH, HEIGHT).expect("first");
+    let first = drawer.builds();
+    // The teapot: a pipeline and an index buffer for its draw, and the targets, at least.
+    assert!(first >= 3, "the first view built {first} things");
     let b = drawer.draw(gpu(), &log, &p, WIDTH, HEIGHT).expect("again");
+    assert_eq!(drawer.builds(), first, "the view drawn again built something");
     assert_eq!(a.values, b.values);
     assert_eq!(a.cost, b.cost);
 }

@@ -79,7 +79,8 @@ impl Drop for Server {
     }
 }
 
-fn serve(dir: &Path) -> Server {
+/// `scripts/web-serve.py DIR PORT` with its stderr in `log`.
+fn serve(dir: &Path, log: &Path) -> Server {
     let port = TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/web-serve.py");
     let child = Command::new("python3")
@@ -87,7 +88,7 @@ fn serve(dir: &Path) -> Server {
         .arg(dir)
         .arg(port.to_string())
         .stdout(Stdio::null())
-        .stderr(Stdio::null())
+        .stderr(std::fs::File::create(log).unwrap())
         .spawn()
         .unwrap_or_else(|e| panic!("python3 {}: {e} (sudo apt-get install -y python3)", script.display()));
     let mut server = Server { child, port };
@@ -97,7 +98,7 @@ fn serve(dir: &Path) -> Server {
             panic!("{} exited ({status}) before serving", script.display());
         }
         assert!(
-            start.elapsed() < Duration::from_secs(20),
+            start.elapsed() < Duration::from_secs(120),
             "nothing listens on port {port}"
         );
         std::thread::sleep(Duration::from_millis(50));
@@ -108,7 +109,7 @@ fn serve(dir: &Path) -> Server {
 /// One GET: the status line, the headers (names lower-cased) and the body.
 fn get(port: u16, path: &str, accept_encoding: Option<&str>) -> (String, Vec<(String, String)>, Vec<u8>) {
     let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
-    stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    stream.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
     let mut request = format!("GET {path} HTTP/1.0\r\nHost: 127.0.0.1\r\n");
     if let Some(ae) = accept_encoding {
         request += &format!("Accept-Encoding: {ae}\r\n");
@@ -162,7 +163,8 @@ fn the_server_sends_the_copy_the_request_accepts_with_its_encoding_and_the_origi
         std::fs::write(dir.join(format!("{name}.br")), format!("br of {body}")).unwrap();
     }
     std::fs::write(dir.join("plain.js"), "no copies").unwrap();
-    let server = serve(&dir);
+    let log = std::env::temp_dir().join(format!("shaderlab-web-serve-{}.log", std::process::id()));
+    let server = serve(&dir, &log);
 
     let cases: &[Case] = &[
         (
@@ -231,4 +233,92 @@ fn the_server_sends_the_copy_the_request_accepts_with_its_encoding_and_the_origi
     assert!(status.contains(" 404 "), "a missing file: {status}");
     drop(server);
     let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_file(&log);
+}
+
+#[test]
+#[ignore = "needs python3 and mkfifo: run by .ci/web"]
+fn the_server_sends_only_regular_files_inside_its_folder_and_answers_a_malformed_path_with_400() {
+    let top = std::env::temp_dir().join(format!("shaderlab-web-serve-inside-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&top);
+    let (dir, outside) = (top.join("site"), top.join("outside"));
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    std::fs::create_dir_all(&outside).unwrap();
+    std::fs::write(dir.join("index.html"), "<p>page</p>").unwrap();
+    std::fs::write(dir.join("web.js"), "script").unwrap();
+    std::fs::write(dir.join("sub/a.txt"), "in a folder").unwrap();
+    std::fs::write(outside.join("secret.txt"), "SECRET").unwrap();
+    // Links planted inside the folder: to a file outside it, to a folder outside it, as the
+    // precompressed copy of a file, and one to a file inside (served: its real path is inside).
+    std::os::unix::fs::symlink(outside.join("secret.txt"), dir.join("leak.txt")).unwrap();
+    std::os::unix::fs::symlink(&outside, dir.join("out")).unwrap();
+    std::os::unix::fs::symlink(outside.join("secret.txt"), dir.join("web.js.gz")).unwrap();
+    std::os::unix::fs::symlink("index.html", dir.join("alias.html")).unwrap();
+    // A pipe is not a regular file (opening it to read would wait for a writer forever).
+    let mkfifo = Command::new("mkfifo").arg(dir.join("pipe")).status().expect("mkfifo");
+    assert!(mkfifo.success(), "mkfifo {}", dir.join("pipe").display());
+    let log = top.join("server.log");
+    let server = serve(&dir, &log);
+
+    let cases: &[(&str, &str, Option<&str>)] = &[
+        ("/", "200", Some("<p>page</p>")),
+        ("/alias.html", "200", Some("<p>page</p>")),
+        ("/sub/a.txt", "200", Some("in a folder")),
+        ("/%00", "400", None),
+        ("/index.html%00.js", "400", None),
+        ("/index.html%0a", "400", None),
+        ("/%ff.html", "400", None),
+        ("/../outside/secret.txt", "400", None),
+        ("/%2e%2e/outside/secret.txt", "400", None),
+        ("/%2E%2E%2Foutside%2Fsecret.txt", "400", None),
+        ("/sub/..%2f..%2foutside/secret.txt", "400", None),
+        ("/sub/%2e%2e/index.html", "400", None),
+        ("/./index.html", "400", None),
+        ("http://127.0.0.1/index.html", "400", None),
+        ("/leak.txt", "404", None),
+        ("/out/secret.txt", "404", None),
+        ("/sub/", "404", None),
+        ("/sub", "404", None),
+        ("/pipe", "404", None),
+        ("/index.html/", "404", None),
+    ];
+    for &(path, code, body) in cases {
+        let (status, _, got) = get(server.port, path, None);
+        let got = String::from_utf8_lossy(&got);
+        assert!(
+            status.contains(&format!(" {code} ")),
+            "GET {path}: {status}, not {code}\n{got}"
+        );
+        match body {
+            Some(body) => assert_eq!(got, body, "GET {path}: the wrong file"),
+            None => {
+                assert!(!got.is_empty(), "GET {path}: {status} without a body");
+                assert!(
+                    !got.contains("SECRET"),
+                    "GET {path}: a file outside the folder went out"
+                );
+                assert!(!got.contains("a.txt"), "GET {path}: a folder was listed\n{got}");
+            }
+        }
+    }
+    // The copy is a link out of the folder: the original goes out instead.
+    let (status, headers, got) = get(server.port, "/web.js", Some("gzip"));
+    assert!(status.contains(" 200 "), "GET /web.js: {status}");
+    assert_eq!(
+        String::from_utf8_lossy(&got),
+        "script",
+        "GET /web.js: the linked copy went out"
+    );
+    assert_eq!(header(&headers, "content-encoding"), None);
+
+    drop(server);
+    let log_text = std::fs::read_to_string(&log).unwrap();
+    assert!(
+        log_text.contains(r#""GET /%00 HTTP/1.0" 400"#),
+        "the server's log has no line for GET /%00:\n{log_text}"
+    );
+    for word in ["Traceback", "Exception", "Error:"] {
+        assert!(!log_text.contains(word), "the server's log holds {word}:\n{log_text}");
+    }
+    let _ = std::fs::remove_dir_all(&top);
 }

@@ -499,12 +499,20 @@ pub struct ViewDrawer {
     built: Vec<Built>,
     targets: Option<Targets>,
     indices: Vec<(Weak<Vec<u32>>, wgpu::Buffer)>,
+    /// Pipelines, index buffers and targets built so far.
+    builds: u64,
 }
 
 impl ViewDrawer {
     /// A drawer with nothing built.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// How many pipelines, index buffers and targets this drawer has built: a view drawn again
+    /// adds none.
+    pub fn builds(&self) -> u64 {
+        self.builds
     }
 
     fn pipeline(
@@ -619,6 +627,7 @@ impl ViewDrawer {
         if self.built.len() >= KEPT {
             self.built.remove(0);
         }
+        self.builds += 1;
         self.built.push(Built {
             device: gpu.device.clone(),
             vertex: Arc::downgrade(&setup.vertex),
@@ -659,6 +668,7 @@ impl ViewDrawer {
                 .write_buffer(&buffer, 0, bytemuck::cast_slice(indices.as_slice()));
             buffer
         })?;
+        self.builds += 1;
         self.indices.push((Arc::downgrade(indices), buffer.clone()));
         Ok(buffer)
     }
@@ -774,6 +784,7 @@ impl ViewDrawer {
         let fits = |t: &Targets| t.device == gpu.device && (t.width, t.height, t.format) == (w, h, format);
         if !self.targets.as_ref().is_some_and(fits) {
             self.targets = Some(gpu.checked(label, || Targets::new(&gpu.device, w, h, format))?);
+            self.builds += 1;
         }
         let targets = self.targets.as_ref().expect("made above");
         let value = resolved.is_some();

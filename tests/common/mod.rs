@@ -351,6 +351,17 @@ pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
     (output, cpu)
 }
 
+/// Fails unless `SHADERLAB_WRITE_REFERENCES=1`: a test that writes files other tests read
+/// (the snapshots, assets/uvgrid.bmp) runs only when its script asks, never beside the tests
+/// that read them under `cargo test -- --include-ignored`.
+pub fn require_write_opt_in(script: &str) {
+    assert!(
+        std::env::var_os("SHADERLAB_WRITE_REFERENCES").is_some_and(|v| v == "1"),
+        "this test writes files other tests read, so it runs only when asked: run {script}, or \
+         set SHADERLAB_WRITE_REFERENCES=1 and run it alone"
+    );
+}
+
 /// The names in `dir`, sorted (to see that no temporary file was left behind).
 pub fn names_in(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)

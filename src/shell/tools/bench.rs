@@ -3,7 +3,8 @@
 //! angles, N frames each (submit + wait per frame, like the originals' swap + glFinish; animated
 //! labs advance their time by 1/60 s per frame). Prints the port's milliseconds per frame only:
 //! a comparison with the original is measured side by side, alternating, with the originals'
-//! `bench-vs-original` script (see `docs/speed.md`), never against stored figures.
+//! `bench-vs-original` script (see `docs/speed.md`), never against stored figures. `--debugger`
+//! times the debugger's capture and traces instead, `--diff` a diff of two frames.
 
 use crate::course;
 use crate::gpu::Gpu;
@@ -32,6 +33,11 @@ struct Args {
     /// `--frames` pixels on the drawn surface).
     #[arg(long)]
     debugger: bool,
+    /// Time `diff` instead: a diff of two 640x360 phong frames with its two traces (a copy of
+    /// the built-in shaders with a planted bug against them), from the labs built to the
+    /// comparison, `--frames` times (at most 1000): the median and the slowest.
+    #[arg(long, conflicts_with_all = ["gpu_time", "debugger", "only"])]
+    diff: bool,
 }
 
 /// `bench`'s `main`: the command line of the process.
@@ -47,6 +53,9 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
     let gpu = Gpu::headless()?;
     if args.debugger {
         return debugger(&gpu, &args);
+    }
+    if args.diff {
+        return diff(&gpu, &args);
     }
     say(&format!("adapter: {}; {} frames per case", gpu.describe(), args.frames))?;
     say("| lab | object | size | ms/frame | gpu ms |")?;
@@ -164,5 +173,55 @@ fn debugger(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
             times.last().copied().unwrap_or(0.0)
         ))?;
     }
+    Ok(())
+}
+
+/// `bench --diff`: how long a diff of two frames with its traces takes.
+fn diff(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
+    use crate::shell::session::Session;
+    use std::time::Instant;
+    let runs = args.frames.min(1000) as usize;
+    let entry = course::find("phong").ok_or_else(|| anyhow::anyhow!("no phong lab"))?;
+    // The copy: the built-in shaders, phong.frag's diffuse term floored at 0.5.
+    let dir = std::env::temp_dir().join(format!("shaderlab-bench-diff-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let planted = (|| -> anyhow::Result<ShaderSource> {
+        for name in crate::shader::embedded_names() {
+            let text = crate::shader::embedded_source(name).ok_or_else(|| anyhow::anyhow!("no {name}"))?;
+            let text = if name == "phong.frag" {
+                anyhow::ensure!(
+                    text.contains("max(dot(N, L), 0.0)"),
+                    "phong.frag has no `max(dot(N, L), 0.0)` to plant the bug in"
+                );
+                text.replacen("max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)", 1)
+            } else {
+                text.to_string()
+            };
+            std::fs::write(dir.join(name), text)?;
+        }
+        Ok(ShaderSource::dir(&dir)?)
+    })();
+    let timed = planted.and_then(|copy| {
+        let files = &crate::lab::NO_FILES;
+        let mut mine = Session::open_lab(entry, gpu, &copy, COLOR_FORMAT, files)?;
+        let mut reference = Session::open_lab(entry, gpu, &ShaderSource::Embedded, COLOR_FORMAT, files)?;
+        let mut times = Vec::with_capacity(runs);
+        for _ in 0..runs {
+            let start = Instant::now();
+            let d = crate::debug::diff::diff_labs(gpu, "phong", mine.as_mut(), reference.as_mut(), (640, 360))?;
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+            anyhow::ensure!(d.first_divergence.is_some(), "the diff found no divergence");
+        }
+        Ok(times)
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut times = timed?;
+    times.sort_by(f64::total_cmp);
+    say(&format!(
+        "adapter: {}; a diff of two 640x360 phong frames with two traces, {runs} times: median {:.1} ms, slowest {:.1} ms",
+        gpu.describe(),
+        times[times.len() / 2],
+        times[times.len() - 1]
+    ))?;
     Ok(())
 }
