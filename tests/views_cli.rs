@@ -662,3 +662,42 @@ fn the_view_command_is_listed_and_has_help() {
     let png = image::open(dir.join("phong-cost.png")).expect("the default picture");
     assert_eq!(png.height(), HEIGHT + picture::LEGEND_HEIGHT);
 }
+
+/// A big view holds about twice the memory of its plain frame at the same size, not four
+/// times: its targets are read back band by band and given back as they are read. Measured as
+/// a ratio of the two runs' peak resident memory (load cannot move it).
+#[test]
+fn a_big_view_holds_about_twice_the_memory_of_its_frame() {
+    let dir = test_dir("memory");
+    let size = "4096x4096";
+    let peak = |args: &[&str]| {
+        let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"));
+        command.current_dir(&dir).args(args);
+        let (out, usage) = common::output_with_usage(&mut command);
+        ok(&out);
+        assert!(usage.peak_kb > 0, "the system reports the peak");
+        usage.peak_kb as f64
+    };
+    let plain = peak(&["run", "phong", "--size", size, "--screenshot", "plain.png"]);
+    let line = format!("phong.frag:{}", line_of("phong.frag", "vec4 Idiff ="));
+    for (what, args) in [
+        (
+            "cost",
+            vec!["view", "phong", "--cost", "--size", size, "--out", "cost.png"],
+        ),
+        (
+            "vec4 line",
+            vec!["view", "phong", "--line", &line, "--size", size, "--out", "line.png"],
+        ),
+        (
+            "vec4 line as an array",
+            vec!["view", "phong", "--line", &line, "--size", size, "--npy", "line.npy"],
+        ),
+    ] {
+        let ratio = peak(&args) / plain;
+        assert!(
+            ratio < 2.5,
+            "{what}: the view's peak is {ratio:.2} times the plain frame's ({plain:.0} kB)"
+        );
+    }
+}

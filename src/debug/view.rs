@@ -674,67 +674,90 @@ impl ViewDrawer {
     }
 
     /// Draws the view `probe` of the frame `log` wrote down (at `width` × `height`, the size
-    /// it was recorded at) and reads it back.
+    /// it was recorded at) and reads it back: band by band of rows through one small buffer,
+    /// the info target first, so that a big view holds its targets and the values on the CPU,
+    /// never a second copy of them.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn draw(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
-        let pending = self.start(gpu, log, probe, width, height)?;
-        let (mapped, buffers) = (pending.mapped.clone(), pending.buffers);
-        let waited = gpu.wait_until("reading a view back", || {
-            mapped.load(std::sync::atomic::Ordering::SeqCst) >= buffers
-        });
-        self.read(pending, waited)
+        self.draw_keeping(gpu, log, probe, (width, height), true)
     }
 
-    /// Draws the view as [`ViewDrawer::draw`] does and starts reading it back.
+    /// Draws and reads back one view as [`ViewDrawer::draw`] does, giving each target back as
+    /// soon as it is read (the depth and info targets before the values are read): a big view
+    /// then holds about the memory of its values twice, never more.
     #[cfg(not(target_arch = "wasm32"))]
-    fn start(&mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<PendingView> {
+    pub fn draw_once(mut self, gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
+        self.draw_keeping(gpu, log, probe, (width, height), false)
+    }
+
+    /// [`ViewDrawer::draw`], keeping the targets for the next view (`keep`) or giving them
+    /// back as they are read.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn draw_keeping(
+        &mut self,
+        gpu: &Gpu,
+        log: &DrawLog,
+        probe: &Probe,
+        (width, height): (u32, u32),
+        keep: bool,
+    ) -> Result<ValueFrame> {
         let label = "shaderlab.debug.view";
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&format!("{label}.encoder")),
         });
-        let drawn = self.encode(gpu, &mut encoder, log, probe, width, height)?;
         let Drawn {
             resolved,
             components,
             value,
             format,
             size: (w, h),
-        } = drawn;
-        let targets = self.targets.as_mut().expect("made by encode");
-        let [value_staging, info_staging] = targets.staging().clone();
-        let commands = gpu.checked(label, || {
-            let mut copy = |texture: &wgpu::Texture, buffer: &wgpu::Buffer, stride: u32| {
-                crate::gpu::targets::copy_to_buffer(&mut encoder, texture, buffer, stride, (w, h));
-            };
-            if value {
-                copy(&targets.value.0, &value_staging, targets.value_stride);
-            }
-            copy(&targets.info.0, &info_staging, targets.info_stride);
-            encoder.finish()
-        })?;
+        } = self.encode(gpu, &mut encoder, log, probe, width, height)?;
+        let commands = gpu.checked(label, || encoder.finish())?;
         gpu.queue.submit([commands]);
-        let staging: Vec<&wgpu::Buffer> = if value {
-            vec![&value_staging, &info_staging]
-        } else {
-            vec![&info_staging]
-        };
-        let mapped = Arc::new(std::sync::atomic::AtomicUsize::new(0));
-        for b in &staging {
-            // Counted whether it mapped or not: a mapping that failed shows as an unmapped
-            // buffer when read.
-            let mapped = mapped.clone();
-            b.slice(..).map_async(wgpu::MapMode::Read, move |_| {
-                mapped.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-            });
+        let targets = self.targets.as_mut().expect("made by encode");
+        let n = (w as usize) * (h as usize);
+        let (mut ran, mut cost) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        targets.read_rows(gpu, Kept::Info, |row| {
+            for b in row.chunks_exact(4) {
+                let word = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                ran.push(word & instrument::RAN_BIT != 0);
+                cost.push(word >> instrument::COST_SHIFT);
+            }
+        })?;
+        if !keep {
+            targets.info.0.destroy();
+            targets.depth = crate::gpu::targets::depth_texture(&gpu.device, 1, 1);
         }
-        Ok(PendingView {
-            resolved,
+        let values = if value {
+            let k = texel_words(format);
+            let mut values = Vec::with_capacity(n);
+            targets.read_rows(gpu, Kept::Value, |row| {
+                values.extend(row.chunks_exact(k * 4).map(|t| {
+                    let mut v = [0.0f32; 4];
+                    for (c, b) in v.iter_mut().zip(t.chunks_exact(4)) {
+                        *c = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                    }
+                    v
+                }));
+            })?;
+            values
+        } else {
+            // Zeroed by the allocator, never written: a cost view's values cost no memory.
+            vec![[0.0f32; 4]; n]
+        };
+        if !keep {
+            self.targets = None;
+        }
+        let vertex = resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex);
+        Ok(ValueFrame {
+            width: w,
+            height: h,
             components,
-            value,
-            format,
-            size: (w, h),
-            buffers: staging.len(),
-            mapped,
+            values,
+            ran,
+            cost,
+            vertex,
+            resolved,
         })
     }
 
@@ -880,95 +903,6 @@ impl ViewDrawer {
             size: (w, h),
         })
     }
-
-    /// Reads the values of `pending` back from the mapped buffers (`waited`: whether the GPU
-    /// got there) and unmaps them.
-    #[cfg(not(target_arch = "wasm32"))]
-    fn read(&mut self, pending: PendingView, waited: Result<()>) -> Result<ValueFrame> {
-        let PendingView {
-            resolved,
-            components,
-            value,
-            format,
-            size: (w, h),
-            ..
-        } = pending;
-        let targets = self.targets.as_ref().ok_or_else(|| crate::error::Error::Wgpu {
-            context: "reading a view back".into(),
-            message: "the view's targets are gone".into(),
-        })?;
-        let Some([value_staging, info_staging]) = &targets.staging else {
-            return Err(crate::error::Error::Wgpu {
-                context: "reading a view back".into(),
-                message: "nothing was read back".into(),
-            });
-        };
-        let staging: Vec<&wgpu::Buffer> = if value {
-            vec![value_staging, info_staging]
-        } else {
-            vec![info_staging]
-        };
-        let mapped = |b: &wgpu::Buffer| {
-            b.slice(..).get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
-                context: "reading a view back".into(),
-                message: e.to_string(),
-            })
-        };
-        let read_all = || -> Result<(Vec<[f32; 4]>, Vec<u32>)> {
-            waited?;
-            let n = (w * h) as usize;
-            let mut values = Vec::with_capacity(n);
-            if value {
-                let data = mapped(value_staging)?;
-                let k = texel_words(format);
-                for y in 0..h as usize {
-                    let row = &data[y * targets.value_stride as usize..][..w as usize * k * 4];
-                    match (k, bytemuck::try_cast_slice::<u8, f32>(row)) {
-                        (4, Ok(texels)) => values.extend(texels.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]])),
-                        (1, Ok(texels)) => values.extend(texels.iter().map(|&x| [x, 0.0, 0.0, 0.0])),
-                        _ => values.extend(row.chunks_exact(k * 4).map(|t| {
-                            let mut v = [0.0f32; 4];
-                            for (c, b) in v.iter_mut().zip(t.chunks_exact(4)) {
-                                *c = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-                            }
-                            v
-                        })),
-                    }
-                }
-            } else {
-                values.resize(n, [0.0; 4]);
-            }
-            let data = mapped(info_staging)?;
-            let mut info = Vec::with_capacity(n);
-            for y in 0..h as usize {
-                let row = &data[y * targets.info_stride as usize..][..w as usize * 4];
-                match bytemuck::try_cast_slice::<u8, u32>(row) {
-                    Ok(words) => info.extend_from_slice(words),
-                    Err(_) => info.extend(
-                        row.chunks_exact(4)
-                            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-                    ),
-                }
-            }
-            Ok((values, info))
-        };
-        let result = read_all();
-        for b in &staging {
-            b.unmap();
-        }
-        let (values, info) = result?;
-        let vertex = resolved.as_ref().is_some_and(|r| r.stage == Stage::Vertex);
-        Ok(ValueFrame {
-            width: w,
-            height: h,
-            components,
-            values,
-            ran: info.iter().map(|i| i & instrument::RAN_BIT != 0).collect(),
-            cost: info.iter().map(|i| i >> instrument::COST_SHIFT).collect(),
-            vertex,
-            resolved,
-        })
-    }
 }
 
 /// What [`ViewDrawer::encode`] drew: the line it resolved to (none: a cost view), the
@@ -985,19 +919,6 @@ pub struct Drawn {
     pub format: wgpu::TextureFormat,
     /// The targets' size.
     pub size: (u32, u32),
-}
-
-/// A view drawn and being read back ([`ViewDrawer::start`]).
-#[cfg(not(target_arch = "wasm32"))]
-struct PendingView {
-    resolved: Option<Resolved>,
-    components: u32,
-    value: bool,
-    format: wgpu::TextureFormat,
-    size: (u32, u32),
-    /// The read-back buffers, and how many of their mappings have ended.
-    buffers: usize,
-    mapped: Arc<std::sync::atomic::AtomicUsize>,
 }
 
 /// The format of a view's value target for a value of `components` components: as few
@@ -1034,10 +955,22 @@ struct Targets {
     value_stride: u32,
     info_stride: u32,
     depth: wgpu::TextureView,
-    /// The value's and the info's read-back buffers, made by the first read-back (a view
-    /// painted on the GPU reads nothing back).
-    staging: Option<[wgpu::Buffer; 2]>,
+    /// The read-back buffer, a band of rows of either target, made by the first read-back (a
+    /// view painted on the GPU reads nothing back).
+    staging: Option<wgpu::Buffer>,
 }
+
+/// One of a view's targets, to read back.
+#[cfg(not(target_arch = "wasm32"))]
+#[derive(Clone, Copy)]
+enum Kept {
+    Value,
+    Info,
+}
+
+/// The most bytes one band of a read-back holds.
+#[cfg(not(target_arch = "wasm32"))]
+const BAND_BYTES: u64 = 16 << 20;
 
 impl Targets {
     fn new(device: &wgpu::Device, width: u32, height: u32, format: wgpu::TextureFormat) -> Targets {
@@ -1065,18 +998,76 @@ impl Targets {
         }
     }
 
-    /// The read-back buffers, made the first time.
+    /// Reads target `which` back band by band of rows, top first, through one buffer of at
+    /// most [`BAND_BYTES`] (at least a row), handing each row's texels to `take`.
     #[cfg(not(target_arch = "wasm32"))]
-    fn staging(&mut self) -> &[wgpu::Buffer; 2] {
+    fn read_rows(&mut self, gpu: &Gpu, which: Kept, mut take: impl FnMut(&[u8])) -> Result<()> {
         let label = "shaderlab.debug.view";
-        let (device, height) = (&self.device, self.height);
-        let (value_stride, info_stride) = (self.value_stride, self.info_stride);
-        self.staging.get_or_insert_with(|| {
-            let buffer = |name: &str, stride| {
-                crate::offscreen::readback_buffer(device, &format!("{label}.{name}_staging"), stride, height)
-            };
-            [buffer("value", value_stride), buffer("info", info_stride)]
-        })
+        let (texture, stride, texel) = match which {
+            Kept::Value => (&self.value.0, self.value_stride, 4 * texel_words(self.format)),
+            Kept::Info => (&self.info.0, self.info_stride, 4),
+        };
+        let biggest = self.value_stride.max(self.info_stride);
+        let band = (BAND_BYTES / u64::from(biggest)).clamp(1, u64::from(self.height)) as u32;
+        let device = &self.device;
+        let staging = self.staging.get_or_insert_with(|| {
+            crate::offscreen::readback_buffer(device, &format!("{label}.staging"), biggest, band)
+        });
+        let row_bytes = self.width as usize * texel;
+        let mut top = 0;
+        while top < self.height {
+            let rows = band.min(self.height - top);
+            let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some(&format!("{label}.read_back")),
+            });
+            encoder.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y: top, z: 0 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: staging,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(stride),
+                        rows_per_image: Some(rows),
+                    },
+                },
+                wgpu::Extent3d {
+                    width: self.width,
+                    height: rows,
+                    depth_or_array_layers: 1,
+                },
+            );
+            let commands = gpu.checked(label, || encoder.finish())?;
+            gpu.queue.submit([commands]);
+            let mapped = Arc::new(std::sync::atomic::AtomicBool::new(false));
+            let flag = mapped.clone();
+            let slice = staging.slice(..u64::from(stride) * u64::from(rows));
+            // Set whether it mapped or not: a mapping that failed shows when read.
+            slice.map_async(wgpu::MapMode::Read, move |_| {
+                flag.store(true, std::sync::atomic::Ordering::SeqCst);
+            });
+            let waited = gpu.wait_until("reading a view back", || {
+                mapped.load(std::sync::atomic::Ordering::SeqCst)
+            });
+            let result = waited.and_then(|()| {
+                let data = slice.get_mapped_range().map_err(|e| crate::error::Error::Wgpu {
+                    context: "reading a view back".into(),
+                    message: e.to_string(),
+                })?;
+                for y in 0..rows as usize {
+                    take(&data[y * stride as usize..][..row_bytes]);
+                }
+                Ok(())
+            });
+            staging.unmap();
+            result?;
+            top += rows;
+        }
+        Ok(())
     }
 }
 
@@ -1084,7 +1075,7 @@ impl Targets {
 /// of its own; see [`ViewDrawer`] to draw views again and again.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn draw_view(gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u32) -> Result<ValueFrame> {
-    ViewDrawer::new().draw(gpu, log, probe, width, height)
+    ViewDrawer::new().draw_once(gpu, log, probe, width, height)
 }
 
 /// Records one frame of `lab` at `width` × `height` with its draws written down, without

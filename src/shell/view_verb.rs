@@ -149,7 +149,13 @@ impl Plan {
         let mut drawer = ViewDrawer::new();
         let log = view::record(gpu, lab, width, height)?;
         let probe = named(&log, &self.probe);
-        let frame = drawer.draw(gpu, &log, &probe, width, height).map_err(failure)?;
+        let frame = if self.bench.is_some() {
+            drawer.draw(gpu, &log, &probe, width, height)
+        } else {
+            // Drawn once: its targets are given back as they are read.
+            std::mem::take(&mut drawer).draw_once(gpu, &log, &probe, width, height)
+        }
+        .map_err(failure)?;
         drop(log);
         if let Some(frames) = self.bench {
             let t = bench(gpu, lab, &mut drawer, &probe, frames, width, height)?;

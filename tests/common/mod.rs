@@ -302,9 +302,24 @@ pub fn seed_reference(name: &str) -> RgbImage {
 /// Runs `command` to its end, collecting its output, and also returns the CPU seconds (user +
 /// system) the process and its threads used: a measure of work that a busy machine does not
 /// inflate, unlike the wall clock, for tests that guard against slow (quadratic) paths.
+pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
+    let (output, usage) = output_with_usage(command);
+    (output, usage.cpu)
+}
+
+/// What a child process used: CPU seconds (user + system) and its peak resident memory.
+#[derive(Clone, Copy, Debug)]
+pub struct Usage {
+    /// CPU seconds, its threads' included.
+    pub cpu: f64,
+    /// Its peak resident set in kilobytes (0 where the system does not say).
+    pub peak_kb: u64,
+}
+
+/// Runs `command` to its end as [`output_with_cpu`] does, and returns what it used.
 // Waited for with wait4 (for its resource usage), which clippy does not see.
 #[allow(clippy::zombie_processes)]
-pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
+pub fn output_with_usage(command: &mut Command) -> (std::process::Output, Usage) {
     use std::io::Read;
     use std::process::Stdio;
     let mut child = command
@@ -322,7 +337,7 @@ pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
     let stdout = read(Box::new(child.stdout.take().expect("piped")));
     let stderr = read(Box::new(child.stderr.take().expect("piped")));
     #[cfg(target_os = "linux")]
-    let (status, cpu) = {
+    let (status, usage) = {
         use std::os::unix::process::ExitStatusExt;
         let mut raw = 0;
         // SAFETY: a zeroed rusage for wait4 to fill; the pid is our own unwaited child.
@@ -334,21 +349,30 @@ pub fn output_with_cpu(command: &mut Command) -> (std::process::Output, f64) {
         let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 / 1e6;
         (
             std::process::ExitStatus::from_raw(raw),
-            seconds(usage.ru_utime) + seconds(usage.ru_stime),
+            Usage {
+                cpu: seconds(usage.ru_utime) + seconds(usage.ru_stime),
+                peak_kb: usage.ru_maxrss.max(0) as u64,
+            },
         )
     };
     #[cfg(not(target_os = "linux"))]
-    let (status, cpu) = {
+    let (status, usage) = {
         let started = std::time::Instant::now();
         let status = child.wait().expect("wait");
-        (status, started.elapsed().as_secs_f64())
+        (
+            status,
+            Usage {
+                cpu: started.elapsed().as_secs_f64(),
+                peak_kb: 0,
+            },
+        )
     };
     let output = std::process::Output {
         status,
         stdout: stdout.join().expect("stdout reader"),
         stderr: stderr.join().expect("stderr reader"),
     };
-    (output, cpu)
+    (output, usage)
 }
 
 /// Fails unless `SHADERLAB_WRITE_REFERENCES=1`: a test that writes files other tests read
