@@ -150,7 +150,7 @@ impl PixelFlag {
     }
 
     /// The lab's command line with the pixel's flag named so.
-    fn apply(self, command: clap::Command) -> clap::Command {
+    pub(super) fn apply(self, command: clap::Command) -> clap::Command {
         match self {
             PixelFlag::Debug => command,
             PixelFlag::Pixel => command.mut_arg("debug", |a| a.long("pixel")).mut_arg("json", |a| {

@@ -162,9 +162,18 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             .join(" ")
     };
     let (copy_words, reference_words) = match &own.reference {
-        Some(pair) => (format!("the pair {}", show(&args.files)), format!("the pair {}", show(pair))),
+        Some(pair) => (
+            format!("the pair {}", show(&args.files)),
+            format!("the pair {}", show(pair)),
+        ),
         None => (
-            format!("the copy in {}", args.shaders.as_ref().map(|d| d.display().to_string()).unwrap_or_default()),
+            format!(
+                "the copy in {}",
+                args.shaders
+                    .as_ref()
+                    .map(|d| d.display().to_string())
+                    .unwrap_or_default()
+            ),
             "the built-in shaders".to_owned(),
         ),
     };
@@ -175,8 +184,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             )),
             e => e,
         })?;
-    let mut reference =
-        super::session::Session::open_lab(
+    let mut reference = super::session::Session::open_lab(
         entry,
         &gpu,
         &ShaderSource::Embedded,
