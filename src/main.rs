@@ -191,7 +191,14 @@ fn write_pages(dir: &std::path::Path, pages: &[(String, Vec<u8>)]) -> Result<(),
     NewDir::check(dir)?;
     if dir.is_dir() {
         for (name, _) in pages {
-            shaderlab::fsutil::check_output_path(&dir.join(name))?;
+            let path = dir.join(name);
+            if let shaderlab::fsutil::Dest::Stream(_) = shaderlab::fsutil::Dest::of(&path)? {
+                return Err(shaderlab::Error::Param(format!(
+                    "{}: not a regular file (a FIFO or device); the pages are files, and replace nothing else",
+                    path.display()
+                )));
+            }
+            shaderlab::fsutil::check_output_path(&path)?;
         }
     }
     let _deferred = signals::defer();
