@@ -213,10 +213,16 @@ fn write_pages(dir: &std::path::Path, pages: &[(String, Vec<u8>)]) -> Result<(),
     Ok(())
 }
 
-/// Status 2 for words after a verb that takes none (`shaderlab list extra`).
+/// Status 2 for words after a verb that takes none (`shaderlab list extra`; `help` takes a
+/// verb that has its own help).
 fn nothing_after(verb: &str, words: &[String]) -> Option<ExitCode> {
     let extra = words.first()?;
-    eprintln!("shaderlab {verb}: `{extra}`: this takes nothing after it\n\nUsage: shaderlab {verb}");
+    let usage = if verb == "help" {
+        "shaderlab help [run|record|debug|diff|view]".to_owned()
+    } else {
+        format!("shaderlab {verb}")
+    };
+    eprintln!("shaderlab {verb}: `{extra}`: this takes nothing after it\n\nUsage: {usage}");
     Some(ExitCode::from(2))
 }
 
@@ -227,6 +233,9 @@ fn main() -> ExitCode {
     let after = words.get(2..).unwrap_or_default();
     match words.get(1).map(String::as_str) {
         None => print(&format!("{USAGE}\n")),
+        Some("help" | "--help" | "-h") if matches!(after, [v] if ["run", "record", "debug", "diff", "view"].contains(&v.as_str())) => {
+            print(&verb_help(&after[0]))
+        }
         Some(verb @ ("help" | "--help" | "-h")) => match nothing_after(verb, after) {
             Some(refused) => refused,
             None => print(&format!("{USAGE}\n")),

@@ -68,14 +68,18 @@ fn every_json_output_is_one_json_document() {
     let copy = dir.join("copy");
     common::copy_shaders(&copy);
     let copy = copy.to_str().expect("utf-8").to_owned();
-    course_pair(&dir, "mine", |t| t.replace("max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)"));
+    course_pair(&dir, "mine", |t| {
+        t.replace("max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)")
+    });
     course_pair(&dir, "ref", str::to_owned);
     let line = format!("phong.frag:{}", line_of("phong.frag", "max(dot(N, L), 0.0)"));
     let runs: Vec<Vec<&str>> = vec![
         vec!["view", "phong", "--line", &line, "--json"],
         vec!["view", "phong", "--cost", "--json"],
         vec!["view", "phong", "--cost", "--bench", "2", "--json"],
-        vec!["view", "phong", "--line", &line, "--bench", "2", "--json", "--out", "v.png"],
+        vec![
+            "view", "phong", "--line", &line, "--bench", "2", "--json", "--out", "v.png",
+        ],
         vec!["run", "phong", "--line", &line, "--json"],
         vec!["run", "phong", "--cost", "--bench", "2", "--json"],
         vec!["debug", "phong", "--pixel", "32,18", "--json"],
@@ -171,7 +175,11 @@ fn npy_into_a_stream_takes_the_array_whatever_its_name() {
             std::fs::read(&path).expect("stdout's file")
         } else {
             let out = command.output().expect("shaderlab runs");
-            assert!(out.status.success(), "{run:?} | …: {}", String::from_utf8_lossy(&out.stderr));
+            assert!(
+                out.status.success(),
+                "{run:?} | …: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
             out.stdout
         };
         // The stream holds the array alone: the summary went to stderr.
@@ -205,11 +213,23 @@ fn a_line_past_the_end_says_how_many_lines_the_file_has() {
     }
     // The user's own file, in legacy: its own count.
     course_pair(&dir, "lab3", str::to_owned);
-    let count = std::fs::read_to_string(dir.join("lab3.frag")).expect("lab3.frag").lines().count();
+    let count = std::fs::read_to_string(dir.join("lab3.frag"))
+        .expect("lab3.frag")
+        .lines()
+        .count();
     let at = format!("lab3.frag:{}", count + 1);
     let out = shaderlab_in(
         &dir,
-        &["view", "legacy", "lab3.vert", "lab3.frag", "--line", &at, "--size", SIZE],
+        &[
+            "view",
+            "legacy",
+            "lab3.vert",
+            "lab3.frag",
+            "--line",
+            &at,
+            "--size",
+            SIZE,
+        ],
     );
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
@@ -221,7 +241,10 @@ fn a_line_past_the_end_says_how_many_lines_the_file_has() {
 fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
     let dir = test_dir("legacy");
     let line = course_pair(&dir, "mine", |t| {
-        t.replace("vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0);", "vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0) * 0.5;")
+        t.replace(
+            "vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0);",
+            "vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0) * 0.5;",
+        )
     });
     course_pair(&dir, "ref", str::to_owned);
     let mine = std::fs::read_to_string(dir.join("mine.frag")).expect("mine.frag");
@@ -241,8 +264,7 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
         "d.png",
     ];
     args.extend_from_slice(LIT);
-    let v: serde_json::Value =
-        serde_json::from_str(&ok(&args, &shaderlab_in(&dir, &args))).expect("one JSON object");
+    let v: serde_json::Value = serde_json::from_str(&ok(&args, &shaderlab_in(&dir, &args))).expect("one JSON object");
     assert!(v["differing"].as_u64().is_some_and(|n| n > 50), "{v}");
     let first = &v["first_divergence"];
     assert_eq!(first["file"], "mine.frag", "the user's own file: {v}");
@@ -270,8 +292,7 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
         "--json",
     ];
     same.extend_from_slice(LIT);
-    let v: serde_json::Value =
-        serde_json::from_str(&ok(&same, &shaderlab_in(&dir, &same))).expect("one JSON object");
+    let v: serde_json::Value = serde_json::from_str(&ok(&same, &shaderlab_in(&dir, &same))).expect("one JSON object");
     assert_eq!(v["differing"], 0, "{v}");
 
     // A folder of shaders means nothing to legacy, even an empty one; no pair is a question.
@@ -280,7 +301,14 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
     let before = std::fs::read_dir(&dir).expect("the folder").count();
     for (args, says) in [
         (
-            vec!["diff", "legacy", "mine.vert", "mine.frag", "--shaders", empty.to_str().expect("utf-8")],
+            vec![
+                "diff",
+                "legacy",
+                "mine.vert",
+                "mine.frag",
+                "--shaders",
+                empty.to_str().expect("utf-8"),
+            ],
             "`--shaders` reads a lab's shaders from a folder, and does nothing for legacy",
         ),
         (
@@ -288,7 +316,15 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
             "which pair to compare with? name it with --reference VERT0 FRAG0",
         ),
         (
-            vec!["diff", "phong", "--shaders", empty.to_str().expect("utf-8"), "--reference", "ref.vert", "ref.frag"],
+            vec![
+                "diff",
+                "phong",
+                "--shaders",
+                empty.to_str().expect("utf-8"),
+                "--reference",
+                "ref.vert",
+                "ref.frag",
+            ],
             "`--reference` names the pair",
         ),
         (
@@ -309,7 +345,10 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
 #[test]
 fn help_says_any_value_for_a_range_no_lab_declared() {
     let dir = test_dir("help");
-    let help = ok(&["run", "phong", "--help"], &shaderlab_in(&dir, &["run", "phong", "--help"]));
+    let help = ok(
+        &["run", "phong", "--help"],
+        &shaderlab_in(&dir, &["run", "phong", "--help"]),
+    );
     assert!(!help.contains("e38"), "{help}");
     let light = help
         .lines()
@@ -317,7 +356,10 @@ fn help_says_any_value_for_a_range_no_lab_declared() {
         .expect("lightPosition's line");
     assert!(light.contains("any value"), "{light}");
     // A declared range still prints as declared.
-    let twist = ok(&["run", "twist", "--help"], &shaderlab_in(&dir, &["run", "twist", "--help"]));
+    let twist = ok(
+        &["run", "twist", "--help"],
+        &shaderlab_in(&dir, &["run", "twist", "--help"]),
+    );
     let twisting = twist
         .lines()
         .find(|l| l.trim_start().starts_with("twisting"))

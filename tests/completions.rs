@@ -97,7 +97,10 @@ fn bash_complete(dir: &std::path::Path, words: &[&str]) -> Vec<String> {
         .output()
         .expect("bash runs");
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stdout).lines().map(str::to_owned).collect()
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(str::to_owned)
+        .collect()
 }
 
 fn test_dir(tag: &str) -> std::path::PathBuf {
@@ -124,20 +127,38 @@ fn each_verb_completes_its_own_flags_and_their_values() {
     };
     // Each verb's own flags, never another verb's.
     let debug = has(&["shaderlab", "debug", "phong", "--"], &["--pixel", "--json", "--size"]);
-    assert!(!debug.contains(&"--debug".to_owned()), "debug refuses --debug: {debug:?}");
-    let view = has(&["shaderlab", "view", "phong", "--"], &["--out", "--line", "--cost", "--npy"]);
+    assert!(
+        !debug.contains(&"--debug".to_owned()),
+        "debug refuses --debug: {debug:?}"
+    );
+    let view = has(
+        &["shaderlab", "view", "phong", "--"],
+        &["--out", "--line", "--cost", "--npy"],
+    );
     assert!(!view.contains(&"--record".to_owned()), "{view:?}");
-    let diff = has(&["shaderlab", "diff", "phong", "--"], &["--out", "--shaders", "--reference"]);
+    let diff = has(
+        &["shaderlab", "diff", "phong", "--"],
+        &["--out", "--shaders", "--reference"],
+    );
     assert!(!diff.contains(&"--npy".to_owned()), "{diff:?}");
     // The lab after a verb, and the values of --object, --shading, --stage, man's VERB.
     let names: Vec<&str> = shaderlab::course::ALL.iter().map(|e| e.info.name).collect();
     for verb in ["run", "record", "debug", "diff", "view"] {
         has(&["shaderlab", verb, ""], &names);
     }
-    assert_eq!(offers(&["shaderlab", "view", "pho"]), ["phong", "phong_vertex", "phong_fragment", "phong_dir"]);
-    has(&["shaderlab", "run", "phong", "--object", ""], &["cube", "sphere", "torus", "teapot"]);
+    assert_eq!(
+        offers(&["shaderlab", "view", "pho"]),
+        ["phong", "phong_vertex", "phong_fragment", "phong_dir"]
+    );
+    has(
+        &["shaderlab", "run", "phong", "--object", ""],
+        &["cube", "sphere", "torus", "teapot"],
+    );
     assert_eq!(offers(&["shaderlab", "debug", "phong", "--shading", "g"]), ["gouraud"]);
-    assert_eq!(offers(&["shaderlab", "view", "phong", "--stage", ""]), ["vertex", "fragment"]);
+    assert_eq!(
+        offers(&["shaderlab", "view", "phong", "--stage", ""]),
+        ["vertex", "fragment"]
+    );
     has(&["shaderlab", "man", ""], &["run", "view", "diff", "glsl2wgsl"]);
     // A number completes to no file.
     for flag in ["--bench", "--size", "--time", "--rotate"] {
@@ -150,7 +171,9 @@ fn each_verb_completes_its_own_flags_and_their_values() {
     // zsh and fish: the same values in their scripts.
     let (_, zsh, _) = shaderlab(&["completions", "zsh"]);
     let section = |verb: &str| -> String {
-        let start = zsh.find(&format!("\n({verb})\n_arguments")).expect("the verb's section");
+        let start = zsh
+            .find(&format!("\n({verb})\n_arguments"))
+            .expect("the verb's section");
         let rest = &zsh[start..];
         rest[..rest.find("&& ret=0").expect("its end")].to_owned()
     };
@@ -167,7 +190,10 @@ fn each_verb_completes_its_own_flags_and_their_values() {
     };
     let debug = fish_lines("debug");
     assert!(debug.iter().any(|l| l.contains(" -l pixel ")), "fish: debug --pixel");
-    assert!(!debug.iter().any(|l| l.contains(" -l debug ")), "fish: debug offers --debug");
+    assert!(
+        !debug.iter().any(|l| l.contains(" -l debug ")),
+        "fish: debug offers --debug"
+    );
     assert!(
         debug
             .iter()
@@ -180,7 +206,10 @@ fn each_verb_completes_its_own_flags_and_their_values() {
             "fish: the labs after {verb}"
         );
     }
-    assert!(fish_lines("view").iter().any(|l| l.contains(" -l out ")), "fish: view's --out");
+    assert!(
+        fish_lines("view").iter().any(|l| l.contains(" -l out ")),
+        "fish: view's --out"
+    );
     let parsed = Command::new("bash")
         .arg("-n")
         .arg(dir.join("shaderlab.bash"))
@@ -203,7 +232,11 @@ fn every_page_the_manual_names_exists_and_man_dir_writes_them_all() {
     for verb in &named {
         let (code, sub, err) = shaderlab(&["man", verb]);
         assert_eq!(code, Some(0), "{verb}: {err}");
-        assert!(sub.contains(&format!(".TH shaderlab-{verb} 1")), "man {verb}: {}", &sub[..120.min(sub.len())]);
+        assert!(
+            sub.contains(&format!(".TH shaderlab-{verb} 1")),
+            "man {verb}: {}",
+            &sub[..120.min(sub.len())]
+        );
         assert_ne!(sub, page, "man {verb} is not the main page");
         assert!(!sub.contains("e38"), "man {verb} prints an undeclared range");
     }
@@ -224,9 +257,15 @@ fn every_page_the_manual_names_exists_and_man_dir_writes_them_all() {
     expected.push("shaderlab.1".into());
     expected.sort();
     assert_eq!(files, expected);
-    assert_eq!(std::fs::read_to_string(dir.join("shaderlab.1")).expect("the main page"), page);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("shaderlab.1")).expect("the main page"),
+        page
+    );
     let (_, view, _) = shaderlab(&["man", "view"]);
-    assert_eq!(std::fs::read_to_string(dir.join("shaderlab-view.1")).expect("view's page"), view);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("shaderlab-view.1")).expect("view's page"),
+        view
+    );
     // Never over a FIFO (or anything but a file): refused before anything is written.
     let fifo_dir = test_dir("man_fifo");
     let fifo = fifo_dir.join("shaderlab-run.1");
@@ -243,5 +282,8 @@ fn every_page_the_manual_names_exists_and_man_dir_writes_them_all() {
     let left: Vec<_> = std::fs::read_dir(&fifo_dir).expect("the folder").collect();
     assert_eq!(left.len(), 1, "only the FIFO");
     use std::os::unix::fs::FileTypeExt;
-    assert!(std::fs::symlink_metadata(&fifo).expect("the FIFO").file_type().is_fifo());
+    assert!(std::fs::symlink_metadata(&fifo)
+        .expect("the FIFO")
+        .file_type()
+        .is_fifo());
 }

@@ -219,7 +219,11 @@ impl Place {
             .args(["--set", "nosuch=1"])
             .output()
             .expect("shaderlab runs");
-        assert!(out.stdout.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stdout));
+        assert!(
+            out.stdout.is_empty(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
         (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
     }
 }
@@ -286,9 +290,15 @@ fn sweep(place: &Place) -> Vec<(&'static str, BTreeSet<&'static str>)> {
                     "shaderlab {verb} should take {flag}; refused: {refusals:#?}"
                 );
             } else {
-                assert!(!taken.contains(flag), "shaderlab {verb} takes {flag}, which does nothing there");
+                assert!(
+                    !taken.contains(flag),
+                    "shaderlab {verb} takes {flag}, which does nothing there"
+                );
                 for (args, err) in &refusals {
-                    assert!(says_why(flag, err), "{args:?}: the refusal says which flag and why: {err}");
+                    assert!(
+                        says_why(flag, err),
+                        "{args:?}: the refusal says which flag and why: {err}"
+                    );
                 }
             }
         }
@@ -318,7 +328,10 @@ fn a_flag_that_does_nothing_in_its_mode_is_refused_and_says_why() {
         (&[], &["--unpaced"]),
         (&["--screenshot", "x.png"], &[]),
         (&["--bench", "2"], &["--gpu-time"]),
-        (&["--record", "r.gif", "--frames", "2"], &["--frames", "--fps", "--from"]),
+        (
+            &["--record", "r.gif", "--frames", "2"],
+            &["--frames", "--fps", "--from"],
+        ),
         (&["--debug", "1,1"], &["--json"]),
         (&["--line", "phong.frag:17"], &["--json", "--name", "--stage", "--npy"]),
         (&["--cost"], &["--json", "--npy"]),
@@ -349,7 +362,10 @@ fn a_flag_that_does_nothing_in_its_mode_is_refused_and_says_why() {
             &["run", "phong", "--gpu-time"][..],
             "`--gpu-time` times the frames of --bench N on the GPU",
         ),
-        (&["run", "phong", "--gpu-time"], "does nothing in a window: add --bench N"),
+        (
+            &["run", "phong", "--gpu-time"],
+            "does nothing in a window: add --bench N",
+        ),
         (
             &["view", "phong", "--cost", "--name", "X"],
             "`--name` chooses the name that --line FILE:LINE shows, and does nothing in a cost view",
@@ -382,10 +398,7 @@ fn a_flag_that_does_nothing_in_its_mode_is_refused_and_says_why() {
             &["legacy", "V", "F", "--shaders", "DIR"],
             "`--shaders` reads a lab's shaders from a folder, and does nothing for legacy",
         ),
-        (
-            &["run", "legacy", "V", "F", "--diff", "DIR"],
-            "--reference VERT0 FRAG0",
-        ),
+        (&["run", "legacy", "V", "F", "--diff", "DIR"], "--reference VERT0 FRAG0"),
     ] {
         let (code, err) = place.run(args);
         assert_eq!(code, Some(2), "{args:?}: {err}");
@@ -402,7 +415,8 @@ fn the_tools_and_plain_verbs_refuse_what_they_would_ignore() {
     for (args, says) in [
         (&["list", "extra"][..], "`extra`: this takes nothing after it"),
         (&["--version", "extra"], "`extra`: this takes nothing after it"),
-        (&["help", "run"], "`run`: this takes nothing after it"),
+        (&["help", "legacy"], "`legacy`: this takes nothing after it"),
+        (&["help", "view", "extra"], "`view`: this takes nothing after it"),
         (&["completions", "bash", "extra"], "one shell, and nothing after it"),
         (&["man", "view", "extra"], "expected one VERB or --dir DIR"),
         (&["man", "nosuch"], "no page for `nosuch`"),
@@ -435,9 +449,16 @@ fn bash_offers(script: &Path, words: &[&str]) -> Vec<String> {
         script.display(),
         words.join(" ")
     );
-    let out = Command::new("bash").arg("-c").arg(&program).output().expect("bash runs");
+    let out = Command::new("bash")
+        .arg("-c")
+        .arg(&program)
+        .output()
+        .expect("bash runs");
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stdout).lines().map(str::to_owned).collect()
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(str::to_owned)
+        .collect()
 }
 
 fn shaderlab_stdout(args: &[&str]) -> String {
@@ -445,7 +466,11 @@ fn shaderlab_stdout(args: &[&str]) -> String {
         .args(args)
         .output()
         .expect("shaderlab runs");
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8(out.stdout).expect("UTF-8")
 }
 
