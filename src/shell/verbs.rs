@@ -422,10 +422,7 @@ fn choices(name: &str) -> Vec<&'static str> {
 /// verb's description may leave out.
 fn bare(a: &clap::Arg) -> clap::Arg {
     let values = a.get_action().takes_values();
-    let mut b = clap::Arg::new(a.get_id().clone())
-        .action(a.get_action().clone())
-        .value_parser(a.get_value_parser().clone())
-        .allow_hyphen_values(a.is_allow_hyphen_values_set());
+    let mut b = clap::Arg::new(a.get_id().clone()).action(a.get_action().clone());
     if let Some(long) = a.get_long() {
         b = b.long(long.to_owned());
     }
@@ -436,6 +433,9 @@ fn bare(a: &clap::Arg) -> clap::Arg {
         b = b.long_help(help.clone());
     }
     if values {
+        b = b
+            .value_parser(a.get_value_parser().clone())
+            .allow_hyphen_values(a.is_allow_hyphen_values_set());
         if let Some(n) = a.get_num_args() {
             b = b.num_args(n);
         }
@@ -660,4 +660,21 @@ pub fn manual_pages() -> std::io::Result<Vec<(String, Vec<u8>)>> {
         pages.push((man.get_filename(), page));
     }
     Ok(pages)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// clap's own checks of the description (run where debug assertions are on), and every
+    /// flag of [`Args`] placed: in the scene or in [`USES`].
+    #[test]
+    fn the_description_is_whole() {
+        command().debug_assert();
+        use clap::CommandFactory;
+        for a in Args::command().get_arguments() {
+            let id = a.get_id().as_str();
+            assert!(!modes_of(id).is_empty(), "`{id}` is in no mode");
+        }
+    }
 }
