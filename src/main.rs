@@ -27,6 +27,8 @@ Usage:
                                       where a copy of the lab's shaders draws differently
                                       from the built-in ones: PSNR, the pixels that differ,
                                       the worst one, and the first line whose value departs
+  shaderlab diff legacy VERT FRAG --reference VERT0 FRAG0 [FLAGS…]
+                                      the same for two GLSL 1.10/1.20 pairs
   shaderlab view NAME --line FILE:LINE [--name VAR] [--stage vertex|fragment] [FLAGS…]
   shaderlab view NAME --cost [FLAGS…]
                                       a line's value, or the statements the fragment shader
@@ -37,7 +39,9 @@ Usage:
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
   shaderlab completions bash|zsh|fish|elvish|powershell
                                       the shell's completion script (lab names, verbs, flags)
-  shaderlab man                       the manual page (roff: shaderlab man > shaderlab.1)
+  shaderlab man [VERB]                the manual page, shaderlab's or a verb's (roff:
+                                      shaderlab man view > shaderlab-view.1); --dir DIR
+                                      writes every page into DIR
   shaderlab --version
 
 Each lab is also an example: cargo run --release --example NAME -- [FLAGS…]";
@@ -63,6 +67,8 @@ fn verb_help(verb: &str) -> String {
              departs from the built-in shader's (file, line, name, both values)",
             shaderlab::shell::diff_verb::USAGE,
             "\n  --shaders DIR  the copy of the lab's shaders (same file names as shaders_glsl/)\n  \
+             --reference VERT0 FRAG0\n                 \
+             for legacy, which draws the pair VERT FRAG: the pair to compare it with\n  \
              --out FILE.png the difference as a picture, with its legend\n  \
              --json         print one JSON object (psnr, differing, worst, first_divergence)",
         ),
@@ -112,88 +118,136 @@ fn print(text: &str) -> ExitCode {
     }
 }
 
-/// The command line as clap describes it, for completion scripts and the manual page: the
-/// verbs, each lab's name, and the labs' own flags (the same definitions `--help` prints). The
-/// verbs themselves are dispatched by hand below, since each hands the rest of its command line
-/// to a lab's or tool's own parser.
-fn described() -> clap::Command {
-    use clap::{Arg, Command, CommandFactory};
-    let names: Vec<&'static str> = course::ALL.iter().map(|e| e.info.name).collect();
-    let lab = || {
-        Arg::new("NAME")
-            .required(true)
-            .help("the lab")
-            .value_parser(clap::builder::PossibleValuesParser::new(names.clone()))
-    };
-    let flags: Vec<Arg> = shaderlab::shell::Args::command()
-        .get_arguments()
-        .filter(|a| a.get_id() != "files")
-        .cloned()
-        .collect();
-    let with_flags =
-        |name: &'static str, about: &'static str| Command::new(name).about(about).arg(lab()).args(flags.clone());
-    Command::new("shaderlab")
-        .version(env!("CARGO_PKG_VERSION"))
-        .about("the GLSL course labs on wgpu: 32 labs in a window or offscreen, a course's own GLSL 1.10 files, and a GLSL debugger")
-        .subcommand_required(true)
-        .subcommand(Command::new("list").about("every lab, by lecture"))
-        .subcommand(with_flags("run", "run a lab in a window, or offscreen with --screenshot, --bench, --record or --debug"))
-        .subcommand(
-            with_flags("record", "record a lab's frames offscreen into OUT (GIF, MP4, WebM, PNGs)")
-                .arg(Arg::new("OUT").required(true).index(2).value_hint(clap::ValueHint::FilePath)),
-        )
-        .subcommand(
-            Command::new("legacy")
-                .about("a course's own GLSL 1.10/1.20 pair")
-                .arg(Arg::new("VERT").value_hint(clap::ValueHint::FilePath))
-                .arg(Arg::new("FRAG").value_hint(clap::ValueHint::FilePath))
-                .args(flags.clone()),
-        )
-        .subcommand(with_flags("debug", "why a pixel has its colour, line by line"))
-        .subcommand(with_flags("diff", "where a copy of the lab's shaders (--shaders DIR) draws differently, and from which line"))
-        .subcommand(with_flags("view", "a line's value (--line FILE:LINE) or the fragment shader's cost (--cost) at every pixel"))
-        .subcommand(Command::new("glsl2wgsl").about("translate GLSL to WGSL (shaderlab glsl2wgsl --help)"))
-        .subcommand(Command::new("bench").about("time every lab offscreen (shaderlab bench --help)"))
-        .subcommand(
-            Command::new("completions")
-                .about("the shell's completion script")
-                .arg(Arg::new("SHELL").required(true).value_parser(clap::value_parser!(clap_complete::Shell))),
-        )
-        .subcommand(Command::new("man").about("the manual page, in roff"))
-}
-
 /// `shaderlab completions SHELL`: the completion script on stdout.
-fn completions(shell: Option<&str>) -> ExitCode {
-    let shell = shell.and_then(|s| <clap_complete::Shell as clap::ValueEnum>::from_str(s, true).ok());
+fn completions(words: &[String]) -> ExitCode {
+    let shell = match words {
+        [shell] => <clap_complete::Shell as clap::ValueEnum>::from_str(shell, true).ok(),
+        _ => None,
+    };
     let Some(shell) = shell else {
-        eprintln!("shaderlab completions: which shell? bash, zsh, fish, elvish or powershell\n\nUsage: shaderlab completions SHELL");
+        let why = match words {
+            [_, extra, ..] => format!("`{extra}`: one shell, and nothing after it"),
+            _ => "which shell? bash, zsh, fish, elvish or powershell".to_owned(),
+        };
+        eprintln!("shaderlab completions: {why}\n\nUsage: shaderlab completions bash|zsh|fish|elvish|powershell");
         return ExitCode::from(2);
     };
-    let mut script = Vec::new();
-    clap_complete::generate(shell, &mut described(), "shaderlab", &mut script);
-    print(&String::from_utf8_lossy(&script))
+    print(&shaderlab::shell::verbs::completion_script(shell))
 }
 
-/// `shaderlab man`: the manual page (roff) on stdout.
-fn man() -> ExitCode {
-    let mut page = Vec::new();
-    match clap_mangen::Man::new(described()).render(&mut page) {
-        Ok(()) => print(&String::from_utf8_lossy(&page)),
+/// `shaderlab man [VERB]`: a manual page (roff) on stdout, shaderlab's or a verb's;
+/// `shaderlab man --dir DIR`: every page written into DIR (made if missing), all or none.
+fn man(words: &[String]) -> ExitCode {
+    const MAN_USAGE: &str = "Usage: shaderlab man [VERB] | shaderlab man --dir DIR";
+    let pages = match shaderlab::shell::verbs::manual_pages() {
+        Ok(pages) => pages,
         Err(e) => {
-            let _ = writeln!(std::io::stderr(), "shaderlab man: {e}");
-            ExitCode::from(1)
+            let _ = writeln!(std::io::stderr(), "shaderlab man: error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let usage = |why: String| {
+        let _ = writeln!(std::io::stderr(), "shaderlab man: {why}\n\n{MAN_USAGE}");
+        ExitCode::from(2)
+    };
+    let words: Vec<&str> = words.iter().map(String::as_str).collect();
+    let dir = match words.as_slice() {
+        [] => return print(&String::from_utf8_lossy(&pages[0].1)),
+        ["--dir", dir] => (*dir).to_owned(),
+        [dir] if dir.starts_with("--dir=") => dir["--dir=".len()..].to_owned(),
+        ["--dir"] => return usage("`--dir` needs a folder: --dir DIR".into()),
+        [verb] if !verb.starts_with('-') => {
+            let file = format!("shaderlab-{verb}.1");
+            return match pages.iter().find(|(name, _)| *name == file) {
+                Some((_, page)) => print(&String::from_utf8_lossy(page)),
+                None => {
+                    let verbs: Vec<&str> = pages
+                        .iter()
+                        .filter_map(|(name, _)| name.strip_prefix("shaderlab-")?.strip_suffix(".1"))
+                        .collect();
+                    usage(format!("no page for `{verb}`; the verbs are: {}", verbs.join(", ")))
+                }
+            };
+        }
+        _ => return usage(format!("`{}`: expected one VERB or --dir DIR", words.join(" "))),
+    };
+    match write_pages(std::path::Path::new(&dir), &pages) {
+        Ok(()) => {
+            eprintln!("wrote {} pages into {dir}", pages.len());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            let _ = writeln!(std::io::stderr(), "shaderlab man: error: {e}");
+            ExitCode::from(if matches!(e, shaderlab::Error::Param(_)) { 2 } else { 1 })
         }
     }
+}
+
+/// Writes `pages` into `dir` together ([`shaderlab::fsutil::Batch`]): each to a temporary
+/// file, then all moved into place, or none; never over anything but a regular file; `dir` made
+/// only then, if missing, and removed again if that fails.
+fn write_pages(dir: &std::path::Path, pages: &[(String, Vec<u8>)]) -> Result<(), shaderlab::Error> {
+    use shaderlab::fsutil::{signals, Batch, NewDir};
+    NewDir::check(dir)?;
+    if dir.is_dir() {
+        for (name, _) in pages {
+            let path = dir.join(name);
+            if let shaderlab::fsutil::Dest::Stream(_) = shaderlab::fsutil::Dest::of(&path)? {
+                return Err(shaderlab::Error::Param(format!(
+                    "{}: not a regular file (a FIFO or device); the pages are files, and replace nothing else",
+                    path.display()
+                )));
+            }
+            shaderlab::fsutil::check_output_path(&path)?;
+        }
+    }
+    let _deferred = signals::defer();
+    let made = NewDir::create(dir)?;
+    let mut batch = Batch::new(true);
+    for (name, page) in pages {
+        batch.write(&dir.join(name), |w| w.write_all(page))?;
+    }
+    signals::check()?;
+    batch.commit()?;
+    made.keep();
+    Ok(())
+}
+
+/// Status 2 for words after a verb that takes none (`shaderlab list extra`; `help` takes a
+/// verb that has its own help).
+fn nothing_after(verb: &str, words: &[String]) -> Option<ExitCode> {
+    let extra = words.first()?;
+    let usage = if verb == "help" {
+        "shaderlab help [run|record|debug|diff|view]".to_owned()
+    } else {
+        format!("shaderlab {verb}")
+    };
+    eprintln!("shaderlab {verb}: `{extra}`: this takes nothing after it\n\nUsage: {usage}");
+    Some(ExitCode::from(2))
 }
 
 fn main() -> ExitCode {
     shaderlab::shell::ensure_runtime_dir();
     let mut argv: Vec<OsString> = std::env::args_os().collect();
     let words: Vec<String> = argv.iter().map(|a| a.to_string_lossy().into_owned()).collect();
+    let after = words.get(2..).unwrap_or_default();
     match words.get(1).map(String::as_str) {
-        None | Some("help" | "--help" | "-h") => print(&format!("{USAGE}\n")),
-        Some("--version" | "-V") => print(&format!("shaderlab {}\n", env!("CARGO_PKG_VERSION"))),
+        None => print(&format!("{USAGE}\n")),
+        Some("help" | "--help" | "-h") if matches!(after, [v] if ["run", "record", "debug", "diff", "view"].contains(&v.as_str())) => {
+            print(&verb_help(&after[0]))
+        }
+        Some(verb @ ("help" | "--help" | "-h")) => match nothing_after(verb, after) {
+            Some(refused) => refused,
+            None => print(&format!("{USAGE}\n")),
+        },
+        Some(verb @ ("--version" | "-V")) => match nothing_after(verb, after) {
+            Some(refused) => refused,
+            None => print(&format!("shaderlab {}\n", env!("CARGO_PKG_VERSION"))),
+        },
         Some("list") => {
+            if let Some(refused) = nothing_after("list", after) {
+                return refused;
+            }
             let mut lines = Vec::new();
             let mut lecture = "";
             for entry in course::ALL {
@@ -264,8 +318,8 @@ fn main() -> ExitCode {
                 shaderlab::shell::main_from(entry, args)
             }
         }
-        Some("completions") => completions(words.get(2).map(String::as_str)),
-        Some("man") => man(),
+        Some("completions") => completions(after),
+        Some("man") => man(after),
         Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),
         Some("bench") => shaderlab::shell::tool_exit("shaderlab bench", bench::run(argv.drain(1..))),
         Some(other) => {

@@ -515,6 +515,8 @@ impl Params {
                 Kind::Bool => "0 or 1".into(),
                 Kind::Int if s.auto.is_some() => format!("whole number {} or auto", range_text(s)),
                 Kind::Int => format!("whole number {}", range_text(s)),
+                // A range no lab declared (the floats a shader holds, ±f32::MAX) is any value.
+                Kind::Real if s.min <= -f64::from(f32::MAX) && s.max >= f64::from(f32::MAX) => "any value".into(),
                 Kind::Real => range_text(s),
             };
             // A long array's default is abbreviated: `uniform float a[100000]` would print
@@ -641,11 +643,17 @@ mod tests {
             "{help}"
         );
         assert!(help.contains("whole number -2147483648..2147483647"), "{help}");
-        // A range of any f32 prints as one, and its printed bound is taken.
+        // A range of any f32 is `any value` in --help, and its bound, as an error prints it,
+        // is taken.
         let mut f = Params::new(&[ParamSpec::real("x", &[0.0], -f32::MAX as f64, f32::MAX as f64, "x")]);
-        assert!(f.help().contains("-3.4028235e38..3.4028235e38"), "{}", f.help());
+        assert!(
+            f.help().contains("any value") && !f.help().contains("e38"),
+            "{}",
+            f.help()
+        );
         f.set_str("x", "3.4028235e38").unwrap();
-        assert!(f.set_str("x", "1e39").is_err());
+        let e = f.set_str("x", "1e39").unwrap_err().to_string();
+        assert!(e.contains("1e39 is outside -3.4028235e38..3.4028235e38"), "{e}");
     }
 
     #[test]

@@ -72,3 +72,218 @@ fn a_shell_it_does_not_know_is_a_usage_error() {
         assert!(err.contains("bash, zsh, fish"), "{err}");
     }
 }
+
+/// What bash's completion function offers for `words` (the last one being completed), run in
+/// a bash subprocess from `dir`.
+fn bash_complete(dir: &std::path::Path, words: &[&str]) -> Vec<String> {
+    let script = dir.join("shaderlab.bash");
+    if !script.exists() {
+        let (code, bash, err) = shaderlab(&["completions", "bash"]);
+        assert_eq!(code, Some(0), "{err}");
+        std::fs::write(&script, bash).expect("the script");
+    }
+    let quoted: Vec<String> = words.iter().map(|w| format!("'{w}'")).collect();
+    let program = format!(
+        "source '{}'\nCOMP_WORDS=({})\nCOMP_CWORD=$((${{#COMP_WORDS[@]}} - 1))\n\
+         _shaderlab shaderlab \"${{COMP_WORDS[COMP_CWORD]}}\" \"${{COMP_WORDS[COMP_CWORD-1]}}\"\n\
+         printf '%s\\n' \"${{COMPREPLY[@]}}\"\n",
+        script.display(),
+        quoted.join(" ")
+    );
+    let out = Command::new("bash")
+        .current_dir(dir)
+        .arg("-c")
+        .arg(&program)
+        .output()
+        .expect("bash runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(str::to_owned)
+        .collect()
+}
+
+fn test_dir(tag: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("target/test-output")
+        .join(format!("completions_{tag}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("the test folder");
+    dir
+}
+
+#[test]
+fn each_verb_completes_its_own_flags_and_their_values() {
+    let dir = test_dir("values");
+    // A file here, which no value but a file's may offer.
+    std::fs::write(dir.join("decoy.txt"), "x").expect("the decoy");
+    let offers = |words: &[&str]| bash_complete(&dir, words);
+    let has = |words: &[&str], wanted: &[&str]| {
+        let got = offers(words);
+        for w in wanted {
+            assert!(got.iter().any(|g| g == w), "{words:?} offers {got:?}, not {w}");
+        }
+        got
+    };
+    // Each verb's own flags, never another verb's.
+    let debug = has(&["shaderlab", "debug", "phong", "--"], &["--pixel", "--json", "--size"]);
+    assert!(
+        !debug.contains(&"--debug".to_owned()),
+        "debug refuses --debug: {debug:?}"
+    );
+    let view = has(
+        &["shaderlab", "view", "phong", "--"],
+        &["--out", "--line", "--cost", "--npy"],
+    );
+    assert!(!view.contains(&"--record".to_owned()), "{view:?}");
+    let diff = has(
+        &["shaderlab", "diff", "phong", "--"],
+        &["--out", "--shaders", "--reference"],
+    );
+    assert!(!diff.contains(&"--npy".to_owned()), "{diff:?}");
+    // The lab after a verb, and the values of --object, --shading, --stage, man's VERB.
+    let names: Vec<&str> = shaderlab::course::ALL.iter().map(|e| e.info.name).collect();
+    for verb in ["run", "record", "debug", "diff", "view"] {
+        has(&["shaderlab", verb, ""], &names);
+    }
+    assert_eq!(
+        offers(&["shaderlab", "view", "pho"]),
+        ["phong", "phong_vertex", "phong_fragment", "phong_dir"]
+    );
+    has(
+        &["shaderlab", "run", "phong", "--object", ""],
+        &["cube", "sphere", "torus", "teapot"],
+    );
+    assert_eq!(offers(&["shaderlab", "debug", "phong", "--shading", "g"]), ["gouraud"]);
+    assert_eq!(
+        offers(&["shaderlab", "view", "phong", "--stage", ""]),
+        ["vertex", "fragment"]
+    );
+    has(&["shaderlab", "man", ""], &["run", "view", "diff", "glsl2wgsl"]);
+    // A number completes to no file.
+    for flag in ["--bench", "--size", "--time", "--rotate"] {
+        let got = offers(&["shaderlab", "run", "phong", flag, ""]);
+        assert!(!got.iter().any(|g| g.contains("decoy")), "{flag}: {got:?}");
+    }
+    // A file's value completes to files.
+    has(&["shaderlab", "view", "phong", "--out", "de"], &["decoy.txt"]);
+
+    // zsh and fish: the same values in their scripts.
+    let (_, zsh, _) = shaderlab(&["completions", "zsh"]);
+    let section = |verb: &str| -> String {
+        let start = zsh
+            .find(&format!("\n({verb})\n_arguments"))
+            .expect("the verb's section");
+        let rest = &zsh[start..];
+        rest[..rest.find("&& ret=0").expect("its end")].to_owned()
+    };
+    let debug = section("debug");
+    assert!(debug.contains("'--pixel=") && !debug.contains("'--debug="), "{debug}");
+    assert!(debug.contains(":(cube sphere torus teapot"), "{debug}");
+    assert!(debug.contains(":(flat gouraud phong blinn"), "{debug}");
+    assert!(debug.contains(":NAME -- the lab:(position_rgb"), "{debug}");
+    assert!(section("view").contains("'--out="), "zsh: view's --out");
+    let (_, fish, _) = shaderlab(&["completions", "fish"]);
+    let fish_lines = |verb: &str| -> Vec<&str> {
+        let condition = format!("__fish_shaderlab_using_subcommand {verb}");
+        fish.lines().filter(|l| l.contains(&condition)).collect()
+    };
+    let debug = fish_lines("debug");
+    assert!(debug.iter().any(|l| l.contains(" -l pixel ")), "fish: debug --pixel");
+    assert!(
+        !debug.iter().any(|l| l.contains(" -l debug ")),
+        "fish: debug offers --debug"
+    );
+    assert!(
+        debug
+            .iter()
+            .any(|l| l.contains(" -l object ") && l.contains("cube") && l.contains("teapot")),
+        "fish: --object's values"
+    );
+    for verb in ["run", "record", "debug", "diff", "view"] {
+        assert!(
+            fish_lines(verb).iter().any(|l| l.contains("-a \"phong\"")),
+            "fish: the labs after {verb}"
+        );
+    }
+    assert!(
+        fish_lines("view").iter().any(|l| l.contains(" -l out ")),
+        "fish: view's --out"
+    );
+    let parsed = Command::new("bash")
+        .arg("-n")
+        .arg(dir.join("shaderlab.bash"))
+        .output()
+        .expect("bash runs");
+    assert!(parsed.status.success());
+}
+
+#[test]
+fn every_page_the_manual_names_exists_and_man_dir_writes_them_all() {
+    let (code, page, err) = shaderlab(&["man"]);
+    assert_eq!(code, Some(0), "{err}");
+    let named: Vec<String> = page
+        .split("shaderlab\\-")
+        .skip(1)
+        .filter_map(|rest| Some(rest[..rest.find("(1)")?].to_owned()))
+        .filter(|v| v.chars().all(|c| c.is_ascii_alphanumeric()))
+        .collect();
+    assert!(named.len() >= 10, "{named:?}");
+    for verb in &named {
+        let (code, sub, err) = shaderlab(&["man", verb]);
+        assert_eq!(code, Some(0), "{verb}: {err}");
+        assert!(
+            sub.contains(&format!(".TH shaderlab-{verb} 1")),
+            "man {verb}: {}",
+            &sub[..120.min(sub.len())]
+        );
+        assert_ne!(sub, page, "man {verb} is not the main page");
+        assert!(!sub.contains("e38"), "man {verb} prints an undeclared range");
+    }
+    // --dir: every page, as a file, in a folder it makes.
+    let dir = test_dir("man").join("pages/new");
+    let out = Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .args(["man", "--dir"])
+        .arg(&dir)
+        .output()
+        .expect("shaderlab runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .expect("the pages")
+        .map(|e| e.expect("an entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    let mut expected: Vec<String> = named.iter().map(|v| format!("shaderlab-{v}.1")).collect();
+    expected.push("shaderlab.1".into());
+    expected.sort();
+    assert_eq!(files, expected);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("shaderlab.1")).expect("the main page"),
+        page
+    );
+    let (_, view, _) = shaderlab(&["man", "view"]);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("shaderlab-view.1")).expect("view's page"),
+        view
+    );
+    // Never over a FIFO (or anything but a file): refused before anything is written.
+    let fifo_dir = test_dir("man_fifo");
+    let fifo = fifo_dir.join("shaderlab-run.1");
+    let status = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs");
+    assert!(status.success());
+    let out = Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .args(["man", "--dir"])
+        .arg(&fifo_dir)
+        .output()
+        .expect("shaderlab runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("shaderlab-run.1: not a regular file"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&fifo_dir).expect("the folder").collect();
+    assert_eq!(left.len(), 1, "only the FIFO");
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::symlink_metadata(&fifo)
+        .expect("the FIFO")
+        .file_type()
+        .is_fifo());
+}

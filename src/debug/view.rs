@@ -98,6 +98,16 @@ pub enum ViewError {
         /// The nearest lines that do, in words (`; the nearest lines that assign are 12 (L) and 15 (E)`).
         near: String,
     },
+    /// The line is past the end of the file.
+    #[error("{file}:{line} is past the end of the file: {file} has {lines} line{}", if *.lines == 1 { "" } else { "s" })]
+    PastEnd {
+        /// The file.
+        file: String,
+        /// The line asked for.
+        line: u32,
+        /// The file's lines.
+        lines: usize,
+    },
     /// The line does not assign the name asked for.
     #[error("{file}:{line} does not assign `{name}`; it assigns {names}")]
     NoSuchName {
@@ -289,6 +299,18 @@ pub fn resolve(draws: &[DrawCall], probe: &Probe) -> std::result::Result<Option<
     let line = *line;
     let by_stage = [Stage::Vertex, Stage::Fragment].map(|s| (s, shaders(draws, s)));
     let file = &full_path(draws, file);
+    let text = by_stage
+        .iter()
+        .flat_map(|(_, list)| list.iter())
+        .flat_map(|s| s.source.files.iter())
+        .find_map(|(p, text)| (p == file).then_some(text));
+    if let Some(lines) = text.map(|t| t.lines().count()).filter(|&n| line as usize > n) {
+        return Err(ViewError::PastEnd {
+            file: file.clone(),
+            line,
+            lines,
+        });
+    }
     let assigns = |s: Stage| -> Vec<Assignment> {
         let list = &by_stage.iter().find(|(k, _)| *k == s).expect("both stages").1;
         let mut out: Vec<Assignment> = Vec::new();

@@ -123,6 +123,10 @@ pub struct Args {
     /// The flag the pixel was given with, for messages.
     #[arg(skip)]
     pub pixel_flag: PixelFlag,
+    /// The flags typed on the command line, by clap's id (the field's name): a flag that does
+    /// nothing where it is given is refused ([`super::verbs::check`]).
+    #[arg(skip)]
+    pub given: Vec<String>,
 }
 
 /// How a command line names the pixel to explain: a lab's `--debug X,Y`, or `shaderlab debug`'s
@@ -146,7 +150,7 @@ impl PixelFlag {
     }
 
     /// The lab's command line with the pixel's flag named so.
-    fn apply(self, command: clap::Command) -> clap::Command {
+    pub(super) fn apply(self, command: clap::Command) -> clap::Command {
         match self {
             PixelFlag::Debug => command,
             PixelFlag::Pixel => command.mut_arg("debug", |a| a.long("pixel")).mut_arg("json", |a| {
@@ -335,7 +339,16 @@ impl Args {
             });
         let matches = super::cli::parse_command_line(pixel_flag.apply(command), argv);
         let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| super::cli::exit_on_clap_error(info.name, e));
-        Args { pixel_flag, ..args }
+        let given = matches
+            .ids()
+            .filter(|id| matches.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine))
+            .map(|id| id.as_str().to_owned())
+            .collect();
+        Args {
+            pixel_flag,
+            given,
+            ..args
+        }
     }
 
     /// The watchdog `--timeout` asks for ([`crate::gpu::Gpu::watchdog`]).

@@ -1,7 +1,9 @@
 //! `shaderlab diff NAME --shaders DIR [FLAGS…] [--out FILE.png] [--json]`: a lab drawn with
 //! the copy of its shaders in DIR and with the built-in ones, at the same state, compared
 //! ([`crate::debug::diff`]): PSNR, the pixels that differ, the worst pixel, and the first line
-//! where the copy's trace there departs from the reference's.
+//! where the copy's trace there departs from the reference's. A lab that draws the shader
+//! files it is given (`legacy VERT FRAG`) is compared with another pair,
+//! `--reference VERT0 FRAG0`.
 
 use std::ffi::OsString;
 use std::io::Write;
@@ -10,13 +12,15 @@ use std::process::ExitCode;
 
 use super::args::Args;
 use super::cli::{say, Failure};
+use super::verbs::{self, Mode};
 use crate::error::Error;
 use crate::lab::LabEntry;
 use crate::offscreen::COLOR_FORMAT;
 use crate::shader::ShaderSource;
 
 /// The usage line.
-pub const USAGE: &str = "shaderlab diff NAME --shaders DIR [--out FILE.png] [--json] [FLAGS…]";
+pub const USAGE: &str = "shaderlab diff NAME --shaders DIR [--out FILE.png] [--json] [FLAGS…]\n       \
+shaderlab diff legacy VERT FRAG --reference VERT0 FRAG0 [--out FILE.png] [--json] [FLAGS…]";
 
 /// What `diff` takes besides the lab's flags.
 pub(super) struct Own {
@@ -24,24 +28,38 @@ pub(super) struct Own {
     pub(super) out: Option<PathBuf>,
     /// One JSON object instead of the text.
     pub(super) json: bool,
+    /// `--reference VERT0 FRAG0`: the pair a lab that draws the files it is given is compared
+    /// with.
+    pub(super) reference: Option<Vec<PathBuf>>,
 }
 
-/// Takes `--out FILE`, `--out=FILE` and `--json` out of `argv` (the lab's flags stay).
+/// Takes `--out FILE`, `--out=FILE`, `--json` and `--reference VERT0 FRAG0` out of `argv`
+/// (the lab's flags stay).
 fn take_own(argv: Vec<OsString>) -> Result<(Own, Vec<OsString>), String> {
-    let mut own = Own { out: None, json: false };
+    let mut own = Own {
+        out: None,
+        json: false,
+        reference: None,
+    };
     let mut rest = Vec::with_capacity(argv.len());
     let mut words = argv.into_iter();
+    let value = |word: Option<OsString>| word.filter(|w| !w.to_string_lossy().starts_with('-'));
     while let Some(word) = words.next() {
         let text = word.to_string_lossy();
         if text == "--json" {
             own.json = true;
         } else if text == "--out" {
-            match words.next() {
-                Some(path) if !path.to_string_lossy().starts_with('-') => own.out = Some(PathBuf::from(path)),
-                _ => return Err("`--out` needs a file: --out FILE.png".into()),
+            match value(words.next()) {
+                Some(path) => own.out = Some(PathBuf::from(path)),
+                None => return Err("`--out` needs a file: --out FILE.png".into()),
             }
         } else if let Some(path) = text.strip_prefix("--out=") {
             own.out = Some(PathBuf::from(path));
+        } else if text == "--reference" {
+            match (value(words.next()), value(words.next())) {
+                (Some(vert), Some(frag)) => own.reference = Some(vec![PathBuf::from(vert), PathBuf::from(frag)]),
+                _ => return Err("`--reference` needs two files: --reference VERT0 FRAG0".into()),
+            }
         } else {
             rest.push(word);
         }
@@ -62,11 +80,17 @@ pub fn diff_main_from(entry: &'static LabEntry, argv: Vec<OsString>) -> ExitCode
         }
     };
     let args = Args::parse_from_for(entry, argv);
-    if args.shaders.is_none() {
-        let _ = writeln!(
-            std::io::stderr(),
-            "shaderlab diff: which copy? give the folder of the copied shaders with --shaders DIR\n\nUsage: {USAGE}"
-        );
+    let which = if verbs::draws_named_files(entry) {
+        (own.reference.is_none() && !args.given.iter().any(|g| g == "shaders")).then(|| {
+            format!("which pair to compare with? name it with --reference VERT0 FRAG0 ({name} draws the pair VERT FRAG it is given)")
+        })
+    } else {
+        args.shaders
+            .is_none()
+            .then(|| "which copy? give the folder of the copied shaders with --shaders DIR".to_owned())
+    };
+    if let Some(which) = which {
+        let _ = writeln!(std::io::stderr(), "shaderlab diff: {which}\n\nUsage: {USAGE}");
         return ExitCode::from(2);
     }
     super::cli::skip_display_device_select();
@@ -93,43 +117,89 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             return Err(Error::Param(format!("`{flag}` is not for `shaderlab diff`; usage: {USAGE}")).into());
         }
     }
+    verbs::check(entry, args, Mode::Diff)?;
+    let name = entry.info.name;
+    let pair = verbs::draws_named_files(entry);
+    if own.reference.is_some() && !pair {
+        return Err(Error::Param(format!(
+            "`--reference` names the pair a lab that draws the files it is given (legacy) is compared with, and does nothing for {name}, whose reference is its built-in shaders: give the copy with --shaders DIR"
+        ))
+        .into());
+    }
     let params = args.params(entry)?;
+    // The reference: the built-in shaders, or the pair `--reference` names (with the
+    // parameters that pair declares).
+    let reference_args = own.reference.as_ref().map(|files| Args {
+        files: files.clone(),
+        ..args.clone()
+    });
+    let in_reference = |e: Error| match e {
+        Error::Param(why) => Error::Param(format!("the reference pair (--reference): {why}")),
+        e => e,
+    };
+    let reference_params = match &reference_args {
+        Some(r) => r.params(entry).map_err(in_reference)?,
+        None => params.clone(),
+    };
     if let Some(path) = &own.out {
         crate::fsutil::check_png_path(path)?;
         crate::fsutil::check_writable(path)?;
     }
     let copy = args.shader_source()?;
     let files = args.files(entry)?;
+    let reference_files = match &reference_args {
+        Some(r) => Some(r.files(entry).map_err(in_reference)?),
+        None => None,
+    };
     let mut gpu = crate::gpu::Gpu::headless()?;
     gpu.watchdog = args.watchdog();
     gpu.bounded_compiles = true;
-    let dir = args
-        .shaders
-        .as_ref()
-        .map(|d| d.display().to_string())
-        .unwrap_or_default();
+    let show = |paths: &[PathBuf]| {
+        paths
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let (copy_words, reference_words) = match &own.reference {
+        Some(pair) => (
+            format!("the pair {}", show(&args.files)),
+            format!("the pair {}", show(pair)),
+        ),
+        None => (
+            format!(
+                "the copy in {}",
+                args.shaders
+                    .as_ref()
+                    .map(|d| d.display().to_string())
+                    .unwrap_or_default()
+            ),
+            "the built-in shaders".to_owned(),
+        ),
+    };
     let mut mine =
         super::session::Session::open_lab(entry, &gpu, &copy, COLOR_FORMAT, &files).map_err(|e| match e {
             Error::Layout(why) | Error::Binding(why) => Error::Debug(format!(
-            "the copy in {dir} takes different inputs from the built-in shaders, so the two cannot be compared: {why}"
-        )),
+                "{copy_words} takes different inputs from {reference_words}, so the two cannot be compared: {why}"
+            )),
             e => e,
         })?;
-    let mut reference = super::session::Session::open_lab(entry, &gpu, &ShaderSource::Embedded, COLOR_FORMAT, &files)?;
+    let mut reference = super::session::Session::open_lab(
+        entry,
+        &gpu,
+        &ShaderSource::Embedded,
+        COLOR_FORMAT,
+        reference_files.as_ref().unwrap_or(&files),
+    )?;
     if let Some(path) = &own.out {
-        // The lab has read its shaders and the files they include: no output may replace one.
+        // Both labs have read their shaders and the files they include: no output may replace
+        // one.
         crate::fsutil::check_output_path(path)?;
     }
-    *mine.params_mut() = params.clone();
-    *reference.params_mut() = params;
+    *mine.params_mut() = params;
+    *reference.params_mut() = reference_params;
     let (width, height) = args.size(entry);
-    let diff = crate::debug::diff::diff_labs(
-        &gpu,
-        entry.info.name,
-        mine.as_mut(),
-        reference.as_mut(),
-        (width, height),
-    )?;
+    let diff = crate::debug::diff::diff_labs(&gpu, name, mine.as_mut(), reference.as_mut(), (width, height))?;
     if let Some(path) = &own.out {
         crate::offscreen::save_png(&diff.picture, path)?;
         eprintln!("wrote {}", path.display());

@@ -61,6 +61,13 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         return view.run(&gpu, lab.as_mut(), entry.info.name, width, height);
     }
     if let Some(frames) = args.bench {
+        if args.gpu_time && !gpu.timestamps {
+            eprintln!(
+                "{}: note: --gpu-time: this adapter ({}) has no timestamp queries, so no gpu_ms is measured",
+                entry.info.name,
+                gpu.describe()
+            );
+        }
         let result = bench(&gpu, lab.as_mut(), frames, width, height, args.gpu_time)?;
         say(&result.line(entry.info.name, lab.params(), width, height, frames))?;
     }

@@ -34,6 +34,8 @@ pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod tools;
 #[cfg(not(target_arch = "wasm32"))]
+pub mod verbs;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod view_verb;
 pub mod views;
 #[cfg(target_arch = "wasm32")]
@@ -167,30 +169,9 @@ fn main_parsed(entry: &'static LabEntry, args: Args) -> ExitCode {
 
 #[cfg(not(target_arch = "wasm32"))]
 fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
-    // Everything the user typed is checked before a GPU is opened or a frame drawn.
-    if args.record.is_none() {
-        for (flag, given) in [
-            ("--frames", args.frames.is_some()),
-            ("--fps", args.fps.is_some()),
-            ("--from", args.from.is_some()),
-        ] {
-            if given {
-                return Err(Error::Param(format!(
-                    "`{flag}` is for recordings: add --record OUT (or run `shaderlab record {} OUT …`)",
-                    entry.info.name
-                ))
-                .into());
-            }
-        }
-    }
-    if args.json && args.debug.is_none() && !offscreen_view(&args) {
-        return Err(
-            Error::Param("`--json` goes with --debug X,Y, --line FILE:LINE, --cost or --diff DIR".into()).into(),
-        );
-    }
-    if args.npy.is_some() && args.line.is_none() && !args.cost {
-        return Err(Error::Param("`--npy` writes a view's values: add --line FILE:LINE or --cost".into()).into());
-    }
+    // Everything the user typed is checked before a GPU is opened or a frame drawn: first
+    // that each flag does something in this run.
+    verbs::check(entry, &args, verbs::Mode::of(&args))?;
     let params = args.params(entry)?;
     if let Some(path) = &args.screenshot {
         headless::check_png_path(path)?;
@@ -200,6 +181,7 @@ fn run(entry: &'static LabEntry, args: Args) -> Result<(), Failure> {
         let own = diff_verb::Own {
             out: args.screenshot.clone(),
             json: args.json,
+            reference: None,
         };
         let args = Args {
             shaders: Some(dir.clone()),

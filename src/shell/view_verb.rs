@@ -16,6 +16,7 @@ use crate::debug::picture::{self, Legend, Scale};
 use crate::debug::view::{self, Probe, ValueFrame, ViewDrawer};
 use crate::debug::Stage;
 use crate::error::{Error, Result};
+use crate::fsutil::Dest;
 use crate::gpu::Gpu;
 use crate::lab::{Lab, LabEntry};
 use crate::offscreen::Offscreen;
@@ -61,15 +62,16 @@ pub(super) struct Plan {
     bench: Option<u32>,
 }
 
-/// Checks that `path` can take a NumPy array: an output path ending in `.npy` (a stream takes
-/// it whatever its name), writable.
+/// Checks that `path` can take a NumPy array: an output path ending in `.npy`, writable; a
+/// stream (`/dev/stdout`, a FIFO, a device, or a link to one) takes it whatever its name, as
+/// `--screenshot`'s does.
 fn check_npy_path(path: &Path) -> Result<()> {
     crate::fsutil::check_output_path(path)?;
     let is_npy = path
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
-    let stream = std::fs::metadata(path).is_ok_and(|m| !m.is_file());
+    let stream = matches!(Dest::of(path)?, Dest::Stream(_));
     if !is_npy && !stream {
         return Err(Error::Param(format!(
             "{}: --npy writes a NumPy array; use a .npy name",
@@ -97,11 +99,6 @@ impl Plan {
             (None, true) => Probe::Cost,
             (None, false) => return Ok(None),
         };
-        if args.gpu_time {
-            return Err(Error::Param(
-                "`--gpu-time` times the plain frame's pass: leave out --line and --cost to use it".into(),
-            ));
-        }
         let asked = args.screenshot.is_some() || args.npy.is_some() || args.json || args.bench.is_some();
         let out = match &args.screenshot {
             Some(path) => Some(path.clone()),
@@ -120,7 +117,8 @@ impl Plan {
             check_npy_path(path)?;
         }
         if let (Some(a), Some(b)) = (&out, &args.npy) {
-            if a == b {
+            // The same file, or the same stream, through any name or link.
+            if a == b || Dest::of(a)? == Dest::of(b)? {
                 return Err(Error::Param(format!(
                     "{}: the picture and the array would be the same file",
                     a.display()
@@ -157,22 +155,10 @@ impl Plan {
         }
         .map_err(failure)?;
         drop(log);
-        if let Some(frames) = self.bench {
-            let t = bench(gpu, lab, &mut drawer, &probe, frames, width, height)?;
-            let object = if lab.params().has("object") {
-                format!(" object={}", lab.params().text("object"))
-            } else {
-                String::new()
-            };
-            say(&format!(
-                "effect={name}{object} size={width}x{height} frames={frames} {} ms_per_frame={:.3} plain_ms_per_frame={:.3} ratio={:.2} values_ms_per_frame={:.3}",
-                probe_words(&frame),
-                t.painted,
-                t.plain,
-                t.painted / t.plain.max(1e-9),
-                t.values
-            ))?;
-        }
+        let timings = match self.bench {
+            Some(frames) => Some((frames, bench(gpu, lab, &mut drawer, &probe, frames, width, height)?)),
+            None => None,
+        };
         let (image, legend) = frame.picture();
         if let Some(path) = &self.out {
             crate::offscreen::save_png(&image, path)?;
@@ -183,8 +169,37 @@ impl Plan {
             eprintln!("wrote {}", path.display());
         }
         if self.json {
-            say(&summary(name, &frame, legend.as_ref()).to_string())?;
-        } else if self.bench.is_none() {
+            // One JSON document: the summary, with the timings in it.
+            let mut summary = summary(name, &frame, legend.as_ref());
+            if let (Some((frames, t)), Some(map)) = (&timings, summary.as_object_mut()) {
+                let number = crate::debug::json_number;
+                map.insert(
+                    "bench".into(),
+                    serde_json::json!({
+                        "frames": frames,
+                        "ms_per_frame": number(t.painted),
+                        "plain_ms_per_frame": number(t.plain),
+                        "ratio": number(t.ratio()),
+                        "values_ms_per_frame": number(t.values),
+                    }),
+                );
+            }
+            say(&summary.to_string())?;
+        } else if let Some((frames, t)) = &timings {
+            let object = if lab.params().has("object") {
+                format!(" object={}", lab.params().text("object"))
+            } else {
+                String::new()
+            };
+            say(&format!(
+                "effect={name}{object} size={width}x{height} frames={frames} {} ms_per_frame={:.3} plain_ms_per_frame={:.3} ratio={:.2} values_ms_per_frame={:.3}",
+                probe_words(&frame),
+                t.painted,
+                t.plain,
+                t.ratio(),
+                t.values
+            ))?;
+        } else {
             say(&text(&frame, legend.as_ref()))?;
         }
         Ok(())
@@ -254,6 +269,13 @@ struct Timings {
     painted: f64,
     /// The view drawn and its values read back (what `--out`, `--npy` and `--json` do).
     values: f64,
+}
+
+impl Timings {
+    /// How many times the plain frame's time the painted view takes.
+    fn ratio(&self) -> f64 {
+        self.painted / self.plain.max(1e-9)
+    }
 }
 
 /// Times `frames` frames of `lab` three ways, side by side in turn (the machine's load falls

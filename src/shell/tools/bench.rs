@@ -50,6 +50,7 @@ pub fn main() -> std::process::ExitCode {
 pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result<()> {
     let matches = cli::parse_command_line(Args::command(), argv);
     let args = Args::from_arg_matches(&matches).unwrap_or_else(|e| cli::exit_on_clap_error("bench", e));
+    check(&args);
     let gpu = Gpu::headless()?;
     if args.debugger {
         return debugger(&gpu, &args);
@@ -106,6 +107,35 @@ pub fn run(argv: impl IntoIterator<Item = std::ffi::OsString>) -> anyhow::Result
     }
     bar.finish_and_clear();
     Ok(())
+}
+
+/// The tool's command line as clap describes it (for `shaderlab`'s manual pages and completion
+/// scripts).
+pub fn command() -> clap::Command {
+    Args::command()
+}
+
+/// Ends the process with a usage error (status 2) for a flag that does nothing: `--gpu-time`
+/// with `--debugger` (which times no frame), `--only` that no lab's name contains.
+fn check(args: &Args) {
+    let refuse = |why: String| -> ! {
+        cli::exit_on_clap_error(
+            "bench",
+            Args::command().error(clap::error::ErrorKind::ArgumentConflict, why),
+        )
+    };
+    if args.debugger && args.gpu_time {
+        refuse("`--gpu-time` times frames on the GPU, and does nothing with --debugger, which times the debugger on the CPU".into());
+    }
+    if let Some(only) = &args.only {
+        if !course::ALL.iter().any(|e| e.info.name.contains(only.as_str())) {
+            let names: Vec<&str> = course::ALL.iter().map(|e| e.info.name).collect();
+            refuse(format!(
+                "`--only {only}`: no lab's name contains `{only}`; the labs are: {}",
+                names.join(", ")
+            ));
+        }
+    }
 }
 
 /// `bench --debugger`: how long the debugger takes per lab.

@@ -180,6 +180,12 @@ pub fn main() -> ExitCode {
     main_from(std::env::args_os())
 }
 
+/// The tool's command line as clap describes it (for `shaderlab`'s manual pages and completion
+/// scripts).
+pub fn command() -> clap::Command {
+    Args::command()
+}
+
 /// The translator for a command line (program name first); `shaderlab glsl2wgsl` calls it too.
 pub fn main_from(argv: impl IntoIterator<Item = std::ffi::OsString>) -> ExitCode {
     let matches = cli::parse_command_line(Args::command(), argv);
