@@ -463,7 +463,8 @@ fn bad_probes_get_clear_messages() {
     assert!(e.to_string().contains("not at the view's 640x180"), "{e}");
     // A line past the end of the file.
     let e = refused(phong.as_mut(), &probe(&file, 9999, None));
-    assert!(matches!(e, ViewError::Nothing { .. }), "{e}");
+    assert!(matches!(e, ViewError::PastEnd { .. }), "{e}");
+    assert!(e.to_string().contains("lines"), "{e}");
 }
 
 /// An include used by both of phong's stages, with a line that assigns.
