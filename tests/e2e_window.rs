@@ -2065,25 +2065,56 @@ fn f10_records_what_the_window_shows_into_a_gif() {
     lab.escape();
 }
 
+/// Presses F10 and waits until the title counts at least 3 frames recorded.
+fn record_3_frames(lab: &App) {
+    lab.keys(&["F10"]);
+    lab.wait_title("REC with 3 frames", |t| {
+        t.split("REC ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|n| n.parse::<u32>().ok())
+            .is_some_and(|n| n >= 3)
+    });
+}
+
+/// The frames of the recording the lab said it kept (`recording: PATH (N frames)` on stdout,
+/// waited for: the line may still be on its way from the pipe when the process has ended), and
+/// no temporary file left in the lab's directory.
+fn recording_kept(lab: &App, what: &str) -> usize {
+    use image::AnimationDecoder;
+    let line = poll(PATIENCE, || {
+        lab.stdout()
+            .lines()
+            .find(|l| l.starts_with("recording: "))
+            .map(str::to_owned)
+    })
+    .unwrap_or_else(|| panic!("{what}: no `recording:` line; stderr:\n{}", lab.stderr()));
+    let path = PathBuf::from(line.trim_start_matches("recording: ").split(" (").next().unwrap());
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{what}: {}: {e}", path.display()));
+    let frames = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(bytes))
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap_or_else(|e| panic!("{what}: {}: {e}", path.display()));
+    let leftovers: Vec<_> = std::fs::read_dir(&lab.x.dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{what}: temporary files left: {leftovers:?}");
+    frames.len()
+}
+
 /// A recording is finished and kept however the window ends while it runs: destroyed by
 /// another program (`xdotool windowclose`: exit 1 with the one message) or told to stop by a
 /// signal (SIGTERM, SIGHUP: the process then ends by that signal). Both lost the GIF before.
 #[test]
 fn f10_recordings_are_kept_when_the_window_is_destroyed_or_signalled() {
-    use image::AnimationDecoder;
     let x = Xvfb::start("f10_kept");
     for ending in ["windowclose", "TERM", "HUP"] {
         let mut lab = x.launch("wave", &[], &[]);
         lab.first_frame();
-        lab.keys(&["F10"]);
-        // The title counts the frames recorded: wait for a few.
-        lab.wait_title("REC with 3 frames", |t| {
-            t.split("REC ")
-                .nth(1)
-                .and_then(|r| r.split(' ').next())
-                .and_then(|n| n.parse::<u32>().ok())
-                .is_some_and(|n| n >= 3)
-        });
+        record_3_frames(&lab);
         if ending == "windowclose" {
             lab.x.xdotool(&["windowclose", &lab.window]);
         } else {
@@ -2103,26 +2134,61 @@ fn f10_recordings_are_kept_when_the_window_is_destroyed_or_signalled() {
                 _ => assert_eq!(status.signal(), Some(1), "{ending}: {status:?}"),
             }
         }
-        let line = lab
-            .stdout()
-            .lines()
-            .find(|l| l.starts_with("recording: "))
-            .map(str::to_owned)
-            .unwrap_or_else(|| panic!("{ending}: no `recording:` line; stderr:\n{}", lab.stderr()));
-        let path = PathBuf::from(line.trim_start_matches("recording: ").split(" (").next().unwrap());
-        let frames = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(std::fs::read(&path).unwrap()))
-            .unwrap()
-            .into_frames()
-            .collect_frames()
-            .unwrap();
-        assert!(frames.len() >= 3, "{ending}: {} frames kept", frames.len());
+        let frames = recording_kept(&lab, ending);
+        assert!(frames >= 3, "{ending}: {frames} frames kept");
         lab.assert_clean();
-        let leftovers: Vec<_> = std::fs::read_dir(&lab.x.dir)
-            .unwrap()
-            .filter_map(|e| e.ok())
-            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-            .collect();
-        assert!(leftovers.is_empty(), "{ending}: temporary files left: {leftovers:?}");
+    }
+}
+
+/// Issue 47, item 12: a window destroyed by another program ends (exit 1, the one message, no
+/// panic) and keeps its F10 recording whatever it is doing: drawing through X shared memory,
+/// drawing through the swapchain, or paused under another window (nothing drawn, so nothing
+/// fails on the window). Each phase is run as it comes and with winit's `Destroyed` ignored
+/// (`SHADERLAB_TEST_IGNORE_DESTROYED`), so that the window's own watch on the X server must
+/// notice: before it, a paused window whose `Destroyed` went unseen ran on for ever, unseen
+/// (and a drawing one only ended through winit panicking on the window).
+#[test]
+fn windows_destroyed_in_any_phase_end_and_keep_their_recordings() {
+    let x = Xvfb::start("destroyed_any_phase");
+    for phase in ["shared memory", "swapchain", "covered"] {
+        for ignored in [false, true] {
+            let what = format!("{phase}{}", if ignored { ", Destroyed ignored" } else { "" });
+            let mut env = Vec::new();
+            if phase == "swapchain" {
+                env.push(("SHADERLAB_PRESENT", "swapchain"));
+            }
+            if ignored {
+                env.push(("SHADERLAB_TEST_IGNORE_DESTROYED", "1"));
+            }
+            let mut lab = x.launch("wave", &[], &env);
+            poll(PATIENCE, || (lab.said("frame") > 0).then_some(()))
+                .unwrap_or_else(|| panic!("{what}: no frame; stderr:\n{}", lab.stderr()));
+            record_3_frames(&lab);
+            // Another window of the same size on top covers it whole: the lab stops drawing
+            // and says it is idle.
+            let cover = (phase == "covered").then(|| {
+                let idle = lab.said("idle");
+                let cover = x.launch("wave", &[], &[]);
+                poll(PATIENCE, || (lab.said("idle") > idle).then_some(()))
+                    .unwrap_or_else(|| panic!("{what}: drawing went on under the cover; stderr:\n{}", lab.stderr()));
+                cover
+            });
+            x.xdotool(&["windowclose", &lab.window]);
+            let status = lab.wait_exit(PATIENCE);
+            drop(cover);
+            let err = lab.stderr();
+            assert_eq!(status.code(), Some(1), "{what}: {status:?}; stderr:\n{err}");
+            assert_eq!(
+                err.matches("closed or destroyed by another program").count(),
+                1,
+                "{what}: {err}"
+            );
+            for bad in ["shared-memory presenter", "panicked", "wgpu error"] {
+                assert!(!err.contains(bad), "{what} printed `{bad}`: {err}");
+            }
+            let frames = recording_kept(&lab, &what);
+            assert!(frames >= 3, "{what}: {frames} frames kept");
+        }
     }
 }
 
