@@ -2542,6 +2542,67 @@ fn the_inspected_pixel_stays_visible_and_clickable_beside_the_panels() {
     lab.escape();
 }
 
+/// Issue 47: a whole-frame view's legend strip (its range and counts) stays in sight whatever
+/// panels are open at the default 640x360: with the inspector (F2) on the left, with the
+/// inspector moved to the right by a pixel picked there, and with F1's panel open too, the
+/// window's bottom strip is the view's own (F12 writes the view's picture with its legend).
+/// The panels covered all but a part of it before. Keeps `legend_f2.png`, `legend_right.png`
+/// and `legend_f1_f2.png`.
+#[test]
+fn the_views_legend_stays_in_sight_beside_the_panels() {
+    let files = shaderlab::lab::UserFiles::default();
+    let source = shaderlab::shader::ShaderSource::Dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl"));
+    let cx = shaderlab::lab::BuildContext::new(common::gpu(), &source, shaderlab::offscreen::COLOR_FORMAT, &files);
+    let mut lab_ref = (course::find("phong").expect("phong is a lab").new)(&cx).expect("phong builds");
+    let file = phong_fragment_file(lab_ref.as_mut());
+    let x = Xvfb::start("view_legend");
+    let mut lab = x.launch(
+        "phong",
+        &["--set", "object=torus"],
+        &[("SHADERLAB_TEST_VIEW", &format!("{file}:17"))],
+    );
+    lab.first_frame();
+    lab.keys(&["F2"]);
+    lab.idle();
+    // The first inspection chooses the line's view.
+    lab.x
+        .xdotool(&["mousemove", "--window", &lab.window, "300", "150", "click", "1"]);
+    poll(PATIENCE, || (lab.said("view ") >= 1).then_some(()))
+        .unwrap_or_else(|| panic!("no view; stderr:\n{}", lab.stderr()));
+    assert!(
+        lab.stderr().contains("shaderlab-test: view 640x360"),
+        "{}",
+        lab.stderr()
+    );
+    let view = image::open(lab.f12(1)).expect("a PNG").to_rgb8();
+    assert_eq!(view.dimensions(), (640, 360));
+    let strip = |image: &RgbImage| {
+        let h = picture::LEGEND_HEIGHT;
+        image::imageops::crop_imm(image, 0, image.height() - h, image.width(), h).to_image()
+    };
+    let want = strip(&view);
+    let legend_shown = |name: &str| {
+        let shown = lab.settled();
+        lab.save(&shown, name);
+        let got = strip(&shown);
+        let db = psnr(&got, &want).unwrap_or(f64::INFINITY);
+        println!("{name}: the window's legend strip against the view's: {db:.1} dB");
+        assert!(db >= 40.0, "{name}: the legend strip is covered ({db:.1} dB)");
+    };
+    legend_shown("legend_f2");
+    // A pixel right of the middle: the inspector goes to the right, beside it.
+    let inspected = lab.said("inspected");
+    lab.x
+        .xdotool(&["mousemove", "--window", &lab.window, "330", "80", "click", "1"]);
+    poll(PATIENCE, || (lab.said("inspected") > inspected).then_some(()))
+        .unwrap_or_else(|| panic!("no second inspection; stderr:\n{}", lab.stderr()));
+    legend_shown("legend_right");
+    lab.keys(&["F1"]);
+    lab.idle();
+    legend_shown("legend_f1_f2");
+    lab.escape();
+}
+
 // ---------------------------------------------------------------------------------------------
 // Whole-frame views
 // ---------------------------------------------------------------------------------------------

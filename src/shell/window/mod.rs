@@ -905,6 +905,12 @@ impl WindowState {
             .view()
             .and_then(super::views::Wanted::line_shown)
             .map(|(file, line)| (file.to_owned(), line));
+        // A view shown keeps its legend strip in sight below the panels.
+        let legend = if self.session.view().is_some() && !matches!(self.session.view_shown(), Some(Err(_))) {
+            crate::debug::picture::LEGEND_HEIGHT
+        } else {
+            0
+        };
         let (lab, result) = self.session.lab_and_inspection();
         let inspect = inspecting.then_some(super::panel::InspectView {
             pixel,
@@ -921,6 +927,7 @@ impl WindowState {
             view,
             format,
             size,
+            legend,
             lab,
             &status,
             inspect.as_ref(),
