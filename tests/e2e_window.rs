@@ -2110,25 +2110,56 @@ fn f10_records_what_the_window_shows_into_a_gif() {
     lab.escape();
 }
 
+/// Presses F10 and waits until the title counts at least 3 frames recorded.
+fn record_3_frames(lab: &App) {
+    lab.keys(&["F10"]);
+    lab.wait_title("REC with 3 frames", |t| {
+        t.split("REC ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|n| n.parse::<u32>().ok())
+            .is_some_and(|n| n >= 3)
+    });
+}
+
+/// The frames of the recording the lab said it kept (`recording: PATH (N frames)` on stdout,
+/// waited for: the line may still be on its way from the pipe when the process has ended), and
+/// no temporary file left in the lab's directory.
+fn recording_kept(lab: &App, what: &str) -> usize {
+    use image::AnimationDecoder;
+    let line = poll(PATIENCE, || {
+        lab.stdout()
+            .lines()
+            .find(|l| l.starts_with("recording: "))
+            .map(str::to_owned)
+    })
+    .unwrap_or_else(|| panic!("{what}: no `recording:` line; stderr:\n{}", lab.stderr()));
+    let path = PathBuf::from(line.trim_start_matches("recording: ").split(" (").next().unwrap());
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{what}: {}: {e}", path.display()));
+    let frames = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(bytes))
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap_or_else(|e| panic!("{what}: {}: {e}", path.display()));
+    let leftovers: Vec<_> = std::fs::read_dir(&lab.x.dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{what}: temporary files left: {leftovers:?}");
+    frames.len()
+}
+
 /// A recording is finished and kept however the window ends while it runs: destroyed by
 /// another program (`xdotool windowclose`: exit 1 with the one message) or told to stop by a
 /// signal (SIGTERM, SIGHUP: the process then ends by that signal). Both lost the GIF before.
 #[test]
 fn f10_recordings_are_kept_when_the_window_is_destroyed_or_signalled() {
-    use image::AnimationDecoder;
     let x = Xvfb::start("f10_kept");
     for ending in ["windowclose", "TERM", "HUP"] {
         let mut lab = x.launch("wave", &[], &[]);
         lab.first_frame();
-        lab.keys(&["F10"]);
-        // The title counts the frames recorded: wait for a few.
-        lab.wait_title("REC with 3 frames", |t| {
-            t.split("REC ")
-                .nth(1)
-                .and_then(|r| r.split(' ').next())
-                .and_then(|n| n.parse::<u32>().ok())
-                .is_some_and(|n| n >= 3)
-        });
+        record_3_frames(&lab);
         if ending == "windowclose" {
             lab.x.xdotool(&["windowclose", &lab.window]);
         } else {
@@ -2148,26 +2179,61 @@ fn f10_recordings_are_kept_when_the_window_is_destroyed_or_signalled() {
                 _ => assert_eq!(status.signal(), Some(1), "{ending}: {status:?}"),
             }
         }
-        let line = lab
-            .stdout()
-            .lines()
-            .find(|l| l.starts_with("recording: "))
-            .map(str::to_owned)
-            .unwrap_or_else(|| panic!("{ending}: no `recording:` line; stderr:\n{}", lab.stderr()));
-        let path = PathBuf::from(line.trim_start_matches("recording: ").split(" (").next().unwrap());
-        let frames = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(std::fs::read(&path).unwrap()))
-            .unwrap()
-            .into_frames()
-            .collect_frames()
-            .unwrap();
-        assert!(frames.len() >= 3, "{ending}: {} frames kept", frames.len());
+        let frames = recording_kept(&lab, ending);
+        assert!(frames >= 3, "{ending}: {frames} frames kept");
         lab.assert_clean();
-        let leftovers: Vec<_> = std::fs::read_dir(&lab.x.dir)
-            .unwrap()
-            .filter_map(|e| e.ok())
-            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-            .collect();
-        assert!(leftovers.is_empty(), "{ending}: temporary files left: {leftovers:?}");
+    }
+}
+
+/// Issue 47, item 12: a window destroyed by another program ends (exit 1, the one message, no
+/// panic) and keeps its F10 recording whatever it is doing: drawing through X shared memory,
+/// drawing through the swapchain, or paused under another window (nothing drawn, so nothing
+/// fails on the window). Each phase is run as it comes and with winit's `Destroyed` ignored
+/// (`SHADERLAB_TEST_IGNORE_DESTROYED`), so that the window's own watch on the X server must
+/// notice: before it, a paused window whose `Destroyed` went unseen ran on for ever, unseen
+/// (and a drawing one only ended through winit panicking on the window).
+#[test]
+fn windows_destroyed_in_any_phase_end_and_keep_their_recordings() {
+    let x = Xvfb::start("destroyed_any_phase");
+    for phase in ["shared memory", "swapchain", "covered"] {
+        for ignored in [false, true] {
+            let what = format!("{phase}{}", if ignored { ", Destroyed ignored" } else { "" });
+            let mut env = Vec::new();
+            if phase == "swapchain" {
+                env.push(("SHADERLAB_PRESENT", "swapchain"));
+            }
+            if ignored {
+                env.push(("SHADERLAB_TEST_IGNORE_DESTROYED", "1"));
+            }
+            let mut lab = x.launch("wave", &[], &env);
+            poll(PATIENCE, || (lab.said("frame") > 0).then_some(()))
+                .unwrap_or_else(|| panic!("{what}: no frame; stderr:\n{}", lab.stderr()));
+            record_3_frames(&lab);
+            // Another window of the same size on top covers it whole: the lab stops drawing
+            // and says it is idle.
+            let cover = (phase == "covered").then(|| {
+                let idle = lab.said("idle");
+                let cover = x.launch("wave", &[], &[]);
+                poll(PATIENCE, || (lab.said("idle") > idle).then_some(()))
+                    .unwrap_or_else(|| panic!("{what}: drawing went on under the cover; stderr:\n{}", lab.stderr()));
+                cover
+            });
+            x.xdotool(&["windowclose", &lab.window]);
+            let status = lab.wait_exit(PATIENCE);
+            drop(cover);
+            let err = lab.stderr();
+            assert_eq!(status.code(), Some(1), "{what}: {status:?}; stderr:\n{err}");
+            assert_eq!(
+                err.matches("closed or destroyed by another program").count(),
+                1,
+                "{what}: {err}"
+            );
+            for bad in ["shared-memory presenter", "panicked", "wgpu error"] {
+                assert!(!err.contains(bad), "{what} printed `{bad}`: {err}");
+            }
+            let frames = recording_kept(&lab, &what);
+            assert!(frames >= 3, "{what}: {frames} frames kept");
+        }
     }
 }
 
@@ -2518,6 +2584,67 @@ fn the_inspected_pixel_stays_visible_and_clickable_beside_the_panels() {
     click((100, 200));
     lab.idle();
     inspect((700, 500), "1280x720, after a click on the inspector");
+    lab.escape();
+}
+
+/// Issue 47: a whole-frame view's legend strip (its range and counts) stays in sight whatever
+/// panels are open at the default 640x360: with the inspector (F2) on the left, with the
+/// inspector moved to the right by a pixel picked there, and with F1's panel open too, the
+/// window's bottom strip is the view's own (F12 writes the view's picture with its legend).
+/// The panels covered all but a part of it before. Keeps `legend_f2.png`, `legend_right.png`
+/// and `legend_f1_f2.png`.
+#[test]
+fn the_views_legend_stays_in_sight_beside_the_panels() {
+    let files = shaderlab::lab::UserFiles::default();
+    let source = shaderlab::shader::ShaderSource::Dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders_glsl"));
+    let cx = shaderlab::lab::BuildContext::new(common::gpu(), &source, shaderlab::offscreen::COLOR_FORMAT, &files);
+    let mut lab_ref = (course::find("phong").expect("phong is a lab").new)(&cx).expect("phong builds");
+    let file = phong_fragment_file(lab_ref.as_mut());
+    let x = Xvfb::start("view_legend");
+    let mut lab = x.launch(
+        "phong",
+        &["--set", "object=torus"],
+        &[("SHADERLAB_TEST_VIEW", &format!("{file}:17"))],
+    );
+    lab.first_frame();
+    lab.keys(&["F2"]);
+    lab.idle();
+    // The first inspection chooses the line's view.
+    lab.x
+        .xdotool(&["mousemove", "--window", &lab.window, "300", "150", "click", "1"]);
+    poll(PATIENCE, || (lab.said("view ") >= 1).then_some(()))
+        .unwrap_or_else(|| panic!("no view; stderr:\n{}", lab.stderr()));
+    assert!(
+        lab.stderr().contains("shaderlab-test: view 640x360"),
+        "{}",
+        lab.stderr()
+    );
+    let view = image::open(lab.f12(1)).expect("a PNG").to_rgb8();
+    assert_eq!(view.dimensions(), (640, 360));
+    let strip = |image: &RgbImage| {
+        let h = picture::LEGEND_HEIGHT;
+        image::imageops::crop_imm(image, 0, image.height() - h, image.width(), h).to_image()
+    };
+    let want = strip(&view);
+    let legend_shown = |name: &str| {
+        let shown = lab.settled();
+        lab.save(&shown, name);
+        let got = strip(&shown);
+        let db = psnr(&got, &want).unwrap_or(f64::INFINITY);
+        println!("{name}: the window's legend strip against the view's: {db:.1} dB");
+        assert!(db >= 40.0, "{name}: the legend strip is covered ({db:.1} dB)");
+    };
+    legend_shown("legend_f2");
+    // A pixel right of the middle: the inspector goes to the right, beside it.
+    let inspected = lab.said("inspected");
+    lab.x
+        .xdotool(&["mousemove", "--window", &lab.window, "330", "80", "click", "1"]);
+    poll(PATIENCE, || (lab.said("inspected") > inspected).then_some(()))
+        .unwrap_or_else(|| panic!("no second inspection; stderr:\n{}", lab.stderr()));
+    legend_shown("legend_right");
+    lab.keys(&["F1"]);
+    lab.idle();
+    legend_shown("legend_f1_f2");
     lab.escape();
 }
 

@@ -589,7 +589,7 @@ impl Layout {
 /// a row wider than the panel is cut at its edge, so that the panels' places are exactly
 /// those of [`Layout::rects`] (egui's own side panels grow with a wide row and then stack the
 /// next panel over it).
-fn panel_in<R>(ui: &mut egui::Ui, id: &str, rect: egui::Rect, add_contents: impl FnOnce(&mut egui::Ui) -> R) -> R {
+pub fn panel_in<R>(ui: &mut egui::Ui, id: &str, rect: egui::Rect, add_contents: impl FnOnce(&mut egui::Ui) -> R) -> R {
     let mut child = ui.new_child(
         egui::UiBuilder::new()
             .id_salt(id)
@@ -625,7 +625,8 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
         }
     });
     if let Some(words) = &view.view {
-        ui.horizontal(|ui| {
+        // The view's words (its legend in words) wrap in the panel, never cut at its edge.
+        ui.horizontal_wrapped(|ui| {
             if ui.button("Back to the picture").clicked() {
                 request = Some(Request::Picture);
             }
@@ -653,15 +654,27 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
         ui.painter()
             .rect_filled(rect, 3.0, egui::Color32::from_rgb(red, green, blue));
         ui.vertical(|ui| {
-            ui.monospace(format!(
-                "stored rgba({}, {}, {}, {})",
-                r.pixel[0], r.pixel[1], r.pixel[2], r.pixel[3]
-            ));
+            let line = |ui: &mut egui::Ui, text: String| {
+                ui.add(egui::Label::new(egui::RichText::new(text).monospace()).wrap());
+            };
+            line(
+                ui,
+                format!(
+                    "stored rgba({}, {}, {}, {})",
+                    r.pixel[0], r.pixel[1], r.pixel[2], r.pixel[3]
+                ),
+            );
             if let Some(g) = i.gpu_pixel {
-                ui.monospace(format!("the GPU stored rgba({}, {}, {}, {})", g[0], g[1], g[2], g[3]));
+                line(
+                    ui,
+                    format!("the GPU stored rgba({}, {}, {}, {})", g[0], g[1], g[2], g[3]),
+                );
             }
             let c = r.color;
-            ui.monospace(format!("colour ({:.4}, {:.4}, {:.4}, {:.4})", c[0], c[1], c[2], c[3]));
+            line(
+                ui,
+                format!("colour ({:.4}, {:.4}, {:.4}, {:.4})", c[0], c[1], c[2], c[3]),
+            );
         });
     });
     if let Some(words) = i.disagreement() {
@@ -695,60 +708,67 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
     ui.separator();
     ui.label("Click a line to see its value over the whole picture.");
     let clicked = std::cell::Cell::new(None);
-    egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
+    // Every row wraps within the panel's width: a line of the listing and its values each get
+    // about half of it, so nothing is cut and nothing needs scrolling sideways.
+    egui::ScrollArea::vertical().auto_shrink([false, false]).show(ui, |ui| {
+        let font = egui::TextStyle::Monospace.resolve(ui.style());
+        let glyph = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
+        let spacing = ui.spacing().item_spacing.x;
+        // A column of a grid of `columns` beside a 4-digit line number (or a name as wide).
+        let column = |ui: &egui::Ui, columns: f32| {
+            ((ui.available_width() - 5.0 * glyph - columns * spacing) / columns).max(MIN_COLUMN_CHARS as f32 * glyph)
+        };
         let listing = |ui: &mut egui::Ui, stage: Stage, id: &str| {
-            // A line gets under half the width, its values the rest (the line whole on hover).
-            let font = egui::TextStyle::Monospace.resolve(ui.style());
-            let glyph = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
-            let chars = ((ui.available_width() * 0.4 / glyph) as usize).clamp(MIN_CODE_CHARS, 96);
-            egui::Grid::new(id).num_columns(3).striped(true).show(ui, |ui| {
-                let mut file = String::new();
-                for row in i.rows(stage) {
-                    if row.file != file {
-                        file = row.file.clone();
-                        ui.label("");
-                        ui.strong(file_name(&row.file)).on_hover_text(&row.file);
+            egui::Grid::new(id)
+                .num_columns(3)
+                .striped(true)
+                .max_col_width(column(ui, 2.0))
+                .show(ui, |ui| {
+                    let mut file = String::new();
+                    for row in i.rows(stage) {
+                        if row.file != file {
+                            file = row.file.clone();
+                            ui.label("");
+                            ui.strong(file_name(&row.file)).on_hover_text(&row.file);
+                            ui.end_row();
+                        }
+                        let chosen = view
+                            .line
+                            .as_ref()
+                            .is_some_and(|(f, l)| *f == row.file && *l == row.line);
+                        let number = egui::RichText::new(format!("{:>4}", row.line)).monospace();
+                        let number = if chosen {
+                            number.color(egui::Color32::YELLOW).strong()
+                        } else {
+                            number
+                        };
+                        let a = ui.add(egui::Label::new(number).sense(egui::Sense::click()));
+                        let b = ui.add(
+                            egui::Label::new(egui::RichText::new(&row.text).monospace())
+                                .wrap()
+                                .sense(egui::Sense::click()),
+                        );
+                        if a.clicked() || b.clicked() {
+                            clicked.set(Some(crate::shell::views::Wanted::Probe(
+                                crate::debug::view::Probe::Line {
+                                    file: row.file.clone(),
+                                    line: row.line,
+                                    name: None,
+                                    stage: Some(stage),
+                                },
+                            )));
+                        }
+                        ui.add(
+                            egui::Label::new(
+                                egui::RichText::new(&row.values)
+                                    .monospace()
+                                    .color(egui::Color32::LIGHT_GREEN),
+                            )
+                            .wrap(),
+                        );
                         ui.end_row();
                     }
-                    let chosen = view
-                        .line
-                        .as_ref()
-                        .is_some_and(|(f, l)| *f == row.file && *l == row.line);
-                    let number = egui::RichText::new(format!("{:>4}", row.line)).monospace();
-                    let number = if chosen {
-                        number.color(egui::Color32::YELLOW).strong()
-                    } else {
-                        number
-                    };
-                    // The line, cut to leave room for its values; whole on hover.
-                    let short: String = if row.text.chars().count() > chars {
-                        let cut: String = row.text.chars().take(chars - 1).collect();
-                        format!("{}…", cut.trim_end())
-                    } else {
-                        row.text.clone()
-                    };
-                    let a = ui.add(egui::Label::new(number).sense(egui::Sense::click()));
-                    let b = ui
-                        .add(egui::Label::new(egui::RichText::new(short).monospace()).sense(egui::Sense::click()))
-                        .on_hover_text(&row.text);
-                    if a.clicked() || b.clicked() {
-                        clicked.set(Some(crate::shell::views::Wanted::Probe(
-                            crate::debug::view::Probe::Line {
-                                file: row.file.clone(),
-                                line: row.line,
-                                name: None,
-                                stage: Some(stage),
-                            },
-                        )));
-                    }
-                    ui.label(
-                        egui::RichText::new(&row.values)
-                            .monospace()
-                            .color(egui::Color32::LIGHT_GREEN),
-                    );
-                    ui.end_row();
-                }
-            });
+                });
         };
         egui::CollapsingHeader::new(format!("Fragment shader {}", file_name(&f.fragment.path)))
             .default_open(true)
@@ -756,13 +776,16 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
         egui::CollapsingHeader::new("Inputs at the pixel")
             .default_open(true)
             .show(ui, |ui| {
-                egui::Grid::new("inspector.inputs").num_columns(2).show(ui, |ui| {
-                    for n in &f.inputs {
-                        ui.monospace(&n.name);
-                        ui.monospace(numbers(&n.value));
-                        ui.end_row();
-                    }
-                });
+                egui::Grid::new("inspector.inputs")
+                    .num_columns(2)
+                    .max_col_width(column(ui, 2.0))
+                    .show(ui, |ui| {
+                        for n in &f.inputs {
+                            ui.add(egui::Label::new(egui::RichText::new(&n.name).monospace()).wrap());
+                            ui.add(egui::Label::new(egui::RichText::new(numbers(&n.value)).monospace()).wrap());
+                            ui.end_row();
+                        }
+                    });
             });
         egui::CollapsingHeader::new(format!("Vertex shader {} at the corners", file_name(&f.vertex.path)))
             .default_open(false)
@@ -770,6 +793,7 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
                 egui::Grid::new("inspector.corners")
                     .num_columns(4)
                     .striped(true)
+                    .max_col_width(column(ui, 4.0))
                     .show(ui, |ui| {
                         ui.label("");
                         for c in &f.corners {
@@ -800,9 +824,9 @@ pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
     clicked.take().map(Request::View).or(request)
 }
 
-/// Characters of a shader line shown beside its values, at least: enough to know the line
-/// (its whole text is on hover), leaving a narrow inspector room for the values.
-const MIN_CODE_CHARS: usize = 12;
+/// Characters a column of the inspector's listing gets at least, however narrow the inspector:
+/// its rows wrap within it.
+const MIN_COLUMN_CHARS: usize = 12;
 
 fn file_name(path: &str) -> &str {
     path.rsplit(['/', '\\']).next().unwrap_or(path)
@@ -959,7 +983,9 @@ impl Panel {
     }
 
     /// Runs the panel for this frame and records its drawing into `target` (after the lab's
-    /// pass, keeping its pixels); returns whether a parameter changed, and a request.
+    /// pass, keeping its pixels); returns whether a parameter changed, and a request. The
+    /// panels leave the bottom `legend` pixels of the window free: a whole-frame view's legend
+    /// strip, which stays in sight whatever panels are open.
     #[allow(clippy::too_many_arguments)]
     pub fn draw(
         &mut self,
@@ -969,6 +995,7 @@ impl Panel {
         target: &wgpu::TextureView,
         format: wgpu::TextureFormat,
         size: (u32, u32),
+        legend: u32,
         lab: &mut dyn Lab,
         status: &Status,
         inspect: Option<&InspectView>,
@@ -982,15 +1009,17 @@ impl Panel {
         let mut result = (false, None);
         let mut drawn = Vec::new();
         let ppp = egui_winit::pixels_per_point(&self.ctx, window);
+        // The panels' part of the window: all of it above the legend strip.
+        let above = (size.0 as f32 / ppp, size.1.saturating_sub(legend) as f32 / ppp);
         let places = layout(
-            (size.0 as f32 / ppp, size.1 as f32 / ppp),
+            above,
             self.shown,
             inspect.is_some(),
             inspect
                 .and_then(|v| v.pixel)
                 .map(|(x, y)| (x as f32 / ppp, y as f32 / ppp)),
         );
-        let (panel_rect, inspector_rect) = places.rects((size.0 as f32 / ppp, size.1 as f32 / ppp));
+        let (panel_rect, inspector_rect) = places.rects(above);
         let output = self.ctx.run_ui(raw, |ui| {
             if let Some(rect) = panel_rect {
                 result = panel_in(ui, "shaderlab.panel", rect, |ui| contents(ui, lab, status));

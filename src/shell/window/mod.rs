@@ -13,6 +13,10 @@
 //! frames are paced near the monitor's refresh rate ([`frame_interval`]) for drivers whose FIFO
 //! presentation does not wait for vertical sync.
 //!
+//! A window another program destroyed ends the process with one clear message and exit status
+//! 1 whatever the window is doing (drawing, paused, recording), noticed by winit or by the
+//! window's own watch on the X server ([`gone`]); a recording running is kept.
+//!
 //! A lost GPU device (or a GPU out of memory) ends the event loop with one clear message and
 //! exit status 1, never a panic; a frame that never ends (the watchdog, `--timeout`) stops
 //! drawing with the title saying so, and Esc or close then end the process at once. A panic
@@ -38,8 +42,11 @@
 //! window opens, `=reload` inside each live reload's compile, so that the tests can check
 //! what a panic looks like.
 //! `SHADERLAB_TEST_PANEL=1` opens with F1's panel shown, for a display the tests cannot send
-//! keys to (a headless Wayland compositor).
+//! keys to (a headless Wayland compositor). `SHADERLAB_TEST_IGNORE_DESTROYED=1` ignores winit's
+//! `WindowEvent::Destroyed`, so that the tests can check that a window whose destruction winit
+//! does not report still ends ([`gone`]).
 
+mod gone;
 mod recording;
 mod screen;
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
@@ -140,6 +147,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
         files: Arc::new(files),
         state: None,
         error: None,
+        gone: gone::Gone::default(),
     };
     // A panic in the window is said as an error of its own, not as a crash report: winit's X11
     // backend panics when another program destroys the window (`xdotool windowclose`), and
@@ -162,9 +170,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
     let error = match outcome {
         Ok(Ok(())) => app.error.take(),
         Ok(Err(e)) => Some(Error::Surface(format!("event loop failed: {e}"))),
-        Err(report) if report.window_destroyed() => Some(Error::Surface(
-            "the window was closed or destroyed by another program".into(),
-        )),
+        Err(report) if report.window_destroyed() => Some(gone::error()),
         Err(report) => Some(report.into_error()),
     };
     if app.state.as_ref().is_some_and(WindowState::compiling) {
@@ -193,6 +199,8 @@ enum Wake {
     Signal(i32),
     /// A compile on a worker thread ended ([`Compiles`]).
     Compiled,
+    /// Another program destroyed the window ([`gone`]).
+    Gone,
 }
 
 /// Starts a thread that turns a deferred signal into a [`Wake::Signal`] for the event loop: the
@@ -238,6 +246,8 @@ struct App {
     files: Arc<UserFiles>,
     state: Option<WindowState>,
     error: Option<Error>,
+    /// Whether another program destroyed the window, from the window's opening on.
+    gone: gone::Gone,
 }
 
 /// Why the device can no longer be used, set from wgpu's callbacks (other threads).
@@ -330,6 +340,11 @@ struct WindowState {
     minimised: bool,
     /// The window is fully covered (X11 visibility): nothing to draw.
     occluded: bool,
+    /// Whether another program destroyed the window, and the watch that notices it.
+    gone: gone::Gone,
+    _watch: Option<gone::Watch>,
+    /// `SHADERLAB_TEST_IGNORE_DESTROYED`: winit's `Destroyed` is not acted on.
+    ignore_destroyed: bool,
     fatal: Fatal,
     lose_device_at: Option<Instant>,
     /// Screenshots and recordings named so far (`NAME-SECONDS-PID-N.EXT`).
@@ -387,8 +402,7 @@ impl App {
 
     fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<WindowState> {
         let entry = self.entry;
-        let test_panic = std::env::var("SHADERLAB_TEST_PANIC").ok();
-        if test_panic.as_deref() == Some("init") {
+        if std::env::var("SHADERLAB_TEST_PANIC").as_deref() == Ok("init") {
             panic!("SHADERLAB_TEST_PANIC=init");
         }
         let (width, height) = self.args.size(entry);
@@ -400,6 +414,25 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| Error::Surface(format!("cannot create a window: {e}")))?,
         );
+        let proxy = self.proxy.clone();
+        let watch = gone::watch(&window, self.gone.clone(), move || {
+            let _ = proxy.send_event(Wake::Gone);
+        });
+        self.open(window.clone(), watch).map_err(|e| {
+            // A window destroyed while it opens fails in words that do not say so (no adapter
+            // can draw into it, say): say what happened instead.
+            if self.gone.is() || !gone::exists(&window) {
+                gone::error()
+            } else {
+                e
+            }
+        })
+    }
+
+    /// The rest of [`Self::init`]: the GPU, the screen and the lab for `window`.
+    fn open(&mut self, window: Arc<Window>, gone_watch: Option<gone::Watch>) -> Result<WindowState> {
+        let entry = self.entry;
+        let test_panic = std::env::var("SHADERLAB_TEST_PANIC").ok();
         // The primary backends first, GL only where they cannot draw into this window.
         let (mut gpu, surface) = match Self::connect(Gpu::new_instance(), &window) {
             Err(e @ (Error::NoAdapter(_) | Error::Surface(_))) => match Gpu::fallback_instance() {
@@ -422,7 +455,14 @@ impl App {
                 }
             }
         });
-        let screen = Screen::new(entry.info.name, &gpu, window.clone(), surface, self.args.unpaced)?;
+        let screen = Screen::new(
+            entry.info.name,
+            &gpu,
+            window.clone(),
+            surface,
+            self.args.unpaced,
+            self.gone.clone(),
+        )?;
         let size = window.inner_size();
         let env_seconds = |name: &str| {
             std::env::var(name)
@@ -495,6 +535,9 @@ impl App {
             },
             minimised: surface_size(size).is_none(),
             occluded: false,
+            gone: self.gone.clone(),
+            _watch: gone_watch,
+            ignore_destroyed: std::env::var_os("SHADERLAB_TEST_IGNORE_DESTROYED").is_some(),
             window,
             fatal,
             lose_device_at,
@@ -862,6 +905,12 @@ impl WindowState {
             .view()
             .and_then(super::views::Wanted::line_shown)
             .map(|(file, line)| (file.to_owned(), line));
+        // A view shown keeps its legend strip in sight below the panels.
+        let legend = if self.session.view().is_some() && !matches!(self.session.view_shown(), Some(Err(_))) {
+            crate::debug::picture::LEGEND_HEIGHT
+        } else {
+            0
+        };
         let (lab, result) = self.session.lab_and_inspection();
         let inspect = inspecting.then_some(super::panel::InspectView {
             pixel,
@@ -878,6 +927,7 @@ impl WindowState {
             view,
             format,
             size,
+            legend,
             lab,
             &status,
             inspect.as_ref(),
@@ -1018,6 +1068,9 @@ impl WindowState {
 
     /// Draws one frame: the lab, then the panel, into the screen's target, and shows it.
     fn redraw(&mut self) -> Result<()> {
+        if self.gone.is() {
+            return Err(gone::error());
+        }
         if let Some(at) = self.lose_device_at {
             if Instant::now() >= at {
                 self.lose_device_at = None;
@@ -1208,6 +1261,11 @@ impl ApplicationHandler<Wake> for App {
                     state.check_reload();
                 }
             }
+            // The recording is finished on the way out (`run`), as for any other ending.
+            Wake::Gone => {
+                self.error.get_or_insert_with(gone::error);
+                event_loop.exit();
+            }
         }
     }
 
@@ -1265,10 +1323,9 @@ impl ApplicationHandler<Wake> for App {
             WindowEvent::CloseRequested => event_loop.exit(),
             // Another program destroyed the window (`xdotool windowclose`): nothing is left to
             // draw into, and winit would fail on the next request about it.
-            WindowEvent::Destroyed => {
-                self.error = Some(Error::Surface(
-                    "the window was closed or destroyed by another program".into(),
-                ));
+            WindowEvent::Destroyed if !state.ignore_destroyed => {
+                state.gone.set();
+                self.error = Some(gone::error());
                 event_loop.exit();
             }
             WindowEvent::Resized(size) => state.resize(size),
@@ -1312,6 +1369,12 @@ impl ApplicationHandler<Wake> for App {
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         let Some(state) = self.state.as_mut() else { return };
+        if state.gone.is() {
+            // However it was noticed (winit, the watch, the presenter): the window ends.
+            self.error.get_or_insert_with(gone::error);
+            event_loop.exit();
+            return;
+        }
         // A new inspection to show: the replay runs on a worker thread of its own.
         if state.session.inspect_poll(&state.gpu, super::inspector::on_a_thread) {
             if let (Some(log), Some(shown)) = (state.test_log.as_mut(), state.session.inspection()) {

@@ -4,7 +4,9 @@
 //! [`Screen::present`]; everything that differs between the two paths lives here.
 //!
 //! A surface that is `Outdated` is reconfigured and a `Lost` one is created again, then drawing
-//! goes on; a presenter that fails falls back to the swapchain.
+//! goes on; a presenter that fails falls back to the swapchain, except when the X server refused
+//! its frame because another program destroyed the window: then the window is [`Gone`] and
+//! ends.
 
 use std::sync::Arc;
 
@@ -15,6 +17,7 @@ use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 
 use super::super::surface::{Acquired, Swapchain};
+use super::gone::{self, Gone};
 
 #[cfg(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android"))))]
 use super::shm::ShmPresenter as Presenter;
@@ -64,6 +67,8 @@ pub(super) struct Screen {
     retries: u32,
     /// Whether the window was said to be larger than the device can draw.
     said_too_large: bool,
+    /// Set when another program destroyed the window: no frame is drawn after it.
+    gone: Gone,
 }
 
 /// Where one frame is drawn.
@@ -93,13 +98,15 @@ pub(super) enum Shown {
 impl Screen {
     /// The screen of `window` drawn by `gpu` through `surface`: the swapchain configured
     /// ([`Swapchain::new`], presenting as fast as it can when `unpaced`), and the shared-memory
-    /// presenter where it can start (said with `SHADERLAB_PRESENT=shm`).
+    /// presenter where it can start (said with `SHADERLAB_PRESENT=shm`). The screen marks
+    /// `gone` when the X server says that the window no longer exists.
     pub fn new(
         name: &'static str,
         gpu: &Gpu,
         window: Arc<Window>,
         surface: wgpu::Surface<'static>,
         unpaced: bool,
+        gone: Gone,
     ) -> Result<Screen> {
         let unpaced_modes = [wgpu::PresentMode::Immediate, wgpu::PresentMode::Mailbox];
         let present_modes: &[wgpu::PresentMode] = if unpaced { &unpaced_modes } else { &[] };
@@ -142,6 +149,7 @@ impl Screen {
             unpaced,
             retries: 0,
             said_too_large,
+            gone,
         })
     }
 
@@ -169,7 +177,9 @@ impl Screen {
         let (width, height) = self.swapchain.size();
         if let Some(shm) = &mut self.shm {
             if let Err(why) = shm.resize(gpu, width, height) {
-                if !shm.window_gone() {
+                if shm.window_gone() {
+                    self.gone.set();
+                } else {
                     eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name);
                 }
                 self.shm = None;
@@ -192,8 +202,11 @@ impl Screen {
 
     /// The target of the next frame; `None` when there is none to draw into this time (the
     /// surface timed out, is occluded, or was just made anew). `fatal` says whether the device
-    /// became unusable meanwhile.
+    /// became unusable meanwhile. A window another program destroyed is an error.
     pub fn target(&mut self, gpu: &Gpu, fatal: impl Fn() -> Option<Error>) -> Result<Option<Target>> {
+        if self.gone.is() {
+            return Err(gone::error());
+        }
         if let Some(shm) = &self.shm {
             return Ok(Some(Target {
                 view: shm.color.clone(),
@@ -207,6 +220,11 @@ impl Screen {
             Acquired::Frame(frame) => frame,
             Acquired::Skipped => return Ok(None),
             status @ (Acquired::Outdated | Acquired::Lost) => {
+                // A window destroyed by another program loses its surface: it is not made
+                // again (nor asked its size, which winit cannot answer for a window gone).
+                if self.gone.is() {
+                    return Err(gone::error());
+                }
                 self.retries += 1;
                 let lost = matches!(status, Acquired::Lost);
                 if self.retries > MAX_SURFACE_RETRIES {
@@ -289,11 +307,15 @@ impl Screen {
                     Ok(()) => Ok(Shown::Yes),
                     // Keep the presenter: dropping it would wait for the frame that never ends.
                     Err(why) if crate::gpu::hung() => Ok(Shown::Stuck(why)),
+                    Err(_) if shm.window_gone() => {
+                        // The server refused the frame because another program destroyed the
+                        // window: it ends now, whether or not winit says so too.
+                        self.gone.set();
+                        self.shm = None;
+                        Err(gone::error())
+                    }
                     Err(why) => {
-                        // A destroyed window is said once, by the `Destroyed` event that follows.
-                        if !shm.window_gone() {
-                            eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name);
-                        }
+                        eprintln!("{}: shared-memory presenter: {why}; using the swapchain", self.name);
                         self.shm = None;
                         Ok(Shown::Again)
                     }

@@ -313,7 +313,7 @@ impl ShmPresenter {
     }
 
     /// Whether the presenter failed because its window no longer exists (another program
-    /// destroyed it); the window's `Destroyed` event follows and ends the lab with its message.
+    /// destroyed it): the window is then gone ([`super::gone`]) and ends with its message.
     pub(super) fn window_gone(&self) -> bool {
         self.window_gone
     }
