@@ -1627,7 +1627,7 @@ fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipel
     lab.idle();
     std::fs::write(&frag, format!("{original}\n")).expect("save");
     lab.wait_title_contains("SHADER ERROR");
-    let said = "internal error: SHADERLAB_TEST_PANIC=reload (at src/shell/window/mod.rs:";
+    let said = "internal error: SHADERLAB_TEST_PANIC=reload (at src/shell/reload.rs:";
     poll(PATIENCE, || lab.stderr().contains(said).then_some(()))
         .unwrap_or_else(|| panic!("no `{said}` on stderr:\n{}", lab.stderr()));
     lab.keys(&["2"]);

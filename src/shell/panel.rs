@@ -399,7 +399,7 @@ fn row(ui: &mut egui::Ui, lab: &dyn Lab, w: &Widget) -> Option<Edit> {
             values = spec.default.to_vec();
         }
     });
-    (values != current).then(|| Edit::Set(spec.name, values))
+    (values != current).then_some(Edit::Set(spec.name, values))
 }
 
 /// A button for each choice a view that could not be drawn offers (`Show: a | b`); returns
