@@ -7,13 +7,18 @@
 //!
 //! Layers, each using only those below it (no module reaches up, and there are no import
 //! circles):
-//! - [`shell`]: the command line, the window and the browser page, each around one
-//!   [`shell::session::Session`]; `--screenshot`, `--bench`, `--record`, the tools. It drives any
-//!   [`Lab`] through its [`LabEntry`] and never names an exercise.
+//! - [`shell`]: the window and the browser page, each turning its events into calls on one
+//!   [`shell::session::Session`] (which draws each frame) and presenting what it drew; the
+//!   command line; `--screenshot`, `--bench`, `--record` and the tools, which build the lab as
+//!   the session does ([`shell::session::Sources`]) and draw it with the same checked render,
+//!   without a clock, input or inspector. It drives any [`Lab`] through its [`LabEntry`] and
+//!   never names an exercise.
 //! - [`course`]: the course, one module per lab, and [`course::ALL`], the one list of labs.
 //! - [`debug`]: the GLSL debugger, why a pixel has its colour: a frame's draws read back and
-//!   replayed on the CPU for one pixel, naga's IR of its shaders interpreted; `shaderlab
-//!   debug`, F2 in a window and the page's Inspect.
+//!   replayed on the CPU for one pixel, naga's IR of its shaders interpreted (`shaderlab
+//!   debug`, F2 in a window and the page's Inspect); whole-frame views of a line's value or the
+//!   cost, drawn by instrumented shaders and coloured on the GPU (`shaderlab view`, F3, a
+//!   clicked line); `diff`, where a copy of the shaders departs.
 //! - [`lab`]: the contract a lab fulfils ([`Lab`], [`lab::Input`]) and the runner of labs
 //!   described as data ([`lab::Recipe`]: a [`lab::Geometry`] drawn with a [`lab::Material`]).
 //! - [`legacy`]: a course's own GLSL 1.10/1.20 shaders translated to GLSL 450 (source-mapped).
@@ -208,10 +213,21 @@ mod tests {
                 doc.contains(&format!("[`{module}`]")),
                 "lib.rs's layers leave out `{module}`"
             );
-            let named = tree
-                .split_whitespace()
-                .any(|w| w == format!("{module}/") || w == format!("{module}.rs"));
-            assert!(named, "README's \"How it is built\" leaves out `{module}`");
+        }
+        // Every entry of src/ (the binary's main.rs, a module's folder and its face beside
+        // it) is named in the tree.
+        for entry in std::fs::read_dir(root.join("src")).unwrap() {
+            let entry = entry.unwrap();
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let word = if entry.path().is_dir() {
+                format!("{name}/")
+            } else {
+                name
+            };
+            assert!(
+                tree.split_whitespace().any(|w| w == word),
+                "README's \"How it is built\" leaves out src/{word}"
+            );
         }
     }
 

@@ -11,7 +11,7 @@ use shaderlab::lab::UserFiles;
 use shaderlab::metrics::psnr;
 use shaderlab::offscreen::{to_rgb, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
-use shaderlab::shell::session::Session;
+use shaderlab::shell::session::Sources;
 
 /// The built-in shaders in a folder, `file` changed by replacing `from` with `to`.
 fn copy_with(tag: &str, file: &str, from: &str, to: &str) -> PathBuf {
@@ -60,8 +60,9 @@ fn a_bug_planted_in_a_fragment_shader_is_found_at_its_line() {
     // draws them.
     let picture_of = |source: &ShaderSource| {
         let entry = shaderlab::course::find("phong").expect("phong");
-        let mut lab =
-            Session::open_lab(entry, gpu(), source, COLOR_FORMAT, &UserFiles::default()).expect("phong builds");
+        let mut lab = Sources::new(source.clone(), UserFiles::default(), COLOR_FORMAT)
+            .build(gpu(), entry)
+            .expect("phong builds");
         shaderlab::shell::screenshot(gpu(), lab.as_mut(), 640, 360).expect("a picture")
     };
     let mine = picture_of(&ShaderSource::dir(&dir).expect("the copy"));
@@ -205,7 +206,9 @@ fn frames_of_shaders_with_other_inputs_are_refused_by_the_library() {
     let files = UserFiles::default();
     let open = |name: &str| {
         let entry = shaderlab::course::find(name).expect("a lab");
-        Session::open_lab(entry, gpu(), &ShaderSource::Embedded, COLOR_FORMAT, &files).expect("the lab builds")
+        Sources::new(ShaderSource::Embedded, files.clone(), COLOR_FORMAT)
+            .build(gpu(), entry)
+            .expect("the lab builds")
     };
     let (mut phong, mut noise) = (open("phong"), open("noise"));
     let (_, a) = shaderlab::debug::capture_lab(gpu(), phong.as_mut(), 320, 180, true).expect("phong");

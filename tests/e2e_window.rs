@@ -1627,7 +1627,7 @@ fn panics_are_internal_errors_and_a_reload_that_panics_keeps_the_last_good_pipel
     lab.idle();
     std::fs::write(&frag, format!("{original}\n")).expect("save");
     lab.wait_title_contains("SHADER ERROR");
-    let said = "internal error: SHADERLAB_TEST_PANIC=reload (at src/shell/window/mod.rs:";
+    let said = "internal error: SHADERLAB_TEST_PANIC=reload (at src/shell/reload.rs:";
     poll(PATIENCE, || lab.stderr().contains(said).then_some(()))
         .unwrap_or_else(|| panic!("no `{said}` on stderr:\n{}", lab.stderr()));
     lab.keys(&["2"]);
@@ -2656,14 +2656,14 @@ fn the_views_legend_stays_in_sight_beside_the_panels() {
 /// width and its height less the legend strip), made by the library alone.
 fn library_view(lab: &mut dyn shaderlab::lab::Lab, probe: &view::Probe, (w, h): (u32, u32)) -> image::RgbaImage {
     let vh = h - picture::LEGEND_HEIGHT;
-    let log = view::record(common::gpu(), lab, w, vh).expect("the frame records");
+    let log = view::encode(common::gpu(), lab, w, vh).expect("the frame records");
     let frame = view::draw_view(common::gpu(), &log, probe, w, vh).expect("the view draws");
     frame.picture().0
 }
 
 /// The file the phong lab's fragment shader is read from, as the lab shows it.
 fn phong_fragment_file(lab: &mut dyn shaderlab::lab::Lab) -> String {
-    let log = view::record(common::gpu(), lab, 64, 64).expect("the frame records");
+    let log = view::encode(common::gpu(), lab, 64, 64).expect("the frame records");
     let files: Vec<String> = (log.draws().iter())
         .flat_map(|d| d.setup.fragment.source.files.iter().map(|(p, _)| p.clone()))
         .collect();

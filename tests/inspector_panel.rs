@@ -11,8 +11,8 @@ use shaderlab::debug::{picture, Inspection};
 use shaderlab::lab::UserFiles;
 use shaderlab::offscreen::COLOR_FORMAT;
 use shaderlab::shader::ShaderSource;
-use shaderlab::shell::panel::{inspector, layout, panel_in, InspectView};
-use shaderlab::shell::session::Session;
+use shaderlab::shell::panel::{inspector, layout, panel_in, InspectPanel};
+use shaderlab::shell::session::{Platform, Session, Sources};
 use shaderlab::shell::views::Wanted;
 
 const SIZE: (u32, u32) = (640, 360);
@@ -36,25 +36,17 @@ fn texts(shapes: &[egui::epaint::ClippedShape]) -> Vec<(String, egui::Rect)> {
 #[test]
 fn the_inspectors_words_wrap_inside_it_at_640x360() {
     let entry = shaderlab::course::find("phong").expect("phong");
-    let mut s = Session::open(
-        entry,
-        gpu(),
-        &ShaderSource::Embedded,
-        COLOR_FORMAT,
-        &UserFiles::default(),
-        0.0,
-        1.0,
-    )
-    .expect("phong opens");
+    let sources = Sources::new(ShaderSource::Embedded, UserFiles::default(), COLOR_FORMAT);
+    let mut s = Session::open(entry, gpu(), sources, Platform::NATIVE, 0.0, 1.0).expect("phong opens");
     s.set("object", "torus").expect("a torus");
     let file = (s.shader_files().into_iter().flat_map(|p| p.spliced))
         .find(|f| f.ends_with("phong.frag"))
         .expect("phong.frag");
     // The line view of line 17 and its legend in words, as the inspector shows them.
-    s.set_view(Some(Wanted::from_link(&format!("{file}:17")).expect("a line")), None);
+    s.show_view(gpu(), Some(Wanted::from_link(&format!("{file}:17")).expect("a line")));
     let mut calls = 0;
     while s.view_shown().is_none() || s.view_busy() {
-        s.view_frame(gpu(), SIZE, COLOR_FORMAT);
+        s.poll(gpu(), SIZE);
         calls += 1;
         assert!(calls < 100_000, "the view never came back");
         std::thread::yield_now();
@@ -75,7 +67,7 @@ fn the_inspectors_words_wrap_inside_it_at_640x360() {
             (x, y) == (330, 80),
             "{x},{y}: the torus covers 330,80, not 300,150"
         );
-        let view = InspectView {
+        let view = InspectPanel {
             pixel: Some((x, y)),
             result: Some(&result),
             busy: false,

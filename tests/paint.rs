@@ -34,7 +34,7 @@ fn compare(
     painter: &mut Painter,
     probe: &Probe,
 ) -> Result<(usize, u8, Option<picture::Legend>), String> {
-    let log = view::record(gpu(), lab, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
+    let log = view::encode(gpu(), lab, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
     let frame = drawer
         .draw(gpu(), &log, probe, WIDTH, HEIGHT)
         .map_err(|e| e.to_string())?;
@@ -160,7 +160,7 @@ fn the_diverging_map_the_checker_nan_and_infinities_are_the_librarys() {
         ShaderSource::Edited(Arc::new(edits)),
         &[("object", "sphere")],
     );
-    let log = view::record(gpu(), lab.as_mut(), WIDTH, HEIGHT).expect("records");
+    let log = view::encode(gpu(), lab.as_mut(), WIDTH, HEIGHT).expect("records");
     let file = log
         .draws()
         .first()

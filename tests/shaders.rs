@@ -878,11 +878,12 @@ fn a_panic_inside_wgpu_or_naga_is_an_error() {
 
 #[test]
 fn a_session_lists_each_programs_files_and_every_file_spliced_into_it() {
-    use shaderlab::shell::session::Session;
+    use shaderlab::shell::session::{Platform, Session, Sources};
     let source = ShaderSource::Embedded;
     let files = &shaderlab::lab::NO_FILES;
+    let sources = Sources::new(source, files.clone(), COLOR_FORMAT);
     let mut session =
-        Session::open(course::DISPLACEMENT, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("displacement opens");
+        Session::open(course::DISPLACEMENT, gpu(), sources, Platform::NATIVE, 0.0, 1.0).expect("displacement opens");
     let programs = session.shader_files();
     assert_eq!(programs.len(), 1, "{programs:?}");
     let program = &programs[0];
@@ -905,10 +906,11 @@ fn a_session_lists_each_programs_files_and_every_file_spliced_into_it() {
 
 #[test]
 fn a_session_given_the_command_lines_parameters_runs_its_clock_from_their_time() {
-    use shaderlab::shell::session::Session;
+    use shaderlab::shell::session::{Platform, Session, Sources};
     let source = ShaderSource::Embedded;
     let files = &shaderlab::lab::NO_FILES;
-    let open = || Session::open(course::WAVE, gpu(), &source, COLOR_FORMAT, files, 10.0, 2.0).expect("wave opens");
+    let sources = Sources::new(source, files.clone(), COLOR_FORMAT);
+    let open = || Session::open(course::WAVE, gpu(), sources.clone(), Platform::NATIVE, 10.0, 2.0).expect("wave opens");
     let mut params = open().lab().params().clone();
     params.set("time", &[7.0]).unwrap();
     let mut session = open().with_params(params);
@@ -921,13 +923,13 @@ fn a_session_given_the_command_lines_parameters_runs_its_clock_from_their_time()
     );
 }
 
-/// The shells' frame ([`Session::draw`], which the window's `record` and both of the page's
-/// paths go through): the picture an offscreen render of the same lab draws, and a broken
-/// shading model's error (found by the lab while drawing) comes back once and stands.
+/// The shells' frame ([`Session::encode`], which the window's and the page's frames and the
+/// page's read-back go through): the picture an offscreen render of the same lab draws, and a
+/// broken shading model's error (found by the lab while drawing) comes back once and stands.
 #[test]
-fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_once() {
+fn a_session_draws_into_a_target_as_offscreen_and_returns_a_broken_models_error_once() {
     use shaderlab::offscreen::Offscreen;
-    use shaderlab::shell::session::Session;
+    use shaderlab::shell::session::{Platform, Session, Sources};
     let dir = output_dir().join(format!("session_draw_{}", std::process::id()));
     common::copy_shaders(&dir);
     let flat = dir.join("phong_flat.frag");
@@ -935,11 +937,20 @@ fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_on
     std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
     let source = ShaderSource::Dir(dir.clone());
     let files = &shaderlab::lab::NO_FILES;
-    let open = || Session::open(course::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let sources = Sources::new(source, files.clone(), COLOR_FORMAT);
+    let open =
+        || Session::open(course::PHONG, gpu(), sources.clone(), Platform::NATIVE, 0.0, 1.0).expect("phong opens");
     let (w, h) = (160, 90);
     let draw = |session: &mut Session| {
         let target = Offscreen::with_format(gpu(), w, h, COLOR_FORMAT);
-        let error = session.draw(gpu(), "test.frame", &target.color, &target.depth, (w, h));
+        let mut encoder = gpu().device.create_command_encoder(&Default::default());
+        let drawn = shaderlab::shell::session::Target {
+            color: &target.color,
+            depth: &target.depth,
+            size: (w, h),
+        };
+        let error = session.encode(gpu(), &mut encoder, &drawn);
+        gpu().queue.submit([encoder.finish()]);
         (error, target.read(gpu()).expect("read back"))
     };
     let mut session = open();
@@ -962,13 +973,13 @@ fn a_session_draws_into_a_view_as_offscreen_and_returns_a_broken_models_error_on
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// The offscreen frame ([`shaderlab::lab::frame::record`], which `--screenshot`, `--record`,
+/// The offscreen frame ([`shaderlab::lab::frame::encode`], which `--screenshot`, `--record`,
 /// F10, F12 and the debugger's capture go through) is the session's frame: the same checked
 /// render, whose broken shading model fails the offscreen frame with the session's error.
 #[test]
 fn the_offscreen_frame_and_the_sessions_are_one_checked_render() {
     use shaderlab::offscreen::Offscreen;
-    use shaderlab::shell::session::Session;
+    use shaderlab::shell::session::{Platform, Session, Sources};
     let dir = output_dir().join(format!("frame_one_{}", std::process::id()));
     common::copy_shaders(&dir);
     let flat = dir.join("phong_flat.frag");
@@ -976,15 +987,16 @@ fn the_offscreen_frame_and_the_sessions_are_one_checked_render() {
     std::fs::write(&flat, good.replacen("void main", "void main oops", 1)).unwrap();
     let source = ShaderSource::Dir(dir.clone());
     let files = &shaderlab::lab::NO_FILES;
-    let mut session = Session::open(course::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let sources = Sources::new(source, files.clone(), COLOR_FORMAT);
+    let mut session = Session::open(course::PHONG, gpu(), sources, Platform::NATIVE, 0.0, 1.0).expect("phong opens");
     let target = Offscreen::with_format(gpu(), 64, 48, COLOR_FORMAT);
     let log = shaderlab::render::DrawLog::new();
-    let frame = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, Some(&log)).expect("phong draws");
+    let frame = shaderlab::lab::frame::encode(gpu(), session.lab_mut(), &target, Some(&log)).expect("phong draws");
     gpu().queue.submit([frame]);
     assert!(!log.draws().is_empty(), "the logged frame writes its draws down");
     assert!(session.key("m", 0.0)); // blinn
     assert!(session.key("m", 0.0)); // flat is broken
-    let Err(error) = shaderlab::lab::frame::record(gpu(), session.lab_mut(), &target, None) else {
+    let Err(error) = shaderlab::lab::frame::encode(gpu(), session.lab_mut(), &target, None) else {
         panic!("the broken model fails the offscreen frame");
     };
     assert!(error.to_string().contains("phong_flat.frag"), "{error}");
@@ -992,30 +1004,40 @@ fn the_offscreen_frame_and_the_sessions_are_one_checked_render() {
 }
 
 /// The inspector's sequence, in the session for the window and the page: the frame drawn is
-/// captured, read back and replayed by the runner handed in (inline, as the page runs it; on a
+/// captured, read back and replayed by the platform's runner (inline, as the page runs it; on a
 /// thread, as the window does), the result is the pixel drawn; a change to the lab inspects
 /// again, a runner that cannot start says why, and F2 off forgets the result.
 #[test]
 fn a_session_inspects_its_frame_with_the_runner_it_is_handed() {
     use shaderlab::offscreen::Offscreen;
     use shaderlab::shell::inspector::{inline, on_a_thread, Job};
-    use shaderlab::shell::session::Session;
+    use shaderlab::shell::session::{Platform, Session, Sources};
     let source = ShaderSource::Embedded;
     let files = &shaderlab::lab::NO_FILES;
-    let mut session = Session::open(course::PHONG, gpu(), &source, COLOR_FORMAT, files, 0.0, 1.0).expect("phong opens");
+    let sources = Sources::new(source, files.clone(), COLOR_FORMAT);
+    let mut session = Session::open(course::PHONG, gpu(), sources, Platform::PAGE, 0.0, 1.0).expect("phong opens");
     let (w, h) = (96, 64);
     let (x, y) = (w / 2, h / 2);
     let draw = |session: &mut Session| {
         let target = Offscreen::with_format(gpu(), w, h, COLOR_FORMAT);
-        assert!(session
-            .draw(gpu(), "test.frame", &target.color, &target.depth, (w, h))
-            .is_none());
-        session.inspect_frame(gpu(), (w, h), COLOR_FORMAT);
+        let mut encoder = gpu().device.create_command_encoder(&Default::default());
+        let drawn = shaderlab::shell::session::Target {
+            color: &target.color,
+            depth: &target.depth,
+            size: (w, h),
+        };
+        // The frame captures the inspected pixel's frame when the lab changed.
+        assert!(session.frame(gpu(), &mut encoder, &drawn, 0.0).error.is_none());
+        gpu().queue.submit([encoder.finish()]);
         target.read(gpu()).expect("read back").get_pixel(x, y).0
     };
     let settle = |session: &mut Session, run: fn(Job) -> Result<(), String>| {
+        session.set_platform(Platform {
+            replay: run,
+            waits: true,
+        });
         let start = std::time::Instant::now();
-        while !session.inspect_poll(gpu(), run) {
+        while !session.poll(gpu(), (w, h)).inspection {
             assert!(start.elapsed().as_secs() < 60, "the inspection never came");
             std::thread::sleep(std::time::Duration::from_millis(5));
         }

@@ -1,6 +1,6 @@
 //! In the shells' shared core: a session's whole-frame view is the library's picture
-//! of the lab's state whether it is drawn at once (the window's `Session::view_frame`) or read
-//! back over polls (the page's `Session::view_poll`), is drawn again when the lab changes, fills
+//! of the lab's state whether it is drawn at once (the window's way, `Platform::NATIVE`) or read
+//! back over polls (the page's, `Platform::PAGE`), is drawn again when the lab changes, fills
 //! the surface with its legend, and a view that cannot be drawn leaves its reason and the lab's
 //! picture.
 
@@ -11,23 +11,15 @@ use shaderlab::debug::{picture, view};
 use shaderlab::lab::{Input, UserFiles};
 use shaderlab::offscreen::{Offscreen, COLOR_FORMAT};
 use shaderlab::shader::ShaderSource;
-use shaderlab::shell::session::Session;
+use shaderlab::shell::session::{Platform, Session, Sources, Target};
 use shaderlab::shell::views::Wanted;
 
 const SIZE: (u32, u32) = (320, 196);
 
 fn session() -> Session {
     let entry = shaderlab::course::find("phong").expect("phong");
-    let s = Session::open(
-        entry,
-        gpu(),
-        &ShaderSource::Embedded,
-        COLOR_FORMAT,
-        &UserFiles::default(),
-        0.0,
-        1.0,
-    )
-    .expect("phong opens");
+    let sources = Sources::new(ShaderSource::Embedded, UserFiles::default(), COLOR_FORMAT);
+    let s = Session::open(entry, gpu(), sources, Platform::NATIVE, 0.0, 1.0).expect("phong opens");
     let mut s = s;
     s.set("object", "torus").expect("a torus");
     s
@@ -36,7 +28,7 @@ fn session() -> Session {
 /// The library's picture of `probe` for the session's lab now.
 fn library(s: &mut Session, probe: &view::Probe) -> image::RgbaImage {
     let (w, h) = (SIZE.0, SIZE.1 - picture::LEGEND_HEIGHT);
-    let log = view::record(gpu(), s.lab_mut(), w, h).expect("records");
+    let log = view::encode(gpu(), s.lab_mut(), w, h).expect("records");
     view::draw_view(gpu(), &log, probe, w, h).expect("draws").picture().0
 }
 
@@ -50,25 +42,29 @@ fn phong_frag(s: &mut Session) -> String {
 fn shown(s: &mut Session) -> image::RgbaImage {
     let target = Offscreen::with_format(gpu(), SIZE.0, SIZE.1, COLOR_FORMAT);
     let mut encoder = gpu().device.create_command_encoder(&Default::default());
-    if !s.record_view(gpu(), &mut encoder, &target.color, COLOR_FORMAT) {
-        assert!(s
-            .record(gpu(), &mut encoder, &target.color, &target.depth, SIZE)
-            .is_none());
-    }
+    let drawn = Target {
+        color: &target.color,
+        depth: &target.depth,
+        size: SIZE,
+    };
+    assert!(s.encode(gpu(), &mut encoder, &drawn).is_none());
     gpu().queue.submit([encoder.finish()]);
     target.read(gpu()).expect("reads back")
 }
 
+/// Moves the view on (`Session::poll`) the page's way (`polled`) or the window's, as each does
+/// between frames.
+fn step(s: &mut Session, polled: bool) -> bool {
+    s.set_platform(if polled { Platform::PAGE } else { Platform::NATIVE });
+    s.poll(gpu(), SIZE).view
+}
+
 /// Moves the view on until its picture and legend are there and nothing waits for the GPU,
-/// as the window (`view_frame`) or the page (`view_poll`) does frame after frame.
+/// as the window or the page does frame after frame.
 fn settle(s: &mut Session, polled: bool) {
     let mut calls = 0;
     loop {
-        if polled {
-            s.view_poll(gpu(), SIZE, COLOR_FORMAT);
-        } else {
-            s.view_frame(gpu(), SIZE, COLOR_FORMAT);
-        }
+        step(s, polled);
         if s.view_shown().is_some() && !s.view_busy() {
             break;
         }
@@ -76,11 +72,7 @@ fn settle(s: &mut Session, polled: bool) {
         assert!(calls < 100_000, "the view never came back");
         std::thread::yield_now();
     }
-    let again = if polled {
-        s.view_poll(gpu(), SIZE, COLOR_FORMAT)
-    } else {
-        s.view_frame(gpu(), SIZE, COLOR_FORMAT)
-    };
+    let again = step(s, polled);
     assert!(!again, "nothing changed: nothing drawn");
 }
 
@@ -124,7 +116,7 @@ fn a_view_drawn_at_once_or_over_polls_is_the_librarys_picture_and_follows_the_la
                 },
             ),
         ] {
-            s.set_view(Some(wanted.clone()), None);
+            s.show_view(gpu(), Some(wanted.clone()));
             let draw = |s: &mut Session| settle(s, polled);
             draw(&mut s);
             let want = library(&mut s, &probe);
@@ -147,7 +139,7 @@ fn a_view_drawn_at_once_or_over_polls_is_the_librarys_picture_and_follows_the_la
             );
         }
         // Back to the picture.
-        s.set_view(None, None);
+        s.show_view(gpu(), None);
         let plain = shown(&mut s);
         let target = Offscreen::with_format(gpu(), SIZE.0, SIZE.1, COLOR_FORMAT);
         let lab = shaderlab::lab::frame::render_into(gpu(), s.lab_mut(), &target).and_then(|()| target.read(gpu()));
@@ -171,8 +163,8 @@ fn a_view_that_cannot_be_drawn_says_why_and_the_picture_stays() {
         ),
         (Wanted::Diff, "there is nothing to compare"),
     ] {
-        s.set_view(Some(wanted.clone()), None);
-        assert!(s.view_frame(gpu(), SIZE, COLOR_FORMAT));
+        s.show_view(gpu(), Some(wanted.clone()));
+        assert!(step(&mut s, false));
         let why = match s.view_shown() {
             Some(Err(e)) => e.clone(),
             other => panic!("{wanted:?}: {:?}", other.map(|r| r.as_ref().map(|p| p.text.clone()))),
@@ -189,12 +181,12 @@ fn a_view_asked_for_during_a_read_back_is_drawn_after_it() {
     let mut s = session();
     let file = phong_frag(&mut s);
     let line = Wanted::from_link(&format!("{file}:17")).expect("a line");
-    s.set_view(Some(Wanted::COST), None);
-    assert!(!s.view_poll(gpu(), SIZE, COLOR_FORMAT), "the read-back starts");
+    s.show_view(gpu(), Some(Wanted::COST));
+    assert!(!step(&mut s, true), "the read-back starts");
     assert!(s.view_busy());
     // The same view again (the same buffers), then another.
-    s.set_view(Some(Wanted::COST), None);
-    s.set_view(Some(line.clone()), None);
+    s.show_view(gpu(), Some(Wanted::COST));
+    s.show_view(gpu(), Some(line.clone()));
     settle(&mut s, true);
     let probe = view::Probe::Line {
         file,
@@ -222,20 +214,16 @@ fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
         }\n";
     let edits: std::collections::BTreeMap<String, String> = [("normal_rgb.frag".to_owned(), text.to_owned())].into();
     let entry = shaderlab::course::find("normal_rgb").expect("normal_rgb");
-    let mut s = Session::open(
-        entry,
-        gpu(),
-        &ShaderSource::Edited(std::sync::Arc::new(edits)),
+    let sources = Sources::new(
+        ShaderSource::Edited(std::sync::Arc::new(edits)),
+        UserFiles::default(),
         COLOR_FORMAT,
-        &UserFiles::default(),
-        0.0,
-        1.0,
-    )
-    .expect("the copy opens");
+    );
+    let mut s = Session::open(entry, gpu(), sources, Platform::NATIVE, 0.0, 1.0).expect("the copy opens");
     let file = (s.shader_files().into_iter().flat_map(|p| p.spliced))
         .find(|f| f.ends_with("normal_rgb.frag"))
         .expect("normal_rgb.frag");
-    s.set_view(Wanted::from_link(&format!("{file}:5")), None);
+    s.show_view(gpu(), Wanted::from_link(&format!("{file}:5")));
     settle(&mut s, false);
     let why = match s.view_shown() {
         Some(Err(e)) => e.clone(),
@@ -245,7 +233,7 @@ fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
     let offered: Vec<&str> = s.view_choices().iter().map(|(w, _)| w.as_str()).collect();
     assert_eq!(offered, ["a", "b"], "each name once");
     // A name the line does not assign (a typo in a link) offers the same choice.
-    s.set_view(Wanted::from_link(&format!("{file}:5:c")), None);
+    s.show_view(gpu(), Wanted::from_link(&format!("{file}:5:c")));
     settle(&mut s, false);
     assert!(
         matches!(s.view_shown(), Some(Err(e)) if e.contains("does not assign `c`")),
@@ -256,7 +244,7 @@ fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
     assert_eq!(offered, ["a", "b"], "the names it does assign");
     let (_, b) = s.view_choices()[1].clone();
     assert_eq!(b.link(), format!("{file}:5:b"), "the link carries the name");
-    s.set_view(Some(b), None);
+    s.show_view(gpu(), Some(b));
     settle(&mut s, true);
     assert!(s.view_choices().is_empty(), "nothing to choose once drawn");
     let text = match s.view_shown() {
@@ -279,4 +267,55 @@ fn a_line_assigning_two_names_offers_each_and_draws_the_one_chosen() {
         stage: None,
     };
     assert!(library(&mut s, &a) != want, "a's view is another picture");
+}
+
+/// Every parameter write goes through the session with `--set`'s checks, the panel's too
+/// (`set_values`, `reset`): a value out of range or against the lab's rules between parameters
+/// (legacy's near before far) is refused and undone whole, and a taken one is drawn.
+#[test]
+fn every_parameter_write_is_checked_by_the_session_and_a_refused_one_undone() {
+    let entry = shaderlab::course::find("legacy").expect("legacy");
+    let sources = Sources::new(ShaderSource::Embedded, UserFiles::default(), COLOR_FORMAT);
+    let mut s = Session::open(entry, gpu(), sources, Platform::NATIVE, 0.0, 1.0).expect("legacy opens");
+    let value = |s: &Session, name: &str| s.lab().params().get(name).expect("a parameter").to_vec();
+    let (near, far) = (value(&s, "near"), value(&s, "far"));
+    // The panel's control asks near past far: refused, nothing changed.
+    let e = s.set_values("near", &[far[0] + 1.0]).expect_err("near past far");
+    assert!(e.to_string().contains("near"), "{e}");
+    assert_eq!((value(&s, "near"), value(&s, "far")), (near.clone(), far.clone()));
+    // As --set refuses it.
+    assert!(s.set("near", &(far[0] + 1.0).to_string()).is_err());
+    assert_eq!(value(&s, "near"), near);
+    // Taken: the lab is drawn again.
+    while s.dirty() > 0 {
+        s.drawn();
+    }
+    s.set_values("near", &[near[0] * 2.0]).expect("a nearer plane");
+    assert_eq!(value(&s, "near"), vec![near[0] * 2.0]);
+    assert!(s.wants_frame(), "a write taken draws again");
+    // Reset all: every parameter back to its default, through the same checks.
+    s.reset().expect("the defaults pass the checks");
+    assert_eq!(value(&s, "near"), near);
+    // An unknown name or a value past a declared range is the same refusal as --set's.
+    assert!(s.set_values("nosuch", &[1.0]).is_err());
+}
+
+/// The one resolver of a shader file name (the page's, `view`'s and the window's): a file by its
+/// path, by a unique ending, or through another path; otherwise why, naming the lab's files.
+#[test]
+fn a_shader_file_is_found_by_its_path_its_name_or_another_path() {
+    let mut s = session();
+    let full = phong_frag(&mut s);
+    assert_eq!(s.find_file(&full).as_deref(), Ok(full.as_str()));
+    assert_eq!(s.find_file("phong.frag").as_deref(), Ok(full.as_str()));
+    let absolute = std::fs::canonicalize(&full).expect("the source tree's file");
+    assert_eq!(s.find_file(&absolute.to_string_lossy()).as_deref(), Ok(full.as_str()));
+    let why = s.find_file("nofile.frag").expect_err("no such file");
+    assert!(
+        why.contains("is not a file of this lab's shaders") && why.contains(&full),
+        "{why}"
+    );
+    // A diff in a session of the built-in shaders says why, and shows it in place of a view.
+    let said = s.show_view(gpu(), Some(Wanted::Diff)).expect("words to say");
+    assert!(said.contains("--shaders DIR"), "{said}");
 }

@@ -601,7 +601,7 @@ fn native_view_of(
     common::set_state(lab.as_mut(), &state);
     let (w, h) = entry.info.size;
     let vh = h - picture::LEGEND_HEIGHT;
-    let log = view::record(gpu, lab.as_mut(), w, vh).expect("the frame records");
+    let log = view::encode(gpu, lab.as_mut(), w, vh).expect("the frame records");
     let file = (log.draws().iter())
         .flat_map(|d| d.setup.fragment.source.files.iter().map(|(p, _)| p.clone()))
         .find(|p| p.ends_with(suffix))

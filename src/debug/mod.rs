@@ -66,11 +66,11 @@ pub fn user_name(shader: &CompiledShader, name: &str) -> String {
     }
 }
 
-/// Records one frame of `lab` at `width` × `height` offscreen (in `format`, the one its
+/// Encodes one frame of `lab` at `width` × `height` offscreen (in `format`, the one its
 /// pipelines were built for) with its draws written down, without running it, and starts
 /// reading their buffers back: the target and the frame (to submit for its picture) come with
 /// the read-back.
-fn record_logged(
+fn encode_logged(
     gpu: &crate::gpu::Gpu,
     lab: &mut dyn crate::lab::Lab,
     (width, height): (u32, u32),
@@ -78,7 +78,7 @@ fn record_logged(
 ) -> Result<(crate::offscreen::Offscreen, wgpu::CommandBuffer, Pending)> {
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, format);
     let log = crate::render::DrawLog::new();
-    let frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    let frame = crate::lab::frame::encode(gpu, lab, &target, Some(&log))?;
     let pending = Pending::start(gpu, &log);
     Ok((target, frame, pending))
 }
@@ -94,7 +94,7 @@ pub fn capture_start(
     size: (u32, u32),
     format: wgpu::TextureFormat,
 ) -> Result<Pending> {
-    let (target, frame, pending) = record_logged(gpu, lab, size, format)?;
+    let (target, frame, pending) = encode_logged(gpu, lab, size, format)?;
     Ok(pending.draw(gpu, target, frame))
 }
 
@@ -110,10 +110,10 @@ pub struct Capture {
 
 #[cfg(not(target_arch = "wasm32"))]
 impl Capture {
-    /// Records one frame of `lab` at `width` × `height` with its draws written down and brings
+    /// Encodes one frame of `lab` at `width` × `height` with its draws written down and brings
     /// them to the CPU, without running it.
-    pub fn record(gpu: &crate::gpu::Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<Capture> {
-        let (target, frame, pending) = record_logged(gpu, lab, (width, height), crate::offscreen::COLOR_FORMAT)?;
+    pub fn encode(gpu: &crate::gpu::Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<Capture> {
+        let (target, frame, pending) = encode_logged(gpu, lab, (width, height), crate::offscreen::COLOR_FORMAT)?;
         let captured = pending.wait(gpu)?;
         Ok(Capture {
             captured,
@@ -133,7 +133,7 @@ impl Capture {
     }
 }
 
-/// Records one frame of `lab` at `width` × `height` with its draws written down and brings
+/// Encodes one frame of `lab` at `width` × `height` with its draws written down and brings
 /// them to the CPU before running the frame on the GPU (so that a shader that never ends can
 /// still be captured); with `picture`, then runs it and reads back what the GPU drew (as
 /// `--screenshot` would write it, and in [`Captured::picture`]).
@@ -145,7 +145,7 @@ pub fn capture_lab(
     height: u32,
     picture: bool,
 ) -> Result<(Option<image::RgbaImage>, Captured)> {
-    let capture = Capture::record(gpu, lab, width, height)?;
+    let capture = Capture::encode(gpu, lab, width, height)?;
     if !picture {
         return Ok((None, capture.captured));
     }

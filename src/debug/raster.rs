@@ -17,7 +17,7 @@ impl Viewport {
     /// Clip-space position → window position (x right, y down, in pixels), depth and 1/w, in
     /// `f32` as the vertex pipeline's epilogue computes them (scale, then translate by the
     /// viewport's centre).
-    pub fn to_window(&self, p: [f32; 4]) -> [f32; 4] {
+    pub fn to_window(self, p: [f32; 4]) -> [f32; 4] {
         let oow = 1.0 / p[3];
         let [sx, sy, sz] = self.scale();
         let [tx, ty, tz] = self.translate();
@@ -30,18 +30,18 @@ impl Viewport {
     }
 
     /// The viewport transform's scale (y flipped: window rows run down).
-    fn scale(&self) -> [f32; 3] {
+    fn scale(self) -> [f32; 3] {
         [self.width * 0.5, -self.height * 0.5, self.max_depth - self.min_depth]
     }
 
     /// Its translation: the viewport's centre and near depth.
-    fn translate(&self) -> [f32; 3] {
+    fn translate(self) -> [f32; 3] {
         [self.x + self.width * 0.5, self.y + self.height * 0.5, self.min_depth]
     }
 
     /// Where the clipper's vertices land: divided, then scaled and translated unfused, as
     /// llvmpipe's clipper interpolates them.
-    fn to_window_unfused(&self, p: [f32; 4]) -> [f32; 4] {
+    fn to_window_unfused(self, p: [f32; 4]) -> [f32; 4] {
         let oow = 1.0f32 / p[3];
         let [sx, sy, sz] = self.scale();
         let [tx, ty, tz] = self.translate();

@@ -449,16 +449,34 @@ fn files(draws: &[DrawCall]) -> Vec<String> {
 /// `file` as the draws' shaders name it: itself, or the one file whose path ends with it
 /// (`phong.frag` for `shaders_glsl/phong.frag`).
 fn full_path(draws: &[DrawCall], file: &str) -> String {
-    let all = files(draws);
-    if all.iter().any(|p| p == file) {
-        return file.to_owned();
+    find_file(&files(draws), file).unwrap_or_else(|| file.to_owned())
+}
+
+/// The one of `files` (display paths, as a lab shows its shader files) that `given` names:
+/// that path, else the one file whose path ends with `given` as whole path components
+/// (`phong.frag` for `shaders_glsl/phong.frag` or `DIR/phong.frag`), else the same file through
+/// another path (natively). `None` where none or several fit: the command line, the window and
+/// the page resolve a user's file name by this one rule.
+pub fn find_file(files: &[String], given: &str) -> Option<String> {
+    if files.iter().any(|p| p == given) {
+        return Some(given.to_owned());
     }
-    let tail = format!("/{}", file.trim_start_matches("./"));
-    let ends: Vec<&String> = all.iter().filter(|p| p.ends_with(&tail)).collect();
-    match ends.as_slice() {
-        [one] => (*one).clone(),
-        _ => file.to_owned(),
+    let given_path = std::path::Path::new(given.trim_start_matches("./"));
+    let ending: Vec<&String> = files
+        .iter()
+        .filter(|p| std::path::Path::new(p.as_str()).ends_with(given_path))
+        .collect();
+    if let [one] = ending.as_slice() {
+        return Some((*one).clone());
     }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let same =
+            |p: &String| matches!((std::fs::canonicalize(p), std::fs::canonicalize(given)), (Ok(a), Ok(b)) if a == b);
+        files.iter().find(|p| same(p)).cloned()
+    }
+    #[cfg(target_arch = "wasm32")]
+    None
 }
 
 fn not_drawn(draws: &[DrawCall], file: &str, stage: Stage) -> ViewError {
@@ -788,7 +806,7 @@ impl ViewDrawer {
         self.targets.as_ref().map(|t| (&t.value.1, &t.info.1))
     }
 
-    /// Records the view `probe` of the frame `log` wrote down (at `width` × `height`) into
+    /// Encodes the view `probe` of the frame `log` wrote down (at `width` × `height`) into
     /// `encoder`: the value and info targets ([`ViewDrawer::targets`]) hold it once the
     /// encoder runs. Builds what it has not built for an earlier frame.
     pub fn encode(
@@ -1100,26 +1118,26 @@ pub fn draw_view(gpu: &Gpu, log: &DrawLog, probe: &Probe, width: u32, height: u3
     ViewDrawer::new().draw_once(gpu, log, probe, width, height)
 }
 
-/// Records one frame of `lab` at `width` × `height` with its draws written down, without
+/// Encodes one frame of `lab` at `width` × `height` with its draws written down, without
 /// running it: what a view draws again.
-pub fn record(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<DrawLog> {
+pub fn encode(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, width: u32, height: u32) -> Result<DrawLog> {
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, crate::offscreen::COLOR_FORMAT);
     let log = DrawLog::new();
-    let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    let _frame = crate::lab::frame::encode(gpu, lab, &target, Some(&log))?;
     Ok(log)
 }
 
-/// Records one frame of `lab` against `target` (its size and format) with its draws written
+/// Encodes one frame of `lab` against `target` (its size and format) with its draws written
 /// down, without running it.
-pub fn record_to(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, target: &crate::offscreen::Offscreen) -> Result<DrawLog> {
+pub fn encode_to(gpu: &Gpu, lab: &mut dyn crate::lab::Lab, target: &crate::offscreen::Offscreen) -> Result<DrawLog> {
     let log = DrawLog::new();
-    let _frame = crate::lab::frame::record(gpu, lab, target, Some(&log))?;
+    let _frame = crate::lab::frame::encode(gpu, lab, target, Some(&log))?;
     Ok(log)
 }
 
-/// Records one frame of `lab` as [`record`] does, for a lab whose pipelines draw in `format`
+/// Encodes one frame of `lab` as [`encode`] does, for a lab whose pipelines draw in `format`
 /// (a window's lab draws in its surface's format).
-pub fn record_in(
+pub fn encode_in(
     gpu: &Gpu,
     lab: &mut dyn crate::lab::Lab,
     width: u32,
@@ -1128,11 +1146,11 @@ pub fn record_in(
 ) -> Result<DrawLog> {
     let target = crate::offscreen::Offscreen::with_format(gpu, width, height, format);
     let log = DrawLog::new();
-    let _frame = crate::lab::frame::record(gpu, lab, &target, Some(&log))?;
+    let _frame = crate::lab::frame::encode(gpu, lab, &target, Some(&log))?;
     Ok(log)
 }
 
-/// Records one frame of `lab` with its draws written down and brings them to the CPU: the log
+/// Encodes one frame of `lab` with its draws written down and brings them to the CPU: the log
 /// a view draws from and the capture the debugger replays, of the same frame.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn capture(
@@ -1141,7 +1159,7 @@ pub fn capture(
     width: u32,
     height: u32,
 ) -> Result<(DrawLog, super::Captured)> {
-    let log = record(gpu, lab, width, height)?;
+    let log = encode(gpu, lab, width, height)?;
     let captured = super::Pending::start(gpu, &log).wait(gpu)?;
     Ok((log, captured))
 }

@@ -1,5 +1,5 @@
 //! One frame of a lab: drawn into views it is given ([`draw`], which the shells' session and
-//! everything offscreen go through), offscreen ([`record`], [`render_into`]: `--screenshot`,
+//! everything offscreen go through), offscreen ([`encode`], [`render_into`]: `--screenshot`,
 //! `--record`, F10, F12 and the debugger's capture), and read back ([`screenshot`]). It uses
 //! the lab and the render targets, nothing above.
 
@@ -9,7 +9,7 @@ use crate::lab::Lab;
 use crate::offscreen::{Offscreen, COLOR_FORMAT};
 use crate::render::{DrawLog, Frame};
 
-/// Records one frame of `lab` into `encoder`, drawing into `color` with its `depth` buffer,
+/// Encodes one frame of `lab` into `encoder`, drawing into `color` with its `depth` buffer,
 /// `width` × `height` pixels, writing every draw into `log` when given; under [`Gpu::checked`],
 /// so an error wgpu reports, or a panic inside it, comes back rather than reaching the device's
 /// handler. `Err` when the frame failed; `Ok(Some(e))` when it was drawn but the lab found `e`
@@ -33,18 +33,18 @@ pub fn draw(
     Ok(lab.take_error())
 }
 
-/// Records one frame of `lab` into `target` and submits it.
+/// Encodes one frame of `lab` into `target` and submits it.
 pub fn render_into(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen) -> Result<()> {
-    let frame = record(gpu, lab, target, None)?;
+    let frame = encode(gpu, lab, target, None)?;
     gpu.queue.submit([frame]);
     Ok(())
 }
 
-/// Records one frame of `lab` into `target` without submitting it, writing every draw into
+/// Encodes one frame of `lab` into `target` without submitting it, writing every draw into
 /// `log` when given (the debugger's capture: the draws' data can be read back before, or
 /// without, the frame running on the GPU). The frame's uniform uploads go with the next
 /// submission. An error the lab found while drawing fails the frame.
-pub fn record(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen, log: Option<&DrawLog>) -> Result<wgpu::CommandBuffer> {
+pub fn encode(gpu: &Gpu, lab: &mut dyn Lab, target: &Offscreen, log: Option<&DrawLog>) -> Result<wgpu::CommandBuffer> {
     let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("shaderlab.frame"),
     });

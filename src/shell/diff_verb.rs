@@ -12,6 +12,7 @@ use std::process::ExitCode;
 
 use super::args::Args;
 use super::cli::{say, Failure};
+use super::session::Sources;
 use super::verbs::{self, Mode};
 use crate::error::Error;
 use crate::lab::LabEntry;
@@ -177,20 +178,16 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             "the built-in shaders".to_owned(),
         ),
     };
-    let mut mine =
-        super::session::Session::open_lab(entry, &gpu, &copy, COLOR_FORMAT, &files).map_err(|e| match e {
+    let mut mine = Sources::new(copy.clone(), files.clone(), COLOR_FORMAT)
+        .build(&gpu, entry)
+        .map_err(|e| match e {
             Error::Layout(why) | Error::Binding(why) => Error::Debug(format!(
                 "{copy_words} takes different inputs from {reference_words}, so the two cannot be compared: {why}"
             )),
             e => e,
         })?;
-    let mut reference = super::session::Session::open_lab(
-        entry,
-        &gpu,
-        &ShaderSource::Embedded,
-        COLOR_FORMAT,
-        reference_files.as_ref().unwrap_or(&files),
-    )?;
+    let reference_files = reference_files.unwrap_or_else(|| files.clone());
+    let mut reference = Sources::new(ShaderSource::Embedded, reference_files, COLOR_FORMAT).build(&gpu, entry)?;
     if let Some(path) = &own.out {
         // Both labs have read their shaders and the files they include: no output may replace
         // one.

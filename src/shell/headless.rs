@@ -12,6 +12,7 @@ use crate::render::Frame;
 
 use super::args::Args;
 use super::cli::{say, Failure};
+use super::session::Sources;
 use crate::lab::frame::{render_into, screenshot};
 
 /// Checks a `--screenshot` name before anything is rendered or written.
@@ -40,12 +41,12 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         }
         None => None,
     };
-    let view = super::view_verb::Plan::of(entry, args)?;
+    let plan = super::view_verb::Plan::of(entry, args)?;
     let mut gpu = Gpu::headless()?;
     gpu.watchdog = args.watchdog();
     gpu.bounded_compiles = true;
     let source = args.shader_source()?;
-    let mut lab = super::session::Session::open_lab(entry, &gpu, &source, COLOR_FORMAT, files)?;
+    let mut lab = Sources::new(source, files.clone(), COLOR_FORMAT).build(&gpu, entry)?;
     // The lab has read its shaders and every file they include: inputs too, which no output
     // may replace. Checked again now, before any frame is drawn.
     if let Some(path) = &args.screenshot {
@@ -56,9 +57,9 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
     }
     *lab.params_mut() = params;
     let (width, height) = args.size(entry);
-    if let Some(view) = &view {
-        view.check_inputs()?;
-        return view.run(&gpu, lab.as_mut(), entry.info.name, width, height);
+    if let Some(plan) = &plan {
+        plan.check_inputs()?;
+        return plan.run(&gpu, lab.as_mut(), entry.info.name, width, height);
     }
     if let Some(frames) = args.bench {
         if args.gpu_time && !gpu.timestamps {
@@ -106,7 +107,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, params: Params, files: 
         }
         // The replay first, the frame after: a shader that never ends is explained by the
         // replay's error before the GPU is asked to run it.
-        let capture = crate::debug::Capture::record(&gpu, lab.as_mut(), width, height)?;
+        let capture = crate::debug::Capture::encode(&gpu, lab.as_mut(), width, height)?;
         let mut inspection = crate::debug::Inspection::new(entry.info.name, &capture.captured, x, y)?;
         let image = match capture.draw(&gpu) {
             Ok((image, _)) => Some(image),
@@ -295,11 +296,11 @@ pub fn bench(
             slice.map_async(wgpu::MapMode::Read, |_| {});
             gpu.wait()?;
             let ticks: Vec<u64> = {
-                let view = slice.get_mapped_range().map_err(|e| Error::Wgpu {
+                let mapped = slice.get_mapped_range().map_err(|e| Error::Wgpu {
                     context: "reading timestamps".into(),
                     message: e.to_string(),
                 })?;
-                bytemuck::cast_slice(&view).to_vec()
+                bytemuck::cast_slice(&mapped).to_vec()
             };
             read.unmap();
             let period = gpu.queue.get_timestamp_period() as f64;

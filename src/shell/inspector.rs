@@ -1,5 +1,5 @@
 //! The pixel inspector's sequence, written once for the window and the page (the
-//! [`super::session::Session`] owns it): the frame just drawn is recorded again offscreen with
+//! [`super::session::Session`] owns it): the frame just drawn is encoded again offscreen with
 //! its draws written down ([`crate::debug::capture_start`]), their buffers are read back while
 //! the shell goes on drawing ([`Inspector::poll`] never blocks), and the pixel is replayed by
 //! the runner the shell hands in: a worker thread in the window, so inspecting never stalls

@@ -29,6 +29,8 @@ pub mod inspector;
 pub mod panel;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod record;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod reload;
 pub mod session;
 pub mod surface;
 #[cfg(not(target_arch = "wasm32"))]

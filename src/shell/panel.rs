@@ -207,6 +207,16 @@ pub struct Status<'a> {
     pub can_diff: bool,
 }
 
+/// A parameter write asked for by the panel's controls: the window hands it to the session,
+/// which checks it as it checks `--set` ([`crate::shell::session::Session::set_values`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// The parameter of this name to these values.
+    Set(&'static str, Vec<f64>),
+    /// Every parameter to its default (Reset all).
+    Reset,
+}
+
 /// What the user asked of the window through the panel.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Request {
@@ -219,10 +229,10 @@ pub enum Request {
     Picture,
 }
 
-/// The panel's contents for `lab`; returns whether a parameter changed, and a request.
-pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool, Option<Request>) {
+/// The panel's contents for `lab`; returns the parameter writes asked for, and a request.
+pub fn contents(ui: &mut egui::Ui, lab: &dyn Lab, status: &Status) -> (Vec<Edit>, Option<Request>) {
     let info = lab.info();
-    let mut changed = false;
+    let mut edits = Vec::new();
     let mut request = None;
     ui.heading(format!("{} {}", info.original_title, info.label));
     ui.label(format!("{} · {}", info.lecture, info.name));
@@ -243,15 +253,11 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
                 ui.add_space(4.0);
                 ui.strong(w.group.title());
             }
-            changed |= row(ui, lab, w);
+            edits.extend(row(ui, lab, w));
         }
         ui.add_space(4.0);
         if ui.button("Reset all").clicked() {
-            let specs: Vec<ParamSpec> = lab.params().specs().to_vec();
-            for spec in specs {
-                let _ = lab.params_mut().set(spec.name, spec.default);
-            }
-            changed = true;
+            edits.push(Edit::Reset);
         }
         ui.separator();
         egui::CollapsingHeader::new("Keys and mouse")
@@ -307,18 +313,17 @@ pub fn contents(ui: &mut egui::Ui, lab: &mut dyn Lab, status: &Status) -> (bool,
                 }
             });
     });
-    (changed, request)
+    (edits, request)
 }
 
 /// The window's own keys, as the panel lists them.
 pub const KEYS: &str = "F1 panel · F2 inspect a pixel (click a line: its view) · F3 cost view · F4 diff with the built-in shaders · F10 record · F12 screenshot · Esc quits";
 
-/// One parameter's row: its control(s), a reset button, its help on hover.
-fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
+/// One parameter's row: its control(s), a reset button, its help on hover; returns the write
+/// its controls ask for.
+fn row(ui: &mut egui::Ui, lab: &dyn Lab, w: &Widget) -> Option<Edit> {
     let spec = &w.spec;
-    let Some(current) = lab.params().get(spec.name).map(<[f64]>::to_vec) else {
-        return false;
-    };
+    let current = lab.params().get(spec.name).map(<[f64]>::to_vec)?;
     let mut values = current.clone();
     let (lo, hi) = (spec.min, spec.max);
     ui.horizontal_wrapped(|ui| {
@@ -394,10 +399,7 @@ fn row(ui: &mut egui::Ui, lab: &mut dyn Lab, w: &Widget) -> bool {
             values = spec.default.to_vec();
         }
     });
-    if values != current && lab.params_mut().set(spec.name, &values).is_ok() {
-        return true;
-    }
-    false
+    (values != current).then_some(Edit::Set(spec.name, values))
 }
 
 /// A button for each choice a view that could not be drawn offers (`Show: a | b`); returns
@@ -419,7 +421,7 @@ fn choose(ui: &mut egui::Ui, choices: &[(String, crate::shell::views::Wanted)]) 
 }
 
 /// What the pixel inspector shows (F2).
-pub struct InspectView<'a> {
+pub struct InspectPanel<'a> {
     /// The pixel picked, if any.
     pub pixel: Option<(u32, u32)>,
     /// The last inspection, or why it failed.
@@ -612,7 +614,7 @@ pub fn panel_in<R>(ui: &mut egui::Ui, id: &str, rect: egui::Rect, add_contents: 
 /// The inspector: the pixel's colour, what covers it, the fragment shader line by line with
 /// each line's values to its right, the inputs at the pixel, the vertex shader at the
 /// triangle's corners.
-pub fn inspector(ui: &mut egui::Ui, view: &InspectView) -> Option<Request> {
+pub fn inspector(ui: &mut egui::Ui, view: &InspectPanel) -> Option<Request> {
     use crate::debug::Stage;
     let mut request = None;
     ui.horizontal(|ui| {
@@ -982,8 +984,8 @@ impl Panel {
         (keyboard && self.ctx.egui_wants_keyboard_input()) || (response.consumed && !keyboard)
     }
 
-    /// Runs the panel for this frame and records its drawing into `target` (after the lab's
-    /// pass, keeping its pixels); returns whether a parameter changed, and a request. The
+    /// Runs the panel for this frame and encodes its drawing into `target` (after the lab's
+    /// pass, keeping its pixels); returns the parameter writes asked for, and a request. The
     /// panels leave the bottom `legend` pixels of the window free: a whole-frame view's legend
     /// strip, which stays in sight whatever panels are open.
     #[allow(clippy::too_many_arguments)]
@@ -996,17 +998,17 @@ impl Panel {
         format: wgpu::TextureFormat,
         size: (u32, u32),
         legend: u32,
-        lab: &mut dyn Lab,
+        lab: &dyn Lab,
         status: &Status,
-        inspect: Option<&InspectView>,
-    ) -> (bool, Option<Request>) {
+        inspect: Option<&InspectPanel>,
+    ) -> (Vec<Edit>, Option<Request>) {
         self.inspecting = inspect.is_some();
         if !self.shown && !self.inspecting {
             self.repaint = false;
-            return (false, None);
+            return (Vec::new(), None);
         }
         let raw = self.input.take_egui_input(window);
-        let mut result = (false, None);
+        let mut result = (Vec::new(), None);
         let mut drawn = Vec::new();
         let ppp = egui_winit::pixels_per_point(&self.ctx, window);
         // The panels' part of the window: all of it above the legend strip.

@@ -1,21 +1,27 @@
 //! What every front end does with the lab it shows, written once: the window
 //! ([`super::window`]) and the page (`shell::web`, in the browser build) each hold a
-//! [`Session`] and keep only what their platform forces (where events come from, how a frame
-//! reaches the screen, how the inspector's replay runs).
+//! [`Session`], turn their events into its calls and present what it drew; they keep only what
+//! their platform forces (where events come from, acquiring and presenting the surface, the
+//! panel's widgets, files and signals in the window, the DOM and the link on the page).
 //!
-//! A session opens the lab ([`Session::open`]; [`Session::open_lab`] builds one without a
-//! session, for the headless runs and the window's live reload), lists its shader files
-//! ([`Session::shader_files`]), draws the lab's frame into a view it is given
-//! ([`Session::draw`]; [`Session::record`] leaves the encoder open for the window's panel)
-//! through the one checked render ([`crate::lab::frame::draw`]), with the error to show, and
-//! inspects a pixel of the frame it drew ([`Session::inspect_frame`], [`Session::inspect_poll`]
-//! with the replay's runner handed in; [`super::inspector`]). It holds the lab (its parameters
-//! with it), the clock of an animated lab, the frames still to draw after a change, the mouse
-//! (GLUT's drag rule: the motion callback runs while any button is held, the press and release
-//! callbacks are the left button's), the standing shader error, and turns key names into the
-//! original's callbacks. The panel's model (which control each parameter gets, in which group)
-//! is [`super::panel::widgets`], and the surface drawn into is [`super::surface::Swapchain`],
-//! both shared too.
+//! A session opens the lab from its [`Sources`] (where its shaders come from, the user's files,
+//! the format it draws in; [`Sources::build`] builds a lab the same way for the headless runs
+//! and the window's live reload), and draws a frame in one call ([`Session::frame`]): the clock,
+//! the view asked for or else the lab's frame through the one checked render
+//! ([`crate::lab::frame::draw`]), the inspector's capture and its replay, the diff. What does
+//! not fit in a frame goes on between frames ([`Session::poll`]) the platform's way, given once
+//! when the session opens ([`Platform`]: a replay on a thread and read-backs waited for
+//! natively, inline and polled on the page). It holds the lab (its parameters with it, every
+//! write checked, [`Session::set_values`]), the clock of an animated lab, the frames still to
+//! draw after a change, the mouse (GLUT's drag rule: the motion callback runs while any button
+//! is held, the press and release callbacks are the left button's), the standing shader error,
+//! and turns key names into the original's callbacks. It lists and resolves the lab's shader
+//! files ([`Session::shader_files`], [`Session::find_file`]) and builds the diff's reference
+//! itself. The panel's model (which control each parameter gets, in which group) is
+//! [`super::panel::widgets`], and the surface drawn into is [`super::surface::Swapchain`], both
+//! shared too.
+
+use std::sync::Arc;
 
 use super::clock::Clock;
 use super::inspector::{Inspector, Job, Shown};
@@ -65,6 +71,8 @@ impl Button {
 pub struct Session {
     entry: &'static LabEntry,
     lab: Box<dyn Lab>,
+    sources: Sources,
+    platform: Platform,
     clock: Clock,
     /// Frames still to draw for a lab that is not animated (input, resize, reload).
     dirty: u32,
@@ -93,6 +101,90 @@ struct Inspect {
     press: Option<(i32, i32)>,
 }
 
+/// What a lab is built from: where its shaders come from, the user's files (pictures, a model,
+/// `legacy`'s pair), and the colour format its pipelines draw in.
+#[derive(Clone)]
+pub struct Sources {
+    /// The shaders: built in, a folder, or texts edited on the page.
+    pub source: ShaderSource,
+    /// The user's files.
+    pub files: Arc<UserFiles>,
+    /// The format of the targets the lab draws into.
+    pub format: wgpu::TextureFormat,
+}
+
+impl Sources {
+    /// Sources of `source` and `files`, drawing in `format`.
+    pub fn new(source: ShaderSource, files: UserFiles, format: wgpu::TextureFormat) -> Sources {
+        Sources {
+            source,
+            files: Arc::new(files),
+            format,
+        }
+    }
+
+    /// The same files and format, with the shaders of `source`.
+    pub fn with_source(&self, source: ShaderSource) -> Sources {
+        Sources { source, ..self.clone() }
+    }
+
+    /// Builds `entry`'s lab on `gpu`: how every front end builds one (the headless runs and
+    /// the window's live reload too).
+    pub fn build(&self, gpu: &Gpu, entry: &'static LabEntry) -> Result<Box<dyn Lab>> {
+        (entry.new)(&BuildContext::new(gpu, &self.source, self.format, &self.files))
+    }
+}
+
+/// How the platform runs what does not fit in a frame: an inspection's replay and the read-back
+/// of a diff's frames.
+#[derive(Clone, Copy)]
+pub struct Platform {
+    /// Runs an inspection's replay once its capture is back (or says why it cannot).
+    pub replay: fn(Job) -> std::result::Result<(), String>,
+    /// Whether a read-back may be waited for; otherwise it is polled over frames.
+    pub waits: bool,
+}
+
+impl Platform {
+    /// A process with threads that may block: the replay runs on a worker thread of its own,
+    /// a diff's frames are waited for.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub const NATIVE: Platform = Platform {
+        replay: super::inspector::on_a_thread,
+        waits: true,
+    };
+
+    /// A browser page with one thread that must never block: the replay runs inline, a diff's
+    /// frames are read back over frames.
+    pub const PAGE: Platform = Platform {
+        replay: super::inspector::inline,
+        waits: false,
+    };
+}
+
+/// Where a frame is drawn: the surface's colour target and depth buffer, and its size (in the
+/// session's format, [`Sources::format`]).
+pub struct Target<'a> {
+    /// The colour target.
+    pub color: &'a wgpu::TextureView,
+    /// Its depth buffer.
+    pub depth: &'a wgpu::TextureView,
+    /// Its size in pixels.
+    pub size: (u32, u32),
+}
+
+/// What a frame or a poll made, for the shell to show.
+#[derive(Debug, Default)]
+pub struct Outcome {
+    /// An error to show once: the frame's own, or one the lab found (a shading model whose
+    /// shader is broken, which then also stands as [`Session::shader_error`]).
+    pub error: Option<Error>,
+    /// The view made a new picture, legend or error ([`Session::view_shown`]).
+    pub view: bool,
+    /// A new inspection arrived, or the last one failed ([`Session::inspection`]).
+    pub inspection: bool,
+}
+
 /// How far (in pixels) the mouse may move between press and release for a click.
 const CLICK_SLOP: i32 = 2;
 
@@ -112,40 +204,24 @@ pub struct ProgramFiles {
 }
 
 impl Session {
-    /// Builds `entry`'s lab on `gpu` from `source`, to draw in `format`, with the user's `files`:
-    /// how every front end opens a lab (the headless runs and the window's live reload too).
-    pub fn open_lab(
-        entry: &'static LabEntry,
-        gpu: &Gpu,
-        source: &ShaderSource,
-        format: wgpu::TextureFormat,
-        files: &UserFiles,
-    ) -> Result<Box<dyn Lab>> {
-        (entry.new)(&BuildContext::new(gpu, source, format, files))
-    }
-
-    /// A session of `entry`'s lab, opened as [`Session::open_lab`] does, its clock starting at
-    /// `now` (seconds on the front end's clock) and running `scale` times real time.
+    /// A session of `entry`'s lab built from `sources` on `gpu`, running what does not fit in a
+    /// frame the `platform`'s way, its clock starting at `now` (seconds on the front end's
+    /// clock) and running `scale` times real time.
     pub fn open(
         entry: &'static LabEntry,
         gpu: &Gpu,
-        source: &ShaderSource,
-        format: wgpu::TextureFormat,
-        files: &UserFiles,
+        sources: Sources,
+        platform: Platform,
         now: f64,
         scale: f64,
     ) -> Result<Session> {
-        let lab = Session::open_lab(entry, gpu, source, format, files)?;
-        Ok(Session::new(entry, lab, now, scale))
-    }
-
-    /// A session of `lab`, `entry`'s, its clock starting at `now` and running `scale` times
-    /// real time.
-    fn new(entry: &'static LabEntry, lab: Box<dyn Lab>, now: f64, scale: f64) -> Session {
+        let lab = sources.build(gpu, entry)?;
         let clock = Clock::new(lab.as_ref(), now, scale);
-        Session {
+        Ok(Session {
             entry,
             lab,
+            sources,
+            platform,
             clock,
             dirty: FRAMES_AFTER_A_CHANGE,
             buttons: 0,
@@ -155,7 +231,7 @@ impl Session {
             inspect: Inspect::default(),
             inspector: Inspector::default(),
             views: Views::default(),
-        }
+        })
     }
 
     /// With the lab's parameters replaced by `params` (the command line's) before its first
@@ -187,15 +263,10 @@ impl Session {
         self.lab.as_ref()
     }
 
-    /// The lab, to change.
+    /// The lab, to change (its parameters only through [`Session::set_values`] and
+    /// [`Session::set`], which check them).
     pub fn lab_mut(&mut self) -> &mut dyn Lab {
         self.lab.as_mut()
-    }
-
-    /// The lab, to change, beside the last inspection (the window's panel shows the one and
-    /// edits the other's parameters).
-    pub fn lab_and_inspection(&mut self) -> (&mut dyn Lab, Option<&Shown>) {
-        (self.lab.as_mut(), self.inspector.shown())
     }
 
     /// Whether the clock is paused.
@@ -209,7 +280,7 @@ impl Session {
         self.clock.runs(self.lab.as_ref())
     }
 
-    /// Advances an animated lab's `time` to the clock at `now`.
+    /// Advances an animated lab's `time` to the clock at `now` ([`Session::frame`] does).
     pub fn tick(&mut self, now: f64) {
         if self.animated() {
             self.version += 1;
@@ -220,6 +291,12 @@ impl Session {
     /// Whether a frame should be drawn now (a view being read back is moved on by frames too).
     pub fn wants_frame(&self) -> bool {
         self.animated() || self.dirty > 0 || self.views.busy()
+    }
+
+    /// Whether something goes on between frames that [`Session::poll`] moves on: an
+    /// inspection being captured or replayed, a view waiting for the GPU.
+    pub fn busy(&self) -> bool {
+        self.inspector.busy() || self.views.busy()
     }
 
     /// Frames still to draw after the last change.
@@ -324,13 +401,35 @@ impl Session {
     /// Sets a parameter from text, as `--set name=value`, checking the lab's rules between
     /// parameters; a refused value is undone.
     pub fn set(&mut self, name: &str, value: &str) -> Result<()> {
+        self.change(|p| p.set_str(name, value).map(drop))
+    }
+
+    /// Sets a parameter to `values` (the panel's controls), with the checks of
+    /// [`Session::set`].
+    pub fn set_values(&mut self, name: &str, values: &[f64]) -> Result<()> {
+        self.change(|p| p.set(name, values).map(drop))
+    }
+
+    /// Sets every parameter back to its default (the panel's Reset all), with the checks of
+    /// [`Session::set`].
+    pub fn reset(&mut self) -> Result<()> {
+        self.change(|p| {
+            let specs: Vec<crate::params::ParamSpec> = p.specs().to_vec();
+            specs
+                .iter()
+                .try_for_each(|spec| p.set(spec.name, spec.default).map(drop))
+        })
+    }
+
+    /// Every parameter write: `write`, then the lab's rules between parameters; a refused
+    /// change is undone whole, a taken one draws and inspects again.
+    fn change(&mut self, write: impl FnOnce(&mut Params) -> Result<()>) -> Result<()> {
         let p = self.lab.params_mut();
         let before = p.clone();
-        let result = p.set_str(name, value).and_then(|_| p.check());
-        if result.is_err() {
-            *p = before;
-        } else {
-            self.touched();
+        let result = write(p).and_then(|()| p.check());
+        match &result {
+            Err(_) => *p = before,
+            Ok(()) => self.touched(),
         }
         result
     }
@@ -346,18 +445,25 @@ impl Session {
         self.shader_error.as_deref()
     }
 
-    /// Compiles the lab's shaders again from `source` (an edit on the page), with what it was
-    /// opened with otherwise; a failure keeps the last good pipelines and stands as
-    /// [`Session::shader_error`] until a reload succeeds.
-    pub fn reload(
-        &mut self,
-        gpu: &Gpu,
-        source: &ShaderSource,
-        format: wgpu::TextureFormat,
-        files: &UserFiles,
-    ) -> Result<()> {
+    /// From now on, runs what does not fit in a frame `platform`'s way.
+    pub fn set_platform(&mut self, platform: Platform) {
+        self.platform = platform;
+    }
+
+    /// Where the lab is built from.
+    pub fn sources(&self) -> &Sources {
+        &self.sources
+    }
+
+    /// Compiles the lab's shaders again from `source` (an edit on the page), in place, with its
+    /// files and format; later reloads and the diff's copy read from `source` too. A failure
+    /// keeps the last good pipelines and stands as [`Session::shader_error`] until a reload
+    /// succeeds.
+    pub fn reload(&mut self, gpu: &Gpu, source: ShaderSource) -> Result<()> {
+        self.sources.source = source;
         self.touched();
-        match self.lab.reload(&BuildContext::new(gpu, source, format, files)) {
+        let sources = &self.sources;
+        match (self.lab).reload(&BuildContext::new(gpu, &sources.source, sources.format, &sources.files)) {
             Ok(()) => {
                 self.shader_error = None;
                 Ok(())
@@ -367,6 +473,12 @@ impl Session {
                 Err(e)
             }
         }
+    }
+
+    /// From now on the shaders come from `source`, which holds the texts the lab draws with
+    /// already (the built-in shaders written into a folder to edit): nothing is built again.
+    pub fn moved_to(&mut self, source: ShaderSource) {
+        self.sources.source = source;
     }
 
     /// Shows `lab`, built anew from the shaders just saved, in place of the lab shown (the
@@ -418,6 +530,27 @@ impl Session {
         all
     }
 
+    /// The lab's shader file that `given` names, as the lab shows it ([`Session::shader_files`]'
+    /// display paths): the file of that path, the one file whose path ends with it
+    /// (`phong.frag` for `shaders_glsl/phong.frag`), or the same file through another path;
+    /// otherwise why not, naming the lab's files.
+    pub fn find_file(&mut self, given: &str) -> std::result::Result<String, String> {
+        let mut files: Vec<String> = Vec::new();
+        for program in self.shader_files() {
+            for file in program.spliced {
+                if !files.contains(&file) {
+                    files.push(file);
+                }
+            }
+        }
+        crate::debug::view::find_file(&files, given).ok_or_else(|| {
+            format!(
+                "{given} is not a file of this lab's shaders; its files are {}",
+                files.join(", ")
+            )
+        })
+    }
+
     /// Turns inspect mode on or off (F2): on, a click picks the pixel to inspect; off, the
     /// last inspection is forgotten.
     pub fn toggle_inspect(&mut self) {
@@ -449,13 +582,12 @@ impl Session {
         self.touched();
     }
 
-    /// The frame just drawn, at `size` in `format`: when a pixel is inspected, the lab changed
-    /// since its last inspection was captured and none is in flight, the frame is recorded
-    /// again offscreen with its draws written down, and their read-back starts
-    /// ([`Session::inspect_poll`] moves it on). The same state draws the same frame, so the
-    /// capture is the frame shown. Returns whether [`Session::inspection`] changed (the
-    /// capture failed; then draw again).
-    pub fn inspect_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
+    /// When a pixel is inspected, the lab changed since its last inspection was captured and
+    /// none is in flight: the lab's frame is recorded again offscreen at `size` with its draws
+    /// written down, and their read-back starts ([`Session::poll`] moves it on). The same state
+    /// draws the same frame, so the capture is the frame shown. Returns whether
+    /// [`Session::inspection`] changed (the capture failed; then draw again).
+    fn capture(&mut self, gpu: &Gpu, size: (u32, u32)) -> bool {
         let Some(pixel) = self.inspected() else {
             return false;
         };
@@ -463,25 +595,54 @@ impl Session {
             return false;
         }
         self.inspect.taken = Some(self.version);
-        let changed = self.inspector.start(gpu, self.lab.as_mut(), size, format, pixel);
+        let changed = self
+            .inspector
+            .start(gpu, self.lab.as_mut(), size, self.sources.format, pixel);
         if changed {
             self.changed();
         }
         changed
     }
 
-    /// Moves the inspection on without blocking: a finished read-back is replayed by `run`
-    /// (a worker thread in the window, [`super::inspector::inline`] on the page), a finished
-    /// replay becomes [`Session::inspection`]. Returns whether that changed (then draw again).
-    pub fn inspect_poll(&mut self, gpu: &Gpu, run: impl FnOnce(Job) -> std::result::Result<(), String>) -> bool {
-        if !self.inspector.busy() {
-            return false;
-        }
-        let changed = self.inspector.poll(gpu, self.entry.info.name, run);
-        if changed {
+    /// Moves on, without drawing, what goes on between frames, the platform's way: the
+    /// inspection (a finished read-back replayed on a thread or inline, a finished replay
+    /// taken), the view asked for (drawn again when the lab changed since its last picture,
+    /// its legend or a diff's frames taken when they are back), then a capture of the
+    /// inspected pixel's frame at `size` when the lab changed since the last. Says what it
+    /// made; something made draws again.
+    pub fn poll(&mut self, gpu: &Gpu, size: (u32, u32)) -> Outcome {
+        let mut out = Outcome::default();
+        if self.inspector.busy() && self.inspector.poll(gpu, self.entry.info.name, self.platform.replay) {
+            out.inspection = true;
             self.changed();
         }
-        changed
+        let made = self.views.update(
+            gpu,
+            self.lab.as_mut(),
+            self.version,
+            size,
+            self.sources.format,
+            self.platform.waits,
+        );
+        if made {
+            out.view = true;
+            self.changed();
+        }
+        // Captured last: the capture started here is moved on by the next poll.
+        out.inspection |= self.capture(gpu, size);
+        out
+    }
+
+    /// Draws one frame into `target`, recorded into `encoder` (the shell submits it, with what
+    /// it draws over it, and presents): the clock advanced to `now`, what goes on between
+    /// frames moved on ([`Session::poll`]), then the view asked for, or else the lab's frame
+    /// ([`Session::encode`]).
+    pub fn frame(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, target: &Target, now: f64) -> Outcome {
+        self.tick(now);
+        self.drawn();
+        let mut out = self.poll(gpu, target.size);
+        out.error = self.encode(gpu, encoder, target);
+        out
     }
 
     /// Whether an inspection is being captured or replayed.
@@ -495,20 +656,23 @@ impl Session {
         self.inspector.shown()
     }
 
-    /// Records the lab's frame into `encoder`, drawing into `color` with its `depth` buffer,
-    /// `size` pixels, as every frame is drawn ([`crate::lab::frame::draw`], checked); returns
-    /// an error to show once (the frame's own, or one the lab found, such as a shading model
-    /// whose shader is broken, which then also stands as the shader error). The window records
-    /// its panel into the same encoder, and submits it as it presents.
-    pub fn record(
-        &mut self,
-        gpu: &Gpu,
-        encoder: &mut wgpu::CommandEncoder,
-        color: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
-        size: (u32, u32),
-    ) -> Option<Error> {
-        match crate::lab::frame::draw(gpu, encoder, self.lab.as_mut(), color, depth, size, None) {
+    /// Encodes what the session shows into `target` in `encoder`, without moving anything on:
+    /// the view's picture when one is asked for and drawn, or else the lab's frame, as every
+    /// frame is drawn ([`crate::lab::frame::draw`], checked). Returns the error to show once
+    /// (see [`Outcome::error`]).
+    pub fn encode(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, target: &Target) -> Option<Error> {
+        if self.views.encode(gpu, encoder, target.color, self.sources.format) {
+            return None;
+        }
+        match crate::lab::frame::draw(
+            gpu,
+            encoder,
+            self.lab.as_mut(),
+            target.color,
+            target.depth,
+            target.size,
+            None,
+        ) {
             Err(e) => Some(e),
             Ok(found) => {
                 if let Some(e) = &found {
@@ -519,23 +683,16 @@ impl Session {
         }
     }
 
-    /// Records the lab's frame as [`Session::record`] does, in an encoder of its own named
-    /// `label`, and submits it; returns the error to show once. The caller presents or reads
-    /// back what was drawn.
-    pub fn draw(
-        &mut self,
-        gpu: &Gpu,
-        label: &str,
-        color: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
-        size: (u32, u32),
-    ) -> Option<Error> {
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-        let error = self.record(gpu, &mut encoder, color, depth, size);
-        gpu.queue.submit([encoder.finish()]);
-        error
+    /// What the session shows at `size`, drawn offscreen and read back (F12): the view's
+    /// picture, or the lab's frame.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn picture(&mut self, gpu: &Gpu, (w, h): (u32, u32)) -> Result<image::RgbaImage> {
+        if let Some(picture) = self.views.read(gpu) {
+            return picture.map(|image| image::imageops::crop_imm(&image, 0, 0, w, h).to_image());
+        }
+        let target = crate::offscreen::Offscreen::with_format(gpu, w, h, self.sources.format);
+        crate::lab::frame::render_into(gpu, self.lab.as_mut(), &target)?;
+        target.read(gpu)
     }
 
     /// The whole-frame view asked for (none: the lab's picture shows).
@@ -544,48 +701,46 @@ impl Session {
     }
 
     /// Shows `wanted` in place of the lab's picture, or the picture again when it is the view
-    /// shown; `reference` is the lab built from its built-in shaders, for a diff.
-    pub fn toggle_view(&mut self, wanted: Wanted, reference: Option<Box<dyn Lab>>) {
-        self.views.toggle(wanted, reference);
-        self.changed();
+    /// shown (F3, F4, a line clicked in the inspector); as [`Session::show_view`].
+    pub fn toggle_view(&mut self, gpu: &Gpu, wanted: Wanted) -> Option<String> {
+        if self.views.wanted() == Some(&wanted) {
+            self.show_view(gpu, None)
+        } else {
+            self.show_view(gpu, Some(wanted))
+        }
     }
 
-    /// Shows `wanted` in place of the lab's picture (none: the picture again).
-    pub fn set_view(&mut self, wanted: Option<Wanted>, reference: Option<Box<dyn Lab>>) {
+    /// Shows `wanted` in place of the lab's picture (none: the picture again). A diff compares
+    /// with the lab built from its built-in shaders, built here. Returns words to say where a
+    /// diff cannot be made (the lab draws with its built-in shaders, or they do not build): the
+    /// view then shows why, over the lab's picture.
+    pub fn show_view(&mut self, gpu: &Gpu, wanted: Option<Wanted>) -> Option<String> {
+        let mut said = None;
+        let reference = match &wanted {
+            Some(Wanted::Diff) if matches!(self.sources.source, ShaderSource::Embedded) => {
+                said = Some(
+                    "the lab draws with its built-in shaders; run it with --shaders DIR to compare a copy with them"
+                        .to_owned(),
+                );
+                None
+            }
+            Some(Wanted::Diff) => match self.sources.with_source(ShaderSource::Embedded).build(gpu, self.entry) {
+                Ok(lab) => Some(lab),
+                Err(e) => {
+                    said = Some(format!("cannot build the lab with its built-in shaders: {e}"));
+                    None
+                }
+            },
+            _ => None,
+        };
         self.views.set(wanted, reference);
         self.changed();
+        said
     }
 
     /// The view's last picture, or why there is none; `None` while no view is asked for.
     pub fn view_shown(&self) -> Option<&std::result::Result<Picture, String>> {
         self.views.shown()
-    }
-
-    /// Moves the view asked for on at `size` (the surface's, in whose `format` the lab draws):
-    /// draws it again when the lab changed since its last picture (parameters, input, the
-    /// clock, a reload) or the size did, and takes what came back ([`super::views::Views::update`]);
-    /// returns whether a new picture, legend or error was made (then draw again). A diff is
-    /// made at once here (the window).
-    #[cfg(not(target_arch = "wasm32"))]
-    pub fn view_frame(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        self.update_view(gpu, size, format, true)
-    }
-
-    /// Moves the view asked for on as [`Session::view_frame`] does, without ever blocking (the
-    /// page's way): a diff's frames are read back over calls.
-    pub fn view_poll(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> bool {
-        self.update_view(gpu, size, format, false)
-    }
-
-    /// [`super::views::Views::update`] at the lab's state; something made is drawn again.
-    fn update_view(&mut self, gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat, wait: bool) -> bool {
-        let made = self
-            .views
-            .update(gpu, self.lab.as_mut(), self.version, size, format, wait);
-        if made {
-            self.changed();
-        }
-        made
     }
 
     /// What may be chosen where the view could not be drawn as asked: each choice's words and
@@ -594,27 +749,8 @@ impl Session {
         self.views.choices()
     }
 
-    /// The view's picture as the surface shows it, read back (blocking); `None` while there
-    /// is none.
-    #[cfg(not(target_arch = "wasm32"))]
-    pub fn view_picture(&self, gpu: &Gpu) -> Option<Result<image::RgbaImage>> {
-        self.views.read(gpu)
-    }
-
     /// Whether the view waits for the GPU (its legend or a diff's frames on their way).
     pub fn view_busy(&self) -> bool {
         self.views.busy()
-    }
-
-    /// Records the view's picture into `color` (of `format`) in place of the lab's frame;
-    /// returns whether there was one (otherwise record the lab's frame, [`Session::record`]).
-    pub fn record_view(
-        &mut self,
-        gpu: &Gpu,
-        encoder: &mut wgpu::CommandEncoder,
-        color: &wgpu::TextureView,
-        format: wgpu::TextureFormat,
-    ) -> bool {
-        self.views.record(gpu, encoder, color, format)
     }
 }

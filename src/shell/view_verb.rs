@@ -1,5 +1,5 @@
 //! Whole-frame views from the command line: `shaderlab view NAME --line FILE:LINE | --cost`
-//! and a lab's `--line` / `--cost` flags. One frame is recorded, drawn again on the GPU by
+//! and a lab's `--line` / `--cost` flags. One frame is encoded, drawn again on the GPU by
 //! [`crate::debug::view`] and written as a picture with its legend ([`crate::debug::picture`]),
 //! as raw values (`--npy`), as a summary (`--json`), or timed (`--bench N`).
 
@@ -20,7 +20,6 @@ use crate::fsutil::Dest;
 use crate::gpu::Gpu;
 use crate::lab::{Lab, LabEntry};
 use crate::offscreen::Offscreen;
-use crate::render::DrawLog;
 
 /// The usage line.
 pub const USAGE: &str = "shaderlab view NAME (--line FILE:LINE [--name VAR] [--stage vertex|fragment] | --cost) \
@@ -145,8 +144,8 @@ impl Plan {
     /// Draws the view of `lab`'s frame at `width` × `height` and writes what was asked.
     pub(super) fn run(&self, gpu: &Gpu, lab: &mut dyn Lab, name: &str, width: u32, height: u32) -> Result<(), Failure> {
         let mut drawer = ViewDrawer::new();
-        let log = view::record(gpu, lab, width, height)?;
-        let probe = named(&log, &self.probe);
+        let log = view::encode(gpu, lab, width, height)?;
+        let probe = self.probe.clone();
         let frame = if self.bench.is_some() {
             drawer.draw(gpu, &log, &probe, width, height)
         } else {
@@ -216,50 +215,6 @@ fn failure(e: Error) -> Failure {
     }
 }
 
-/// The probe with its file named as the lab names it: the user's `FILE` is the file of that
-/// path, or the one file whose path ends with it (`phong.frag` for `shaders_glsl/phong.frag`
-/// or `DIR/phong.frag`), or the same file through another path. Otherwise it stays as given,
-/// and the view says which files the lab draws.
-fn named(log: &DrawLog, probe: &Probe) -> Probe {
-    let Probe::Line {
-        file,
-        line,
-        name,
-        stage,
-    } = probe
-    else {
-        return probe.clone();
-    };
-    let mut files: Vec<String> = Vec::new();
-    for d in log.draws() {
-        for shader in [&d.setup.vertex, &d.setup.fragment] {
-            for (path, _) in &shader.source.files {
-                if !files.contains(path) {
-                    files.push(path.clone());
-                }
-            }
-        }
-    }
-    let found = if files.contains(file) {
-        Some(file.clone())
-    } else {
-        let ending: Vec<&String> = files.iter().filter(|p| Path::new(p).ends_with(file)).collect();
-        match ending.as_slice() {
-            [one] => Some((*one).clone()),
-            _ => {
-                let same = |p: &String| matches!((std::fs::canonicalize(p), std::fs::canonicalize(file)), (Ok(a), Ok(b)) if a == b);
-                files.iter().find(|p| same(p)).cloned()
-            }
-        }
-    };
-    Probe::Line {
-        file: found.unwrap_or_else(|| file.clone()),
-        line: *line,
-        name: name.clone(),
-        stage: *stage,
-    }
-}
-
 /// What [`bench`] measured, in milliseconds per frame.
 struct Timings {
     /// The lab's plain frame, drawn and waited for (as `--bench` without a view).
@@ -300,12 +255,12 @@ fn bench(
         Ok(())
     };
     let mut painted = |lab: &mut dyn Lab, drawer: &mut ViewDrawer| -> Result<(), Failure> {
-        let log = view::record_to(gpu, lab, &scratch)?;
+        let log = view::encode_to(gpu, lab, &scratch)?;
         paint::paint_and_wait(gpu, drawer, &mut painter, &log, probe, width, height).map_err(failure)?;
         Ok(())
     };
     let values = |lab: &mut dyn Lab, drawer: &mut ViewDrawer| -> Result<(), Failure> {
-        let log = view::record_to(gpu, lab, &scratch)?;
+        let log = view::encode_to(gpu, lab, &scratch)?;
         drawer.draw(gpu, &log, probe, width, height).map_err(failure)?;
         Ok(())
     };

@@ -305,7 +305,7 @@ impl Views {
         if !self.scratch.as_ref().is_some_and(fits) {
             self.scratch = Some(Offscreen::with_format(gpu, w, h, format));
         }
-        let log = crate::debug::view::record_to(gpu, lab, self.scratch.as_ref().expect("made above"))?;
+        let log = crate::debug::view::encode_to(gpu, lab, self.scratch.as_ref().expect("made above"))?;
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("shaderlab.view"),
         });
@@ -478,9 +478,9 @@ impl Views {
         }
     }
 
-    /// Records the picture into `color` (of `format`) in `encoder`, in place of the lab's
-    /// frame; returns whether there was one to record.
-    pub fn record(
+    /// Encodes the picture into `color` (of `format`) in `encoder`, in place of the lab's
+    /// frame; returns whether there was one.
+    pub fn encode(
         &mut self,
         gpu: &Gpu,
         encoder: &mut wgpu::CommandEncoder,
@@ -498,16 +498,16 @@ impl Views {
                 t.0 == gpu.device && (t.1.width(), t.1.height()) == image.dimensions()
             };
             if !self.uploaded.as_ref().is_some_and(fits) {
-                let (texture, view) = upload_texture(&gpu.device, image.dimensions());
-                self.uploaded = Some((gpu.device.clone(), texture, view));
+                let (texture, color) = upload_texture(&gpu.device, image.dimensions());
+                self.uploaded = Some((gpu.device.clone(), texture, color));
                 self.upload = true;
             }
-            let (_, texture, view) = self.uploaded.as_ref().expect("made above");
+            let (_, texture, color) = self.uploaded.as_ref().expect("made above");
             if self.upload {
                 crate::debug::paint::write_rgba(gpu, texture, 0, image);
                 self.upload = false;
             }
-            view
+            color
         } else {
             match (&self.painter, self.painted) {
                 (Some(p), true) => match p.picture() {
@@ -521,7 +521,7 @@ impl Views {
         if !self.blit.as_ref().is_some_and(fits) {
             self.blit = Some(Blit::new(&gpu.device, format));
         }
-        self.blit.as_mut().expect("made above").record(encoder, color, source);
+        self.blit.as_mut().expect("made above").encode(encoder, color, source);
         true
     }
 }
@@ -631,8 +631,8 @@ impl Blit {
         }
     }
 
-    /// Records drawing `picture` (an `Rgba8Unorm` texture's view) into `color`.
-    fn record(&mut self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, picture: &wgpu::TextureView) {
+    /// Encodes drawing `picture` (an `Rgba8Unorm` texture's view) into `color`.
+    fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, picture: &wgpu::TextureView) {
         let label = "shaderlab.view_blit";
         if self.group.as_ref().is_none_or(|(v, _)| v != picture) {
             let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {

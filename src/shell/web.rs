@@ -34,7 +34,7 @@ use crate::params::Kind;
 use crate::shader::{embedded_source, ShaderSource};
 
 use super::panel::{widgets, Control};
-use super::session::{Button, Session};
+use super::session::{Button, Outcome, Platform, Session, Sources, Target};
 use super::surface::{Acquired, Swapchain};
 use super::views::Wanted;
 
@@ -248,16 +248,8 @@ impl WebApp {
             self.files.inputs.clear();
         }
         let source = self.shader_source();
-        let session = Session::open(
-            entry,
-            &self.gpu,
-            &source,
-            self.screen.format(),
-            &self.files,
-            self.now,
-            1.0,
-        )
-        .map_err(js_error)?;
+        let sources = Sources::new(source, self.files.clone(), self.screen.format());
+        let session = Session::open(entry, &self.gpu, sources, Platform::PAGE, self.now, 1.0).map_err(js_error)?;
         let (width, height) = entry.info.size;
         self.resize(width, height);
         let mut session = if paused { session.paused() } else { session };
@@ -289,24 +281,34 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return;
         };
-        open.tick(self.now);
-        open.drawn();
         let frame = match self.screen.acquire() {
             Acquired::Frame(frame) => frame,
             Acquired::Outdated | Acquired::Lost => {
                 self.screen.resize(&self.gpu, self.screen.size());
+                open.tick(self.now);
+                open.drawn();
                 return;
             }
-            Acquired::Skipped | Acquired::Invalid => return,
+            Acquired::Skipped | Acquired::Invalid => {
+                open.tick(self.now);
+                open.drawn();
+                return;
+            }
         };
-        let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
+        let color = frame.texture.create_view(&wgpu::TextureViewDescriptor {
             label: Some("web.frame"),
             ..Default::default()
         });
-        let size = self.screen.size();
-        let format = self.screen.format();
-        open.view_poll(&self.gpu, size, format);
-        let error = draw_shown(open, &self.gpu, "web.frame", &view, self.screen.depth(), size, format);
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("web.frame"),
+        });
+        let target = Target {
+            color: &color,
+            depth: self.screen.depth(),
+            size: self.screen.size(),
+        };
+        let Outcome { error, .. } = open.frame(&self.gpu, &mut encoder, &target, self.now);
+        self.gpu.queue.submit([encoder.finish()]);
         self.gpu.queue.present(frame);
         if let Some(e) = error {
             self.error = Some(e.to_string());
@@ -368,10 +370,8 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return self.inspection.clone();
         };
-        let size = self.screen.size();
-        let failed = open.inspect_frame(&self.gpu, size, self.screen.format());
         // The page has no threads: the replay runs here, once the read-back is done.
-        if open.inspect_poll(&self.gpu, super::inspector::inline) || failed {
+        if open.poll(&self.gpu, self.screen.size()).inspection {
             self.inspection = match open.inspection() {
                 Some(Ok(i)) => i.json(),
                 Some(Err(e)) => json_error(e),
@@ -591,11 +591,19 @@ impl WebApp {
         let open = self.open.as_mut().ok_or_else(|| js_error("no lab is open"))?;
         let (width, height) = self.screen.size();
         let target = Offscreen::with_format(&self.gpu, width, height, self.screen.format());
-        let size = (target.width, target.height);
         // As on the canvas: an error is shown once ([`WebApp::take_error`]) and the picture
         // is what the frame drew (the view's, while one is shown).
-        let format = self.screen.format();
-        if let Some(e) = draw_shown(open, &self.gpu, "web.read", &target.color, &target.depth, size, format) {
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("web.read"),
+        });
+        let drawn = Target {
+            color: &target.color,
+            depth: &target.depth,
+            size: (target.width, target.height),
+        };
+        let error = open.encode(&self.gpu, &mut encoder, &drawn);
+        self.gpu.queue.submit([encoder.finish()]);
+        if let Some(e) = error {
             self.error = Some(e.to_string());
         }
         let done = Rc::new(RefCell::new(None));
@@ -636,49 +644,23 @@ impl WebApp {
     /// `diff` (with the built-in shaders); "" shows the picture again. Returns why the text
     /// names no view ("" when it does).
     pub fn view_set(&mut self, text: &str) -> String {
-        let files = self.file_names();
         let Some(open) = self.open.as_mut() else {
             return "no lab is open".into();
         };
         if text.is_empty() {
-            open.set_view(None, None);
-            return String::new();
+            return open.show_view(&self.gpu, None).unwrap_or_default();
         }
         let Some(mut wanted) = Wanted::from_link(text) else {
             return format!("`{text}` names no view: write FILE:LINE, cost or diff");
         };
         if let Wanted::Probe(crate::debug::view::Probe::Line { file, .. }) = &mut wanted {
             // The page names files without the built-in folder; the lab shows them with it.
-            let spliced: Vec<String> = open.shader_files().into_iter().flat_map(|p| p.spliced).collect();
-            if !spliced.contains(file) {
-                let tail = format!("/{file}");
-                let found: Vec<&String> = spliced.iter().filter(|p| p.ends_with(&tail)).collect();
-                if let [one] = found.as_slice() {
-                    *file = (*one).clone();
-                } else if found.is_empty() {
-                    return format!(
-                        "{file} is not a file of this lab's shaders; its files are {}",
-                        files.join(", ")
-                    );
-                }
+            match open.find_file(file) {
+                Ok(found) => *file = found,
+                Err(why) => return why,
             }
         }
-        let reference = if wanted == Wanted::Diff {
-            match Session::open_lab(
-                open.entry(),
-                &self.gpu,
-                &ShaderSource::Embedded,
-                self.screen.format(),
-                &self.files,
-            ) {
-                Ok(lab) => Some(lab),
-                Err(e) => return format!("cannot build the lab with its built-in shaders: {e}"),
-            }
-        } else {
-            None
-        };
-        open.set_view(Some(wanted), reference);
-        String::new()
+        open.show_view(&self.gpu, Some(wanted)).unwrap_or_default()
     }
 
     /// The view shown as the link writes it (`FILE:LINE`, `cost`, `diff`), "" for the picture.
@@ -693,11 +675,11 @@ impl WebApp {
     /// Moves the view on (its values read back, or drawn again after a change) without
     /// drawing the canvas; returns whether its picture is there (or its error).
     pub fn view_poll(&mut self) -> bool {
-        let (size, format) = (self.screen.size(), self.screen.format());
+        let size = self.screen.size();
         let Some(open) = self.open.as_mut() else {
             return false;
         };
-        open.view_poll(&self.gpu, size, format);
+        open.poll(&self.gpu, size);
         open.view_shown().is_some() && !open.view_busy()
     }
 
@@ -731,29 +713,6 @@ impl WebApp {
     pub fn take_error(&mut self) -> String {
         self.error.take().unwrap_or_default()
     }
-}
-
-/// Records what the session shows, the view's picture or else the lab's frame, into `color`
-/// (of `format`, `size` pixels, with its `depth`) and submits it; returns the error to show.
-fn draw_shown(
-    open: &mut Session,
-    gpu: &Gpu,
-    label: &str,
-    color: &wgpu::TextureView,
-    depth: &wgpu::TextureView,
-    size: (u32, u32),
-    format: wgpu::TextureFormat,
-) -> Option<crate::error::Error> {
-    let mut encoder = gpu
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-    let error = if open.record_view(gpu, &mut encoder, color, format) {
-        None
-    } else {
-        open.record(gpu, &mut encoder, color, depth, size)
-    };
-    gpu.queue.submit([encoder.finish()]);
-    error
 }
 
 impl WebApp {
@@ -800,7 +759,7 @@ impl WebApp {
         let Some(open) = self.open.as_mut() else {
             return String::new();
         };
-        open.reload(&self.gpu, &source, self.screen.format(), &self.files)
+        open.reload(&self.gpu, source)
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default()

@@ -15,7 +15,7 @@ use crate::params::Params;
 use crate::render::{sampler, Bind, Derived, SamplerDesc, Texture};
 
 use crate::course::common::FaceOrder;
-use crate::course::seed001::geometry::{SolidGeometry, UstcView, OBJECT, ROTATION};
+use crate::course::seed001::geometry::{SolidGeometry, UstcCamera, OBJECT, ROTATION};
 
 /// Seed 001, §1.10: the `EnvMap` block is computed (`env_map`); the cube map and its
 /// sampler are the lab's own bindings.
@@ -54,6 +54,6 @@ const EYE: Vec3 = Vec3::new(0.0, 0.0, 4.0);
 /// The `EnvMap` block of `envmap.vert`: `modelMatrix` = Rx(xangle)·Ry(yangle), `eyeWorld` the
 /// eye in world space.
 fn env_map(p: &Params, c: &mut Derived) {
-    c.set("modelMatrix", &UstcView::model(p).to_cols_array());
+    c.set("modelMatrix", &UstcCamera::model(p).to_cols_array());
     c.set("eyeWorld", &EYE.to_array());
 }

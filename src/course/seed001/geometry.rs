@@ -67,7 +67,7 @@ pub fn teapot_and_torus_facing_first(object: Object) -> FaceOrder {
 const PERSPECTIVE: (f64, f64, f64) = (45.0, 0.1, 100.0);
 
 /// Camera, rotation, mouse and the Transform block of one exercise.
-pub struct UstcView {
+pub struct UstcCamera {
     /// The eye of `gluLookAt(eye, (0,0,0), (0,1,0))`.
     pub eye: Vec3,
     mouse: GlutMouse,
@@ -75,11 +75,11 @@ pub struct UstcView {
     pub transform: Uniforms<TransformUniforms>,
 }
 
-impl UstcView {
+impl UstcCamera {
     /// A geometry looking from `eye` at the origin.
     pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
         let identity = TransformUniforms::new(Mat4::IDENTITY, Mat4::IDENTITY);
-        UstcView {
+        UstcCamera {
             eye,
             mouse: GlutMouse::default(),
             transform: Uniforms::new(gpu, &format!("{label}.transform"), identity),
@@ -195,8 +195,8 @@ impl Solids {
 
 /// The geometry as the runner draws it ([`crate::lab::Geometry`]): GLUT's solid chosen by `object`.
 pub struct SolidGeometry {
-    /// The shared camera and matrices ([`UstcView`]).
-    pub geometry: UstcView,
+    /// The shared camera and matrices ([`UstcCamera`]).
+    pub camera: UstcCamera,
     solids: Solids,
     /// The face order of `faces=auto`, by solid ([`teapot_and_torus_facing_first`] unless the
     /// lab sets it).
@@ -207,7 +207,7 @@ impl SolidGeometry {
     /// A geometry looking from `eye`.
     pub fn new(gpu: &Gpu, label: &str, eye: Vec3) -> Self {
         SolidGeometry {
-            geometry: UstcView::new(gpu, label, eye),
+            camera: UstcCamera::new(gpu, label, eye),
             solids: Solids::default(),
             auto: teapot_and_torus_facing_first,
         }
@@ -216,8 +216,8 @@ impl SolidGeometry {
 
 /// The geometry as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh.
 pub struct MeshGeometry<V: VertexType> {
-    /// The shared camera and matrices ([`UstcView`]).
-    pub geometry: UstcView,
+    /// The shared camera and matrices ([`UstcCamera`]).
+    pub camera: UstcCamera,
     /// The mesh.
     pub mesh: GpuMesh<V>,
 }
@@ -225,22 +225,22 @@ pub struct MeshGeometry<V: VertexType> {
 impl crate::lab::Geometry for SolidGeometry {
     type Vertex = Vertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     /// By the `faces` parameter (`auto`: [`SolidGeometry::auto`]).
     fn culling(&self, p: &Params) -> Option<Culling> {
-        let object = UstcView::object(p);
+        let object = UstcCamera::object(p);
         Some(FaceOrder::of(p, (self.auto)(object)).culling(object.outside_winding()))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<Vertex> {
-        self.geometry.upload(gpu, p, width, height);
+        self.camera.upload(gpu, p, width, height);
         let level = if p.has("tess") { p.f64("tess") as u32 } else { 0 };
-        let object = UstcView::object(p);
+        let object = UstcCamera::object(p);
         let view = (FaceOrder::of(p, (self.auto)(object)) == FaceOrder::FacingFirst)
-            .then(|| self.geometry.object_to_clip(p, width, height));
+            .then(|| self.camera.object_to_clip(p, width, height));
         self.solids.get(gpu, object, level, view)
     }
 }
@@ -248,13 +248,13 @@ impl crate::lab::Geometry for SolidGeometry {
 impl<V: VertexType + 'static> crate::lab::Geometry for MeshGeometry<V> {
     type Vertex = V;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
-        self.geometry.upload(gpu, p, width, height);
+        self.camera.upload(gpu, p, width, height);
         &self.mesh
     }
 }
@@ -262,8 +262,8 @@ impl<V: VertexType + 'static> crate::lab::Geometry for MeshGeometry<V> {
 /// The geometry as the runner draws it ([`crate::lab::Geometry`]): the lab's own mesh of a solid in
 /// the face order the `faces` parameter asks for ([`FACES`]; `auto`: [`OrderedGeometry::auto`]).
 pub struct OrderedGeometry<V: VertexType> {
-    /// The shared camera and matrices ([`UstcView`]).
-    pub geometry: UstcView,
+    /// The shared camera and matrices ([`UstcCamera`]).
+    pub camera: UstcCamera,
     /// The mesh, with its positions for the CPU's facing test.
     pub mesh: ViewOrdered<V>,
     /// How the solid's outside faces are wound.
@@ -278,18 +278,18 @@ pub const FACES: &[ParamSpec] = &[common::FACES];
 impl<V: VertexType + 'static> crate::lab::Geometry for OrderedGeometry<V> {
     type Vertex = V;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     fn culling(&self, p: &Params) -> Option<Culling> {
         Some(FaceOrder::of(p, self.auto).culling(self.outside))
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
-        self.geometry.upload(gpu, p, width, height);
+        self.camera.upload(gpu, p, width, height);
         let view = (FaceOrder::of(p, self.auto) == FaceOrder::FacingFirst)
-            .then(|| (self.geometry.object_to_clip(p, width, height), self.outside));
+            .then(|| (self.camera.object_to_clip(p, width, height), self.outside));
         self.mesh.get(gpu, view)
     }
 }
@@ -297,8 +297,8 @@ impl<V: VertexType + 'static> crate::lab::Geometry for OrderedGeometry<V> {
 /// The geometry as the runner draws it ([`crate::lab::Geometry`]): one of the lab's meshes, the one a
 /// choice parameter names (meshes in the choice's order).
 pub struct ChosenGeometry<V: VertexType> {
-    /// The shared camera and matrices ([`UstcView`]).
-    pub geometry: UstcView,
+    /// The shared camera and matrices ([`UstcCamera`]).
+    pub camera: UstcCamera,
     /// The meshes, indexed by the choice.
     pub meshes: Vec<GpuMesh<V>>,
     /// The choice parameter.
@@ -308,13 +308,13 @@ pub struct ChosenGeometry<V: VertexType> {
 impl<V: VertexType + 'static> crate::lab::Geometry for ChosenGeometry<V> {
     type Vertex = V;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<V> {
-        self.geometry.upload(gpu, p, width, height);
+        self.camera.upload(gpu, p, width, height);
         &self.meshes[p.index_of(self.choice).min(self.meshes.len() - 1)]
     }
 }

@@ -14,7 +14,7 @@ use crate::mesh::shapes::HeightVertex;
 use crate::params::ParamSpec;
 use crate::render::{GpuMesh, RenderState};
 
-use crate::course::seed001::geometry::{ChosenGeometry, UstcView, ROTATION};
+use crate::course::seed001::geometry::{ChosenGeometry, UstcCamera, ROTATION};
 use crate::course::seed001::immediate::Immediate;
 
 /// Seed 001, §1.1: no uniform block besides the Transform; `mode` picks the strip.
@@ -36,7 +36,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let geometry = ChosenGeometry {
-            geometry: UstcView::new(cx.gpu, cx.name, Vec3::new(0.0, 0.0, 4.0)),
+            camera: UstcCamera::new(cx.gpu, cx.name, Vec3::new(0.0, 0.0, 4.0)),
             meshes: vec![
                 GpuMesh::new(cx.gpu, "height.immediate", &immediate_strip(), None),
                 GpuMesh::new(cx.gpu, "height.arrays", &array_strip(), None),

@@ -21,7 +21,7 @@ use crate::mesh::shapes::{morph_vertices, MorphVertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Derived, GpuMesh};
 
-use crate::course::seed001::geometry::{MeshGeometry, UstcView, ROTATION};
+use crate::course::seed001::geometry::{MeshGeometry, UstcCamera, ROTATION};
 use crate::course::seed001::immediate::Immediate;
 
 /// Seed 001, §1.4: the `Morph` block's `time` is [`time_uniform`] of the clock.
@@ -44,7 +44,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let geometry = MeshGeometry {
-            geometry: UstcView::new(cx.gpu, cx.name, Vec3::new(0.0, 0.0, 4.0)),
+            camera: UstcCamera::new(cx.gpu, cx.name, Vec3::new(0.0, 0.0, 4.0)),
             mesh: GpuMesh::new(cx.gpu, "morph.triangles", &course_triangles()[..DRAWN], None),
         };
         MaterialScene::build(cx, p, geometry, &MATERIAL)

@@ -14,7 +14,7 @@ use crate::mesh::shapes::{particle_velocities, PARTICLE_COUNT};
 use crate::params::{ParamSpec, Params};
 use crate::render::{Bind, Derived, GpuMesh, RenderState};
 
-use crate::course::seed001::geometry::{UstcView, ROTATION};
+use crate::course::seed001::geometry::{UstcCamera, ROTATION};
 use crate::course::seed001::immediate::Immediate;
 
 /// Seed 001, §1.5: the `Particles` block's `g` and `m` are parameters, its `t` the clock
@@ -48,7 +48,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let geometry = Fountain {
-            geometry: UstcView::new(cx.gpu, cx.name, Vec3::new(0.0, 1.0, 4.0)),
+            camera: UstcCamera::new(cx.gpu, cx.name, Vec3::new(0.0, 1.0, 4.0)),
             points: GpuMesh::new(cx.gpu, "particles.points", &course_points(), None),
         };
         MaterialScene::build(cx, p, geometry, &MATERIAL)
@@ -108,7 +108,7 @@ pub fn gl_point_rule(projection: Mat4, width: u32) -> Mat4 {
 
 /// The frame with the points drawn by GL's rule ([`gl_point_rule`]), and key `r`.
 struct Fountain {
-    geometry: UstcView,
+    camera: UstcCamera,
     points: GpuMesh<ParticleVertex>,
 }
 
@@ -119,14 +119,14 @@ impl Geometry for Fountain {
             p.set_unchecked("time", &[0.0]);
             return true;
         }
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<ParticleVertex> {
-        let projection = gl_point_rule(UstcView::projection(width, height), width);
-        self.geometry.upload_with(gpu, p, projection);
+        let projection = gl_point_rule(UstcCamera::projection(width, height), width);
+        self.camera.upload_with(gpu, p, projection);
         &self.points
     }
 }

@@ -15,7 +15,7 @@ use crate::mesh::shapes::{bump_quad, needs_clipping, BumpVertex, QUAD_SPLIT_CLIP
 use crate::params::{ParamSpec, Params};
 use crate::render::{sampler, Bind, GpuMesh, SamplerDesc, Texture};
 
-use crate::course::seed001::geometry::{UstcView, ROTATION};
+use crate::course::seed001::geometry::{UstcCamera, ROTATION};
 use crate::course::seed001::gl_light::{Lit, BUMP, BUMP_KEYS};
 
 /// The keys of `bump` and `normmap`.
@@ -35,7 +35,7 @@ crate::vertex_type!(BumpVertex, {
 /// The quad on the shared geometry: its four corners twice, with each of Mesa's `GL_QUADS`
 /// splits as indices (the unclipped one, then the clipped one).
 struct Quad {
-    geometry: UstcView,
+    camera: UstcCamera,
     splits: [GpuMesh<BumpVertex>; 2],
 }
 
@@ -50,14 +50,14 @@ fn clipped(mvp: &[[f32; 4]; 4]) -> bool {
 impl Geometry for Quad {
     type Vertex = BumpVertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<BumpVertex> {
-        self.geometry.upload(gpu, p, width, height);
-        &self.splits[usize::from(clipped(&self.geometry.transform.value.mvp))]
+        self.camera.upload(gpu, p, width, height);
+        &self.splits[usize::from(clipped(&self.camera.transform.value.mvp))]
     }
 }
 
@@ -89,7 +89,7 @@ pub fn build(
     let corners = bump_quad();
     let split = |indices: &[u32]| GpuMesh::new(cx.gpu, &format!("{name}.quad"), &corners, Some(indices));
     let quad = Quad {
-        geometry: UstcView::new(cx.gpu, name, Vec3::new(0.0, 0.0, 4.0)),
+        camera: UstcCamera::new(cx.gpu, name, Vec3::new(0.0, 0.0, 4.0)),
         splits: [split(&QUAD_SPLIT_UNCLIPPED), split(&QUAD_SPLIT_CLIPPED)],
     };
     MaterialScene::build_with(cx, p, Lit::new(cx.gpu, name, &BUMP, quad), look, own)

@@ -15,7 +15,7 @@ use crate::mesh::tess::Object;
 use crate::mesh::Mesh;
 use crate::render::{sampler, Bind, SamplerDesc, Texture, ViewOrdered};
 
-use crate::course::seed001::geometry::{OrderedGeometry, UstcView, FACES, ROTATION};
+use crate::course::seed001::geometry::{OrderedGeometry, UstcCamera, FACES, ROTATION};
 
 /// Seed 001, §1.9: no uniform block besides the Transform; the image and its sampler are the
 /// lab's own bindings.
@@ -34,7 +34,7 @@ pub static RECIPE: Recipe = Recipe::new(
         let (vertices, indices) = textured_teapot();
         let positions = vertices.iter().map(|v| v.position).collect();
         let geometry = OrderedGeometry {
-            geometry: UstcView::new(cx.gpu, cx.name, Vec3::new(0.0, 0.0, 4.0)),
+            camera: UstcCamera::new(cx.gpu, cx.name, Vec3::new(0.0, 0.0, 4.0)),
             mesh: ViewOrdered::new(cx.gpu, "texture.teapot", &vertices, Some(indices), positions),
             outside: Object::Teapot.outside_winding(),
             auto: FaceOrder::FacingFirst,

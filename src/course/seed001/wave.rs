@@ -21,7 +21,7 @@ use crate::mesh::shapes::{indexed_quads, wave_grid_sub, ColorVertex};
 use crate::params::{ParamSpec, Params};
 use crate::render::{note_once, Bind, Derived, GpuMesh, LARGE_MESH_TRIANGLES};
 
-use crate::course::seed001::geometry::{UstcView, ROTATION};
+use crate::course::seed001::geometry::{UstcCamera, ROTATION};
 
 /// The finest `subdiv` (each cell 32 × 32 quads: 9.8 million vertices).
 pub const MAX_SUBDIV: u32 = 32;
@@ -110,7 +110,7 @@ pub static RECIPE: Recipe = Recipe::new(
     ],
     |cx, p| {
         let mut geometry = WaveGrid {
-            geometry: UstcView::new(cx.gpu, cx.name, Vec3::new(0.0, 3.5, 6.5)),
+            camera: UstcCamera::new(cx.gpu, cx.name, Vec3::new(0.0, 3.5, 6.5)),
             meshes: HashMap::new(),
             drawn: 1,
             capped: false,
@@ -123,7 +123,7 @@ pub static RECIPE: Recipe = Recipe::new(
 
 /// Seed 001's frame over the grid, built for each `subdiv` asked for (the course's first).
 struct WaveGrid {
-    geometry: UstcView,
+    camera: UstcCamera,
     meshes: HashMap<u32, GpuMesh<ColorVertex>>,
     drawn: u32,
     /// Whether `auto` stopped at its most without meeting its budget.
@@ -144,17 +144,17 @@ impl WaveGrid {
 impl Geometry for WaveGrid {
     type Vertex = ColorVertex;
     fn input(&mut self, p: &mut Params, input: Input) -> bool {
-        self.geometry.input(p, input)
+        self.camera.input(p, input)
     }
     fn binds(&self) -> Vec<Bind> {
-        vec![self.geometry.transform.bind()]
+        vec![self.camera.transform.bind()]
     }
     fn prepare(&mut self, gpu: &Gpu, p: &Params, width: u32, height: u32) -> &GpuMesh<ColorVertex> {
-        self.geometry.upload(gpu, p, width, height);
+        self.camera.upload(gpu, p, width, height);
         let k = match p.f64("subdiv") as u32 {
             0 => {
-                let k = auto_subdiv(p, self.geometry.eye, height);
-                self.capped = !subdiv_fits(k, p, self.geometry.eye, height);
+                let k = auto_subdiv(p, self.camera.eye, height);
+                self.capped = !subdiv_fits(k, p, self.camera.eye, height);
                 if self.capped {
                     note_once(format!(
                         "wave: subdiv=auto: this wave (h={}, xs={}, zs={}) needs more than {k} quads a cell side to stay \

@@ -208,7 +208,7 @@ fn debugger(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
 
 /// `bench --diff`: how long a diff of two frames with its traces takes.
 fn diff(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
-    use crate::shell::session::Session;
+    use crate::shell::session::Sources;
     use std::time::Instant;
     let runs = args.frames.min(1000) as usize;
     let entry = course::find("phong").ok_or_else(|| anyhow::anyhow!("no phong lab"))?;
@@ -233,8 +233,8 @@ fn diff(gpu: &Gpu, args: &Args) -> anyhow::Result<()> {
     })();
     let timed = planted.and_then(|copy| {
         let files = &crate::lab::NO_FILES;
-        let mut mine = Session::open_lab(entry, gpu, &copy, COLOR_FORMAT, files)?;
-        let mut reference = Session::open_lab(entry, gpu, &ShaderSource::Embedded, COLOR_FORMAT, files)?;
+        let mut mine = Sources::new(copy, files.clone(), COLOR_FORMAT).build(gpu, entry)?;
+        let mut reference = Sources::new(ShaderSource::Embedded, files.clone(), COLOR_FORMAT).build(gpu, entry)?;
         let mut times = Vec::with_capacity(runs);
         for _ in 0..runs {
             let start = Instant::now();

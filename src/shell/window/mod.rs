@@ -23,9 +23,9 @@
 //! ends it as an internal error with the panic's message and place, except winit's on a window
 //! another program destroyed, which says so.
 //!
-//! Live reload compiles off the frame loop ([`Compiles`]): a saved shader builds the lab anew on
-//! a worker thread while the last good pipeline keeps drawing; a compile that fails or panics
-//! leaves it drawing, with SHADER ERROR in the title and the message in the terminal.
+//! Live reload compiles off the frame loop ([`super::reload`]): a saved shader builds the lab
+//! anew on a worker thread while the last good pipeline keeps drawing; a compile that fails or
+//! panics leaves it drawing, with SHADER ERROR in the title and the message in the terminal.
 //!
 //! Test hooks: `SHADERLAB_TEST_LOSE_DEVICE=SECONDS` destroys the GPU device that many seconds
 //! after the window opens, so the tests can check what a lost device looks like.
@@ -53,7 +53,7 @@ mod screen;
 mod shm;
 
 use std::path::PathBuf;
-use std::sync::{mpsc, Arc, Mutex};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use winit::application::ApplicationHandler;
@@ -65,13 +65,14 @@ use winit::window::{Window, WindowId};
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
-use crate::lab::{Lab, LabEntry, UserFiles};
-use crate::offscreen::{save_png, Offscreen};
+use crate::lab::{LabEntry, UserFiles};
+use crate::offscreen::save_png;
 use crate::params::Params;
 use crate::shader::ShaderSource;
 
 use super::args::Args;
-use super::session::{Button, Session};
+use super::reload::{self, LiveReload};
+use super::session::{Button, Platform, Session, Sources};
 use screen::{Screen, Shown};
 
 pub use screen::surface_size;
@@ -173,7 +174,7 @@ pub fn run(entry: &'static LabEntry, args: &Args, params: Params, files: UserFil
         Err(report) if report.window_destroyed() => Some(gone::error()),
         Err(report) => Some(report.into_error()),
     };
-    if app.state.as_ref().is_some_and(WindowState::compiling) {
+    if app.state.as_ref().is_some_and(|s| s.reload.compiling()) {
         // A compile still runs on a worker thread, maybe for minutes inside the driver's
         // compiler, and can be neither stopped nor waited for: end the process now, as it
         // would have ended.
@@ -253,57 +254,6 @@ struct App {
 /// Why the device can no longer be used, set from wgpu's callbacks (other threads).
 type Fatal = Arc<Mutex<Option<String>>>;
 
-/// Where the shaders and the lab's files come from, and the watcher that reloads them.
-struct Sources {
-    source: ShaderSource,
-    files: Arc<UserFiles>,
-    reload: Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)>,
-}
-
-/// How many compiles may run at once: a save while one compiles (a fix of a shader that
-/// compiles for minutes) starts another; later saves wait for one of them to end.
-const MAX_COMPILES: usize = 2;
-
-/// How long editors get to finish writing a save before it is compiled.
-const SAVE_SETTLE: Duration = Duration::from_millis(50);
-
-/// How long a compile runs before the title says so.
-const SAY_COMPILING_AFTER: Duration = Duration::from_millis(500);
-
-/// What a compile on a worker thread gives: the lab built anew, or why not (an error, or a
-/// panic inside the compile).
-type Compiled = std::result::Result<Result<Box<dyn Lab>>, crate::panics::Report>;
-
-/// Live reload's compiles. Each save builds the lab anew on a worker thread, so that a compile
-/// taking minutes (a large array on a CPU driver) never stops the frame loop: the lab shown
-/// keeps drawing, keys and Esc keep working, and the lab of the newest save that finished
-/// compiling takes its place (an older one finishing later is dropped).
-#[derive(Default)]
-struct Compiles {
-    /// A save was seen: it is compiled at this time, once the editor has finished writing.
-    due: Option<Instant>,
-    /// The compiles running: the number of their save, when they started, their result.
-    running: Vec<(u64, Instant, mpsc::Receiver<Compiled>)>,
-    /// Saves compiled so far (the last one's number).
-    started: u64,
-    /// The number of the save whose result is shown (its lab, or its error).
-    shown: u64,
-    /// Whether the title says that a compile runs.
-    said: bool,
-}
-
-impl Compiles {
-    /// When the title should say that a compile runs: a compile newer than the result shown
-    /// has run for [`SAY_COMPILING_AFTER`].
-    fn say_at(&self) -> Option<Instant> {
-        self.running
-            .iter()
-            .filter(|(n, _, _)| *n > self.shown)
-            .map(|(_, at, _)| *at + SAY_COMPILING_AFTER)
-            .min()
-    }
-}
-
 /// When frames are drawn, and how long they take.
 struct Pacing {
     /// `--unpaced`: as fast as possible, with a frame-time report every 2 s.
@@ -327,12 +277,8 @@ struct WindowState {
     gpu: Arc<Gpu>,
     screen: Screen,
     session: Session,
-    sources: Sources,
-    compiles: Compiles,
-    /// Wakes the event loop when a compile ends.
-    proxy: winit::event_loop::EventLoopProxy<Wake>,
-    /// `SHADERLAB_TEST_PANIC`'s place to panic, if set.
-    test_panic: Option<String>,
+    /// Live reload from the shader files and the lab's input files.
+    reload: LiveReload,
     /// The window's start: the clock's second 0.
     start: Instant,
     pacing: Pacing,
@@ -432,7 +378,7 @@ impl App {
     /// The rest of [`Self::init`]: the GPU, the screen and the lab for `window`.
     fn open(&mut self, window: Arc<Window>, gone_watch: Option<gone::Watch>) -> Result<WindowState> {
         let entry = self.entry;
-        let test_panic = std::env::var("SHADERLAB_TEST_PANIC").ok();
+        let panic_in_compile = std::env::var("SHADERLAB_TEST_PANIC").is_ok_and(|p| p == "reload");
         // The primary backends first, GL only where they cannot draw into this window.
         let (mut gpu, surface) = match Self::connect(Gpu::new_instance(), &window) {
             Err(e @ (Error::NoAdapter(_) | Error::Surface(_))) => match Gpu::fallback_instance() {
@@ -474,34 +420,16 @@ impl App {
         // The first build has no last good pipeline to keep drawing: it is bounded as the
         // command line's are, and live reloads compile beside the window instead.
         gpu.bounded_compiles = true;
-        let mut session = Session::open(
-            entry,
-            &gpu,
-            &self.source,
-            screen.format(),
-            &self.files,
-            0.0,
-            clock_scale,
-        )?;
+        let sources = Sources {
+            source: self.source.clone(),
+            files: self.files.clone(),
+            format: screen.format(),
+        };
+        let mut session = Session::open(entry, &gpu, sources, Platform::NATIVE, 0.0, clock_scale)?;
         gpu.bounded_compiles = false;
         if let Some(params) = self.params.take() {
             session = session.with_params(params);
         }
-        // Live reload watches the shader folder and the folders of the lab's input files.
-        let mut dirs: Vec<PathBuf> = match &self.source {
-            ShaderSource::Dir(dir) => vec![dir.clone()],
-            ShaderSource::Embedded | ShaderSource::Edited(_) => Vec::new(),
-        };
-        for input in &self.files.inputs {
-            let dir = match input.parent() {
-                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-                _ => PathBuf::from("."),
-            };
-            if !dirs.contains(&dir) {
-                dirs.push(dir);
-            }
-        }
-        let reload = watch(&dirs, &self.files.inputs);
         let lose_device_at = env_seconds("SHADERLAB_TEST_LOSE_DEVICE")
             .and_then(|s| Duration::try_from_secs_f64(s).ok())
             .map(|d| Instant::now() + d);
@@ -510,18 +438,16 @@ impl App {
         let mut panel = super::panel::Panel::new(&window);
         panel.shown = std::env::var_os("SHADERLAB_TEST_PANEL").is_some();
         let now = Instant::now();
+        let proxy = self.proxy.clone();
+        let wake = Arc::new(move || {
+            let _ = proxy.send_event(Wake::Compiled);
+        });
+        let reload = LiveReload::new(session.sources(), wake, panic_in_compile);
         Ok(WindowState {
             gpu: Arc::new(gpu),
             screen,
             session,
-            sources: Sources {
-                source: self.source.clone(),
-                files: self.files.clone(),
-                reload,
-            },
-            compiles: Compiles::default(),
-            proxy: self.proxy.clone(),
-            test_panic,
+            reload,
             start: now,
             pacing: Pacing {
                 unpaced: self.args.unpaced,
@@ -551,42 +477,6 @@ impl App {
     }
 }
 
-fn watch(dirs: &[PathBuf], inputs: &[PathBuf]) -> Option<(notify::RecommendedWatcher, mpsc::Receiver<()>)> {
-    use notify::Watcher;
-    if dirs.is_empty() {
-        return None;
-    }
-    let names: Vec<std::ffi::OsString> = inputs
-        .iter()
-        .filter_map(|p| p.file_name().map(|n| n.to_owned()))
-        .collect();
-    let (tx, rx) = mpsc::channel();
-    let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
-        if let Ok(event) = event {
-            // Only shader files and the lab's inputs: a screenshot written into the folder is
-            // not an edit.
-            let shader = event.paths.iter().any(|p| {
-                matches!(
-                    p.extension().and_then(|e| e.to_str()),
-                    Some("vert" | "frag" | "glsl" | "comp")
-                ) || p.file_name().is_some_and(|n| names.iter().any(|m| m == n))
-            });
-            if shader && (event.kind.is_modify() || event.kind.is_create()) {
-                let _ = tx.send(());
-            }
-        }
-    })
-    .map_err(|e| eprintln!("live reload disabled: {e}"))
-    .ok()?;
-    for dir in dirs {
-        watcher
-            .watch(dir, notify::RecursiveMode::NonRecursive)
-            .map_err(|e| eprintln!("live reload disabled: cannot watch {}: {e}", dir.display()))
-            .ok()?;
-    }
-    Some((watcher, rx))
-}
-
 impl WindowState {
     fn name(&self) -> &'static str {
         self.session.name()
@@ -602,7 +492,7 @@ impl WindowState {
         if self.session.shader_error().is_some() {
             title.push_str(" | SHADER ERROR (see terminal)");
         }
-        if self.compiles.said {
+        if self.reload.says_compiling() {
             title.push_str(" | compiling the shaders saved");
         }
         if self.stuck.is_some() {
@@ -651,139 +541,38 @@ impl WindowState {
         }
     }
 
-    /// Live reload, never blocking the frame loop: notes saves, starts their compiles once
-    /// the editor has finished writing, and shows the compiles that ended ([`Compiles`]).
+    /// Live reload, never blocking the frame loop ([`LiveReload::check`]): says what it did
+    /// in the terminal, the title and the tests' signals.
     fn check_reload(&mut self) {
-        if let Some((_, rx)) = &self.sources.reload {
-            let mut saved = false;
-            while rx.try_recv().is_ok() {
-                saved = true;
-            }
-            if saved {
-                // Editors write in several steps: compile once they are done.
-                self.compiles.due = Some(Instant::now() + SAVE_SETTLE);
+        let events = self.reload.check(&mut self.session, &self.gpu);
+        let name = self.name();
+        for event in &events {
+            match event {
+                reload::Event::Started(n) | reload::Event::Ended(n) => {
+                    if let Some(log) = self.test_log.as_mut() {
+                        let what = if matches!(event, reload::Event::Started(_)) {
+                            "started"
+                        } else {
+                            "ended"
+                        };
+                        log.say(&format!("compile {n} {what}"));
+                    }
+                }
+                reload::Event::Reloaded { fixed: true } => eprintln!("{name}: shaders reloaded, error fixed"),
+                reload::Event::Reloaded { fixed: false } => eprintln!("{name}: shaders reloaded"),
+                reload::Event::Failed(e) => eprintln!("{name}: shader error (keeping the last good pipeline):\n{e}"),
+                reload::Event::Compiling(_) => {}
             }
         }
-        self.finish_compiles();
-        let due = self.compiles.due.is_some_and(|at| Instant::now() >= at);
-        if due && self.compiles.running.len() < MAX_COMPILES {
-            self.compiles.due = None;
-            self.start_compile();
-        }
-        let say = self.compiles.say_at().is_some_and(|at| Instant::now() >= at);
-        if say != self.compiles.said {
-            self.compiles.said = say;
+        let shown = events
+            .iter()
+            .any(|e| matches!(e, reload::Event::Reloaded { .. } | reload::Event::Failed(_)));
+        if shown || events.iter().any(|e| matches!(e, reload::Event::Compiling(_))) {
             self.update_title();
         }
-    }
-
-    /// When the loop must wake for live reload: a save to compile, or a compile to say in the
-    /// title.
-    fn reload_wake(&self) -> Option<Instant> {
-        let due = self.compiles.due.filter(|_| self.compiles.running.len() < MAX_COMPILES);
-        let say = self.compiles.say_at().filter(|_| !self.compiles.said);
-        due.into_iter().chain(say).min()
-    }
-
-    /// Whether a compile still runs on a worker thread.
-    fn compiling(&self) -> bool {
-        !self.compiles.running.is_empty()
-    }
-
-    /// Builds the lab anew from the saved shaders on a worker thread (see [`Compiles`]).
-    fn start_compile(&mut self) {
-        self.compiles.started += 1;
-        let number = self.compiles.started;
-        let (tx, rx) = mpsc::channel();
-        let gpu = self.gpu.clone();
-        let source = self.sources.source.clone();
-        let files = self.sources.files.clone();
-        let format = self.screen.format();
-        let entry = self.session.entry();
-        let proxy = self.proxy.clone();
-        let test_panic = self.test_panic.as_deref() == Some("reload");
-        let spawned = std::thread::Builder::new()
-            .name("shaderlab-compile".into())
-            .spawn(move || {
-                let compiled = crate::panics::contained(|| {
-                    if test_panic {
-                        panic!("SHADERLAB_TEST_PANIC=reload");
-                    }
-                    Session::open_lab(entry, &gpu, &source, format, &files)
-                });
-                let _ = tx.send(compiled);
-                let _ = proxy.send_event(Wake::Compiled);
-            });
-        match spawned {
-            Ok(_) => {
-                self.compiles.running.push((number, Instant::now(), rx));
-                if let Some(log) = self.test_log.as_mut() {
-                    log.say(&format!("compile {number} started"));
-                }
-            }
-            Err(e) => {
-                self.show_compiled(
-                    number,
-                    Err(Error::Internal(format!(
-                        "cannot start a thread to compile the shaders: {e}"
-                    ))),
-                );
-            }
+        if shown {
+            self.window.request_redraw();
         }
-    }
-
-    /// Shows the compiles that ended: the newest save's lab, or its error.
-    fn finish_compiles(&mut self) {
-        let mut ended = Vec::new();
-        self.compiles.running.retain(|(number, _, rx)| match rx.try_recv() {
-            Ok(compiled) => {
-                ended.push((*number, compiled));
-                false
-            }
-            Err(mpsc::TryRecvError::Empty) => true,
-            Err(mpsc::TryRecvError::Disconnected) => {
-                ended.push((
-                    *number,
-                    Ok(Err(Error::Internal(
-                        "the compile's thread ended without a result".into(),
-                    ))),
-                ));
-                false
-            }
-        });
-        for (number, compiled) in ended {
-            if let Some(log) = self.test_log.as_mut() {
-                log.say(&format!("compile {number} ended"));
-            }
-            let built = compiled.unwrap_or_else(|report| Err(report.into_error()));
-            self.show_compiled(number, built);
-        }
-    }
-
-    /// Shows the result of save `number`'s compile, unless a newer save's is shown already.
-    fn show_compiled(&mut self, number: u64, built: Result<Box<dyn Lab>>) {
-        if number <= self.compiles.shown {
-            return;
-        }
-        self.compiles.shown = number;
-        let had_error = self.session.shader_error().is_some();
-        match built {
-            Ok(lab) => {
-                self.session.rebuilt(lab);
-                if had_error {
-                    eprintln!("{}: shaders reloaded, error fixed", self.name());
-                } else {
-                    eprintln!("{}: shaders reloaded", self.name());
-                }
-            }
-            Err(e) => {
-                eprintln!("{}: shader error (keeping the last good pipeline):\n{e}", self.name());
-                self.session.rebuild_failed(e.to_string());
-            }
-        }
-        self.compiles.said = self.compiles.say_at().is_some_and(|at| Instant::now() >= at);
-        self.update_title();
-        self.window.request_redraw();
     }
 
     /// A fresh name in the current directory: `NAME-SECONDS-PID-N.EXT` (F12 and F10).
@@ -850,12 +639,12 @@ impl WindowState {
         self.update_title();
     }
 
-    /// Draws the panel (when shown) over what the lab drew into `view`, and acts on what it
-    /// changed or asked for.
+    /// Draws the panel (when shown) over what the session drew into `target`, and hands what
+    /// it changed or asked for to the session.
     fn draw_panel(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
-        view: &wgpu::TextureView,
+        target: &wgpu::TextureView,
         format: wgpu::TextureFormat,
         size: (u32, u32),
     ) {
@@ -875,7 +664,7 @@ impl WindowState {
         let files: Vec<(String, String)> = (self.session.shader_files().into_iter())
             .map(|program| (program.vertex, program.fragment))
             .collect();
-        let source = match (&self.sources.source, self.sources.reload.is_some()) {
+        let source = match (&self.session.sources().source, self.reload.watching()) {
             (ShaderSource::Dir(dir), true) => format!("from {} (reloads live)", dir.display()),
             (ShaderSource::Dir(dir), false) => format!("from {}", dir.display()),
             (ShaderSource::Embedded, _) => "built in".to_owned(),
@@ -893,7 +682,7 @@ impl WindowState {
             recording: self.recording.as_ref().map(recording::Recording::frames),
             view: words.clone(),
             choices: choices.clone(),
-            can_diff: !matches!(self.sources.source, ShaderSource::Embedded),
+            can_diff: !matches!(self.session.sources().source, ShaderSource::Embedded),
         };
         let (inspecting, pixel, busy) = (
             self.session.inspecting(),
@@ -911,29 +700,36 @@ impl WindowState {
         } else {
             0
         };
-        let (lab, result) = self.session.lab_and_inspection();
-        let inspect = inspecting.then_some(super::panel::InspectView {
+        let inspect = inspecting.then_some(super::panel::InspectPanel {
             pixel,
-            result,
+            result: self.session.inspection(),
             busy,
             line,
             view: words,
             choices,
         });
-        let (changed, request) = self.panel.draw(
+        let (edits, request) = self.panel.draw(
             &self.gpu,
             &self.window,
             encoder,
-            view,
+            target,
             format,
             size,
             legend,
-            lab,
+            self.session.lab(),
             &status,
             inspect.as_ref(),
         );
-        if changed {
-            self.session.touched();
+        for edit in &edits {
+            let written = match edit {
+                super::panel::Edit::Set(name, values) => self.session.set_values(name, values),
+                super::panel::Edit::Reset => self.session.reset(),
+            };
+            if let Err(e) = written {
+                eprintln!("{}: {e}", self.name());
+            }
+        }
+        if !edits.is_empty() {
             self.update_title();
         }
         if self.panel.repaint {
@@ -943,7 +739,7 @@ impl WindowState {
             Some(super::panel::Request::WriteShaders) => self.write_shaders(),
             Some(super::panel::Request::View(wanted)) => self.toggle_view(wanted),
             Some(super::panel::Request::Picture) => {
-                self.session.set_view(None, None);
+                self.session.show_view(&self.gpu, None);
                 self.update_title();
             }
             None => {}
@@ -961,33 +757,11 @@ impl WindowState {
     }
 
     /// Shows `wanted` in place of the picture (F3, F4, a line clicked in the inspector), or
-    /// the picture again when it is the view shown; a diff builds the lab from its built-in
-    /// shaders to compare with.
+    /// the picture again when it is the view shown ([`Session::toggle_view`]).
     fn toggle_view(&mut self, wanted: super::views::Wanted) {
-        let mut reference = None;
-        if wanted == super::views::Wanted::Diff && self.session.view() != Some(&wanted) {
-            if matches!(self.sources.source, ShaderSource::Embedded) {
-                eprintln!(
-                    "{}: the lab draws with its built-in shaders; run it with --shaders DIR to compare a copy with them",
-                    self.name()
-                );
-                return;
-            }
-            match Session::open_lab(
-                self.session.entry(),
-                &self.gpu,
-                &ShaderSource::Embedded,
-                self.screen.format(),
-                &self.sources.files,
-            ) {
-                Ok(lab) => reference = Some(lab),
-                Err(e) => {
-                    eprintln!("{}: cannot build the lab with its built-in shaders: {e}", self.name());
-                    return;
-                }
-            }
+        if let Some(words) = self.session.toggle_view(&self.gpu, wanted) {
+            eprintln!("{}: {words}", self.name());
         }
-        self.session.toggle_view(wanted, reference);
         self.update_title();
         self.window.request_redraw();
     }
@@ -1022,8 +796,8 @@ impl WindowState {
             return;
         }
         let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
-        self.sources.source = ShaderSource::Dir(dir.clone());
-        self.sources.reload = watch(std::slice::from_ref(&dir), &self.sources.files.inputs);
+        self.session.moved_to(ShaderSource::Dir(dir.clone()));
+        self.reload.watch(self.session.sources());
         let _ = super::cli::say(&format!("shaders: {} (edit them; the lab reloads live)", dir.display()));
     }
 
@@ -1036,26 +810,12 @@ impl WindowState {
             return;
         }
         let path = self.fresh_name("png");
-        let (w, h) = self.screen.size();
-        if let Some(picture) = self.session.view_picture(&self.gpu) {
-            // A view shows: its picture is what the window shows.
-            let saved = picture.and_then(|image| {
-                let image = image::imageops::crop_imm(&image, 0, 0, w, h).to_image();
-                save_png(&image, &path)
-            });
-            match saved {
-                Ok(()) => {
-                    let path = std::fs::canonicalize(&path).unwrap_or(path);
-                    let _ = super::cli::say(&format!("screenshot: {}", path.display()));
-                }
-                Err(e) => eprintln!("{}: screenshot failed: {e}", self.name()),
-            }
-            return;
-        }
-        // Drawn by the window's own pipelines (its format), read back as RGB.
-        let target = Offscreen::with_format(&self.gpu, w, h, self.screen.format());
-        match crate::lab::frame::render_into(&self.gpu, self.session.lab_mut(), &target)
-            .and_then(|()| target.read(&self.gpu))
+        // What the window shows (a view's picture, or the lab's frame drawn by the window's
+        // own pipelines in its format), read back.
+        let size = self.screen.size();
+        match self
+            .session
+            .picture(&self.gpu, size)
             .and_then(|image| save_png(&image, &path))
         {
             Ok(()) => {
@@ -1091,8 +851,6 @@ impl WindowState {
         let now = Instant::now();
         self.pacing.next = (self.pacing.next + self.pacing.interval).max(now);
         let clock = self.now();
-        self.session.tick(clock);
-        self.session.drawn();
         let fatal = self.fatal.clone();
         let name = self.name();
         let Some(target) = self.screen.target(&self.gpu, || {
@@ -1103,39 +861,37 @@ impl WindowState {
             })
         })?
         else {
+            // No frame to draw into this time (the surface was renewed): the clock still moves
+            // and the frame counts as drawn, as one that reached the screen.
+            self.session.tick(clock);
+            self.session.drawn();
             return Ok(());
         };
         let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("window.frame"),
         });
-        let ((w, h), format) = (target.size, target.format);
-        if self.session.view_frame(&self.gpu, (w, h), format) {
-            self.update_title();
-            if let Some(log) = self.test_log.as_mut() {
-                log.say(&match self.session.view_shown() {
-                    Some(Ok(_)) => format!("view {w}x{h}"),
-                    Some(Err(e)) => format!("view error: {}", e.lines().next().unwrap_or("")),
-                    None => "view none".into(),
-                });
-            }
-        }
-        let error = if self.session.record_view(&self.gpu, &mut encoder, &target.view, format) {
-            None
-        } else {
-            self.session
-                .record(&self.gpu, &mut encoder, &target.view, &target.depth, (w, h))
+        let (w, h) = target.size;
+        let drawn = super::session::Target {
+            color: &target.color,
+            depth: &target.depth,
+            size: target.size,
         };
-        if let Some(e) = error {
+        let outcome = self.session.frame(&self.gpu, &mut encoder, &drawn, clock);
+        if outcome.inspection {
+            self.inspected();
+        }
+        if outcome.view {
+            self.viewed((w, h));
+        }
+        if let Some(e) = outcome.error {
             // A lab may rebuild a program while drawing (a shading model chosen by key); a
             // broken shader file leaves the previous one in place, and the error is shown once.
             eprintln!("{}: {e}", self.name());
             self.update_title();
         }
-        let view = target.view.clone();
-        self.draw_panel(&mut encoder, &view, target.format, target.size);
+        let color = target.color.clone();
+        self.draw_panel(&mut encoder, &color, target.format, target.size);
         let shown = self.screen.present(&self.gpu, target, encoder)?;
-        // The lab changed since the last inspection: the frame just shown is captured.
-        self.session.inspect_frame(&self.gpu, (w, h), format);
         match shown {
             Shown::Yes => {}
             Shown::Again => self.session.changed(),
@@ -1152,6 +908,36 @@ impl WindowState {
             self.report_frame_time();
         }
         Ok(())
+    }
+
+    /// The view made a new picture, legend or error at `(w, h)`: the title, and the tests'
+    /// signal.
+    fn viewed(&mut self, (w, h): (u32, u32)) {
+        self.update_title();
+        if let Some(log) = self.test_log.as_mut() {
+            log.say(&match self.session.view_shown() {
+                Some(Ok(_)) => format!("view {w}x{h}"),
+                Some(Err(e)) => format!("view error: {}", e.lines().next().unwrap_or("")),
+                None => "view none".into(),
+            });
+        }
+    }
+
+    /// A new inspection arrived: the tests' signal, and the test hook's line chosen once as a
+    /// click in the listing would.
+    fn inspected(&mut self) {
+        if let (Some(log), Some(shown)) = (self.test_log.as_mut(), self.session.inspection()) {
+            log.say(&match shown {
+                Ok(i) => {
+                    let p = i.replayed.pixel;
+                    format!("inspected {},{} rgba({}, {}, {}, {})", i.x, i.y, p[0], p[1], p[2], p[3])
+                }
+                Err(e) => format!("inspected error: {}", e.lines().next().unwrap_or("")),
+            });
+        }
+        if let Some(wanted) = self.test_view.take().and_then(|t| super::views::Wanted::from_link(&t)) {
+            self.toggle_view(wanted);
+        }
     }
 
     /// `SHADERLAB_TEST_LOG`: a frame was shown.
@@ -1375,20 +1161,15 @@ impl ApplicationHandler<Wake> for App {
             event_loop.exit();
             return;
         }
-        // A new inspection to show: the replay runs on a worker thread of its own.
-        if state.session.inspect_poll(&state.gpu, super::inspector::on_a_thread) {
-            if let (Some(log), Some(shown)) = (state.test_log.as_mut(), state.session.inspection()) {
-                log.say(&match shown {
-                    Ok(i) => {
-                        let p = i.replayed.pixel;
-                        format!("inspected {},{} rgba({}, {}, {}, {})", i.x, i.y, p[0], p[1], p[2], p[3])
-                    }
-                    Err(e) => format!("inspected error: {}", e.lines().next().unwrap_or("")),
-                });
+        // What goes on between frames: a new inspection to show (the replay runs on a worker
+        // thread of its own), a view waiting for the GPU.
+        if state.session.busy() {
+            let outcome = state.session.poll(&state.gpu, state.screen.size());
+            if outcome.inspection {
+                state.inspected();
             }
-            // The test hook's line, chosen once as a click in the listing would.
-            if let Some(wanted) = state.test_view.take().and_then(|t| super::views::Wanted::from_link(&t)) {
-                state.toggle_view(wanted);
+            if outcome.view {
+                state.viewed(state.screen.size());
             }
         }
         let drawing = !state.paused() && (state.pacing.unpaced || state.session.wants_frame());
@@ -1408,10 +1189,10 @@ impl ApplicationHandler<Wake> for App {
         } else if !state.pacing.unpaced && !state.session.wants_frame() {
             // Nothing changes: sleep until an event (input, resize, expose) wakes the loop,
             // looking at the shader folder a few times a second for live reload.
-            if state.sources.reload.is_some() {
+            if state.reload.watching() {
                 state.check_reload();
-                let wake =
-                    (now + Duration::from_millis(100)).min(state.reload_wake().unwrap_or(now + Duration::from_secs(1)));
+                let wake = (now + Duration::from_millis(100))
+                    .min(state.reload.wake_at().unwrap_or(now + Duration::from_secs(1)));
                 event_loop.set_control_flow(ControlFlow::WaitUntil(wake));
                 if state.session.dirty() > 0 {
                     state.window.request_redraw();
@@ -1426,7 +1207,7 @@ impl ApplicationHandler<Wake> for App {
             // Input still wakes the loop at once; only drawing waits for its turn.
             event_loop.set_control_flow(ControlFlow::WaitUntil(state.pacing.next));
         }
-        if state.session.inspect_busy() {
+        if state.session.busy() {
             // An inspection in flight is looked at every few milliseconds until it is done.
             let soon = Instant::now() + Duration::from_millis(8);
             match event_loop.control_flow() {

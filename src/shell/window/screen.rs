@@ -1,6 +1,6 @@
 //! How a frame reaches the window: the swapchain, or, for a CPU adapter under X11, the X
 //! server's shared memory ([`super::shm`]), which the lab draws into directly. The
-//! window asks for a [`Target`], records the lab and the panel into it, and hands it back to
+//! window asks for a [`Target`], encodes the lab and the panel into it, and hands it back to
 //! [`Screen::present`]; everything that differs between the two paths lives here.
 //!
 //! A surface that is `Outdated` is reconfigured and a `Lost` one is created again, then drawing
@@ -26,7 +26,7 @@ use super::shm::ShmPresenter as Presenter;
 #[cfg(not(all(unix, not(any(target_os = "macos", target_os = "ios", target_os = "android")))))]
 struct Presenter {
     color: wgpu::TextureView,
-    depth_view: wgpu::TextureView,
+    depth_target: wgpu::TextureView,
     width: u32,
     height: u32,
 }
@@ -74,7 +74,7 @@ pub(super) struct Screen {
 /// Where one frame is drawn.
 pub(super) struct Target {
     /// The colour target.
-    pub view: wgpu::TextureView,
+    pub color: wgpu::TextureView,
     /// The depth target of its size.
     pub depth: wgpu::TextureView,
     /// Its colour format.
@@ -209,8 +209,8 @@ impl Screen {
         }
         if let Some(shm) = &self.shm {
             return Ok(Some(Target {
-                view: shm.color.clone(),
-                depth: shm.depth_view.clone(),
+                color: shm.color.clone(),
+                depth: shm.depth_target.clone(),
                 format: Presenter::FORMAT,
                 size: (shm.width, shm.height),
                 frame: None,
@@ -254,12 +254,12 @@ impl Screen {
             }
         };
         self.retries = 0;
-        let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
+        let color = frame.texture.create_view(&wgpu::TextureViewDescriptor {
             label: Some("window.frame"),
             ..Default::default()
         });
         Ok(Some(Target {
-            view,
+            color,
             depth: self.swapchain.depth().clone(),
             format: self.swapchain.format(),
             size: self.size(),

@@ -51,8 +51,8 @@ struct Segment {
 
 /// A colour target in a segment, and where its rows lie there.
 struct Target {
-    view: wgpu::TextureView,
-    /// Kept with its view: the memory is the segment's, dropped before the segment goes.
+    color: wgpu::TextureView,
+    /// Kept with its colour target: the memory is the segment's, dropped before the segment goes.
     _texture: wgpu::Texture,
     /// Bytes from the segment's start to the first row.
     offset: u32,
@@ -80,7 +80,7 @@ pub(super) struct ShmPresenter {
     /// Colour target the lab draws the next frame in (the next segment's, presenting directly).
     pub color: wgpu::TextureView,
     /// Depth target.
-    pub depth_view: wgpu::TextureView,
+    pub depth_target: wgpu::TextureView,
     /// A frame submitted but not shown yet (unpaced drawing).
     in_flight: Option<InFlight>,
     /// Target size.
@@ -207,7 +207,7 @@ impl ShmPresenter {
             segments(&conn, Layout::Direct(&gpu.device, width, height))
         };
         let made = match direct {
-            Ok(segments) => match view_of(&segments[0]) {
+            Ok(segments) => match color_of(&segments[0]) {
                 Ok(color) => Ok((segments, color, None)),
                 Err(e) => {
                     release_all(&conn, segments);
@@ -241,7 +241,7 @@ impl ShmPresenter {
             gc,
             depth,
             color,
-            depth_view: depth_texture(&gpu.device, width, height),
+            depth_target: depth_texture(&gpu.device, width, height),
             in_flight: None,
             width,
             height,
@@ -328,7 +328,7 @@ impl ShmPresenter {
                 let segment = Segment::new(&self.conn, Layout::Direct(&self.device, width, height))?;
                 std::mem::replace(&mut self.segments[k], segment).release(&self.conn);
             }
-            self.color = view_of(&self.segments[self.next])?;
+            self.color = color_of(&self.segments[self.next])?;
         } else {
             let (texture, color, readback, stride) = targets(gpu, width, height);
             let needed = stride as usize * height as usize;
@@ -344,7 +344,7 @@ impl ShmPresenter {
             }
             self.color = color;
         }
-        self.depth_view = depth_texture(&gpu.device, width, height);
+        self.depth_target = depth_texture(&gpu.device, width, height);
         (self.width, self.height) = (width, height);
         Ok(())
     }
@@ -368,7 +368,7 @@ impl ShmPresenter {
                 gpu.queue
                     .on_submitted_work_done(move || flag.store(true, Ordering::Release));
                 self.next = (k + 1) % SEGMENTS;
-                self.color = view_of(&self.segments[self.next])?;
+                self.color = color_of(&self.segments[self.next])?;
                 (Destination::Segment(k, done), submission)
             }
             Some(copying) => {
@@ -439,12 +439,12 @@ impl ShmPresenter {
                 gpu.poll_then_wait(|_| mapped.load(Ordering::Acquire), wait)
                     .map_err(waited)?;
                 {
-                    let view = slice.get_mapped_range().map_err(x("reading the frame"))?;
+                    let mapped = slice.get_mapped_range().map_err(x("reading the frame"))?;
                     // SAFETY: the segment is `size >= bytes` bytes mapped here for the
                     // presenter's life, and its completion event says the server has finished
                     // reading it.
                     let dst = unsafe { std::slice::from_raw_parts_mut(self.segments[k].addr, bytes) };
-                    dst.copy_from_slice(&view);
+                    dst.copy_from_slice(&mapped);
                 }
                 buffer.unmap();
                 self.next = (k + 1) % SEGMENTS;
@@ -562,12 +562,12 @@ fn release_all(conn: &RustConnection, segments: [Segment; SEGMENTS]) {
     }
 }
 
-/// A view of the colour target in `segment`.
-fn view_of(segment: &Segment) -> Result<wgpu::TextureView, Why> {
+/// The colour target in `segment`.
+fn color_of(segment: &Segment) -> Result<wgpu::TextureView, Why> {
     segment
         .target
         .as_ref()
-        .map(|t| t.view.clone())
+        .map(|t| t.color.clone())
         .ok_or_else(|| "a segment without its target".to_owned())
 }
 
@@ -618,7 +618,7 @@ impl Segment {
         }
         Ok(Segment {
             target: Some(Target {
-                view: target.texture.create_view(&wgpu::TextureViewDescriptor {
+                color: target.texture.create_view(&wgpu::TextureViewDescriptor {
                     label: Some("shaderlab.shm.segment"),
                     ..Default::default()
                 }),
