@@ -19,6 +19,10 @@
 #[cfg(not(target_arch = "wasm32"))]
 mod args;
 #[cfg(not(target_arch = "wasm32"))]
+pub mod check;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod check_verb;
+#[cfg(not(target_arch = "wasm32"))]
 mod cli;
 pub mod clock;
 #[cfg(not(target_arch = "wasm32"))]
