@@ -342,35 +342,175 @@ pub fn value_words(v: &[f64]) -> String {
     }
 }
 
+/// A check moved on a state at a time between frames ([`crate::shell::session::Session::poll`],
+/// the page's Check): both labs are built once, each state's two frames are captured, read
+/// back without blocking (or waited for, natively) and compared.
+pub struct Checking {
+    entry: &'static LabEntry,
+    mine: Box<dyn crate::lab::Lab>,
+    reference: Box<dyn crate::lab::Lab>,
+    base: Params,
+    reference_base: Params,
+    states: Vec<State>,
+    format: wgpu::TextureFormat,
+    /// The state being captured: its two frames on their way.
+    pending: Option<(crate::debug::Pending, crate::debug::Pending)>,
+    /// What the states checked so far gave.
+    report: Report,
+    /// Why the check stopped before its end, if it did.
+    failed: Option<crate::error::Error>,
+}
+
+impl Checking {
+    /// A check of the copy `mine` against `reference` (labs of `entry` drawing in `format`,
+    /// each from its own parameters) at `states`, at `size`, passing at `min_db`.
+    pub fn new(
+        entry: &'static LabEntry,
+        (mine, reference): (Box<dyn crate::lab::Lab>, Box<dyn crate::lab::Lab>),
+        states: Vec<State>,
+        (size, format): ((u32, u32), wgpu::TextureFormat),
+        min_db: f64,
+    ) -> Checking {
+        let (base, reference_base) = (mine.params().clone(), reference.params().clone());
+        Checking {
+            entry,
+            mine,
+            reference,
+            base,
+            reference_base,
+            report: Report {
+                lab: entry.info.name.to_owned(),
+                size,
+                min_db,
+                states: Vec::with_capacity(states.len()),
+            },
+            states,
+            format,
+            pending: None,
+            failed: None,
+        }
+    }
+
+    /// How many states it checks.
+    pub fn len(&self) -> usize {
+        self.states.len()
+    }
+
+    /// Whether it checks no state.
+    pub fn is_empty(&self) -> bool {
+        self.states.is_empty()
+    }
+
+    /// Whether every state was checked (or the check stopped).
+    pub fn finished(&self) -> bool {
+        self.failed.is_some() || self.report.states.len() == self.states.len()
+    }
+
+    /// The states checked so far.
+    pub fn report(&self) -> &Report {
+        &self.report
+    }
+
+    /// Why the check stopped before its end, if it did.
+    pub fn failed(&self) -> Option<&crate::error::Error> {
+        self.failed.as_ref()
+    }
+
+    /// The whole report (or why the check stopped), and the copy's lab (whose sources a report
+    /// quotes).
+    pub fn end(self) -> (Result<Report>, Box<dyn crate::lab::Lab>) {
+        match self.failed {
+            Some(e) => (Err(e), self.mine),
+            None => (Ok(self.report), self.mine),
+        }
+    }
+
+    /// Moves the check on without blocking (`wait`: waiting for the frames, natively): a
+    /// state's frames that are back are compared, and the next state's captured. Returns
+    /// whether a state was checked (or the check stopped).
+    pub fn poll(&mut self, gpu: &crate::gpu::Gpu, wait: bool) -> bool {
+        if self.finished() {
+            return false;
+        }
+        let Some((a, b)) = &self.pending else {
+            self.start(gpu);
+            return self.failed.is_some();
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        let ready = wait || {
+            let _ = gpu.device.poll(wgpu::PollType::Poll);
+            a.ready() && b.ready()
+        };
+        #[cfg(target_arch = "wasm32")]
+        let ready = {
+            let _ = (gpu.device.poll(wgpu::PollType::Poll), wait);
+            a.ready() && b.ready()
+        };
+        if !ready {
+            return false;
+        }
+        let (a, b) = self.pending.take().expect("checked above");
+        #[cfg(not(target_arch = "wasm32"))]
+        let frames = if wait {
+            a.wait(gpu).and_then(|a| Ok((a, b.wait(gpu)?)))
+        } else {
+            a.finish().and_then(|a| Ok((a, b.finish()?)))
+        };
+        #[cfg(target_arch = "wasm32")]
+        let frames = a.finish().and_then(|a| Ok((a, b.finish()?)));
+        let state = self.states[self.report.states.len()].clone();
+        match frames.and_then(|(a, b)| crate::debug::diff::diff(self.entry.info.name, &a, &b)) {
+            Ok(diff) => {
+                let min_db = self.report.min_db;
+                self.report.states.push(Checked::new(state, diff, min_db));
+                if !self.finished() {
+                    self.start(gpu);
+                }
+            }
+            Err(e) => self.failed = Some(e),
+        }
+        true
+    }
+
+    /// Sets both labs to the next state and starts capturing their frames.
+    fn start(&mut self, gpu: &crate::gpu::Gpu) {
+        let state = &self.states[self.report.states.len()];
+        let size = self.report.size;
+        let started = state.apply(&self.base).and_then(|p| {
+            *self.reference.params_mut() = state.apply(&self.reference_base)?;
+            *self.mine.params_mut() = p;
+            let a = crate::debug::capture_start(gpu, self.mine.as_mut(), size, self.format)?;
+            let b = crate::debug::capture_start(gpu, self.reference.as_mut(), size, self.format)?;
+            Ok((a, b))
+        });
+        match started {
+            Ok(both) => self.pending = Some(both),
+            Err(e) => self.failed = Some(e),
+        }
+    }
+}
+
 /// Checks the copy `mine` against `reference` (labs of `entry`, built once and kept for every
-/// state: their pipelines are reused) at each of `states`, from `base` (and the reference's
-/// `reference_base`, which a pair of its own may declare), at `size`, passing at `min_db`;
-/// `each` hears of every state checked (a progress bar).
+/// state: their pipelines are reused, each drawn from its own parameters) at each of `states`,
+/// at `size`, passing at `min_db`, waiting for each state's frames; `each` hears of every state
+/// checked (a progress bar). Returns the report and the copy's lab.
 #[cfg(not(target_arch = "wasm32"))]
-#[allow(clippy::too_many_arguments)]
 pub fn run(
     gpu: &crate::gpu::Gpu,
-    entry: &LabEntry,
-    (mine, reference): (&mut dyn crate::lab::Lab, &mut dyn crate::lab::Lab),
-    (base, reference_base): (&Params, &Params),
+    entry: &'static LabEntry,
+    labs: (Box<dyn crate::lab::Lab>, Box<dyn crate::lab::Lab>),
     states: Vec<State>,
     size: (u32, u32),
     min_db: f64,
     mut each: impl FnMut(&Checked),
-) -> Result<Report> {
-    let mut checked = Vec::with_capacity(states.len());
-    for state in states {
-        *mine.params_mut() = state.apply(base)?;
-        *reference.params_mut() = state.apply(reference_base)?;
-        let diff = crate::debug::diff::diff_labs(gpu, entry.info.name, mine, reference, size)?;
-        let c = Checked::new(state, diff, min_db);
-        each(&c);
-        checked.push(c);
+) -> (Result<Report>, Box<dyn crate::lab::Lab>) {
+    let mut checking = Checking::new(entry, labs, states, (size, crate::offscreen::COLOR_FORMAT), min_db);
+    while !checking.finished() {
+        if checking.poll(gpu, true) {
+            if let Some(last) = checking.report().states.last() {
+                each(last);
+            }
+        }
     }
-    Ok(Report {
-        lab: entry.info.name.to_owned(),
-        size,
-        min_db,
-        states: checked,
-    })
+    checking.end()
 }

@@ -161,17 +161,11 @@ fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> std::result::Result<
         }
     }
     let states = check::states(entry, &params, own.random, own.seed);
+    *mine.params_mut() = params;
+    *reference.params_mut() = reference_params;
     let bar = super::progress_bar(states.len() as u64, &format!("{}: checking", entry.info.name));
-    let report = check::run(
-        &gpu,
-        entry,
-        (mine.as_mut(), reference.as_mut()),
-        (&params, &reference_params),
-        states,
-        size,
-        own.min_db,
-        |_| bar.inc(1),
-    )?;
+    let (report, mut mine) = check::run(&gpu, entry, (mine, reference), states, size, own.min_db, |_| bar.inc(1));
+    let report = report?;
     bar.finish_and_clear();
     if let (Some(dir), Some(file)) = (&own.report, &report_file) {
         let html = report_html(&report, mine.as_mut())?;
