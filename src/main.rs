@@ -29,6 +29,14 @@ Usage:
                                       the worst one, and the first line whose value departs
   shaderlab diff legacy VERT FRAG --reference VERT0 FRAG0 [FLAGS…]
                                       the same for two GLSL 1.10/1.20 pairs
+  shaderlab check NAME --shaders DIR [--states N] [--seed S] [--min-db D] [--json]
+                [--report DIR] [FLAGS…]
+                                      a copy of the lab's shaders against the built-in ones
+                                      at every object, the lab's states of record and N seeded
+                                      random states: per state the PSNR, the pixels that
+                                      differ, and where one fails the first line that departs
+  shaderlab check legacy VERT FRAG --reference VERT0 FRAG0 [FLAGS…]
+                                      the same for two GLSL 1.10/1.20 pairs
   shaderlab view NAME --line FILE:LINE [--name VAR] [--stage vertex|fragment] [FLAGS…]
   shaderlab view NAME --cost [FLAGS…]
                                       a line's value, or the statements the fragment shader
@@ -71,6 +79,23 @@ fn verb_help(verb: &str) -> String {
              for legacy, which draws the pair VERT FRAG: the pair to compare it with\n  \
              --out FILE.png the difference as a picture, with its legend\n  \
              --json         print one JSON object (psnr, differing, worst, first_divergence)",
+        ),
+        "check" => (
+            "draw a lab with the copy of its shaders in DIR and with the built-in ones at many\n\
+             states, and compare each as shaderlab diff does: the base state (the lab's defaults\n\
+             with --set), every object, the lab's states of record, and N random states drawn\n\
+             with seed S across each parameter's slider range. Status 0 when every state passes\n\
+             (at least D dB, or identical), 1 when one fails",
+            shaderlab::shell::check_verb::USAGE,
+            "\n  --shaders DIR  the copy of the lab's shaders (same file names as shaders_glsl/)\n  \
+             --reference VERT0 FRAG0\n                 \
+             for legacy, which draws the pair VERT FRAG: the pair to check it against\n  \
+             --states N     random states to add (default 8, at most 1000)\n  \
+             --seed S       their seed (default 0): the same command checks the same states\n  \
+             --min-db D     the PSNR a state must reach to pass (default 40)\n  \
+             --report DIR   DIR/index.html: each state's three pictures, and where one fails the\n                 \
+             copy's source around the line that departs, with both values\n  \
+             --json         print one JSON document (lab, states, passed, failed)",
         ),
         "view" => (
             "show a value over the whole frame, drawn on the GPU by an instrumented copy of the\n\
@@ -218,7 +243,7 @@ fn write_pages(dir: &std::path::Path, pages: &[(String, Vec<u8>)]) -> Result<(),
 fn nothing_after(verb: &str, words: &[String]) -> Option<ExitCode> {
     let extra = words.first()?;
     let usage = if verb == "help" {
-        "shaderlab help [run|record|debug|diff|view]".to_owned()
+        "shaderlab help [run|record|debug|diff|check|view]".to_owned()
     } else {
         format!("shaderlab {verb}")
     };
@@ -233,7 +258,7 @@ fn main() -> ExitCode {
     let after = words.get(2..).unwrap_or_default();
     match words.get(1).map(String::as_str) {
         None => print(&format!("{USAGE}\n")),
-        Some("help" | "--help" | "-h") if matches!(after, [v] if ["run", "record", "debug", "diff", "view"].contains(&v.as_str())) => {
+        Some("help" | "--help" | "-h") if matches!(after, [v] if ["run", "record", "debug", "diff", "check", "view"].contains(&v.as_str())) => {
             print(&verb_help(&after[0]))
         }
         Some(verb @ ("help" | "--help" | "-h")) => match nothing_after(verb, after) {
@@ -264,12 +289,12 @@ fn main() -> ExitCode {
             lines.push(String::new());
             print(&lines.join("\n"))
         }
-        Some(verb @ ("run" | "record" | "debug" | "diff" | "view"))
+        Some(verb @ ("run" | "record" | "debug" | "diff" | "check" | "view"))
             if matches!(words.get(2).map(String::as_str), Some("--help" | "-h")) =>
         {
             print(&verb_help(verb))
         }
-        Some(verb @ ("run" | "record" | "legacy" | "debug" | "diff" | "view")) => {
+        Some(verb @ ("run" | "record" | "legacy" | "debug" | "diff" | "check" | "view")) => {
             let (name, rest) = if verb == "legacy" {
                 (Some("legacy"), 2)
             } else {
@@ -314,6 +339,8 @@ fn main() -> ExitCode {
                 shaderlab::shell::view_verb::view_main_from(entry, args)
             } else if verb == "diff" {
                 shaderlab::shell::diff_verb::diff_main_from(entry, args)
+            } else if verb == "check" {
+                shaderlab::shell::check_verb::check_main_from(entry, args)
             } else {
                 shaderlab::shell::main_from(entry, args)
             }

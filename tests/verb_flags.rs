@@ -69,6 +69,10 @@ const FLAGS: &[(&str, &[&str])] = &[
     ("--out", &["o.png"]),
     ("--pixel", &["1,1"]),
     ("--reference", &["V", "F"]),
+    ("--states", &["2"]),
+    ("--seed", &["1"]),
+    ("--min-db", &["30"]),
+    ("--report", &["rep"]),
 ];
 
 /// What each verb takes besides the scene's flags; `view` also takes `--screenshot`, the old
@@ -125,6 +129,7 @@ fn takes(verb: &str) -> Vec<&'static str> {
             "--npy",
         ],
         "diff" => &["--out", "--json", "--reference"],
+        "check" => &["--json", "--reference", "--states", "--seed", "--min-db", "--report"],
         _ => panic!("{verb}"),
     };
     let mut all: Vec<&str> = SCENE.to_vec();
@@ -167,11 +172,15 @@ fn bases(verb: &str) -> Vec<Vec<&'static str>> {
             vec!["diff", "phong", "--shaders", "DIR"],
             vec!["diff", "legacy", "V", "F", "--reference", "V", "F"],
         ],
+        "check" => vec![
+            vec!["check", "phong", "--shaders", "DIR"],
+            vec!["check", "legacy", "V", "F", "--reference", "V", "F"],
+        ],
         _ => panic!("{verb}"),
     }
 }
 
-const VERBS: &[&str] = &["run", "legacy", "record", "debug", "view", "diff"];
+const VERBS: &[&str] = &["run", "legacy", "record", "debug", "view", "diff", "check"];
 
 /// A folder for one test, with the inputs the runs name: DIR (the shaders' copies) and the
 /// course's pair as V and F.

@@ -797,3 +797,76 @@ fn parameters_with_a_natural_range_get_sliders_and_typed_values_outside_still_co
     assert_eq!(json["afterSlider"].as_f64(), Some(0.5), "{json}");
     assert_eq!(json["afterTyped"].as_f64(), Some(3.0), "{json}");
 }
+
+/// The page's Check, as a user clicks it after planting a bug in the editor that the state
+/// shown hides (a diffuse term that never reaches 0): the states `shaderlab check` checks on
+/// the command line (the same list), a row with three pictures each, and every failing state
+/// naming the planted line.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn the_pages_check_checks_the_commands_states_and_names_the_planted_line() {
+    let server = serve(site());
+    let page = open(&server, "webgl2", &format!("{}&check=states", query("phong", &[])));
+    let text = page.get("capture-check");
+    let report: serde_json::Value =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("the check's report ({e}): `{text}`"));
+    assert_eq!(report["error"], serde_json::Value::Null, "{report}");
+    let states = report["states"].as_array().expect("states");
+    assert_eq!(
+        states.len() as u64,
+        report["total"].as_u64().expect("total"),
+        "every state checked: {report}"
+    );
+    // The command line's check of the same copy: the same states.
+    let dir = common::output_dir().join("web_check_copy");
+    let _ = std::fs::remove_dir_all(&dir);
+    common::copy_shaders(&dir);
+    let frag = dir.join("phong.frag");
+    let planted =
+        std::fs::read_to_string(&frag)
+            .expect("phong.frag")
+            .replacen("max(dot(N, L), 0.0)", "max(dot(N, L), 0.2)", 1);
+    std::fs::write(&frag, &planted).expect("the copy");
+    let out = Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .args(["check", "phong", "--shaders", dir.to_str().expect("utf-8"), "--json"])
+        .output()
+        .expect("shaderlab runs");
+    let native: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON document");
+    let sets = |v: &serde_json::Value| -> Vec<serde_json::Value> {
+        v["states"]
+            .as_array()
+            .expect("states")
+            .iter()
+            .map(|s| s["set"].clone())
+            .collect()
+    };
+    assert_eq!(sets(&report), sets(&native), "the page checks the command's states");
+    let line = planted
+        .lines()
+        .position(|l| l.contains("max(dot(N, L), 0.2)"))
+        .expect("the line") as u64
+        + 1;
+    let failing: Vec<&serde_json::Value> = states.iter().filter(|s| s["pass"] == false).collect();
+    println!(
+        "the page's check: {} states, {} failing; the command's: {} failing",
+        states.len(),
+        failing.len(),
+        native["failed"]
+    );
+    assert!(
+        !failing.is_empty() && states[0]["pass"] == true,
+        "the bug hides at the state shown, shows elsewhere: {report}"
+    );
+    for s in failing {
+        let first = &s["first_divergence"];
+        assert!(first["file"].as_str().is_some_and(|f| f.ends_with("phong.frag")), "{s}");
+        assert_eq!(first["line"], line, "{s}");
+    }
+    let rows: usize = page.get("capture-check.rows").parse().expect("rows");
+    let images: usize = page.get("capture-check.images").parse().expect("images");
+    assert_eq!(
+        (rows, images),
+        (states.len(), 3 * states.len()),
+        "a row of three pictures a state"
+    );
+}

@@ -47,6 +47,7 @@ pub mod seed001;
 pub mod seed002;
 pub mod seed003;
 pub mod seed004;
+pub mod states;
 
 use crate::lab::LabEntry;
 

@@ -90,6 +90,8 @@ pub struct Diff {
     pub notes: Vec<String>,
     /// The picture of the difference with its legend ([`super::picture::difference`]).
     pub picture: RgbaImage,
+    /// The two pictures compared: the copy's, then the reference's.
+    pub frames: (std::sync::Arc<RgbaImage>, std::sync::Arc<RgbaImage>),
 }
 
 /// Refuses two captures whose shaders take different inputs (draws, uniform blocks, textures,
@@ -367,6 +369,7 @@ pub fn diff(lab: &str, mine: &Captured, reference: &Captured) -> Result<Diff> {
         first_divergence: first,
         notes,
         picture: diff_picture,
+        frames: (a, b),
     })
 }
 

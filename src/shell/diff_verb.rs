@@ -107,7 +107,30 @@ pub fn diff_main_from(entry: &'static LabEntry, argv: Vec<OsString>) -> ExitCode
     }
 }
 
-pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<(), Failure> {
+/// The two labs a comparison draws, built once on one device: the copy and the reference,
+/// each with its parameters, and the size to draw them at.
+pub(super) struct Pair {
+    pub(super) gpu: crate::gpu::Gpu,
+    pub(super) mine: Box<dyn crate::lab::Lab>,
+    pub(super) reference: Box<dyn crate::lab::Lab>,
+    /// The copy's parameters (the lab's defaults with `--set`).
+    pub(super) params: crate::params::Params,
+    /// The reference's (a pair of its own may declare other uniforms).
+    pub(super) reference_params: crate::params::Params,
+    pub(super) size: (u32, u32),
+}
+
+/// Builds the copy (`--shaders DIR`, or the pair `legacy` is given) and the reference (the
+/// built-in shaders, or `reference`, the pair `--reference` names) of `entry`'s lab for
+/// `verb` (`diff`, `check`), checking `outputs` before anything is drawn and again once the
+/// labs have read their inputs.
+pub(super) fn pair(
+    entry: &'static LabEntry,
+    args: &Args,
+    reference: Option<&Vec<PathBuf>>,
+    mode: Mode,
+    outputs: &[&std::path::Path],
+) -> Result<Pair, Failure> {
     for (flag, given) in [
         ("--screenshot", args.screenshot.is_some()),
         ("--bench", args.bench.is_some()),
@@ -115,13 +138,17 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
         ("--debug", args.debug.is_some()),
     ] {
         if given {
-            return Err(Error::Param(format!("`{flag}` is not for `shaderlab diff`; usage: {USAGE}")).into());
+            return Err(Error::Param(format!(
+                "`{flag}` is not for `shaderlab {}`",
+                if mode == Mode::Check { "check" } else { "diff" }
+            ))
+            .into());
         }
     }
-    verbs::check(entry, args, Mode::Diff)?;
+    verbs::check(entry, args, mode)?;
     let name = entry.info.name;
     let pair = verbs::draws_named_files(entry);
-    if own.reference.is_some() && !pair {
+    if reference.is_some() && !pair {
         return Err(Error::Param(format!(
             "`--reference` names the pair a lab that draws the files it is given (legacy) is compared with, and does nothing for {name}, whose reference is its built-in shaders: give the copy with --shaders DIR"
         ))
@@ -130,7 +157,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
     let params = args.params(entry)?;
     // The reference: the built-in shaders, or the pair `--reference` names (with the
     // parameters that pair declares).
-    let reference_args = own.reference.as_ref().map(|files| Args {
+    let reference_args = reference.map(|files| Args {
         files: files.clone(),
         ..args.clone()
     });
@@ -142,8 +169,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
         Some(r) => r.params(entry).map_err(in_reference)?,
         None => params.clone(),
     };
-    if let Some(path) = &own.out {
-        crate::fsutil::check_png_path(path)?;
+    for path in outputs {
         crate::fsutil::check_writable(path)?;
     }
     let copy = args.shader_source()?;
@@ -162,7 +188,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             .collect::<Vec<_>>()
             .join(" ")
     };
-    let (copy_words, reference_words) = match &own.reference {
+    let (copy_words, reference_words) = match reference {
         Some(pair) => (
             format!("the pair {}", show(&args.files)),
             format!("the pair {}", show(pair)),
@@ -178,7 +204,7 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             "the built-in shaders".to_owned(),
         ),
     };
-    let mut mine = Sources::new(copy.clone(), files.clone(), COLOR_FORMAT)
+    let mine = Sources::new(copy.clone(), files.clone(), COLOR_FORMAT)
         .build(&gpu, entry)
         .map_err(|e| match e {
             Error::Layout(why) | Error::Binding(why) => Error::Debug(format!(
@@ -187,15 +213,38 @@ pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<()
             e => e,
         })?;
     let reference_files = reference_files.unwrap_or_else(|| files.clone());
-    let mut reference = Sources::new(ShaderSource::Embedded, reference_files, COLOR_FORMAT).build(&gpu, entry)?;
-    if let Some(path) = &own.out {
+    let reference = Sources::new(ShaderSource::Embedded, reference_files, COLOR_FORMAT).build(&gpu, entry)?;
+    for path in outputs {
         // Both labs have read their shaders and the files they include: no output may replace
         // one.
         crate::fsutil::check_output_path(path)?;
     }
+    Ok(Pair {
+        gpu,
+        mine,
+        reference,
+        params,
+        reference_params,
+        size: args.size(entry),
+    })
+}
+
+pub(super) fn run(entry: &'static LabEntry, args: &Args, own: &Own) -> Result<(), Failure> {
+    if let Some(path) = &own.out {
+        crate::fsutil::check_png_path(path)?;
+    }
+    let outputs: Vec<&std::path::Path> = own.out.iter().map(PathBuf::as_path).collect();
+    let Pair {
+        gpu,
+        mut mine,
+        mut reference,
+        params,
+        reference_params,
+        size: (width, height),
+    } = pair(entry, args, own.reference.as_ref(), Mode::Diff, &outputs)?;
+    let name = entry.info.name;
     *mine.params_mut() = params;
     *reference.params_mut() = reference_params;
-    let (width, height) = args.size(entry);
     let diff = crate::debug::diff::diff_labs(&gpu, name, mine.as_mut(), reference.as_mut(), (width, height))?;
     if let Some(path) = &own.out {
         crate::offscreen::save_png(&diff.picture, path)?;

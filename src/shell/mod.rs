@@ -18,6 +18,9 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 mod args;
+pub mod check;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod check_verb;
 #[cfg(not(target_arch = "wasm32"))]
 mod cli;
 pub mod clock;

@@ -86,6 +86,9 @@ pub struct Session {
     inspector: Inspector,
     /// The whole-frame view asked for, and its last picture.
     views: Views,
+    /// The check of the lab's shaders against its built-in ones across its states, while one
+    /// runs or its report stays.
+    check: Option<super::check::Checking>,
 }
 
 /// The pixel inspector's state: whether clicks pick a pixel (F2 in the window, the page's
@@ -183,6 +186,8 @@ pub struct Outcome {
     pub view: bool,
     /// A new inspection arrived, or the last one failed ([`Session::inspection`]).
     pub inspection: bool,
+    /// The check checked a state, or stopped ([`Session::checking`]).
+    pub check: bool,
 }
 
 /// How far (in pixels) the mouse may move between press and release for a click.
@@ -231,6 +236,7 @@ impl Session {
             inspect: Inspect::default(),
             inspector: Inspector::default(),
             views: Views::default(),
+            check: None,
         })
     }
 
@@ -296,7 +302,7 @@ impl Session {
     /// Whether something goes on between frames that [`Session::poll`] moves on: an
     /// inspection being captured or replayed, a view waiting for the GPU.
     pub fn busy(&self) -> bool {
-        self.inspector.busy() || self.views.busy()
+        self.inspector.busy() || self.views.busy() || self.check.as_ref().is_some_and(|c| !c.finished())
     }
 
     /// Frames still to draw after the last change.
@@ -628,9 +634,60 @@ impl Session {
             out.view = true;
             self.changed();
         }
+        if let Some(check) = self.check.as_mut() {
+            out.check = check.poll(gpu, self.platform.waits);
+        }
         // Captured last: the capture started here is moved on by the next poll.
         out.inspection |= self.capture(gpu, size);
         out
+    }
+
+    /// Starts checking the lab's shaders (as the session draws them) against its built-in ones
+    /// across its states ([`super::check`]): from the lab's state now, the base state, every
+    /// object, the lab's states of record and `random` states drawn with `seed`, at `size`,
+    /// passing at `min_db`; [`Session::poll`] moves it on a state at a time. Both labs are
+    /// built here, once. Says why it cannot start.
+    pub fn check_start(
+        &mut self,
+        gpu: &Gpu,
+        size: (u32, u32),
+        random: usize,
+        seed: u64,
+        min_db: f64,
+    ) -> Option<String> {
+        if (self.entry.params)().file_args().is_some() {
+            return Some(format!(
+                "{} draws the pair it is given: check it against another pair with `shaderlab check {} VERT FRAG --reference VERT0 FRAG0`",
+                self.name(),
+                self.name()
+            ));
+        }
+        let built = (self.sources.build(gpu, self.entry)).and_then(|mine| {
+            let builtin = self.sources.with_source(ShaderSource::Embedded);
+            Ok((mine, builtin.build(gpu, self.entry)?))
+        });
+        let (mut mine, mut reference) = match built {
+            Ok(labs) => labs,
+            Err(e) => return Some(format!("cannot check: {e}")),
+        };
+        let base = self.lab.params().clone();
+        let states = super::check::states(self.entry, &base, random, seed);
+        *reference.params_mut() = base.clone();
+        *mine.params_mut() = base;
+        self.check = Some(super::check::Checking::new(
+            self.entry,
+            (mine, reference),
+            states,
+            (size, self.sources.format),
+            min_db,
+        ));
+        self.changed();
+        None
+    }
+
+    /// The check started last, while it runs and after.
+    pub fn checking(&self) -> Option<&super::check::Checking> {
+        self.check.as_ref()
     }
 
     /// Draws one frame into `target`, recorded into `encoder` (the shell submits it, with what

@@ -29,6 +29,8 @@ pub enum Mode {
     Cost,
     /// A comparison: `--diff DIR`, `shaderlab diff`.
     Diff,
+    /// Comparisons across the lab's states: `shaderlab check`.
+    Check,
 }
 
 impl Mode {
@@ -42,6 +44,7 @@ impl Mode {
         Mode::Line,
         Mode::Cost,
         Mode::Diff,
+        Mode::Check,
     ];
 
     /// The mode `args` ask for (`shaderlab diff`, whose copy is `--shaders`, is [`Mode::Diff`]
@@ -77,6 +80,7 @@ impl Mode {
             Mode::Line => "in a line's view (--line)".into(),
             Mode::Cost => "in a cost view (--cost)".into(),
             Mode::Diff => "in a comparison (shaderlab diff)".into(),
+            Mode::Check => "in a check across states (shaderlab check)".into(),
         }
     }
 
@@ -170,7 +174,7 @@ pub const USES: &[Use] = &[
     },
     Use {
         id: "json",
-        modes: &[Mode::Debug, Mode::Line, Mode::Cost, Mode::Diff],
+        modes: &[Mode::Debug, Mode::Line, Mode::Cost, Mode::Diff, Mode::Check],
         what: "goes with --debug X,Y, --line FILE:LINE, --cost or --diff DIR",
         add: "",
     },
@@ -234,9 +238,10 @@ pub fn check(entry: &LabEntry, args: &Args, mode: Mode) -> Result<(), Error> {
     let name = entry.info.name;
     if draws_named_files(entry) {
         if args.given.iter().any(|g| g == "shaders") {
-            let instead = if mode == Mode::Diff {
+            let instead = if matches!(mode, Mode::Diff | Mode::Check) {
+                let verb = if mode == Mode::Check { "check" } else { "diff" };
                 format!(
-                    "name the pair to compare against with `shaderlab diff {name} VERT FRAG --reference VERT0 FRAG0`"
+                    "name the pair to compare against with `shaderlab {verb} {name} VERT FRAG --reference VERT0 FRAG0`"
                 )
             } else {
                 "give your files as VERT FRAG".into()
@@ -292,6 +297,8 @@ pub enum Verb {
     Diff,
     /// `shaderlab view NAME --line FILE:LINE | --cost`.
     View,
+    /// `shaderlab check NAME --shaders DIR`.
+    Check,
 }
 
 impl Verb {
@@ -303,6 +310,7 @@ impl Verb {
         Verb::Debug,
         Verb::Diff,
         Verb::View,
+        Verb::Check,
     ];
 
     /// The verb as typed.
@@ -314,6 +322,7 @@ impl Verb {
             Verb::Debug => "debug",
             Verb::Diff => "diff",
             Verb::View => "view",
+            Verb::Check => "check",
         }
     }
 
@@ -334,6 +343,7 @@ impl Verb {
             Verb::Debug => &[Mode::Debug],
             Verb::Diff => &[Mode::Diff],
             Verb::View => &[Mode::Line, Mode::Cost],
+            Verb::Check => &[Mode::Check],
         }
     }
 
@@ -349,6 +359,7 @@ impl Verb {
             Verb::Debug => &[],
             Verb::Diff => &["screenshot", "diff"],
             Verb::View => &[],
+            Verb::Check => &["diff"],
         };
         !given_otherwise.contains(&id) && modes_of(id).iter().any(|m| self.modes().contains(m))
     }
@@ -377,6 +388,10 @@ const ABOUT: &[(&str, &str)] = &[
     (
         "diff",
         "where a copy of the lab's shaders (--shaders DIR), or legacy's pair (--reference VERT0 FRAG0), draws differently, and from which line",
+    ),
+    (
+        "check",
+        "a copy of the lab's shaders (--shaders DIR) against the course's at every object, the lab's states of record and seeded random states: PSNR and the first diverging line per state",
     ),
     (
         "view",
@@ -527,6 +542,10 @@ fn verb_command(verb: Verb) -> clap::Command {
                 b.help("The copy of the lab's shaders to compare with the built-in ones (same file names as shaders_glsl/)")
             }
             (Verb::Diff, "json") => b.help("Print one JSON object (psnr, differing, worst, first_divergence) instead of the text"),
+            (Verb::Check, "shaders") => {
+                b.help("The copy of the lab's shaders to check against the built-in ones (same file names as shaders_glsl/)")
+            }
+            (Verb::Check, "json") => b.help("Print one JSON document (lab, states, passed, failed) instead of the text"),
             _ => b,
         };
         command = command.arg(b);
@@ -548,6 +567,47 @@ fn verb_command(verb: Verb) -> clap::Command {
                     .value_names(["VERT0", "FRAG0"])
                     .value_hint(ValueHint::FilePath)
                     .help("For legacy: the pair to compare VERT FRAG with (instead of --shaders DIR)"),
+            ),
+        Verb::Check => command
+            .arg(
+                Arg::new("states")
+                    .long("states")
+                    .value_name("N")
+                    .value_hint(ValueHint::Other)
+                    .action(ArgAction::Set)
+                    .help("Random states to add to the lab's own (default 8)"),
+            )
+            .arg(
+                Arg::new("seed")
+                    .long("seed")
+                    .value_name("S")
+                    .value_hint(ValueHint::Other)
+                    .action(ArgAction::Set)
+                    .help("The random states' seed (default 0): the same seed, the same states"),
+            )
+            .arg(
+                Arg::new("min-db")
+                    .long("min-db")
+                    .value_name("D")
+                    .value_hint(ValueHint::Other)
+                    .action(ArgAction::Set)
+                    .help("The PSNR a state must reach to pass (default 40)"),
+            )
+            .arg(
+                Arg::new("report")
+                    .long("report")
+                    .value_name("DIR")
+                    .value_hint(ValueHint::DirPath)
+                    .action(ArgAction::Set)
+                    .help("Write DIR/index.html: a page with each state's pictures and, where it fails, the copy's source there"),
+            )
+            .arg(
+                Arg::new("reference")
+                    .long("reference")
+                    .num_args(2)
+                    .value_names(["VERT0", "FRAG0"])
+                    .value_hint(ValueHint::FilePath)
+                    .help("For legacy: the pair to check VERT FRAG against (instead of --shaders DIR)"),
             ),
         _ => command,
     }
@@ -628,7 +688,7 @@ pub fn completion_script(shell: clap_complete::Shell) -> String {
             };
             for value in first.get_possible_values() {
                 let help = match sub.get_name() {
-                    "run" | "record" | "debug" | "diff" | "view" => crate::course::find(value.get_name())
+                    "run" | "record" | "debug" | "diff" | "view" | "check" => crate::course::find(value.get_name())
                         .map(|e| format!(" -d '{} {}'", e.info.original_title, e.info.label.replace('\'', "\\'")))
                         .unwrap_or_default(),
                     _ => String::new(),

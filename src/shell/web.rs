@@ -709,6 +709,63 @@ impl WebApp {
         }
     }
 
+    /// Starts checking the page's shaders against the built-in ones across the lab's states
+    /// (the page's Check, as `shaderlab check`): from the state shown, the base state, every
+    /// object, the lab's states of record and `random` states drawn with `seed`, at the
+    /// canvas's size, passing at 40 dB. Returns why it cannot start ("" when it started).
+    pub fn check_start(&mut self, random: u32, seed: u32) -> String {
+        let size = self.screen.size();
+        let Some(open) = self.open.as_mut() else {
+            return "no lab is open".into();
+        };
+        let random = (random as usize).min(super::check::MAX_RANDOM);
+        open.check_start(&self.gpu, size, random, u64::from(seed), super::check::DEFAULT_MIN_DB)
+            .unwrap_or_default()
+    }
+
+    /// Moves the check on (a state's frames read back, compared, the next state captured);
+    /// returns whether it is finished.
+    pub fn check_poll(&mut self) -> bool {
+        let size = self.screen.size();
+        let Some(open) = self.open.as_mut() else {
+            return true;
+        };
+        open.poll(&self.gpu, size);
+        open.checking().is_none_or(super::check::Checking::finished)
+    }
+
+    /// The check so far as `shaderlab check --json` writes it, with `total` (the states it
+    /// checks) and `error` (why it stopped, or null); "" before a check.
+    pub fn check_json(&self) -> String {
+        let Some(check) = self.open.as_ref().and_then(Session::checking) else {
+            return String::new();
+        };
+        let mut v = check.report().json();
+        v["total"] = check.len().into();
+        v["error"] = check.failed().map_or(serde_json::Value::Null, |e| e.to_string().into());
+        v.to_string()
+    }
+
+    /// A picture of state `state` of the check, as a PNG: `which` 0 the page's shaders', 1 the
+    /// built-in ones', 2 their difference (with its legend); empty where there is none.
+    pub fn check_picture(&self, state: u32, which: u32) -> Vec<u8> {
+        let Some(c) =
+            (self.open.as_ref().and_then(Session::checking)).and_then(|c| c.report().states.get(state as usize))
+        else {
+            return Vec::new();
+        };
+        let image: &image::RgbaImage = match which {
+            0 => &c.diff.frames.0,
+            1 => &c.diff.frames.1,
+            _ => &c.diff.picture,
+        };
+        let mut png = Vec::new();
+        match crate::offscreen::write_png(image, &mut png) {
+            Ok(()) => png,
+            Err(_) => Vec::new(),
+        }
+    }
+
     /// The last error found while drawing, once ("" when none).
     pub fn take_error(&mut self) -> String {
         self.error.take().unwrap_or_default()
