@@ -690,6 +690,13 @@ impl Session {
         self.check.as_ref()
     }
 
+    /// A frame that could not be drawn (the surface had no frame to give this time): the clock
+    /// still moves to `now` and the frame counts as drawn, as one that reached the screen.
+    pub fn skipped(&mut self, now: f64) {
+        self.tick(now);
+        self.drawn();
+    }
+
     /// Draws one frame into `target`, recorded into `encoder` (the shell submits it, with what
     /// it draws over it, and presents): the clock advanced to `now`, what goes on between
     /// frames moved on ([`Session::poll`]), then the view asked for, or else the lab's frame

@@ -285,13 +285,11 @@ impl WebApp {
             Acquired::Frame(frame) => frame,
             Acquired::Outdated | Acquired::Lost => {
                 self.screen.resize(&self.gpu, self.screen.size());
-                open.tick(self.now);
-                open.drawn();
+                open.skipped(self.now);
                 return;
             }
             Acquired::Skipped | Acquired::Invalid => {
-                open.tick(self.now);
-                open.drawn();
+                open.skipped(self.now);
                 return;
             }
         };

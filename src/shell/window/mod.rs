@@ -861,10 +861,8 @@ impl WindowState {
             })
         })?
         else {
-            // No frame to draw into this time (the surface was renewed): the clock still moves
-            // and the frame counts as drawn, as one that reached the screen.
-            self.session.tick(clock);
-            self.session.drawn();
+            // No frame to draw into this time (the surface was renewed).
+            self.session.skipped(clock);
             return Ok(());
         };
         let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
