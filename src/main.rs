@@ -35,6 +35,13 @@ Usage:
                                       ran, at every pixel, drawn on the GPU: --out FILE.png
                                       (default NAME-view.png, NAME-cost.png), --npy FILE.npy,
                                       --json, --bench N
+  shaderlab link NAME [--shaders DIR] [--set NAME=VALUE…] [--base URL]
+  shaderlab link legacy VERT FRAG [--set NAME=VALUE…] [--base URL]
+                                      the page's link to NAME at that state, carrying the files
+                                      of DIR that differ from the built-in ones (or the pair)
+  shaderlab open LINK [--into DIR] [FLAGS…]
+                                      write a link's files into DIR (default ./NAME-shaders/)
+                                      and run the lab from there, as run NAME --shaders DIR
   shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
   shaderlab completions bash|zsh|fish|elvish|powershell
@@ -318,6 +325,8 @@ fn main() -> ExitCode {
                 shaderlab::shell::main_from(entry, args)
             }
         }
+        Some("link") => shaderlab::shell::link_verb::link_main(argv.drain(1..).collect()),
+        Some("open") => shaderlab::shell::link_verb::open_main(argv.drain(1..).collect()),
         Some("completions") => completions(after),
         Some("man") => man(after),
         Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),
