@@ -225,7 +225,7 @@ fn write_pages(dir: &std::path::Path, pages: &[(String, Vec<u8>)]) -> Result<(),
 fn nothing_after(verb: &str, words: &[String]) -> Option<ExitCode> {
     let extra = words.first()?;
     let usage = if verb == "help" {
-        "shaderlab help [run|record|debug|diff|view]".to_owned()
+        "shaderlab help [run|record|debug|diff|view|link|open]".to_owned()
     } else {
         format!("shaderlab {verb}")
     };
@@ -242,6 +242,14 @@ fn main() -> ExitCode {
         None => print(&format!("{USAGE}\n")),
         Some("help" | "--help" | "-h") if matches!(after, [v] if ["run", "record", "debug", "diff", "view"].contains(&v.as_str())) => {
             print(&verb_help(&after[0]))
+        }
+        Some("help" | "--help" | "-h") if matches!(after, [v] if v == "link" || v == "open") => {
+            let argv = vec![OsString::from(&after[0]), OsString::from("--help")];
+            if after[0] == "link" {
+                shaderlab::shell::link_verb::link_main(argv)
+            } else {
+                shaderlab::shell::link_verb::open_main(argv)
+            }
         }
         Some(verb @ ("help" | "--help" | "-h")) => match nothing_after(verb, after) {
             Some(refused) => refused,

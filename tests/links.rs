@@ -198,6 +198,22 @@ fn legacys_pair_travels_by_its_names_and_draws_as_legacy_draws_it() {
         assert!(err.contains(says), "{args:?}: {err}");
         assert!(out.stdout.is_empty(), "{args:?}");
     }
+    // A pair that does not compile (the course's lab 5 as printed) is carried as it is: open
+    // writes it, to be mended, and the run says what is wrong with it.
+    let (v5, f5) = (course.join("lab5.vert"), course.join("lab5.frag"));
+    let link5 = ok(&dir, &["link", "legacy", v5.to_str().unwrap(), f5.to_str().unwrap()]);
+    let out = shaderlab_in(
+        &dir,
+        &["open", link5.trim(), "--into", "lab5", "--screenshot", "lab5.png"],
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("lab5/lab5.vert:37:45:"),
+        "the shader's error, in the file written: {err}"
+    );
+    assert_eq!(common::names_in(&dir.join("lab5")), ["lab5.frag", "lab5.vert"]);
+    assert!(!dir.join("lab5.png").exists());
     std::fs::copy(vert, dir.join("V")).unwrap();
     std::fs::copy(frag, dir.join("F")).unwrap();
     let out = shaderlab_in(&dir, &["link", "legacy", "V", "F"]);

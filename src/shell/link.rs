@@ -400,8 +400,9 @@ pub fn encode_files(files: &BTreeMap<String, String>) -> Result<String, LinkErro
 pub fn decode_files(fragment: &str) -> Result<BTreeMap<String, String>, LinkError> {
     let Some(text) = fragment.strip_prefix(FRAGMENT_KEY) else {
         let shown: String = fragment.chars().take(24).collect();
+        let more = if shown.len() < fragment.len() { "…" } else { "" };
         return Err(LinkError::Damaged(format!(
-            "the part after `#` is `{}…`, not shaderlab's `files=…`",
+            "the part after `#` is `{}{more}`, not shaderlab's `files=…`",
             shown.escape_debug()
         )));
     };
@@ -672,7 +673,7 @@ mod tests {
         let message = LinkError::Damaged("x".into()).to_string();
         assert!(message.contains("cut short or damaged") && message.contains("copy the whole link again"));
         assert!(damaged(Link::parse(&format!("{head}#files=abc$def"))).contains("`$` at character 4 is not base64url"));
-        assert!(damaged(Link::parse(&format!("{head}#top"))).contains("not shaderlab's `files=…`"));
+        assert!(damaged(Link::parse(&format!("{head}#top"))).contains("is `top`, not shaderlab's `files=…`"));
         assert!(damaged(Link::parse(&format!("{head}#{}", fragment_of(b"[1,2]")))).contains("no format 1"));
         assert!(damaged(Link::parse(&format!("{head}#{}", fragment_of(b"{\"v\":1}")))).contains("no `files` object"));
         assert!(damaged(Link::parse(&format!(

@@ -78,6 +78,7 @@ fn make_link(matches: &clap::ArgMatches) -> Result<String, Failure> {
     }
     let mut link = Link::new(base, name);
     let mut params = (entry.params)();
+    let mut broken: Option<Error> = None;
     if link::draws_pair(entry) {
         if shaders.is_some() {
             return Err(usage(format!(
@@ -104,7 +105,11 @@ fn make_link(matches: &clap::ArgMatches) -> Result<String, Failure> {
                     link.files.insert(name.clone(), read_shader_file(path)?);
                 }
                 link.set_pair(&v, &f);
-                params.declare_files(&paths)?;
+                if let Err(e) = params.declare_files(&paths) {
+                    // A pair that does not compile is shared as it is; the parameters it
+                    // would declare cannot be checked.
+                    broken = Some(e);
+                }
             }
             _ => return Err(usage(format!("{name} takes two files: VERT FRAG"))),
         }
@@ -123,7 +128,16 @@ fn make_link(matches: &clap::ArgMatches) -> Result<String, Failure> {
         link.push_set(set);
     }
     link.check(&|_| false).map_err(refused)?;
-    link.check_sets(&mut params).map_err(refused)?;
+    match &broken {
+        None => link.check_sets(&mut params).map_err(refused)?,
+        Some(e) => {
+            let first = e.to_string();
+            eprintln!(
+                "shaderlab link: the pair does not compile, so its state goes unchecked: {}",
+                first.lines().next().unwrap_or_default()
+            );
+        }
+    }
     let url = link.to_url().map_err(refused)?;
     let carried = if link.files.is_empty() {
         match shaders {
@@ -283,22 +297,26 @@ fn prepare(entry: &'static LabEntry, link: &Link, args: Args, into: Option<PathB
         all.into_iter().collect()
     };
     // The state, checked before anything is written: legacy's parameters come from its pair,
-    // read from a copy made for that alone.
+    // read from a copy made for that alone. A pair that does not compile is written all the
+    // same (its files are there to be mended), and the run says what is wrong with it.
     {
         let staged = match &pair {
             Some(names) => Some(Staged::new(&link.files)?.pair(names)),
             None => None,
         };
         let mut params = (entry.params)();
-        if let Some((_, paths)) = &staged {
-            params.declare_files(paths)?;
-        }
-        link.check_sets(&mut params).map_err(refused)?;
-        let check = Args {
-            files: staged.as_ref().map(|(_, p)| p.clone()).unwrap_or_default(),
-            ..run.clone()
+        let compiles = match &staged {
+            Some((_, paths)) => params.declare_files(paths).is_ok(),
+            None => true,
         };
-        check.params(entry)?;
+        if compiles {
+            link.check_sets(&mut params).map_err(refused)?;
+            let check = Args {
+                files: staged.as_ref().map(|(_, p)| p.clone()).unwrap_or_default(),
+                ..run.clone()
+            };
+            check.params(entry)?;
+        }
     }
     if let Some(path) = &args.screenshot {
         super::headless::check_png_path(path)?;
