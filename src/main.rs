@@ -43,6 +43,13 @@ Usage:
                                       ran, at every pixel, drawn on the GPU: --out FILE.png
                                       (default NAME-view.png, NAME-cost.png), --npy FILE.npy,
                                       --json, --bench N
+  shaderlab link NAME [--shaders DIR] [--set NAME=VALUE…] [--base URL]
+  shaderlab link legacy VERT FRAG [--set NAME=VALUE…] [--base URL]
+                                      the page's link to NAME at that state, carrying the files
+                                      of DIR that differ from the built-in ones (or the pair)
+  shaderlab open LINK [--into DIR] [FLAGS…]
+                                      write a link's files into DIR (default ./NAME-shaders/)
+                                      and run the lab from there, as run NAME --shaders DIR
   shaderlab glsl2wgsl [ARGS…]         translate GLSL to WGSL (shaderlab glsl2wgsl --help)
   shaderlab bench [ARGS…]             time every lab offscreen (shaderlab bench --help)
   shaderlab completions bash|zsh|fish|elvish|powershell
@@ -243,7 +250,7 @@ fn write_pages(dir: &std::path::Path, pages: &[(String, Vec<u8>)]) -> Result<(),
 fn nothing_after(verb: &str, words: &[String]) -> Option<ExitCode> {
     let extra = words.first()?;
     let usage = if verb == "help" {
-        "shaderlab help [run|record|debug|diff|check|view]".to_owned()
+        "shaderlab help [run|record|debug|diff|check|view|link|open]".to_owned()
     } else {
         format!("shaderlab {verb}")
     };
@@ -260,6 +267,14 @@ fn main() -> ExitCode {
         None => print(&format!("{USAGE}\n")),
         Some("help" | "--help" | "-h") if matches!(after, [v] if ["run", "record", "debug", "diff", "check", "view"].contains(&v.as_str())) => {
             print(&verb_help(&after[0]))
+        }
+        Some("help" | "--help" | "-h") if matches!(after, [v] if v == "link" || v == "open") => {
+            let argv = vec![OsString::from(&after[0]), OsString::from("--help")];
+            if after[0] == "link" {
+                shaderlab::shell::link_verb::link_main(argv)
+            } else {
+                shaderlab::shell::link_verb::open_main(argv)
+            }
         }
         Some(verb @ ("help" | "--help" | "-h")) => match nothing_after(verb, after) {
             Some(refused) => refused,
@@ -345,6 +360,8 @@ fn main() -> ExitCode {
                 shaderlab::shell::main_from(entry, args)
             }
         }
+        Some("link") => shaderlab::shell::link_verb::link_main(argv.drain(1..).collect()),
+        Some("open") => shaderlab::shell::link_verb::open_main(argv.drain(1..).collect()),
         Some("completions") => completions(after),
         Some("man") => man(after),
         Some("glsl2wgsl") => glsl2wgsl::main_from(argv.drain(1..)),

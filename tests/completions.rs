@@ -55,6 +55,8 @@ fn the_manual_page_names_every_verb() {
         "debug",
         "diff",
         "view",
+        "open",
+        "link",
         "glsl2wgsl",
         "bench",
         "completions",

@@ -73,6 +73,8 @@ const FLAGS: &[(&str, &[&str])] = &[
     ("--seed", &["1"]),
     ("--min-db", &["30"]),
     ("--report", &["rep"]),
+    ("--into", &["into"]),
+    ("--base", &["http://example.org/"]),
 ];
 
 /// What each verb takes besides the scene's flags; `view` also takes `--screenshot`, the old
@@ -130,10 +132,32 @@ fn takes(verb: &str) -> Vec<&'static str> {
         ],
         "diff" => &["--out", "--json", "--reference"],
         "check" => &["--json", "--reference", "--states", "--seed", "--min-db", "--report"],
+        // open draws the link's files from the folder it writes them into: no --shaders, and
+        // nothing to compare.
+        "open" => &[
+            "--into",
+            "--screenshot",
+            "--bench",
+            "--gpu-time",
+            "--record",
+            "--frames",
+            "--fps",
+            "--from",
+            "--unpaced",
+            "--debug",
+            "--json",
+            "--line",
+            "--name",
+            "--stage",
+            "--cost",
+            "--npy",
+        ],
+        // link draws nothing: the lab's state and the folder whose files it carries.
+        "link" => return vec!["--set", "--shaders", "--base"],
         _ => panic!("{verb}"),
     };
     let mut all: Vec<&str> = SCENE.to_vec();
-    if verb == "legacy" {
+    if verb == "legacy" || verb == "open" {
         all.retain(|f| *f != "--shaders");
     }
     all.extend_from_slice(own);
@@ -176,11 +200,15 @@ fn bases(verb: &str) -> Vec<Vec<&'static str>> {
             vec!["check", "phong", "--shaders", "DIR"],
             vec!["check", "legacy", "V", "F", "--reference", "V", "F"],
         ],
+        "open" => with(&["open", "http://127.0.0.1:8000/?lab=phong"], &modes[..7]),
+        "link" => vec![vec!["link", "phong"]],
         _ => panic!("{verb}"),
     }
 }
 
-const VERBS: &[&str] = &["run", "legacy", "record", "debug", "view", "diff", "check"];
+const VERBS: &[&str] = &[
+    "run", "legacy", "record", "debug", "view", "diff", "check", "open", "link",
+];
 
 /// A folder for one test, with the inputs the runs name: DIR (the shaders' copies) and the
 /// course's pair as V and F.
@@ -551,6 +579,7 @@ fn each_verb_takes_completes_and_documents_the_same_flags() {
         expected.insert("--help".into());
         let words: Vec<&str> = match verb {
             "legacy" => vec!["shaderlab", "legacy", "V", "F", "--"],
+            "open" => vec!["shaderlab", "open", "LINK", "--"],
             v => vec!["shaderlab", v, "phong", "--"],
         };
         let offered: BTreeSet<String> = bash_offers(&script, &words)

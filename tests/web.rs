@@ -247,7 +247,12 @@ fn encode(s: &str) -> String {
 /// drawn (Chromium is stopped then).
 fn open(server: &(u16, mpsc::Receiver<String>), backend: &str, query: &str) -> Page {
     let (port, reports) = server;
-    let url = format!("http://127.0.0.1:{port}/index.html?{query}&bare=1&paused=1&capture=1&backend={backend}");
+    // A link's fragment (`#files=…`) stays last.
+    let (query, fragment) = query
+        .split_once('#')
+        .map_or((query, String::new()), |(q, f)| (q, format!("#{f}")));
+    let url =
+        format!("http://127.0.0.1:{port}/index.html?{query}&bare=1&paused=1&capture=1&backend={backend}{fragment}");
     let profile = common::output_dir().join(format!("chromium-profile-{}", std::process::id()));
     let mut cmd = Command::new(chromium());
     cmd.args([
@@ -868,5 +873,212 @@ fn the_pages_check_checks_the_commands_states_and_names_the_planted_line() {
         (rows, images),
         (states.len(), 3 * states.len()),
         "a row of three pictures a state"
+    );
+}
+
+/// The native picture of `name` at `sets` drawn from `source`, at the lab's size.
+fn native_from(source: &ShaderSource, name: &str, sets: &[&str]) -> RgbImage {
+    let entry = shaderlab::course::find(name).unwrap();
+    let gpu = common::gpu();
+    let files = UserFiles::default();
+    let cx = BuildContext::new(gpu, source, COLOR_FORMAT, &files);
+    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let state: Vec<(&str, &str)> = sets.iter().map(|s| s.split_once('=').unwrap()).collect();
+    common::set_state(lab.as_mut(), &state);
+    let (w, h) = entry.info.size;
+    to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), w, h).expect("screenshot"))
+}
+
+/// `shaderlab` in `dir`: its stdout, once it succeeded.
+fn shaderlab_ok(dir: &Path, args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("shaderlab runs");
+    assert!(
+        out.status.success(),
+        "{args:?}: {:?}: {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8")
+}
+
+/// The edit the links' tests make: phong's diffuse light from behind.
+const EDIT: (&str, &str) = ("max(dot(N, L), 0.0)", "max(-dot(N, L), 0.0)");
+
+/// A folder for a link test: `copy/`, the built-in shaders with [`EDIT`] in phong.frag; and
+/// the edited text.
+fn link_place(tag: &str) -> (PathBuf, String) {
+    let dir = common::output_dir().join(format!("web_link_{tag}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    common::copy_shaders(&dir.join("copy"));
+    let edited = shaderlab::shader::embedded_source("phong.frag")
+        .unwrap()
+        .replacen(EDIT.0, EDIT.1, 1);
+    std::fs::write(dir.join("copy/phong.frag"), &edited).unwrap();
+    (dir, edited)
+}
+
+/// A link `shaderlab link` made from an edited copy opens in the page with the copy drawn: the
+/// native picture of the copy, not the built-in shader's.
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_link_made_by_shaderlab_link_opens_in_the_page_and_draws_the_copy() {
+    let (dir, edited) = link_place("made");
+    let sets = ["object=torus", "Ka=0.2"];
+    let link = shaderlab_ok(
+        &dir,
+        &["link", "phong", "--shaders", "copy", "--set", sets[0], "--set", sets[1]],
+    );
+    let query = link
+        .trim()
+        .strip_prefix("http://127.0.0.1:8000/?")
+        .expect("the default base");
+    assert!(query.contains("#files="), "{query}");
+    let copy = ShaderSource::Edited(std::sync::Arc::new([("phong.frag".to_owned(), edited)].into()));
+    let want = native_from(&copy, "phong", &sets);
+    let built_in = native("phong", &sets);
+    let apart = psnr(&want, &built_in).unwrap_or(0.0);
+    let server = serve(site());
+    let mut table = Vec::new();
+    for backend in ["webgl2", "webgpu"] {
+        let page = open(&server, backend, query);
+        let Some(web) = page.image("capture") else {
+            assert!(
+                backend == "webgpu" && page.get("capture.backend").is_empty(),
+                "{backend}: the page drew nothing: {}",
+                page.get("capture.error")
+            );
+            table.push(format!("{backend}: no adapter"));
+            break;
+        };
+        assert_eq!(page.get("capture.error").trim(), "", "{backend}: the page's messages");
+        let (copy_db, built_in_db) = (psnr(&web, &want).unwrap_or(0.0), psnr(&web, &built_in).unwrap_or(0.0));
+        table.push(format!(
+            "{backend}: {copy_db:.1} dB against the copy, {built_in_db:.1} dB against the built-in shader"
+        ));
+        assert!(
+            copy_db >= MIN_DB,
+            "{backend}: {copy_db:.1} dB against the copy's native picture"
+        );
+        assert!(
+            built_in_db < MIN_DB,
+            "{backend}: {built_in_db:.1} dB: the built-in shader's picture"
+        );
+    }
+    println!(
+        "the copy and the built-in shader natively: {apart:.1} dB apart\n{}",
+        table.join("\n")
+    );
+    // A link cut short: the page says so, and draws the lab with the built-in shaders.
+    let page = open(&server, "webgl2", &query[..query.len() - 40]);
+    let said = page.get("capture.error");
+    assert!(said.contains("cut short or damaged"), "the page's message: {said}");
+    let web = page.image("capture").expect("the page draws the lab");
+    let db = psnr(&web, &built_in).unwrap_or(0.0);
+    assert!(db >= MIN_DB, "{db:.1} dB against the built-in shader");
+}
+
+/// A link the page's Copy link gives (after an edit typed into its editor; legacy with a
+/// course pair), given to `shaderlab open`, writes the page's files and draws the same bytes as
+/// `shaderlab run --shaders` on a copy with the same edit (legacy: as `shaderlab legacy` on
+/// the course's files).
+#[test]
+#[ignore = "needs the site (scripts/web) and Chromium: run by .ci/web"]
+fn a_link_copied_from_the_page_opens_on_the_command_line_as_run_draws_it() {
+    let (dir, edited) = link_place("copied");
+    let server = serve(site());
+    let q = format!(
+        "{}&check=copy&edit=phong.frag&from={}&to={}",
+        query("phong", &["object=torus"]),
+        encode(EDIT.0),
+        encode(EDIT.1)
+    );
+    let page = open(&server, "webgl2", &q);
+    let link = page.get("capture-copy");
+    println!("{} characters: {link}", link.len());
+    assert_eq!(page.get("capture-copy.error"), "", "Copy link made a link");
+    assert_eq!(page.get("capture-copy.compiled"), "", "the edit compiles on the page");
+    assert!(
+        link.contains("set=object%3Dtorus") && link.contains("#files="),
+        "{link}"
+    );
+    let made = shaderlab_ok(&dir, &["link", "phong", "--shaders", "copy"]);
+    assert_eq!(
+        link.split_once('#').map(|(_, f)| f),
+        made.trim().split_once('#').map(|(_, f)| f),
+        "the page and shaderlab link carry the same files in the same words"
+    );
+    shaderlab_ok(&dir, &["open", &link, "--into", "opened", "--screenshot", "opened.png"]);
+    let opened = dir.join("opened");
+    let differing: Vec<(String, String)> = common::names_in(&opened)
+        .into_iter()
+        .map(|n| (std::fs::read_to_string(opened.join(&n)).unwrap(), n))
+        .filter(|(text, n)| shaderlab::shader::embedded_source(n) != Some(text.as_str()))
+        .map(|(text, n)| (n, text))
+        .collect();
+    assert_eq!(
+        differing,
+        [("phong.frag".to_owned(), edited)],
+        "the page's edit, and only it"
+    );
+    shaderlab_ok(
+        &dir,
+        &[
+            "run",
+            "phong",
+            "--shaders",
+            "copy",
+            "--set",
+            "object=torus",
+            "--screenshot",
+            "run.png",
+        ],
+    );
+    let bytes = |name: &str| std::fs::read(dir.join(name)).unwrap();
+    assert_eq!(bytes("opened.png"), bytes("run.png"), "the same bytes as run --shaders");
+    shaderlab_ok(
+        &dir,
+        &["run", "phong", "--set", "object=torus", "--screenshot", "built-in.png"],
+    );
+    assert_ne!(bytes("opened.png"), bytes("built-in.png"), "the edit is drawn");
+
+    // legacy: the pair the page draws, carried by its names.
+    let sets = sets_of("legacy", &["files=lab3.vert,lab3.frag", "object=torus"]);
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let page = open(&server, "webgl2", &format!("{}&check=copy", query("legacy", &sets)));
+    let link = page.get("capture-copy");
+    assert_eq!(page.get("capture-copy.error"), "", "Copy link made a link");
+    shaderlab_ok(&dir, &["open", &link, "--into", "pair", "--screenshot", "pair.png"]);
+    assert_eq!(common::names_in(&dir.join("pair")), ["lab3.frag", "lab3.vert"]);
+    let course = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
+    for name in ["lab3.vert", "lab3.frag"] {
+        assert_eq!(
+            std::fs::read(dir.join("pair").join(name)).unwrap(),
+            std::fs::read(course.join(name)).unwrap(),
+            "{name}"
+        );
+    }
+    let (vert, frag) = (course.join("lab3.vert"), course.join("lab3.frag"));
+    let mut run: Vec<String> = vec![
+        "legacy".into(),
+        vert.display().to_string(),
+        frag.display().to_string(),
+        "--screenshot".into(),
+        "legacy.png".into(),
+    ];
+    for set in shaderlab::shell::link::Link::parse(&link).unwrap().sets() {
+        if !set.starts_with("files=") {
+            run.extend(["--set".to_owned(), set.to_owned()]);
+        }
+    }
+    let run: Vec<&str> = run.iter().map(String::as_str).collect();
+    shaderlab_ok(&dir, &run);
+    assert_eq!(
+        bytes("pair.png"),
+        bytes("legacy.png"),
+        "the same bytes as legacy VERT FRAG"
     );
 }

@@ -29,6 +29,9 @@ pub mod diff_verb;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 pub mod inspector;
+pub mod link;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod link_verb;
 pub mod panel;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod record;

@@ -299,6 +299,9 @@ pub enum Verb {
     View,
     /// `shaderlab check NAME --shaders DIR`.
     Check,
+    /// `shaderlab open LINK`: a link's files written into a folder, then every mode but a
+    /// comparison, as `run` from that folder.
+    Open,
 }
 
 impl Verb {
@@ -311,6 +314,7 @@ impl Verb {
         Verb::Diff,
         Verb::View,
         Verb::Check,
+        Verb::Open,
     ];
 
     /// The verb as typed.
@@ -323,6 +327,7 @@ impl Verb {
             Verb::Diff => "diff",
             Verb::View => "view",
             Verb::Check => "check",
+            Verb::Open => "open",
         }
     }
 
@@ -344,13 +349,23 @@ impl Verb {
             Verb::Diff => &[Mode::Diff],
             Verb::View => &[Mode::Line, Mode::Cost],
             Verb::Check => &[Mode::Check],
+            Verb::Open => &[
+                Mode::Window,
+                Mode::Screenshot,
+                Mode::Bench,
+                Mode::Record,
+                Mode::Debug,
+                Mode::Line,
+                Mode::Cost,
+            ],
         }
     }
 
     /// Whether the verb takes the labs' flag `id` (clap's id in [`Args`]): it does something
     /// in one of the verb's modes, and the verb does not give it another way (`record`'s OUT,
     /// `diff`'s own `--out` and its copy as `--shaders`, the pair legacy draws instead of
-    /// `--shaders`). `debug` takes `--debug` as `--pixel`, `view` `--screenshot` as `--out`.
+    /// `--shaders`, the folder `open` writes instead of `--shaders`). `debug` takes `--debug`
+    /// as `--pixel`, `view` `--screenshot` as `--out`.
     pub fn takes(self, id: &str) -> bool {
         let given_otherwise: &[&str] = match self {
             Verb::Run => &[],
@@ -360,6 +375,7 @@ impl Verb {
             Verb::Diff => &["screenshot", "diff"],
             Verb::View => &[],
             Verb::Check => &["diff"],
+            Verb::Open => &["shaders"],
         };
         !given_otherwise.contains(&id) && modes_of(id).iter().any(|m| self.modes().contains(m))
     }
@@ -396,6 +412,14 @@ const ABOUT: &[(&str, &str)] = &[
     (
         "view",
         "a line's value (--line FILE:LINE) or the fragment shader's cost (--cost) at every pixel, drawn on the GPU",
+    ),
+    (
+        "open",
+        "write a link's shader files into a folder (--into DIR, default ./NAME-shaders/) and run the lab from there at the link's state",
+    ),
+    (
+        "link",
+        "the page's link to a lab at a state, carrying the files of --shaders DIR that differ from the built-in ones (legacy: its pair VERT FRAG)",
     ),
     ("glsl2wgsl", "translate GLSL to WGSL"),
     ("bench", "time every lab offscreen"),
@@ -470,6 +494,7 @@ fn lab_help(verb: Verb) -> String {
     match verb {
         Verb::Legacy => "shaderlab legacy VERT FRAG --help".into(),
         Verb::Record => "shaderlab record NAME OUT --help".into(),
+        Verb::Open => "shaderlab run NAME --help".into(),
         v => format!("shaderlab {} NAME --help", v.name()),
     }
 }
@@ -503,6 +528,12 @@ fn verb_command(verb: Verb) -> clap::Command {
     command = match verb {
         Verb::Legacy => command
             .arg(pair.help("the vertex and the fragment shader, GLSL 1.10/1.20 (without them: the built-in pair)")),
+        Verb::Open => command.arg(
+            Arg::new("LINK")
+                .required(true)
+                .value_hint(ValueHint::Url)
+                .help("a link of the page (in quotes: it holds & and #), as its Copy link or shaderlab link gives it"),
+        ),
         Verb::Record => command.arg(lab).arg(
             Arg::new("OUT")
                 .required(true)
@@ -609,6 +640,14 @@ fn verb_command(verb: Verb) -> clap::Command {
                     .value_hint(ValueHint::FilePath)
                     .help("For legacy: the pair to check VERT FRAG against (instead of --shaders DIR)"),
             ),
+        Verb::Open => command.arg(
+            Arg::new("into")
+                .long("into")
+                .value_name("DIR")
+                .value_hint(ValueHint::DirPath)
+                .action(ArgAction::Set)
+                .help("The folder the link's files are written into, made if missing (default ./NAME-shaders/); no file in it is ever replaced"),
+        ),
         _ => command,
     }
 }
@@ -631,10 +670,11 @@ pub fn command() -> clap::Command {
     for &verb in Verb::ALL {
         command = command.subcommand(verb_command(verb));
     }
+    command = command.subcommand(link_command());
     let pages: Vec<&'static str> = ["list"]
         .into_iter()
         .chain(Verb::ALL.iter().map(|v| v.name()))
-        .chain(["glsl2wgsl", "bench", "completions", "man"])
+        .chain(["link", "glsl2wgsl", "bench", "completions", "man"])
         .collect();
     command
         .subcommand(
@@ -670,6 +710,64 @@ pub fn command() -> clap::Command {
         )
 }
 
+/// `shaderlab link`'s command line, which it is parsed with: the lab (and legacy's pair),
+/// `--shaders DIR`, `--set NAME=VALUE` and `--base URL`.
+pub fn link_command() -> clap::Command {
+    use clap::builder::PossibleValuesParser;
+    use clap::{value_parser, Arg, ArgAction, ValueHint};
+    let names: Vec<&'static str> = crate::course::ALL.iter().map(|e| e.info.name).collect();
+    clap::Command::new("link")
+        .about(about("link"))
+        .after_help(format!(
+            "The link opens the page with the lab at that state and the files in its editor; `shaderlab open LINK` \
+             writes them into a folder and runs the lab from there. It carries at most {} characters of files \
+             after `#` (never sent to a server), {} bytes once decompressed.",
+            super::link::MAX_FRAGMENT,
+            super::link::MAX_FILES_BYTES
+        ))
+        .arg(
+            Arg::new("NAME")
+                .required(true)
+                .help("the lab")
+                .value_parser(PossibleValuesParser::new(names)),
+        )
+        .arg(
+            Arg::new("files")
+                .value_names(["VERT", "FRAG"])
+                .num_args(0..=2)
+                .value_hint(ValueHint::FilePath)
+                .value_parser(value_parser!(std::path::PathBuf))
+                .help("legacy's pair, carried by its file names (other labs take no files)"),
+        )
+        .arg(
+            Arg::new("shaders")
+                .long("shaders")
+                .value_name("DIR")
+                .value_hint(ValueHint::DirPath)
+                .value_parser(value_parser!(std::path::PathBuf))
+                .help("Carry the files of DIR that differ from the built-in ones (same file names as shaders_glsl/), and new .glsl files"),
+        )
+        .arg(
+            Arg::new("set")
+                .long("set")
+                .value_name("NAME=VALUE")
+                .action(ArgAction::Append)
+                .allow_hyphen_values(true)
+                .value_hint(ValueHint::Other)
+                .help("Set a parameter by name, e.g. xangle=30, Ka=0.2, object=torus (repeatable; each lab's parameters: shaderlab run NAME --help)"),
+        )
+        .arg(
+            Arg::new("base")
+                .long("base")
+                .value_name("URL")
+                .value_hint(ValueHint::Url)
+                .help(format!(
+                    "The page's address (default {}, where scripts/web --serve serves it)",
+                    super::link::DEFAULT_BASE
+                )),
+        )
+}
+
 /// The completion script for `shell`: clap_complete's, and for fish (whose generator completes
 /// no positional argument) the lab after a verb and the values of `man` and `completions`.
 pub fn completion_script(shell: clap_complete::Shell) -> String {
@@ -688,9 +786,11 @@ pub fn completion_script(shell: clap_complete::Shell) -> String {
             };
             for value in first.get_possible_values() {
                 let help = match sub.get_name() {
-                    "run" | "record" | "debug" | "diff" | "view" | "check" => crate::course::find(value.get_name())
-                        .map(|e| format!(" -d '{} {}'", e.info.original_title, e.info.label.replace('\'', "\\'")))
-                        .unwrap_or_default(),
+                    "run" | "record" | "debug" | "diff" | "view" | "check" | "link" => {
+                        crate::course::find(value.get_name())
+                            .map(|e| format!(" -d '{} {}'", e.info.original_title, e.info.label.replace('\'', "\\'")))
+                            .unwrap_or_default()
+                    }
                     _ => String::new(),
                 };
                 script.push_str(&format!(

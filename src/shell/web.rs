@@ -495,6 +495,43 @@ impl WebApp {
         lines.join("\n")
     }
 
+    /// The link Copy link gives, as JSON `{"link": …}` or `{"error": …}`: `url` (the page's
+    /// address with its state, as `updateUrl()` writes it) and, after `#`, every shader file
+    /// that differs from the built-in text, compressed ([`super::link::page_link`]).
+    pub fn link(&self, url: &str) -> String {
+        let Some(open) = self.open.as_ref() else {
+            return json_error("no lab is open");
+        };
+        let pair: Vec<String> = self
+            .files
+            .inputs
+            .iter()
+            .map(|p| p.to_string_lossy().into_owned())
+            .collect();
+        match super::link::page_link(url, open.entry(), &self.texts, &pair) {
+            Ok(link) => serde_json::json!({ "link": link }).to_string(),
+            Err(e) => json_error(e),
+        }
+    }
+
+    /// Takes the shader files a link carries (`url`, with `#files=…`) into the page's texts,
+    /// before its lab opens: JSON `{"files": [names]}`, or `{"error": …}` with nothing taken
+    /// when the link is damaged, past its limits, or carries a file its lab could not read.
+    pub fn open_link(&mut self, url: &str) -> String {
+        let texts = &self.texts;
+        let checked =
+            super::link::Link::parse(url).and_then(|link| link.check(&|name| texts.contains_key(name)).map(|_| link));
+        match checked {
+            Ok(link) => {
+                let names: Vec<&String> = link.files.keys().collect();
+                let answer = serde_json::json!({ "files": names }).to_string();
+                self.texts.extend(link.files);
+                answer
+            }
+            Err(e) => json_error(e),
+        }
+    }
+
     /// Whether the clock is paused (a link then keeps its `time`).
     pub fn paused(&self) -> bool {
         self.open.as_ref().is_some_and(Session::is_paused)
