@@ -442,7 +442,9 @@ pub fn diff_labs(
     diff(name, &mine, &reference)
 }
 
-fn value_text(v: &[f64]) -> String {
+/// A traced value in words, as the text says it: each number to 4 decimals, trailing zeros
+/// dropped, several in parentheses, `(none)` for none.
+pub fn value_text(v: &[f64]) -> String {
     let one = |x: f64| {
         if !x.is_finite() {
             return format!("{x}");

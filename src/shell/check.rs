@@ -58,6 +58,15 @@ pub struct State {
 }
 
 impl State {
+    /// The assignments on one line (`(the base state)` for none).
+    pub fn line(&self) -> String {
+        if self.set.is_empty() {
+            "(the base state)".to_owned()
+        } else {
+            self.words().join(" ")
+        }
+    }
+
     /// The assignments as `NAME=VALUE` words.
     pub fn words(&self) -> Vec<String> {
         self.set.iter().map(|(n, v)| format!("{n}={v}")).collect()
@@ -199,6 +208,15 @@ impl Checked {
         Checked { state, diff, pass }
     }
 
+    /// Its figure in words: `identical`, or the PSNR.
+    pub fn figure(&self) -> String {
+        if self.diff.differing == 0 {
+            "identical".to_owned()
+        } else {
+            format!("{:.2} dB", self.diff.psnr)
+        }
+    }
+
     /// The first divergence, for a state that fails.
     pub fn divergence(&self) -> Option<&Divergence> {
         self.diff.first_divergence.as_ref().filter(|_| !self.pass)
@@ -274,16 +292,7 @@ impl Report {
             self.min_db
         );
         for (k, c) in self.states.iter().enumerate() {
-            let db = if c.diff.differing == 0 {
-                "identical".to_owned()
-            } else {
-                format!("{:.2} dB", c.diff.psnr)
-            };
-            let set = if c.state.set.is_empty() {
-                "(the base state)".to_owned()
-            } else {
-                c.state.words().join(" ")
-            };
+            let (db, set) = (c.figure(), c.state.line());
             let _ = writeln!(
                 out,
                 "{:>3} {} {:>10} {:>8} px  {set}",
@@ -305,10 +314,10 @@ impl Report {
                     d.file,
                     d.line,
                     d.name,
-                    value_words(&d.mine),
+                    crate::debug::diff::value_text(&d.mine),
                     d.reference
                         .as_ref()
-                        .map_or_else(|| "(ended)".to_owned(), |r| value_words(&r.value))
+                        .map_or_else(|| "(ended)".to_owned(), |r| crate::debug::diff::value_text(&r.value))
                 );
             } else if !c.pass {
                 for note in &c.diff.notes {
@@ -318,27 +327,6 @@ impl Report {
         }
         let _ = writeln!(out, "{} passed, {} failed", self.passed(), self.failed());
         out
-    }
-}
-
-/// A traced value in words (4 significant decimals).
-pub fn value_words(v: &[f64]) -> String {
-    let one = |x: f64| {
-        if !x.is_finite() {
-            return format!("{x}");
-        }
-        let s = format!("{x:.4}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" {
-            "0".into()
-        } else {
-            s.to_owned()
-        }
-    };
-    match v {
-        [] => "(none)".into(),
-        [x] => one(*x),
-        _ => format!("({})", v.iter().map(|x| one(*x)).collect::<Vec<_>>().join(", ")),
     }
 }
 

@@ -14,7 +14,7 @@ use super::args::Args;
 use super::check::{self, Checked, Report};
 use super::cli::{say, Failure};
 use super::diff_verb::{pair, Pair};
-use super::verbs::{self, Mode};
+use super::verbs::Mode;
 use crate::error::{Error, Result};
 use crate::lab::{Lab, LabEntry};
 
@@ -112,18 +112,7 @@ pub fn check_main_from(entry: &'static LabEntry, argv: Vec<OsString>) -> ExitCod
         Err(e) => return usage(&e),
     };
     let args = Args::parse_from_for(entry, argv);
-    let which = if verbs::draws_named_files(entry) {
-        (own.reference.is_none() && !args.given.iter().any(|g| g == "shaders")).then(|| {
-            format!(
-                "which pair to check against? name it with --reference VERT0 FRAG0 ({name} draws the pair VERT FRAG it is given)"
-            )
-        })
-    } else {
-        args.shaders
-            .is_none()
-            .then(|| "which copy? give the folder of the copied shaders with --shaders DIR".to_owned())
-    };
-    if let Some(which) = which {
+    if let Some(which) = super::diff_verb::which(entry, &args, own.reference.is_some(), "check against") {
         return usage(&which);
     }
     super::cli::skip_display_device_select();
@@ -233,11 +222,11 @@ fn listing(c: &Checked, mine: &mut dyn Lab) -> String {
         escape(&d.file),
         d.line,
         escape(&d.name),
-        escape(&check::value_words(&d.mine)),
+        escape(&crate::debug::diff::value_text(&d.mine)),
         escape(
             &d.reference
                 .as_ref()
-                .map_or_else(|| "(ended)".to_owned(), |r| check::value_words(&r.value))
+                .map_or_else(|| "(ended)".to_owned(), |r| crate::debug::diff::value_text(&r.value))
         ),
         escape(&d.why)
     );
@@ -263,16 +252,7 @@ fn report_html(report: &Report, mine: &mut dyn Lab) -> Result<String> {
     let mut rows = String::new();
     for (k, c) in report.states.iter().enumerate() {
         let (copy, course) = (&c.diff.frames.0, &c.diff.frames.1);
-        let db = if c.diff.differing == 0 {
-            "identical".to_owned()
-        } else {
-            format!("{:.2} dB", c.diff.psnr)
-        };
-        let set = if c.state.set.is_empty() {
-            "(the base state)".to_owned()
-        } else {
-            c.state.words().join(" ")
-        };
+        let (db, set) = (c.figure(), c.state.line());
         rows.push_str(&format!(
             "<tr class=\"{}\"><td>{}</td><td><b>{}</b><br>{db}<br>{} px differ<br><small>{}</small></td>\
              <td class=\"state\"><code>{}</code>{}</td>\

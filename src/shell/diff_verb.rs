@@ -81,16 +81,7 @@ pub fn diff_main_from(entry: &'static LabEntry, argv: Vec<OsString>) -> ExitCode
         }
     };
     let args = Args::parse_from_for(entry, argv);
-    let which = if verbs::draws_named_files(entry) {
-        (own.reference.is_none() && !args.given.iter().any(|g| g == "shaders")).then(|| {
-            format!("which pair to compare with? name it with --reference VERT0 FRAG0 ({name} draws the pair VERT FRAG it is given)")
-        })
-    } else {
-        args.shaders
-            .is_none()
-            .then(|| "which copy? give the folder of the copied shaders with --shaders DIR".to_owned())
-    };
-    if let Some(which) = which {
+    if let Some(which) = which(entry, &args, own.reference.is_some(), "compare with") {
         let _ = writeln!(std::io::stderr(), "shaderlab diff: {which}\n\nUsage: {USAGE}");
         return ExitCode::from(2);
     }
@@ -104,6 +95,21 @@ pub fn diff_main_from(entry: &'static LabEntry, argv: Vec<OsString>) -> ExitCode
             }
             ExitCode::from(failure.code)
         }
+    }
+}
+
+/// Why a comparison cannot start, as a question (status 2): no copy (`--shaders DIR`), or for a
+/// lab that draws the pair it is given, no pair to `what` (`--reference VERT0 FRAG0`).
+pub(super) fn which(entry: &LabEntry, args: &Args, reference: bool, what: &str) -> Option<String> {
+    let name = entry.info.name;
+    if verbs::draws_named_files(entry) {
+        (!reference && !args.given.iter().any(|g| g == "shaders")).then(|| {
+            format!("which pair to {what}? name it with --reference VERT0 FRAG0 ({name} draws the pair VERT FRAG it is given)")
+        })
+    } else {
+        args.shaders
+            .is_none()
+            .then(|| "which copy? give the folder of the copied shaders with --shaders DIR".to_owned())
     }
 }
 
