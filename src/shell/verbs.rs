@@ -581,73 +581,69 @@ fn verb_command(verb: Verb) -> clap::Command {
         };
         command = command.arg(b);
     }
+    // A verb's own flag that takes one value.
+    let one = |id: &'static str, value: &'static str, hint: ValueHint, help: &'static str| {
+        Arg::new(id)
+            .long(id)
+            .value_name(value)
+            .value_hint(hint)
+            .action(ArgAction::Set)
+            .help(help)
+    };
+    // legacy's other pair, for the comparisons.
+    let reference = |help: &'static str| {
+        Arg::new("reference")
+            .long("reference")
+            .num_args(2)
+            .value_names(["VERT0", "FRAG0"])
+            .value_hint(ValueHint::FilePath)
+            .help(help)
+    };
     match verb {
         Verb::Diff => command
-            .arg(
-                Arg::new("out")
-                    .long("out")
-                    .value_name("FILE.png")
-                    .value_hint(ValueHint::FilePath)
-                    .action(ArgAction::Set)
-                    .help("The picture of the difference, with its legend"),
-            )
-            .arg(
-                Arg::new("reference")
-                    .long("reference")
-                    .num_args(2)
-                    .value_names(["VERT0", "FRAG0"])
-                    .value_hint(ValueHint::FilePath)
-                    .help("For legacy: the pair to compare VERT FRAG with (instead of --shaders DIR)"),
-            ),
+            .arg(one(
+                "out",
+                "FILE.png",
+                ValueHint::FilePath,
+                "The picture of the difference, with its legend",
+            ))
+            .arg(reference(
+                "For legacy: the pair to compare VERT FRAG with (instead of --shaders DIR)",
+            )),
         Verb::Check => command
-            .arg(
-                Arg::new("states")
-                    .long("states")
-                    .value_name("N")
-                    .value_hint(ValueHint::Other)
-                    .action(ArgAction::Set)
-                    .help("Random states to add to the lab's own (default 8)"),
-            )
-            .arg(
-                Arg::new("seed")
-                    .long("seed")
-                    .value_name("S")
-                    .value_hint(ValueHint::Other)
-                    .action(ArgAction::Set)
-                    .help("The random states' seed (default 0): the same seed, the same states"),
-            )
-            .arg(
-                Arg::new("min-db")
-                    .long("min-db")
-                    .value_name("D")
-                    .value_hint(ValueHint::Other)
-                    .action(ArgAction::Set)
-                    .help("The PSNR a state must reach to pass (default 40)"),
-            )
-            .arg(
-                Arg::new("report")
-                    .long("report")
-                    .value_name("DIR")
-                    .value_hint(ValueHint::DirPath)
-                    .action(ArgAction::Set)
-                    .help("Write DIR/index.html: a page with each state's pictures and, where it fails, the copy's source there"),
-            )
-            .arg(
-                Arg::new("reference")
-                    .long("reference")
-                    .num_args(2)
-                    .value_names(["VERT0", "FRAG0"])
-                    .value_hint(ValueHint::FilePath)
-                    .help("For legacy: the pair to check VERT FRAG against (instead of --shaders DIR)"),
-            ),
-        Verb::Open => command.arg(
-            Arg::new("into")
-                .long("into")
-                .value_name("DIR")
-                .value_hint(ValueHint::DirPath)
-                .action(ArgAction::Set)
-                .help("The folder the link's files are written into, made if missing (default ./NAME-shaders/); no file in it is ever replaced"),
-        ),
+            .arg(one(
+                "states",
+                "N",
+                ValueHint::Other,
+                "Random states to add to the lab's own (default 8)",
+            ))
+            .arg(one(
+                "seed",
+                "S",
+                ValueHint::Other,
+                "The random states' seed (default 0): the same seed, the same states",
+            ))
+            .arg(one(
+                "min-db",
+                "D",
+                ValueHint::Other,
+                "The PSNR a state must reach to pass (default 40)",
+            ))
+            .arg(one(
+                "report",
+                "DIR",
+                ValueHint::DirPath,
+                "Write DIR/index.html: a page with each state's pictures and, where it fails, the copy's source there",
+            ))
+            .arg(reference(
+                "For legacy: the pair to check VERT FRAG against (instead of --shaders DIR)",
+            )),
+        Verb::Open => command.arg(one(
+            "into",
+            "DIR",
+            ValueHint::DirPath,
+            "The folder the link's files are written into, made if missing (default ./NAME-shaders/); no file in it is ever replaced",
+        )),
         _ => command,
     }
 }
