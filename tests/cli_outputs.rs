@@ -6,25 +6,10 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 const SIZE: &str = "64x36";
-
-fn test_dir(tag: &str) -> PathBuf {
-    let dir = common::output_dir().join(format!("cli_outputs_{tag}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("the test folder");
-    dir
-}
-
-fn shaderlab_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shaderlab"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("shaderlab runs")
-}
 
 fn ok(args: &[&str], out: &Output) -> String {
     assert!(
@@ -64,7 +49,7 @@ const LIT: &[&str] = &[
 
 #[test]
 fn every_json_output_is_one_json_document() {
-    let dir = test_dir("json");
+    let dir = common::fresh_dir("cli_outputs_json");
     let copy = dir.join("copy");
     common::copy_shaders(&copy);
     let copy = copy.to_str().expect("utf-8").to_owned();
@@ -103,7 +88,7 @@ fn every_json_output_is_one_json_document() {
         if run[1] == "legacy" {
             args.extend_from_slice(LIT);
         }
-        let text = ok(&args, &shaderlab_in(&dir, &args));
+        let text = ok(&args, &common::shaderlab_in(&dir, &args));
         let v: serde_json::Value =
             serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not one JSON document ({e}):\n{text}"));
         assert!(v.is_object(), "{args:?}: {v}");
@@ -120,40 +105,16 @@ fn every_json_output_is_one_json_document() {
     }
 }
 
-/// The array `--npy` writes, read back: its shape and values.
-fn npy(bytes: &[u8]) -> (Vec<usize>, Vec<f32>) {
-    assert_eq!(&bytes[..6], b"\x93NUMPY", "the magic");
-    let length = usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
-    let header = std::str::from_utf8(&bytes[10..10 + length]).expect("an ASCII header");
-    let shape = header
-        .split("'shape': (")
-        .nth(1)
-        .and_then(|s| s.split(')').next())
-        .expect("a shape");
-    let shape: Vec<usize> = shape
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse().expect("a dimension"))
-        .collect();
-    let values: Vec<f32> = bytes[10 + length..]
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    assert_eq!(values.len(), shape.iter().product::<usize>(), "{header}");
-    (shape, values)
-}
-
 #[test]
 fn npy_into_a_stream_takes_the_array_whatever_its_name() {
-    let dir = test_dir("npy");
+    let dir = common::fresh_dir("cli_outputs_npy");
     let args = ["view", "phong", "--cost", "--size", SIZE];
     // The array written to a file, for comparison.
     let mut file_args = args.to_vec();
     file_args.extend_from_slice(&["--npy", "c.npy"]);
-    ok(&file_args, &shaderlab_in(&dir, &file_args));
+    ok(&file_args, &common::shaderlab_in(&dir, &file_args));
     let reference = std::fs::read(dir.join("c.npy")).expect("c.npy");
-    let (shape, cost) = npy(&reference);
+    let (shape, cost) = common::parse_npy(&reference);
     assert_eq!(shape, vec![36, 64, 1]);
     assert!(cost.iter().any(|c| c.is_finite() && *c > 0.0), "the teapot is drawn");
     // /dev/stdout into a file, /dev/stdout into a pipe, a link to /dev/stdout with another name.
@@ -186,7 +147,7 @@ fn npy_into_a_stream_takes_the_array_whatever_its_name() {
         assert_eq!(bytes, reference, "{run:?} (into a file: {into_file})");
     }
     // A file still needs the .npy name.
-    let out = shaderlab_in(&dir, &["view", "phong", "--cost", "--npy", "v.txt"]);
+    let out = common::shaderlab_in(&dir, &["view", "phong", "--cost", "--npy", "v.txt"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("use a .npy name"));
     assert!(!dir.join("v.txt").exists());
@@ -194,14 +155,14 @@ fn npy_into_a_stream_takes_the_array_whatever_its_name() {
 
 #[test]
 fn a_line_past_the_end_says_how_many_lines_the_file_has() {
-    let dir = test_dir("past_end");
+    let dir = common::fresh_dir("cli_outputs_past_end");
     let lines = shaderlab::shader::embedded_source("phong.frag")
         .expect("phong.frag")
         .lines()
         .count();
     for line in [lines + 1, 999] {
         let at = format!("phong.frag:{line}");
-        let out = shaderlab_in(&dir, &["view", "phong", "--line", &at, "--size", SIZE]);
+        let out = common::shaderlab_in(&dir, &["view", "phong", "--line", &at, "--size", SIZE]);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{err}");
         assert!(
@@ -218,7 +179,7 @@ fn a_line_past_the_end_says_how_many_lines_the_file_has() {
         .lines()
         .count();
     let at = format!("lab3.frag:{}", count + 1);
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &[
             "view",
@@ -239,7 +200,7 @@ fn a_line_past_the_end_says_how_many_lines_the_file_has() {
 
 #[test]
 fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
-    let dir = test_dir("legacy");
+    let dir = common::fresh_dir("cli_outputs_legacy");
     let line = course_pair(&dir, "mine", |t| {
         t.replace(
             "vec4 Idiff = vec4(diffuseColor * max(dot(N, L), 0.0), 1.0);",
@@ -264,7 +225,8 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
         "d.png",
     ];
     args.extend_from_slice(LIT);
-    let v: serde_json::Value = serde_json::from_str(&ok(&args, &shaderlab_in(&dir, &args))).expect("one JSON object");
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&args, &common::shaderlab_in(&dir, &args))).expect("one JSON object");
     assert!(v["differing"].as_u64().is_some_and(|n| n > 50), "{v}");
     let first = &v["first_divergence"];
     assert_eq!(first["file"], "mine.frag", "the user's own file: {v}");
@@ -292,7 +254,8 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
         "--json",
     ];
     same.extend_from_slice(LIT);
-    let v: serde_json::Value = serde_json::from_str(&ok(&same, &shaderlab_in(&dir, &same))).expect("one JSON object");
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&same, &common::shaderlab_in(&dir, &same))).expect("one JSON object");
     assert_eq!(v["differing"], 0, "{v}");
 
     // A folder of shaders means nothing to legacy, even an empty one; no pair is a question.
@@ -332,7 +295,7 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
             "`--reference` needs two files",
         ),
     ] {
-        let out = shaderlab_in(&dir, &args);
+        let out = common::shaderlab_in(&dir, &args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
@@ -344,10 +307,10 @@ fn diff_legacy_compares_with_the_reference_pair_and_refuses_a_folder() {
 
 #[test]
 fn help_says_any_value_for_a_range_no_lab_declared() {
-    let dir = test_dir("help");
+    let dir = common::fresh_dir("cli_outputs_help");
     let help = ok(
         &["run", "phong", "--help"],
-        &shaderlab_in(&dir, &["run", "phong", "--help"]),
+        &common::shaderlab_in(&dir, &["run", "phong", "--help"]),
     );
     assert!(!help.contains("e38"), "{help}");
     let light = help
@@ -358,7 +321,7 @@ fn help_says_any_value_for_a_range_no_lab_declared() {
     // A declared range still prints as declared.
     let twist = ok(
         &["run", "twist", "--help"],
-        &shaderlab_in(&dir, &["run", "twist", "--help"]),
+        &common::shaderlab_in(&dir, &["run", "twist", "--help"]),
     );
     let twisting = twist
         .lines()

@@ -10,8 +10,7 @@ mod common;
 
 use std::collections::BTreeMap;
 use std::io::Write;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 use base64::Engine;
 use shaderlab::shader::{embedded_names, embedded_source};
@@ -19,23 +18,8 @@ use shaderlab::shell::link::{Link, DEFAULT_BASE, MAX_FRAGMENT};
 
 const SIZE: &str = "160x90";
 
-fn test_dir(tag: &str) -> PathBuf {
-    let dir = common::output_dir().join(format!("links_{tag}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("the test folder");
-    dir
-}
-
-fn shaderlab_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shaderlab"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("shaderlab runs")
-}
-
 fn ok(dir: &Path, args: &[&str]) -> String {
-    let out = shaderlab_in(dir, args);
+    let out = common::shaderlab_in(dir, args);
     assert!(
         out.status.success(),
         "{args:?}: status {:?}: {}",
@@ -75,7 +59,7 @@ const STATE: &[&str] = &["--set", "Ka=0.2", "--set", "object=torus", "--size", S
 
 #[test]
 fn a_link_opened_writes_its_files_and_draws_what_run_draws_from_the_copy() {
-    let dir = test_dir("phong");
+    let dir = common::fresh_dir("links_phong");
     let edited = edited_copy(&dir.join("copy"));
     let mut args = vec![
         "link",
@@ -135,7 +119,7 @@ fn a_link_opened_writes_its_files_and_draws_what_run_draws_from_the_copy() {
 
 #[test]
 fn legacys_pair_travels_by_its_names_and_draws_as_legacy_draws_it() {
-    let dir = test_dir("legacy");
+    let dir = common::fresh_dir("links_legacy");
     let course = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
     let (vert, frag) = (course.join("lab3.vert"), course.join("lab3.frag"));
     let (vert, frag) = (vert.to_str().unwrap(), frag.to_str().unwrap());
@@ -192,7 +176,7 @@ fn legacys_pair_travels_by_its_names_and_draws_as_legacy_draws_it() {
         (vec!["link", "phong", vert, frag], "phong takes no files"),
         (vec!["link", "phong", "--base", "http://h/?x=1"], "without `?` or `#`"),
     ] {
-        let out = shaderlab_in(&dir, &args);
+        let out = common::shaderlab_in(&dir, &args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
@@ -202,7 +186,7 @@ fn legacys_pair_travels_by_its_names_and_draws_as_legacy_draws_it() {
     // writes it, to be mended, and the run says what is wrong with it.
     let (v5, f5) = (course.join("lab5.vert"), course.join("lab5.frag"));
     let link5 = ok(&dir, &["link", "legacy", v5.to_str().unwrap(), f5.to_str().unwrap()]);
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &["open", link5.trim(), "--into", "lab5", "--screenshot", "lab5.png"],
     );
@@ -216,7 +200,7 @@ fn legacys_pair_travels_by_its_names_and_draws_as_legacy_draws_it() {
     assert!(!dir.join("lab5.png").exists());
     std::fs::copy(vert, dir.join("V")).unwrap();
     std::fs::copy(frag, dir.join("F")).unwrap();
-    let out = shaderlab_in(&dir, &["link", "legacy", "V", "F"]);
+    let out = common::shaderlab_in(&dir, &["link", "legacy", "V", "F"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(
@@ -236,7 +220,7 @@ fn fragment_of(json: &[u8]) -> String {
 /// written (neither the folder, named or the default, nor the picture).
 #[test]
 fn a_bad_link_says_what_is_wrong_and_writes_nothing() {
-    let dir = test_dir("bad");
+    let dir = common::fresh_dir("links_bad");
     let work = dir.join("work");
     std::fs::create_dir_all(&work).unwrap();
     let edited = edited_copy(&dir.join("copy"));
@@ -317,7 +301,7 @@ fn a_bad_link_says_what_is_wrong_and_writes_nothing() {
             let mut args = vec!["open", link.as_str()];
             args.extend_from_slice(into);
             args.extend(["--screenshot", "x.png"]);
-            let out = shaderlab_in(&work, &args);
+            let out = common::shaderlab_in(&work, &args);
             let err = String::from_utf8_lossy(&out.stderr);
             assert_eq!(out.status.code(), Some(2), "{what}: {err}");
             assert!(err.contains(says), "{what}: {err}");
@@ -341,7 +325,7 @@ fn a_bad_link_says_what_is_wrong_and_writes_nothing() {
         (vec!["open", &good, "--into"], "`--into` needs a folder"),
         (vec!["open"], "which link?"),
     ] {
-        let out = shaderlab_in(&work, &args);
+        let out = common::shaderlab_in(&work, &args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
@@ -357,14 +341,14 @@ fn a_bad_link_says_what_is_wrong_and_writes_nothing() {
 /// built-in one beside it) is refused and keeps its bytes, and nothing else is written.
 #[test]
 fn open_never_writes_over_a_file() {
-    let dir = test_dir("overwrite");
+    let dir = common::fresh_dir("links_overwrite");
     edited_copy(&dir.join("copy"));
     let link = ok(&dir, &["link", "phong", "--shaders", "copy"]).trim().to_owned();
     for name in ["phong.frag", "bump.frag"] {
         let into = dir.join(format!("mine-{name}"));
         std::fs::create_dir_all(&into).unwrap();
         std::fs::write(into.join(name), "my own work").unwrap();
-        let out = shaderlab_in(
+        let out = common::shaderlab_in(
             &dir,
             &["open", &link, "--into", into.to_str().unwrap(), "--screenshot", "x.png"],
         );
@@ -381,7 +365,7 @@ fn open_never_writes_over_a_file() {
     // The default folder, ./NAME-shaders/: made by the first open, refused by the second.
     ok(&dir, &["open", &link, "--screenshot", "first.png", "--size", SIZE]);
     assert!(dir.join("phong-shaders/phong.frag").is_file());
-    let out = shaderlab_in(&dir, &["open", &link, "--screenshot", "second.png"]);
+    let out = common::shaderlab_in(&dir, &["open", &link, "--screenshot", "second.png"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("exists"), "{err}");
@@ -391,7 +375,7 @@ fn open_never_writes_over_a_file() {
 /// A copy too large for a link says so, and prints no link.
 #[test]
 fn a_copy_too_large_for_a_link_says_so() {
-    let dir = test_dir("large");
+    let dir = common::fresh_dir("links_large");
     let copy = dir.join("copy");
     common::copy_shaders(&copy);
     let mut state = 7u64;
@@ -408,7 +392,7 @@ fn a_copy_too_large_for_a_link_says_so() {
         })
         .collect();
     std::fs::write(copy.join("mine.glsl"), format!("// {noise}\n")).unwrap();
-    let out = shaderlab_in(&dir, &["link", "phong", "--shaders", "copy"]);
+    let out = common::shaderlab_in(&dir, &["link", "phong", "--shaders", "copy"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(

@@ -80,46 +80,32 @@ const FLAGS: &[(&str, &[&str])] = &[
 /// What each verb takes besides the scene's flags; `view` also takes `--screenshot`, the old
 /// name of its `--out`.
 fn takes(verb: &str) -> Vec<&'static str> {
-    let own: &[&str] = match verb {
-        "run" => &[
-            "--screenshot",
-            "--bench",
-            "--gpu-time",
-            "--record",
-            "--frames",
-            "--fps",
-            "--from",
-            "--unpaced",
-            "--debug",
-            "--json",
-            "--line",
-            "--name",
-            "--stage",
-            "--cost",
-            "--npy",
-            "--diff",
-        ],
+    // What a run that draws one lab's frame takes: pictures, timing, recordings, a pixel, views.
+    const DRAWING: &[&str] = &[
+        "--screenshot",
+        "--bench",
+        "--gpu-time",
+        "--record",
+        "--frames",
+        "--fps",
+        "--from",
+        "--unpaced",
+        "--debug",
+        "--json",
+        "--line",
+        "--name",
+        "--stage",
+        "--cost",
+        "--npy",
+    ];
+    let with = |more: &[&'static str]| -> Vec<&'static str> { DRAWING.iter().chain(more).copied().collect() };
+    let own: Vec<&str> = match verb {
+        "run" => with(&["--diff"]),
         // legacy draws the pair it is given: no folder of shaders, nothing to compare with.
-        "legacy" => &[
-            "--screenshot",
-            "--bench",
-            "--gpu-time",
-            "--record",
-            "--frames",
-            "--fps",
-            "--from",
-            "--unpaced",
-            "--debug",
-            "--json",
-            "--line",
-            "--name",
-            "--stage",
-            "--cost",
-            "--npy",
-        ],
-        "record" => &["--frames", "--fps", "--from"],
-        "debug" => &["--pixel", "--json", "--screenshot"],
-        "view" => &[
+        "legacy" => with(&[]),
+        "record" => vec!["--frames", "--fps", "--from"],
+        "debug" => vec!["--pixel", "--json", "--screenshot"],
+        "view" => vec![
             "--out",
             "--screenshot",
             "--bench",
@@ -130,28 +116,11 @@ fn takes(verb: &str) -> Vec<&'static str> {
             "--cost",
             "--npy",
         ],
-        "diff" => &["--out", "--json", "--reference"],
-        "check" => &["--json", "--reference", "--states", "--seed", "--min-db", "--report"],
+        "diff" => vec!["--out", "--json", "--reference"],
+        "check" => vec!["--json", "--reference", "--states", "--seed", "--min-db", "--report"],
         // open draws the link's files from the folder it writes them into: no --shaders, and
         // nothing to compare.
-        "open" => &[
-            "--into",
-            "--screenshot",
-            "--bench",
-            "--gpu-time",
-            "--record",
-            "--frames",
-            "--fps",
-            "--from",
-            "--unpaced",
-            "--debug",
-            "--json",
-            "--line",
-            "--name",
-            "--stage",
-            "--cost",
-            "--npy",
-        ],
+        "open" => with(&["--into"]),
         // link draws nothing: the lab's state and the folder whose files it carries.
         "link" => return vec!["--set", "--shaders", "--base"],
         _ => panic!("{verb}"),
@@ -160,7 +129,7 @@ fn takes(verb: &str) -> Vec<&'static str> {
     if verb == "legacy" || verb == "open" {
         all.retain(|f| *f != "--shaders");
     }
-    all.extend_from_slice(own);
+    all.extend(own);
     all
 }
 
@@ -475,29 +444,6 @@ fn the_tools_and_plain_verbs_refuse_what_they_would_ignore() {
     }
 }
 
-/// The flags a bash completion offers after `shaderlab WORDS… --`, run through the script's
-/// own function in bash.
-fn bash_offers(script: &Path, words: &[&str]) -> Vec<String> {
-    let words: Vec<String> = words.iter().map(|w| format!("'{w}'")).collect();
-    let program = format!(
-        "source '{}'\nCOMP_WORDS=({})\nCOMP_CWORD=$((${{#COMP_WORDS[@]}} - 1))\n\
-         _shaderlab shaderlab \"${{COMP_WORDS[COMP_CWORD]}}\" \"${{COMP_WORDS[COMP_CWORD-1]}}\"\n\
-         printf '%s\\n' \"${{COMPREPLY[@]}}\"\n",
-        script.display(),
-        words.join(" ")
-    );
-    let out = Command::new("bash")
-        .arg("-c")
-        .arg(&program)
-        .output()
-        .expect("bash runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .map(str::to_owned)
-        .collect()
-}
-
 fn shaderlab_stdout(args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_shaderlab"))
         .args(args)
@@ -582,7 +528,7 @@ fn each_verb_takes_completes_and_documents_the_same_flags() {
             "open" => vec!["shaderlab", "open", "LINK", "--"],
             v => vec!["shaderlab", v, "phong", "--"],
         };
-        let offered: BTreeSet<String> = bash_offers(&script, &words)
+        let offered: BTreeSet<String> = common::bash_offers(&script, &words)
             .into_iter()
             .filter(|w| w.starts_with("--"))
             .collect();

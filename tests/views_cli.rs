@@ -20,22 +20,6 @@ const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
 const SIZE: &str = "320x180";
 
-fn shaderlab_in(dir: &Path, args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("shaderlab runs")
-}
-
-/// A fresh folder under target/test-output for one test.
-fn test_dir(tag: &str) -> PathBuf {
-    let dir = common::output_dir().join(format!("views_cli_{tag}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("the test folder");
-    dir
-}
-
 fn ok(out: &std::process::Output) -> String {
     assert!(
         out.status.success(),
@@ -77,33 +61,7 @@ fn shown(captured: &Captured, suffix: &str) -> String {
 
 /// A NumPy file: its shape and its float32 values, the header parsed as NumPy's format says.
 fn read_npy(path: &Path) -> (Vec<usize>, Vec<f32>) {
-    let bytes = std::fs::read(path).expect("the .npy file");
-    assert_eq!(&bytes[..6], b"\x93NUMPY", "the magic");
-    assert_eq!((bytes[6], bytes[7]), (1, 0), "version 1.0");
-    let length = usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
-    assert_eq!((10 + length) % 64, 0, "the header is padded to 64 bytes");
-    let header = std::str::from_utf8(&bytes[10..10 + length]).expect("an ASCII header");
-    assert!(header.ends_with('\n'), "{header:?}");
-    assert!(header.contains("'descr': '<f4'"), "{header}");
-    assert!(header.contains("'fortran_order': False"), "{header}");
-    let shape = header
-        .split("'shape': (")
-        .nth(1)
-        .and_then(|s| s.split(')').next())
-        .expect("a shape");
-    let shape: Vec<usize> = shape
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse().expect("a dimension"))
-        .collect();
-    let data = &bytes[10 + length..];
-    assert_eq!(data.len(), 4 * shape.iter().product::<usize>(), "{header}");
-    let values = data
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    (shape, values)
+    common::parse_npy(&std::fs::read(path).expect("the .npy file"))
 }
 
 /// Up to `n` indices where `pick` holds, spread evenly over them in scan order.
@@ -138,10 +96,10 @@ fn library_picture(frame: &ValueFrame) -> image::RgbaImage {
 
 #[test]
 fn the_view_command_writes_the_librarys_picture_and_the_debuggers_values() {
-    let dir = test_dir("line");
+    let dir = common::fresh_dir("views_cli_line");
     let line = line_of("phong.frag", "max(dot(N, L), 0.0)");
     let at = format!("phong.frag:{line}");
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &[
             "view", "phong", "--line", &at, "--object", "teapot", "--size", SIZE, "--out", "v.png", "--npy", "v.npy",
@@ -218,10 +176,10 @@ fn the_view_command_writes_the_librarys_picture_and_the_debuggers_values() {
 
 #[test]
 fn a_vertex_line_through_the_labs_flags_is_said_to_be_interpolated() {
-    let dir = test_dir("vertex");
+    let dir = common::fresh_dir("views_cli_vertex");
     let line = line_of("phong.vert", "v = vec3(modelview * vertex)");
     let at = format!("phong.vert:{line}");
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &[
             "run",
@@ -243,7 +201,7 @@ fn a_vertex_line_through_the_labs_flags_is_said_to_be_interpolated() {
     assert!(summary["range"]["min"].as_f64().is_some_and(|m| m < 0.0), "{summary}");
     assert!(image::open(dir.join("v.png")).is_ok(), "the picture");
     // Without --json the summary is one line of words, saying so.
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &["view", "phong", "--line", &at, "--size", SIZE, "--out", "w.png"],
     );
@@ -254,8 +212,8 @@ fn a_vertex_line_through_the_labs_flags_is_said_to_be_interpolated() {
 
 #[test]
 fn a_cost_view_from_the_command_equals_the_debuggers_cost() {
-    let dir = test_dir("cost");
-    let out = shaderlab_in(
+    let dir = common::fresh_dir("views_cli_cost");
+    let out = common::shaderlab_in(
         &dir,
         &[
             "view",
@@ -297,7 +255,7 @@ fn a_cost_view_from_the_command_equals_the_debuggers_cost() {
     pixels.extend(spread(cost.len(), 1, |i| cost[i].is_nan()));
     for i in pixels {
         let (x, y) = (i as u32 % WIDTH, i as u32 / WIDTH);
-        let out = shaderlab_in(
+        let out = common::shaderlab_in(
             &dir,
             &[
                 "debug",
@@ -328,7 +286,7 @@ fn a_cost_view_from_the_command_equals_the_debuggers_cost() {
 
 #[test]
 fn bench_with_a_view_times_the_view() {
-    let dir = test_dir("bench");
+    let dir = common::fresh_dir("views_cli_bench");
     let line = line_of("phong.frag", "max(dot(N, L), 0.0)");
     for view in [
         vec!["--line".to_owned(), format!("phong.frag:{line}")],
@@ -336,7 +294,7 @@ fn bench_with_a_view_times_the_view() {
     ] {
         let mut args = vec!["run", "phong", "--size", SIZE, "--bench", "3"];
         args.extend(view.iter().map(String::as_str));
-        let text = ok(&shaderlab_in(&dir, &args));
+        let text = ok(&common::shaderlab_in(&dir, &args));
         assert_eq!(text.lines().count(), 1, "{text}");
         // The view as the window and the page draw it, the plain frame beside it, their
         // ratio, and the view read back.
@@ -364,14 +322,14 @@ fn bench_with_a_view_times_the_view() {
 
 #[test]
 fn the_labs_diff_flag_is_shaderlab_diff() {
-    let dir = test_dir("diff");
+    let dir = common::fresh_dir("views_cli_diff");
     let shaders = dir.join("copy");
     common::copy_shaders(&shaders);
     let frag = shaders.join("phong.frag");
     let text = std::fs::read_to_string(&frag).expect("the copy");
     std::fs::write(&frag, text.replacen("max(dot(N, L), 0.0)", "max(dot(N, L), 0.5)", 1)).expect("the bug");
     let copy = shaders.to_str().expect("utf-8");
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &["run", "phong", "--diff", copy, "--json", "--screenshot", "d.png"],
     );
@@ -383,7 +341,7 @@ fn the_labs_diff_flag_is_shaderlab_diff() {
     );
     assert_eq!(v["first_divergence"]["name"], "Idiff", "{v}");
     assert!(image::open(dir.join("d.png")).is_ok(), "the picture of the difference");
-    let out = shaderlab_in(&dir, &["diff", "phong", "--shaders", copy, "--json"]);
+    let out = common::shaderlab_in(&dir, &["diff", "phong", "--shaders", copy, "--json"]);
     let w: serde_json::Value = serde_json::from_str(&ok(&out)).expect("one JSON object");
     assert_eq!(v, w, "--diff DIR and shaderlab diff --shaders DIR say the same");
 }
@@ -401,7 +359,7 @@ fn usage_error(dir: &Path, args: &[&str], says: &str) {
 
 fn refused_in(dir: &Path, args: &[&str], code: i32, says: &str, one_line: bool) {
     let before: Vec<PathBuf> = list(dir);
-    let out = shaderlab_in(dir, args);
+    let out = common::shaderlab_in(dir, args);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
     assert!(err.contains(says), "{args:?}: {err}");
@@ -427,7 +385,7 @@ fn list(dir: &Path) -> Vec<PathBuf> {
 
 #[test]
 fn bad_views_get_one_line_and_write_nothing() {
-    let dir = test_dir("bad");
+    let dir = common::fresh_dir("views_cli_bad");
     let comment = line_of("phong.frag", "// The course's lines");
     let l = line_of("phong.frag", "vec3 L = safe_normalize");
     let view = |more: &[&str]| -> Vec<String> {
@@ -524,7 +482,7 @@ fn bad_views_get_one_line_and_write_nothing() {
     run(&["--shaders", &copy, "--line", "shared.glsl:2"], 2, "choose the stage");
     // With the stage chosen, the view is drawn.
     for stage in ["vertex", "fragment"] {
-        let out = shaderlab_in(
+        let out = common::shaderlab_in(
             &dir,
             &[
                 "view",
@@ -552,7 +510,7 @@ const ENDLESS_FRAG: &str =
 
 #[test]
 fn a_cost_view_of_a_shader_that_never_ends_meets_the_watchdog() {
-    let dir = test_dir("watchdog");
+    let dir = common::fresh_dir("views_cli_watchdog");
     std::fs::write(dir.join("v.vert"), "void main() { gl_Position = ftransform(); }\n").expect("v.vert");
     std::fs::write(dir.join("endless.frag"), ENDLESS_FRAG).expect("endless.frag");
     let before = list(&dir);
@@ -593,7 +551,7 @@ fn a_cost_view_of_a_shader_that_never_ends_meets_the_watchdog() {
 
 #[test]
 fn a_course_glsl_110_file_is_viewed_with_the_users_lines_and_names() {
-    let dir = test_dir("course");
+    let dir = common::fresh_dir("views_cli_course");
     let course = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
     for file in ["lab3.vert", "lab3.frag"] {
         std::fs::copy(course.join(file), dir.join(file)).expect("the course's file");
@@ -601,7 +559,7 @@ fn a_course_glsl_110_file_is_viewed_with_the_users_lines_and_names() {
     let text = std::fs::read_to_string(dir.join("lab3.frag")).expect("lab3.frag");
     let line = text.lines().position(|l| l.contains("vec4 Idiff =")).expect("the line") as u32 + 1;
     let at = format!("lab3.frag:{line}");
-    let out = shaderlab_in(
+    let out = common::shaderlab_in(
         &dir,
         &[
             "view",
@@ -639,11 +597,11 @@ fn a_course_glsl_110_file_is_viewed_with_the_users_lines_and_names() {
 
 #[test]
 fn the_view_command_is_listed_and_has_help() {
-    let dir = test_dir("help");
-    let usage = ok(&shaderlab_in(&dir, &["--help"]));
+    let dir = common::fresh_dir("views_cli_help");
+    let usage = ok(&common::shaderlab_in(&dir, &["--help"]));
     assert!(usage.contains("shaderlab view NAME --line FILE:LINE"), "{usage}");
     assert!(usage.contains("shaderlab view NAME --cost"), "{usage}");
-    let help = ok(&shaderlab_in(&dir, &["view", "--help"]));
+    let help = ok(&common::shaderlab_in(&dir, &["view", "--help"]));
     for needle in [
         "Usage: shaderlab view NAME",
         "--line FILE:LINE",
@@ -652,12 +610,15 @@ fn the_view_command_is_listed_and_has_help() {
     ] {
         assert!(help.contains(needle), "{needle}: {help}");
     }
-    let lab = ok(&shaderlab_in(&dir, &["view", "phong", "--help"]));
+    let lab = ok(&common::shaderlab_in(&dir, &["view", "phong", "--help"]));
     for needle in ["--line <FILE:LINE>", "--cost", "--npy <FILE.npy>", "--diff <DIR>"] {
         assert!(lab.contains(needle), "{needle}: {lab}");
     }
     // Without an output asked for, the picture goes to NAME-cost.png here.
-    let text = ok(&shaderlab_in(&dir, &["view", "phong", "--cost", "--size", SIZE]));
+    let text = ok(&common::shaderlab_in(
+        &dir,
+        &["view", "phong", "--cost", "--size", SIZE],
+    ));
     assert!(text.starts_with("cost: "), "{text}");
     let png = image::open(dir.join("phong-cost.png")).expect("the default picture");
     assert_eq!(png.height(), HEIGHT + picture::LEGEND_HEIGHT);
@@ -668,7 +629,7 @@ fn the_view_command_is_listed_and_has_help() {
 /// a ratio of the two runs' peak resident memory (load cannot move it).
 #[test]
 fn a_big_view_holds_about_twice_the_memory_of_its_frame() {
-    let dir = test_dir("memory");
+    let dir = common::fresh_dir("views_cli_memory");
     let size = "4096x4096";
     let peak = |args: &[&str]| {
         let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shaderlab"));

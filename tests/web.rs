@@ -291,24 +291,7 @@ fn open(server: &(u16, mpsc::Receiver<String>), backend: &str, query: &str) -> P
 
 /// The native picture of a case: the library's `--screenshot` path at the lab's size.
 fn native(name: &str, sets: &[&str]) -> RgbImage {
-    let entry = shaderlab::course::find(name).unwrap();
-    let mut files = UserFiles::default();
-    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
-    let mut state = Vec::new();
-    for set in sets {
-        let (key, value) = set.split_once('=').unwrap();
-        if key == "files" {
-            files.inputs = value.split(',').map(|f| fixtures.join(f)).collect();
-        } else {
-            state.push((key, value));
-        }
-    }
-    let gpu = common::gpu();
-    let cx = BuildContext::new(gpu, &ShaderSource::Embedded, COLOR_FORMAT, &files);
-    let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
-    common::set_state(lab.as_mut(), &state);
-    let (w, h) = entry.info.size;
-    to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), w, h).expect("screenshot"))
+    native_from(&ShaderSource::Embedded, name, sets)
 }
 
 fn query(name: &str, sets: &[&str]) -> String {
@@ -876,14 +859,24 @@ fn the_pages_check_checks_the_commands_states_and_names_the_planted_line() {
     );
 }
 
-/// The native picture of `name` at `sets` drawn from `source`, at the lab's size.
+/// The native picture of `name` at `sets` drawn from `source`, at the lab's size (`files=`
+/// naming the course's pair under assets/course/seed000).
 fn native_from(source: &ShaderSource, name: &str, sets: &[&str]) -> RgbImage {
     let entry = shaderlab::course::find(name).unwrap();
+    let mut files = UserFiles::default();
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/course/seed000");
+    let mut state = Vec::new();
+    for set in sets {
+        let (key, value) = set.split_once('=').unwrap();
+        if key == "files" {
+            files.inputs = value.split(',').map(|f| fixtures.join(f)).collect();
+        } else {
+            state.push((key, value));
+        }
+    }
     let gpu = common::gpu();
-    let files = UserFiles::default();
     let cx = BuildContext::new(gpu, source, COLOR_FORMAT, &files);
     let mut lab = (entry.new)(&cx).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let state: Vec<(&str, &str)> = sets.iter().map(|s| s.split_once('=').unwrap()).collect();
     common::set_state(lab.as_mut(), &state);
     let (w, h) = entry.info.size;
     to_rgb(&shaderlab::shell::screenshot(gpu, lab.as_mut(), w, h).expect("screenshot"))

@@ -427,6 +427,48 @@ fn traced_vertex(mine: &CapturedDraw, reference: &CapturedDraw, at: VertexAt) ->
     Ok(d)
 }
 
+/// The two frames a diff compares (the copy's and the reference's), captured with their
+/// pictures and being read back: waited for natively, or taken once both are back (the
+/// page, which cannot block). The window's F4, the page's Compare and the check use it.
+pub struct Frames {
+    mine: super::Pending,
+    reference: super::Pending,
+}
+
+impl Frames {
+    /// Starts capturing the frames of `mine` and `reference` at `size`, both drawing in
+    /// `format`.
+    pub fn start(
+        gpu: &crate::gpu::Gpu,
+        mine: &mut dyn crate::lab::Lab,
+        reference: &mut dyn crate::lab::Lab,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+    ) -> Result<Frames> {
+        Ok(Frames {
+            mine: super::capture_start(gpu, mine, size, format)?,
+            reference: super::capture_start(gpu, reference, size, format)?,
+        })
+    }
+
+    /// Whether both frames are back (the device moved on to see).
+    pub fn ready(&self, gpu: &crate::gpu::Gpu) -> bool {
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        self.mine.ready() && self.reference.ready()
+    }
+
+    /// Both frames: waited for where `wait` (natively; the page never waits), else as they
+    /// are ([`Frames::ready`] first).
+    pub fn take(self, gpu: &crate::gpu::Gpu, wait: bool) -> Result<(Captured, Captured)> {
+        #[cfg(not(target_arch = "wasm32"))]
+        if wait {
+            return Ok((self.mine.wait(gpu)?, self.reference.wait(gpu)?));
+        }
+        let _ = (gpu, wait);
+        Ok((self.mine.finish()?, self.reference.finish()?))
+    }
+}
+
 /// Draws `mine` and `reference` at `size` and compares them ([`diff`]); each frame's draws
 /// are brought to the CPU before it runs.
 #[cfg(not(target_arch = "wasm32"))]

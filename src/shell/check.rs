@@ -342,7 +342,7 @@ pub struct Checking {
     states: Vec<State>,
     format: wgpu::TextureFormat,
     /// The state being captured: its two frames on their way.
-    pending: Option<(crate::debug::Pending, crate::debug::Pending)>,
+    pending: Option<crate::debug::diff::Frames>,
     /// What the states checked so far gave.
     report: Report,
     /// Why the check stopped before its end, if it did.
@@ -420,32 +420,15 @@ impl Checking {
         if self.finished() {
             return false;
         }
-        let Some((a, b)) = &self.pending else {
+        let Some(pending) = &self.pending else {
             self.start(gpu);
             return self.failed.is_some();
         };
-        #[cfg(not(target_arch = "wasm32"))]
-        let ready = wait || {
-            let _ = gpu.device.poll(wgpu::PollType::Poll);
-            a.ready() && b.ready()
-        };
-        #[cfg(target_arch = "wasm32")]
-        let ready = {
-            let _ = (gpu.device.poll(wgpu::PollType::Poll), wait);
-            a.ready() && b.ready()
-        };
-        if !ready {
+        let wait = wait && cfg!(not(target_arch = "wasm32"));
+        if !wait && !pending.ready(gpu) {
             return false;
         }
-        let (a, b) = self.pending.take().expect("checked above");
-        #[cfg(not(target_arch = "wasm32"))]
-        let frames = if wait {
-            a.wait(gpu).and_then(|a| Ok((a, b.wait(gpu)?)))
-        } else {
-            a.finish().and_then(|a| Ok((a, b.finish()?)))
-        };
-        #[cfg(target_arch = "wasm32")]
-        let frames = a.finish().and_then(|a| Ok((a, b.finish()?)));
+        let frames = self.pending.take().expect("checked above").take(gpu, wait);
         let state = self.states[self.report.states.len()].clone();
         match frames.and_then(|(a, b)| crate::debug::diff::diff(self.entry.info.name, &a, &b)) {
             Ok(diff) => {
@@ -467,9 +450,7 @@ impl Checking {
         let started = state.apply(&self.base).and_then(|p| {
             *self.reference.params_mut() = state.apply(&self.reference_base)?;
             *self.mine.params_mut() = p;
-            let a = crate::debug::capture_start(gpu, self.mine.as_mut(), size, self.format)?;
-            let b = crate::debug::capture_start(gpu, self.reference.as_mut(), size, self.format)?;
-            Ok((a, b))
+            crate::debug::diff::Frames::start(gpu, self.mine.as_mut(), self.reference.as_mut(), size, self.format)
         });
         match started {
             Ok(both) => self.pending = Some(both),

@@ -642,6 +642,12 @@ impl Session {
         out
     }
 
+    /// The lab built from its built-in shaders, with the session's files: what a diff and a
+    /// check compare the shaders drawn with to.
+    fn builtin(&self, gpu: &Gpu) -> Result<Box<dyn Lab>> {
+        self.sources.with_source(ShaderSource::Embedded).build(gpu, self.entry)
+    }
+
     /// Starts checking the lab's shaders (as the session draws them) against its built-in ones
     /// across its states ([`super::check`]): from the lab's state now, the base state, every
     /// object, the lab's states of record and `random` states drawn with `seed`, at `size`,
@@ -662,10 +668,7 @@ impl Session {
                 self.name()
             ));
         }
-        let built = (self.sources.build(gpu, self.entry)).and_then(|mine| {
-            let builtin = self.sources.with_source(ShaderSource::Embedded);
-            Ok((mine, builtin.build(gpu, self.entry)?))
-        });
+        let built = (self.sources.build(gpu, self.entry)).and_then(|mine| Ok((mine, self.builtin(gpu)?)));
         let (mut mine, mut reference) = match built {
             Ok(labs) => labs,
             Err(e) => return Some(format!("cannot check: {e}")),
@@ -788,7 +791,7 @@ impl Session {
                 );
                 None
             }
-            Some(Wanted::Diff) => match self.sources.with_source(ShaderSource::Embedded).build(gpu, self.entry) {
+            Some(Wanted::Diff) => match self.builtin(gpu) {
                 Ok(lab) => Some(lab),
                 Err(e) => {
                     said = Some(format!("cannot build the lab with its built-in shaders: {e}"));

@@ -47,6 +47,29 @@ impl Mode {
         Mode::Check,
     ];
 
+    /// The modes of a run that draws one lab's frame, not a comparison (`legacy`, `open`).
+    pub const DRAWING: &'static [Mode] = &[
+        Mode::Window,
+        Mode::Screenshot,
+        Mode::Bench,
+        Mode::Record,
+        Mode::Debug,
+        Mode::Line,
+        Mode::Cost,
+    ];
+
+    /// The modes of `shaderlab run`: a frame, or a comparison at one state (`--diff DIR`).
+    pub const RUN: &'static [Mode] = &[
+        Mode::Window,
+        Mode::Screenshot,
+        Mode::Bench,
+        Mode::Record,
+        Mode::Debug,
+        Mode::Line,
+        Mode::Cost,
+        Mode::Diff,
+    ];
+
     /// The mode `args` ask for (`shaderlab diff`, whose copy is `--shaders`, is [`Mode::Diff`]
     /// by its verb).
     pub fn of(args: &Args) -> Mode {
@@ -334,30 +357,14 @@ impl Verb {
     /// The modes a run of the verb can be in.
     pub fn modes(self) -> &'static [Mode] {
         match self {
-            Verb::Run => Mode::ALL,
+            Verb::Run => Mode::RUN,
             Verb::Record => &[Mode::Record],
-            Verb::Legacy => &[
-                Mode::Window,
-                Mode::Screenshot,
-                Mode::Bench,
-                Mode::Record,
-                Mode::Debug,
-                Mode::Line,
-                Mode::Cost,
-            ],
+            Verb::Legacy => Mode::DRAWING,
             Verb::Debug => &[Mode::Debug],
             Verb::Diff => &[Mode::Diff],
             Verb::View => &[Mode::Line, Mode::Cost],
             Verb::Check => &[Mode::Check],
-            Verb::Open => &[
-                Mode::Window,
-                Mode::Screenshot,
-                Mode::Bench,
-                Mode::Record,
-                Mode::Debug,
-                Mode::Line,
-                Mode::Cost,
-            ],
+            Verb::Open => Mode::DRAWING,
         }
     }
 

@@ -203,7 +203,7 @@ pub struct Views {
     uploaded: Option<(wgpu::Device, wgpu::Texture, wgpu::TextureView)>,
     upload: bool,
     /// The diff's two frames being read back without blocking: the lab's and the reference's.
-    pending_diff: Option<(crate::debug::Pending, crate::debug::Pending)>,
+    pending_diff: Option<crate::debug::diff::Frames>,
 }
 
 impl Views {
@@ -389,13 +389,11 @@ impl Views {
         format: wgpu::TextureFormat,
         wait: bool,
     ) -> bool {
-        if let Some((mine, reference)) = &self.pending_diff {
-            let _ = gpu.device.poll(wgpu::PollType::Poll);
-            if !(mine.ready() && reference.ready()) {
+        if let Some(frames) = &self.pending_diff {
+            if !frames.ready(gpu) {
                 return false;
             }
-            let (mine, reference) = self.pending_diff.take().expect("checked above");
-            let made = mine.finish().and_then(|mine| Ok((mine, reference.finish()?)));
+            let made = self.pending_diff.take().expect("checked above").take(gpu, false);
             self.show_diff(lab, made);
             return true;
         }
@@ -410,28 +408,14 @@ impl Views {
         };
         carry_params(lab, reference.as_mut());
         // Both labs draw in the surface's format: each frame is captured with its picture.
-        let started = crate::debug::capture_start(gpu, lab, (w, h), format).and_then(|mine| {
-            Ok((
-                mine,
-                crate::debug::capture_start(gpu, reference.as_mut(), (w, h), format)?,
-            ))
-        });
-        match started {
-            Ok(both) if wait => {
-                #[cfg(not(target_arch = "wasm32"))]
-                {
-                    let made = both.0.wait(gpu).and_then(|mine| Ok((mine, both.1.wait(gpu)?)));
-                    self.show_diff(lab, made);
-                    true
-                }
-                #[cfg(target_arch = "wasm32")]
-                {
-                    self.pending_diff = Some(both);
-                    false
-                }
+        match crate::debug::diff::Frames::start(gpu, lab, reference.as_mut(), (w, h), format) {
+            Ok(frames) if wait && cfg!(not(target_arch = "wasm32")) => {
+                let made = frames.take(gpu, true);
+                self.show_diff(lab, made);
+                true
             }
-            Ok(both) => {
-                self.pending_diff = Some(both);
+            Ok(frames) => {
+                self.pending_diff = Some(frames);
                 false
             }
             Err(e) => {

@@ -395,3 +395,75 @@ pub fn names_in(dir: &Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// `target/test-output/TAG`, made empty for one test.
+pub fn fresh_dir(tag: &str) -> PathBuf {
+    let dir = output_dir().join(tag);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("the test folder");
+    dir
+}
+
+/// Runs `shaderlab ARGS` in `dir` to its end.
+pub fn shaderlab_in(dir: &Path, args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_shaderlab"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("shaderlab runs")
+}
+
+/// A NumPy array as `--npy` writes it, read back: its shape and its float32 values, the header
+/// checked as NumPy's format 1.0 says it.
+pub fn parse_npy(bytes: &[u8]) -> (Vec<usize>, Vec<f32>) {
+    assert_eq!(&bytes[..6], b"\x93NUMPY", "the magic");
+    assert_eq!((bytes[6], bytes[7]), (1, 0), "version 1.0");
+    let length = usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
+    assert_eq!((10 + length) % 64, 0, "the header is padded to 64 bytes");
+    let header = std::str::from_utf8(&bytes[10..10 + length]).expect("an ASCII header");
+    assert!(header.ends_with('\n'), "{header:?}");
+    assert!(header.contains("'descr': '<f4'"), "{header}");
+    assert!(header.contains("'fortran_order': False"), "{header}");
+    let shape = header
+        .split("'shape': (")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .expect("a shape");
+    let shape: Vec<usize> = shape
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().expect("a dimension"))
+        .collect();
+    let data = &bytes[10 + length..];
+    assert_eq!(data.len(), 4 * shape.iter().product::<usize>(), "{header}");
+    let values = data
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
+    (shape, values)
+}
+
+/// What bash's completion function of `script` (`shaderlab completions bash`) offers for
+/// `words` (the last one being completed), run in a bash subprocess.
+pub fn bash_offers(script: &Path, words: &[&str]) -> Vec<String> {
+    let quoted: Vec<String> = words.iter().map(|w| format!("'{w}'")).collect();
+    let program = format!(
+        "source '{}'\nCOMP_WORDS=({})\nCOMP_CWORD=$((${{#COMP_WORDS[@]}} - 1))\n\
+         _shaderlab shaderlab \"${{COMP_WORDS[COMP_CWORD]}}\" \"${{COMP_WORDS[COMP_CWORD-1]}}\"\n\
+         printf '%s\\n' \"${{COMPREPLY[@]}}\"\n",
+        script.display(),
+        quoted.join(" ")
+    );
+    let out = Command::new("bash")
+        .current_dir(script.parent().unwrap_or(Path::new(".")))
+        .arg("-c")
+        .arg(&program)
+        .output()
+        .expect("bash runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(str::to_owned)
+        .collect()
+}
